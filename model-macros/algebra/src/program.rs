@@ -1,0 +1,158 @@
+//! The compiler's output: straight-line programs that the front end turns into Rust.
+//!
+//! Each emitted function (`rhs`, `jacobian`, `outputs`) is one [`Program`]: a list of
+//! statements over numbered temporaries, in the order they must run, with every common
+//! subexpression computed once. The front end translates it statement by statement; it does
+//! no algebra of its own.
+
+/// A value a statement reads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Operand {
+    /// A constant.
+    Const(f64),
+    /// `y[i]`: a state of the model being emitted (indices of the emitted model).
+    State(usize),
+    /// `p[i]`: a parameter of the model being emitted.
+    Param(usize),
+    /// `dy[i]`: a derivative; only in the `outputs` program, which is given `dy`.
+    Der(usize),
+    /// The time `t`.
+    Time,
+    /// A temporary defined by an earlier [`Stmt::Let`], [`Stmt::SinCos`] or [`Stmt::SolveBlock`].
+    Tmp(u32),
+}
+
+/// A one-operation expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Node {
+    /// A copy.
+    Copy(Operand),
+    /// `-a`
+    Neg(Operand),
+    /// `a + b`
+    Add(Operand, Operand),
+    /// `a - b`
+    Sub(Operand, Operand),
+    /// `a * b`
+    Mul(Operand, Operand),
+    /// `a / b`
+    Div(Operand, Operand),
+    /// `a.powi(n)`
+    Powi(Operand, i32),
+    /// `a.powf(b)`
+    Powf(Operand, Operand),
+    /// A one-argument function (never `Atan2`).
+    Call(crate::spec::Func, Operand),
+    /// `a.atan2(b)` (that is, `atan2(a, b)` in the DSL)
+    Atan2(Operand, Operand),
+}
+
+/// Where a result is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// `dy[i]`
+    Der(usize),
+    /// `out[k]`
+    Output(usize),
+    /// `jac[i][j]`
+    Jac(usize, usize),
+}
+
+/// One statement.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    /// `let tK = node;`
+    Let {
+        /// The temporary defined.
+        tmp: u32,
+        /// Its value.
+        node: Node,
+    },
+    /// `let (tS, tC) = arg.sin_cos();` — sine and cosine of one argument, computed together.
+    SinCos {
+        /// The temporary receiving the sine.
+        sin: u32,
+        /// The temporary receiving the cosine.
+        cos: u32,
+        /// The argument.
+        arg: Operand,
+    },
+    /// Return `EvalError::SingularPivot` if the operand is zero or not finite.
+    CheckPivot {
+        /// The pivot's value.
+        value: Operand,
+        /// The pivot as the user would write it (e.g. `sin(theta)`).
+        text: String,
+    },
+    /// Solve the `n × n` system `A x = b` at run time by Gaussian elimination with partial
+    /// pivoting (used where a symbolic solution would swell); a zero or non-finite pivot
+    /// returns `EvalError::SingularPivot` with `text`.
+    SolveBlock {
+        /// The block's size.
+        n: usize,
+        /// `A`, row-major, `n * n` entries.
+        matrix: Vec<Operand>,
+        /// `b`, `n` entries.
+        rhs: Vec<Operand>,
+        /// The temporaries receiving `x`, `n` entries.
+        result: Vec<u32>,
+        /// The block named by its derivatives, e.g. `der(V_X), der(V_Y)`.
+        text: String,
+    },
+    /// `target = value;` — after all stores to `dy`, the front end checks they are finite.
+    Store {
+        /// Where.
+        target: Target,
+        /// What.
+        value: Operand,
+    },
+}
+
+/// Operation counts of a program (mirrors `model_runtime::OpCounts`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Ops {
+    /// `+`, `-` and negation.
+    pub add: u32,
+    /// `*` (and the multiplications of `powi`).
+    pub mul: u32,
+    /// `/`.
+    pub div: u32,
+    /// `sqrt`.
+    pub sqrt: u32,
+    /// `sin cos tan atan2` (a `SinCos` counts once).
+    pub trig: u32,
+    /// `exp ln powf`.
+    pub transcendental: u32,
+}
+
+/// One emitted function's body.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Program {
+    /// The statements, in execution order.
+    pub stmts: Vec<Stmt>,
+}
+
+/// A compiled model: names and the three programs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompiledModel {
+    /// The module name.
+    pub name: String,
+    /// State names, in index order.
+    pub states: Vec<String>,
+    /// Parameter names (fixed parameters of a variant are gone), with defaults.
+    pub params: Vec<(String, Option<f64>)>,
+    /// Output names, in order.
+    pub outputs: Vec<String>,
+    /// `dy = f(t, y, p)`.
+    pub rhs: Program,
+    /// `jac[i][j] = ∂f_i/∂y_j` (only nonzero entries are stored; the front end zeroes the rest).
+    pub jacobian: Program,
+    /// `out = g(t, y, dy, p)`.
+    pub outputs_program: Program,
+    /// Texts of the pivots checked at run time.
+    pub pivots: Vec<String>,
+    /// Texts of the blocks solved numerically.
+    pub numeric_blocks: Vec<String>,
+    /// The reduced variants, compiled.
+    pub variants: Vec<CompiledModel>,
+}

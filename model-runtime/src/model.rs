@@ -1,0 +1,150 @@
+//! The contract between the equation compiler and the runtime.
+//!
+//! The compiler (`model-macros`) emits one type per model that implements [`Model`] and
+//! [`WithOutputs`]; hand-written models (test problems, the disk's reference) implement the
+//! same traits, so every integrator, event locator and driver runs on either without change.
+//! States live in fixed-size arrays so that a step allocates nothing.
+
+use std::fmt;
+
+/// Operation counts of one emitted function, after common-subexpression elimination.
+///
+/// Counted on the straight-line code the compiler emits: every `+`/`-` is an add, every `*` a
+/// mul, every `/` a div; `sqrt`, the trigonometric functions (`sin cos tan atan2`) and the
+/// transcendental ones (`exp ln`, real powers) are counted apart because they cost far more.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OpCounts {
+    /// Additions and subtractions (including negations).
+    pub add: u32,
+    /// Multiplications (integer powers count as the multiplications they expand to).
+    pub mul: u32,
+    /// Divisions.
+    pub div: u32,
+    /// Square roots.
+    pub sqrt: u32,
+    /// Trigonometric calls (`sin`, `cos`, `tan`, `atan2`); a shared `sin_cos` counts once.
+    pub trig: u32,
+    /// Other transcendental calls (`exp`, `ln`, `powf`, `abs` is not counted here).
+    pub transcendental: u32,
+}
+
+impl OpCounts {
+    /// All operations, weighted equally.
+    pub fn total(&self) -> u32 {
+        self.add + self.mul + self.div + self.sqrt + self.trig + self.transcendental
+    }
+}
+
+/// What a model says about itself: names, sizes and the cost of its emitted code.
+#[derive(Clone, Copy, Debug)]
+pub struct ModelInfo {
+    /// The model's name (the module name in the DSL).
+    pub name: &'static str,
+    /// State names, in index order.
+    pub state_names: &'static [&'static str],
+    /// Parameter names, in index order.
+    pub param_names: &'static [&'static str],
+    /// Output names, in index order.
+    pub output_names: &'static [&'static str],
+    /// Operation counts of `rhs`.
+    pub rhs_ops: OpCounts,
+    /// Operation counts of `jacobian` (zero for hand-written models without one).
+    pub jacobian_ops: OpCounts,
+    /// Operation counts of `outputs`.
+    pub outputs_ops: OpCounts,
+    /// Pivots checked at run time, as they read in the user's terms (e.g. `sin(theta)`).
+    pub pivots: &'static [&'static str],
+    /// Blocks the compiler solved numerically instead of symbolically (each named by its
+    /// derivatives, e.g. `der(V_X), der(V_Y)`), because the symbolic solution would swell.
+    pub numeric_blocks: &'static [&'static str],
+}
+
+/// Why a model could not be evaluated at a state.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EvalError {
+    /// A pivot of the solve is zero or not finite at this state: the implicit system is singular
+    /// here (for the disk: `sin(theta)` at a flat disk, or the sliding determinant).
+    SingularPivot {
+        /// The model's name.
+        model: &'static str,
+        /// The pivot as the user wrote it, e.g. `sin(theta)`.
+        pivot: &'static str,
+        /// Its value at the state (zero, infinite or NaN).
+        value: f64,
+    },
+    /// A computed quantity is not finite (overflow, or a non-finite input).
+    NonFinite {
+        /// The model's name.
+        model: &'static str,
+        /// The quantity's name (a state derivative as `der(x)`, or an output).
+        quantity: &'static str,
+        /// Its value.
+        value: f64,
+    },
+}
+
+impl fmt::Display for EvalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EvalError::SingularPivot {
+                model,
+                pivot,
+                value,
+            } => write!(
+                f,
+                "model `{model}` is singular here: pivot `{pivot}` = {value:e}"
+            ),
+            EvalError::NonFinite {
+                model,
+                quantity,
+                value,
+            } => write!(f, "model `{model}`: `{quantity}` is not finite ({value})"),
+        }
+    }
+}
+
+impl std::error::Error for EvalError {}
+
+/// An explicit first-order system `dy/dt = f(t, y)` with a fixed number `N` of states.
+///
+/// The parameters are part of the value implementing the trait.
+pub trait Model<const N: usize> {
+    /// Names, sizes and costs.
+    fn info(&self) -> &'static ModelInfo;
+
+    /// Evaluates the right-hand side: `dy = f(t, y)`.
+    fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError>;
+
+    /// The Jacobian `jac[i][j] = ∂f_i/∂y_j`. The default uses central finite differences;
+    /// emitted models override it with the symbolic derivative of the solved system.
+    fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
+        let mut yp = *y;
+        let mut fp = [0.0; N];
+        let mut fm = [0.0; N];
+        for j in 0..N {
+            let h = f64::EPSILON.cbrt() * y[j].abs().max(1.0);
+            yp[j] = y[j] + h;
+            self.rhs(t, &yp, &mut fp)?;
+            yp[j] = y[j] - h;
+            self.rhs(t, &yp, &mut fm)?;
+            yp[j] = y[j];
+            for i in 0..N {
+                jac[i][j] = (fp[i] - fm[i]) / (2.0 * h);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A model with `M` secondary outputs (contact forces, energy, constraint residuals, ...),
+/// computed after the solve from the state and its derivative.
+pub trait WithOutputs<const N: usize, const M: usize>: Model<N> {
+    /// Evaluates the outputs at `(t, y)` given `dy = f(t, y)`.
+    fn outputs(
+        &self,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        out: &mut [f64; M],
+    ) -> Result<(), EvalError>;
+}
