@@ -1,1 +1,23 @@
-//! placeholder
+#![doc = include_str!("../DSL.md")]
+#![warn(missing_docs)]
+
+mod ast;
+mod compile;
+mod emit;
+mod emit_program;
+mod expand;
+mod expr;
+mod names;
+mod parse;
+mod span;
+mod validate;
+
+#[cfg(test)]
+mod tests;
+
+/// Compiles a model written as implicit equations into explicit Rust; see the crate docs for the
+/// language and for what is emitted.
+#[proc_macro]
+pub fn model(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
+    expand::expand(input.into()).into()
+}

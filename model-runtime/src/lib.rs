@@ -1,6 +1,52 @@
-//! Runtime for models emitted by `model-macros`: integrators, event location, hybrid driver.
+//! Runtime for models emitted by `model-macros`: integrators, exact event location and a
+//! generic hybrid (mode-switching) driver.
+//!
+//! * Methods, all behind one [`Stepper`] trait and allocation-free: [`Dopri5`] (5(4), dense
+//!   order 4), [`Dop853`] (8(5,3), dense order 7), [`Rodas4`] (stiff, uses the model's
+//!   Jacobian, dense order 3) and fixed-step [`Rk4`] (cubic Hermite dense output).
+//! * [`Integrator`]: the shared adaptive loop (PI control, Hairer's initial step, typed
+//!   collapse detection); [`integrate`] for a plain run.
+//! * [`hybrid`]: modes, guards with exact crossing location ([`events`] documents the guard
+//!   semantics), transition maps, chattering detection, projection, streaming [`observer`]s.
 #![warn(missing_docs)]
+// Numerical kernels index several arrays with one loop variable, as the formulas do.
+#![allow(clippy::needless_range_loop)]
 
+pub mod control;
+pub mod dop853;
+pub mod dopri5;
+pub mod error;
+pub mod events;
+pub mod hybrid;
+pub mod integrator;
+pub mod linalg;
+mod lu;
 pub mod model;
+pub mod observer;
+pub mod rk4;
+pub mod rodas4;
+pub mod root;
+pub mod stats;
+pub mod stepper;
+mod tableau;
+pub mod tolerance;
 
+pub use control::StepOptions;
+pub use dop853::Dop853;
+pub use dopri5::Dopri5;
+pub use error::{InputError, SolveError};
+pub use events::{Crossed, Direction, EventHit, GuardSpec};
+pub use hybrid::{
+    ChatterLimit, HybridError, HybridOptions, HybridOutcome, HybridSolver, HybridSystem,
+    StopReason, Transition,
+};
+pub use integrator::{integrate, DenseStep, Integrator, Solution};
 pub use model::{EvalError, Model, ModelInfo, OpCounts, WithOutputs};
+pub use observer::{
+    Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
+};
+pub use rk4::Rk4;
+pub use rodas4::Rodas4;
+pub use stats::Stats;
+pub use stepper::{StepEnd, StepStart, Stepper};
+pub use tolerance::{ErrorEstimate, Tolerance};

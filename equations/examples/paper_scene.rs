@@ -1,0 +1,114 @@
+//! Runs the paper's scene (EQUATIONS.md §9) on the hybrid driver and prints what it cost.
+//!
+//! ```text
+//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol]
+//! ```
+
+use equations::hybrid::{
+    simulate, DiskConfig, DiskObserver, InitialState, IntegratorChoice, ReferenceModels, SlipSign,
+    TransitionRecord,
+};
+use equations::modes::{Mode, SlipChart};
+use equations::DiskParams;
+use std::time::Instant;
+
+/// Counts the mode decisions in the first 1 s, 10 s and 100 s.
+#[derive(Default)]
+struct Counter {
+    within: [u64; 3],
+    to_rolling: u64,
+    restarts: u64,
+    shortest_sliding: f64,
+    sliding_since: Option<f64>,
+}
+
+impl DiskObserver for Counter {
+    fn on_transition(&mut self, r: &TransitionRecord) {
+        if std::env::var_os("PAPER_SCENE_TRACE").is_some() {
+            println!("{r:?}");
+        }
+        for (n, limit) in self.within.iter_mut().zip([1.0, 10.0, 100.0]) {
+            if r.t <= limit {
+                *n += 1;
+            }
+        }
+        match (r.from, r.to) {
+            (Mode::Sliding, Mode::Rolling) => {
+                self.to_rolling += 1;
+                if let Some(t0) = self.sliding_since.take() {
+                    let d = r.t - t0;
+                    if self.shortest_sliding == 0.0 || d < self.shortest_sliding {
+                        self.shortest_sliding = d;
+                    }
+                }
+            }
+            (Mode::Sliding, Mode::Sliding) => self.restarts += 1,
+            (Mode::Rolling, Mode::Sliding) => self.sliding_since = Some(r.t),
+            _ => {}
+        }
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let arg = |i: usize| args.get(i).map(String::as_str);
+    let params = DiskParams::paper();
+    let mut config = DiskConfig::paper();
+    config.t_end = arg(0).map(str::parse).transpose()?.unwrap_or(1.0);
+    config.integrator = match arg(1).unwrap_or("dopri5") {
+        "dop853" => IntegratorChoice::Dop853,
+        _ => IntegratorChoice::Dopri5,
+    };
+    let chart = match arg(2).unwrap_or("cartesian") {
+        "polar" => SlipChart::Polar,
+        _ => SlipChart::Cartesian,
+    };
+    if arg(3) == Some("paper") {
+        config.slip_sign = SlipSign::Paper;
+    }
+    if let Some(r) = arg(4) {
+        config.rtol = r.parse()?;
+    }
+    if let Some(a) = arg(5) {
+        config.atol = a.parse()?;
+    }
+    let models = ReferenceModels::reference(params, chart)?;
+    let mut counter = Counter::default();
+    let start = Instant::now();
+    let out = simulate(&models, &config, &InitialState::paper(&params), &mut counter)?;
+    let elapsed = start.elapsed();
+    println!(
+        "paper scene, reference models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}",
+        config.integrator, config.slip_sign, config.rtol, config.atol
+    );
+    println!("stop: {} at t = {}", out.stop.name(), out.last.t);
+    println!(
+        "time {:.3} s; steps {} (rejected {}); rhs evals {}; guard evals {}",
+        elapsed.as_secs_f64(),
+        out.stats.steps,
+        out.stats.rejected,
+        out.stats.rhs_evals,
+        out.stats.guard_evals
+    );
+    println!(
+        "transitions {} (t<=1 s: {}, t<=10 s: {}, t<=100 s: {}); to rolling {}, sliding restarts {}",
+        out.transitions,
+        counter.within[0],
+        counter.within[1],
+        counter.within[2],
+        counter.to_rolling,
+        counter.restarts
+    );
+    println!("shortest sliding phase ending in rolling: {:e} s", counter.shortest_sliding);
+    println!(
+        "max drift: |Z - a sin th| {:e} m, |V_Z - a Om_y cos th| {:e} m/s, no-slip {:e} m/s",
+        out.max_drift.height, out.max_drift.vertical_speed, out.max_drift.no_slip
+    );
+    println!(
+        "final: theta {:.6}, energy {:.9} J, mode {}",
+        out.last.state.y[equations::modes::layout::THETA],
+        out.last.energy,
+        out.last.mode
+    );
+    Ok(())
+}

@@ -1,0 +1,357 @@
+//! The hybrid disk: rolling and sliding joined by the paper's transition rules (EQUATIONS.md §6),
+//! run on the generic hybrid driver of `model-runtime`.
+//!
+//! # Why the transitions look the way they do
+//!
+//! * **Onset of sliding.** When rolling would need `T ≥ μ_st N` the disk starts to slide from
+//!   `v_C = 0` in the *consistent* direction `α0` (§6.1, [`onset`]). The Cartesian chart cannot
+//!   represent the direction of a zero slip, so the first `2δ / v̇_C` seconds (δ = the stick
+//!   threshold, ~1e-9 s of motion) are bridged by an exact linear segment along the derivative
+//!   at `(u = 0, α0)`: the slip leaves the origin along `e_s(α0)` and the sliding model takes
+//!   over at `|u| = 2δ`. The bridge is a mode of its own whose right-hand side is that constant
+//!   derivative and whose only guard is the time it ends, so the generic driver integrates and
+//!   times it exactly; its error is `O(s²)` in the step `s ≈ 5e-10 s`, far below any tolerance.
+//! * **End of sliding.** `|u|` touches zero without changing sign, and the sliding field is
+//!   discontinuous there, so the guard is `|u| − δ` (downward); at that crossing a second
+//!   bridge follows the derivative for the remaining `s = −u·u̇/|u̇|²` to the exact zero of the
+//!   slip. There the rolling equations decide (§6.2): rolling if `T_r < μ_st N_r` and `N_r > 0`,
+//!   otherwise sliding restarts with a new consistent `α0` ([`SlipSign::Physical`]) or goes on
+//!   through zero with `α` fixed and a signed slip speed ([`SlipSign::Paper`], polar chart only).
+//! * **Stops.** Contact lost (`N` falls through zero, either mode), the inclination reaching the
+//!   configured floor, chattering (too many transitions in a short window), or the end time.
+//!
+//! Constraint drift (`Z − a sin θ`, `V_Z − a Ω_y cos θ`, and the no-slip velocity in rolling) is
+//! measured after every step and removed at every switch (optionally after every step).
+
+pub mod models;
+pub mod onset;
+mod run;
+mod system;
+
+pub use models::{DiskModels, ReferenceModels, SlidingModel, PROBE_SLIP_SPEED};
+pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
+pub use run::simulate;
+pub use system::DiskGuard;
+
+use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, DIM};
+use crate::ParamError;
+use model_runtime::error::SolveError;
+use model_runtime::stats::Stats;
+use model_runtime::EvalError;
+
+/// Which integrator runs every segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum IntegratorChoice {
+    /// Dormand–Prince 5(4) with its 4th-order dense output (the paper's `ode45`).
+    Dopri5,
+    /// Dormand–Prince 8(5,3) with its 7th-order dense output.
+    Dop853,
+    /// Rodas4, linearly implicit (stiff stretches); Jacobians by finite differences.
+    Rodas4,
+    /// Classical RK4 with a fixed step (s), for quick previews; no error control.
+    Rk4 {
+        /// Step size (s).
+        h: f64,
+    },
+}
+
+/// How the slip speed is read when it reaches zero and static friction cannot hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlipSign {
+    /// `v_C ≥ 0` (EQUATIONS.md §6.5): sliding restarts from zero slip in a new consistent
+    /// direction, so friction always opposes the slip.
+    Physical,
+    /// The paper's signed slip speed: `v_C` passes through zero with `α` held fixed, after which
+    /// friction points along the slip. Needs the polar chart.
+    Paper,
+}
+
+/// Transitions allowed in a short window before the run is stopped as chattering.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChatterLimit {
+    /// Mode decisions (rolling ↔ sliding, sliding restarts) allowed within one window.
+    pub max_transitions: usize,
+    /// The window's width (s).
+    pub window: f64,
+}
+
+/// Where a run starts: a time and a state in rolling variables
+/// `(X, Y, Z, V_X, V_Y, V_Z, ψ, θ, φ, Ω_x, Ω_y, Ω_z)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InitialState {
+    /// Start time (s).
+    pub t: f64,
+    /// The state; `V_X, V_Y` may include a slip of the contact particle.
+    pub y: [f64; DIM],
+}
+
+impl InitialState {
+    /// The paper's start (EQUATIONS.md §9): centre above the origin at rest, `ψ = φ = 0`,
+    /// `θ0 = π/2 − 1`, `Ω = (1, 0, 0)` rad/s, on the rolling constraints.
+    pub fn paper(params: &crate::DiskParams) -> Self {
+        let theta0 = std::f64::consts::FRAC_PI_2 - 1.0;
+        let mut y = [0.0; DIM];
+        y[crate::modes::layout::Z] = params.a * theta0.sin();
+        y[crate::modes::layout::THETA] = theta0;
+        y[crate::modes::layout::OMEGA_X] = 1.0;
+        InitialState { t: 0.0, y }
+    }
+}
+
+/// Everything a run needs besides the models and the initial state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiskConfig {
+    /// The integrator.
+    pub integrator: IntegratorChoice,
+    /// Relative tolerance (every component).
+    pub rtol: f64,
+    /// Absolute tolerance (every component, in its own unit).
+    pub atol: f64,
+    /// End time (s).
+    pub t_end: f64,
+    /// Reading of the slip speed's sign.
+    pub slip_sign: SlipSign,
+    /// Slip speed δ (m/s) at which the end of sliding is detected; the remaining approach to
+    /// zero is bridged exactly. Must lie well above the integration error of the slip (a few
+    /// `atol`) and far below the slip speeds of interest.
+    pub stick_threshold: f64,
+    /// The run stops when θ falls to this inclination (rad).
+    pub min_inclination: f64,
+    /// Project onto the contact constraints after every accepted step (always at switches).
+    pub project_each_step: bool,
+    /// Samples per second delivered to the observer; `None` for none.
+    pub sample_rate: Option<f64>,
+    /// Interior points of each step where the guards are checked too (0: step ends only).
+    pub guard_checks: u32,
+    /// Chattering detection.
+    pub chatter: ChatterLimit,
+    /// Budget of step attempts for the whole run.
+    pub max_steps: u64,
+}
+
+impl DiskConfig {
+    /// The paper's settings: DP5 at `rtol = 1e-8`, `atol = 1e-10` over 100 s, physical slip.
+    pub fn paper() -> Self {
+        DiskConfig {
+            integrator: IntegratorChoice::Dopri5,
+            rtol: 1e-8,
+            atol: 1e-10,
+            t_end: 100.0,
+            slip_sign: SlipSign::Physical,
+            stick_threshold: 1e-9,
+            min_inclination: 0.0,
+            project_each_step: false,
+            sample_rate: None,
+            guard_checks: 0,
+            chatter: ChatterLimit {
+                max_transitions: 50,
+                window: 1e-6,
+            },
+            max_steps: 500_000_000,
+        }
+    }
+}
+
+/// The quantity whose crossing caused a transition, with its value there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Trigger {
+    /// At the start of the run the state needs more friction than `μ_st N` to roll.
+    InitialFriction {
+        /// `T/N` rolling would need.
+        ratio: f64,
+    },
+    /// While rolling, `T/N` reached `μ_st`.
+    FrictionLimit {
+        /// `T/N` at the event (equals `μ_st` to round-off).
+        ratio: f64,
+    },
+    /// While sliding, the slip speed reached zero; the rolling equations were evaluated there.
+    SlipStopped {
+        /// `T_r/N_r` that rolling would need.
+        rolling_ratio: f64,
+        /// `N_r` rolling would have (N).
+        rolling_normal: f64,
+    },
+}
+
+/// One mode decision, as it happened.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TransitionRecord {
+    /// Time (s).
+    pub t: f64,
+    /// Mode before.
+    pub from: Mode,
+    /// Mode after (sliding → sliding is a restart from zero slip).
+    pub to: Mode,
+    /// What fired it.
+    pub trigger: Trigger,
+    /// When sliding starts: the consistent friction direction `α0` (rad).
+    pub slip_direction: Option<f64>,
+    /// Constraint drift just before the switch's projection.
+    pub drift: ConstraintResiduals,
+}
+
+/// Why a run ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StopReason {
+    /// The configured end time was reached.
+    EndTime,
+    /// `N` fell through zero: the disk would leave the floor (free flight is not modelled).
+    ContactLost {
+        /// Time (s).
+        t: f64,
+        /// Mode at that time.
+        mode: Mode,
+    },
+    /// θ reached the configured floor ("inclination reached 0").
+    InclinationReachedFloor {
+        /// Time (s).
+        t: f64,
+        /// θ there (rad).
+        theta: f64,
+    },
+    /// Too many transitions within the chattering window.
+    Chattering {
+        /// Time (s).
+        t: f64,
+        /// Mode decisions counted in the window.
+        transitions: usize,
+        /// The window (s).
+        window: f64,
+    },
+}
+
+impl StopReason {
+    /// A short human-readable name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            StopReason::EndTime => "end time",
+            StopReason::ContactLost { .. } => "contact lost",
+            StopReason::InclinationReachedFloor { .. } => "inclination reached 0",
+            StopReason::Chattering { .. } => "chattering",
+        }
+    }
+}
+
+/// The disk at one instant, with its contact force and invariants.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiskSample {
+    /// Time (s).
+    pub t: f64,
+    /// Mode in force.
+    pub mode: Mode,
+    /// State in rolling variables, with the slip (in rolling: zero speed, direction `α_r`).
+    pub state: PhysicalState,
+    /// Contact reaction.
+    pub force: ContactForce,
+    /// Total energy (J).
+    pub energy: f64,
+    /// Constraint drift.
+    pub residuals: ConstraintResiduals,
+}
+
+/// Receives a run's output as it happens.
+pub trait DiskObserver {
+    /// A sample at a requested time.
+    fn on_sample(&mut self, _sample: &DiskSample) {}
+    /// A mode decision.
+    fn on_transition(&mut self, _record: &TransitionRecord) {}
+}
+
+impl DiskObserver for () {}
+
+/// An observer that keeps everything in memory (tests, short runs).
+#[derive(Clone, Debug, Default)]
+pub struct DiskRecorder {
+    /// Samples in order.
+    pub samples: Vec<DiskSample>,
+    /// Mode decisions in order.
+    pub transitions: Vec<TransitionRecord>,
+}
+
+impl DiskObserver for DiskRecorder {
+    fn on_sample(&mut self, sample: &DiskSample) {
+        self.samples.push(*sample);
+    }
+    fn on_transition(&mut self, record: &TransitionRecord) {
+        self.transitions.push(*record);
+    }
+}
+
+/// The end of a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunOutcome {
+    /// Why it ended.
+    pub stop: StopReason,
+    /// The final state.
+    pub last: DiskSample,
+    /// Event-driven mode decisions (the initial decision is not counted).
+    pub transitions: u64,
+    /// Integrator work: steps, rejections, model evaluations (bridges included).
+    pub stats: Stats,
+    /// Largest constraint drift seen after any step, before projection.
+    pub max_drift: ConstraintResiduals,
+}
+
+/// Why a run could not be carried out.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// The parameters are invalid.
+    #[error("invalid parameters: {0}")]
+    Params(#[from] ParamError),
+    /// A setting is out of range.
+    #[error("invalid setting `{name}` = {value}: {reason}")]
+    Config {
+        /// The setting.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// The initial state is not finite or not on the floor.
+    #[error("invalid initial state: component {component} = {value}")]
+    InitialState {
+        /// Index in the rolling layout.
+        component: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The paper's signed slip needs the polar chart.
+    #[error("the paper's signed slip speed needs the polar slip chart")]
+    SignedSlipNeedsPolarChart,
+    /// Integration failed.
+    #[error("integration failed while {mode}: {error}")]
+    Solve {
+        /// Mode being integrated.
+        mode: Mode,
+        /// What went wrong.
+        error: SolveError,
+    },
+    /// A model failed at a transition.
+    #[error("model failed at the transition out of {mode} at t = {t}: {source}")]
+    Transition {
+        /// Mode before.
+        mode: Mode,
+        /// Time (s).
+        t: f64,
+        /// The model's error.
+        source: EvalError,
+    },
+    /// The driver's own chattering backstop fired (the disk's limit should fire first).
+    #[error("chattering at t = {t}: {transitions} driver transitions in the window")]
+    DriverChattering {
+        /// Time (s).
+        t: f64,
+        /// Driver transitions counted.
+        transitions: usize,
+    },
+    /// Sliding had to start but no consistent slip direction exists.
+    #[error("at t = {t}: {source}")]
+    Onset {
+        /// Time (s).
+        t: f64,
+        /// Why.
+        source: OnsetError,
+    },
+}

@@ -1,0 +1,321 @@
+//! One simulation from start to stop: checking the inputs, deciding the initial mode, choosing
+//! the integrator, and turning the driver's raw phase states into disk samples for the caller.
+
+use super::models::DiskModels;
+use super::system::{DiskSystem, Halt, Phase, Shared};
+use super::{
+    DiskConfig, DiskObserver, DiskSample, InitialState, IntegratorChoice, RunOutcome, SimError,
+    SlipSign, StopReason, Trigger,
+};
+use crate::modes::layout::THETA;
+use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use model_runtime::hybrid::ChatterLimit as DriverChatter;
+use model_runtime::{
+    Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, Model, Observer, Rk4,
+    Rodas4, Sample, StepOptions, Stepper, Tolerance, TransitionRecord,
+};
+
+/// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
+/// mode decisions to `observer`.
+///
+/// The initial state is given in rolling variables. If its contact particle slips (faster
+/// than the stick threshold) the run starts sliding with that slip; otherwise the state is put
+/// on the rolling constraints and starts rolling if static friction can hold it, or sliding
+/// from zero slip in the consistent direction if it cannot (reported as a transition with
+/// [`Trigger::InitialFriction`], not counted in [`RunOutcome::transitions`]).
+pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
+    models: &DiskModels<R, S>,
+    config: &DiskConfig,
+    initial: &InitialState,
+    observer: &mut O,
+) -> Result<RunOutcome, SimError> {
+    validate(models, config, initial)?;
+    match config.integrator {
+        IntegratorChoice::Dopri5 => run_with(Dopri5::new(), models, config, initial, observer),
+        IntegratorChoice::Dop853 => run_with(Dop853::new(), models, config, initial, observer),
+        IntegratorChoice::Rodas4 => run_with(Rodas4::new(), models, config, initial, observer),
+        IntegratorChoice::Rk4 { h } => run_with(Rk4::new(h), models, config, initial, observer),
+    }
+}
+
+fn config_error(name: &'static str, value: f64, reason: &'static str) -> SimError {
+    SimError::Config {
+        name,
+        value,
+        reason,
+    }
+}
+
+fn validate<R, S>(
+    models: &DiskModels<R, S>,
+    config: &DiskConfig,
+    initial: &InitialState,
+) -> Result<(), SimError> {
+    models.params.validate()?;
+    let positive = [
+        ("rtol", config.rtol),
+        ("atol", config.atol),
+        ("stick_threshold", config.stick_threshold),
+        ("chatter.window", config.chatter.window),
+    ];
+    for (name, value) in positive {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(config_error(name, value, "must be finite and > 0"));
+        }
+    }
+    if let IntegratorChoice::Rk4 { h } = config.integrator {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(config_error("integrator.h", h, "must be finite and > 0"));
+        }
+    }
+    if let Some(rate) = config.sample_rate {
+        if !(rate.is_finite() && rate > 0.0) {
+            return Err(config_error("sample_rate", rate, "must be finite and > 0"));
+        }
+    }
+    if !(config.min_inclination >= 0.0 && config.min_inclination < std::f64::consts::FRAC_PI_2) {
+        return Err(config_error(
+            "min_inclination",
+            config.min_inclination,
+            "must lie in [0, pi/2)",
+        ));
+    }
+    if config.chatter.max_transitions == 0 {
+        return Err(config_error("chatter.max_transitions", 0.0, "must be >= 1"));
+    }
+    if !(config.t_end.is_finite() && config.t_end >= initial.t && initial.t.is_finite()) {
+        return Err(config_error(
+            "t_end",
+            config.t_end,
+            "must be finite and not before the initial time",
+        ));
+    }
+    if config.slip_sign == SlipSign::Paper && models.chart != SlipChart::Polar {
+        return Err(SimError::SignedSlipNeedsPolarChart);
+    }
+    if let Some(i) = initial.y.iter().position(|v| !v.is_finite()) {
+        return Err(SimError::InitialState {
+            component: i,
+            value: initial.y[i],
+        });
+    }
+    let theta = initial.y[THETA];
+    if !(theta > 0.0 && theta < std::f64::consts::PI) {
+        return Err(SimError::InitialState {
+            component: THETA,
+            value: theta,
+        });
+    }
+    Ok(())
+}
+
+fn run_with<St, R, S, O>(
+    stepper: St,
+    models: &DiskModels<R, S>,
+    config: &DiskConfig,
+    initial: &InitialState,
+    observer: &mut O,
+) -> Result<RunOutcome, SimError>
+where
+    St: Stepper<DIM>,
+    R: Model<DIM>,
+    S: Model<DIM>,
+    O: DiskObserver,
+{
+    let shared = Shared::default();
+    let mut system = DiskSystem::new(models, config, &shared);
+    let (phase, y0) = initial_phase(&mut system, models, config, initial)?;
+    drain(&shared, observer);
+    let options = HybridOptions {
+        step: StepOptions {
+            max_steps: config.max_steps,
+            ..StepOptions::default()
+        },
+        // A backstop only: the disk counts its own decisions (each may take three driver
+        // transitions through bridges) and stops with a named reason first.
+        chatter: DriverChatter {
+            max_transitions: 3 * config.chatter.max_transitions + 3,
+            window: config.chatter.window,
+        },
+        sample_rate: config.sample_rate,
+        guard_checks: config.guard_checks,
+    };
+    let tolerance = Tolerance::scalar(config.rtol, config.atol);
+    let mut solver =
+        HybridSolver::new(stepper, tolerance, options).map_err(|e| SimError::Solve {
+            mode: phase.mode(),
+            error: e.into(),
+        })?;
+    let mut adaptor = Adaptor {
+        models,
+        shared: &shared,
+        user: observer,
+        failure: None,
+    };
+    let result = solver.run(&mut system, phase, initial.t, &y0, config.t_end, &mut adaptor);
+    let failure = adaptor.failure.take();
+    drain(&shared, observer);
+    let out = result.map_err(|e| match e {
+        HybridError::Solve { mode, error } => SimError::Solve {
+            mode: mode.mode(),
+            error,
+        },
+        HybridError::Transition { mode, t, source } => SimError::Transition {
+            mode: mode.mode(),
+            t,
+            source,
+        },
+        HybridError::Chattering { t, transitions, .. } => {
+            SimError::DriverChattering { t, transitions }
+        }
+    })?;
+    if let Some((t, phase, source)) = failure {
+        return Err(SimError::Transition {
+            mode: phase.mode(),
+            t,
+            source,
+        });
+    }
+    let stop = match out.stop {
+        model_runtime::StopReason::EndTime => StopReason::EndTime,
+        model_runtime::StopReason::User(Halt::Stop(reason)) => reason,
+        model_runtime::StopReason::User(Halt::Onset { t, source }) => {
+            return Err(SimError::Onset { t, source })
+        }
+    };
+    let last = sample_at(models, &shared, out.t, out.mode, &out.y).map_err(|source| {
+        SimError::Transition {
+            mode: out.mode.mode(),
+            t: out.t,
+            source,
+        }
+    })?;
+    Ok(RunOutcome {
+        stop,
+        last,
+        transitions: system.transitions,
+        stats: out.stats,
+        max_drift: system.max_drift(),
+    })
+}
+
+/// The phase and state the driver starts from (see [`simulate`]).
+fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
+    system: &mut DiskSystem<'_, R, S>,
+    models: &DiskModels<R, S>,
+    config: &DiskConfig,
+    initial: &InitialState,
+) -> Result<(Phase, [f64; DIM]), SimError> {
+    let a = models.params.a;
+    let t = initial.t;
+    let given = PhysicalState::from_rolling(&initial.y, 0.0);
+    let slip = given.velocity_slip(a);
+    let mut state = given;
+    if slip[0].hypot(slip[1]) > config.stick_threshold {
+        state.project(a, Mode::Sliding);
+        return Ok((
+            Phase::Sliding,
+            state.sliding_vector(models.chart, Slip::from_vector(slip)),
+        ));
+    }
+    state.project(a, Mode::Rolling);
+    let eval_error = |source| SimError::Transition {
+        mode: Mode::Rolling,
+        t,
+        source,
+    };
+    let force = system.rolling_force(t, &state).map_err(eval_error)?;
+    if force.admits_rolling(models.params.mu_st) {
+        return Ok((Phase::Rolling, state.rolling_vector()));
+    }
+    let drift = given.residuals(a, Mode::Rolling);
+    let trigger = Trigger::InitialFriction {
+        ratio: force.ratio(),
+    };
+    let start = system
+        .begin_sliding(t, state, force.direction(), Mode::Rolling, trigger, drift, false)
+        .map_err(eval_error)?;
+    match start {
+        Ok(y) => Ok((Phase::Bridge, y)),
+        Err(source) => Err(SimError::Onset { t, source }),
+    }
+}
+
+/// Forwards the mode decisions made so far to the caller's observer.
+fn drain<O: DiskObserver>(shared: &Shared, observer: &mut O) {
+    let mut records = shared.records.borrow_mut();
+    while let Some(record) = records.pop_front() {
+        observer.on_transition(&record);
+    }
+}
+
+/// The disk at `(t, y)` in `phase`, with its contact force (one model evaluation).
+pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
+    models: &DiskModels<R, S>,
+    shared: &Shared,
+    t: f64,
+    phase: Phase,
+    y: &[f64; DIM],
+) -> Result<DiskSample, EvalError> {
+    let p = &models.params;
+    let mut dy = [0.0; DIM];
+    let (state, force) = match phase {
+        Phase::Rolling => {
+            models.rolling.rhs(t, y, &mut dy)?;
+            let force = ContactForce::rolling(p, &PhysicalState::from_rolling(y, 0.0), &dy);
+            (PhysicalState::from_rolling(y, force.direction()), force)
+        }
+        Phase::Sliding => {
+            models.sliding.rhs(t, y, &mut dy)?;
+            let state = models.sliding_state(y);
+            (state, ContactForce::sliding(p, &state, &dy))
+        }
+        Phase::Bridge => {
+            // Within ~1e-9 s of zero slip: the direction is the bridge's, the force the one at
+            // zero slip in that direction.
+            let mut state = models.sliding_state(y);
+            if let Some(slip) = shared.bridge_slip.get() {
+                state.slip.direction = slip.direction;
+            }
+            let (_, dy) = models.probe_onset(t, &state, state.slip.direction)?;
+            (state, ContactForce::sliding(p, &state, &dy))
+        }
+    };
+    let mode = phase.mode();
+    Ok(DiskSample {
+        t,
+        mode,
+        state,
+        force,
+        energy: state.energy(p),
+        residuals: state.residuals(p.a, mode),
+    })
+}
+
+/// Turns the driver's output into disk samples and decisions for the caller.
+struct Adaptor<'a, R, S, O> {
+    models: &'a DiskModels<R, S>,
+    shared: &'a Shared,
+    user: &'a mut O,
+    /// The first model failure while sampling (reported after the run).
+    failure: Option<(f64, Phase, EvalError)>,
+}
+
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::DiskGuard>
+    for Adaptor<'_, R, S, O>
+{
+    fn on_sample(&mut self, s: &Sample<'_, DIM, Phase>) {
+        match sample_at(self.models, self.shared, s.t, s.mode, s.y) {
+            Ok(sample) => self.user.on_sample(&sample),
+            Err(e) => {
+                if self.failure.is_none() {
+                    self.failure = Some((s.t, s.mode, e));
+                }
+            }
+        }
+    }
+
+    fn on_transition(&mut self, _record: &TransitionRecord<DIM, Phase, super::DiskGuard>) {
+        drain(self.shared, self.user);
+    }
+}

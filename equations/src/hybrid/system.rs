@@ -1,0 +1,527 @@
+//! The disk as a [`HybridSystem`]: phases, guards and the transition maps of EQUATIONS.md §6.
+//!
+//! Besides rolling and sliding there is a third phase, the *bridge*: a short segment with a
+//! constant derivative that carries the slip exactly between zero and the stick threshold,
+//! where neither sliding chart can be evaluated (see the module docs of [`crate::hybrid`]).
+//! Integrating a constant derivative is exact for every Runge–Kutta method, and the bridge's
+//! only guard is its end time, so the generic driver times it to a few ulps.
+
+use super::models::DiskModels;
+use super::onset::{consistent_slip_direction, OnsetError};
+use super::{DiskConfig, SlipSign, StopReason, TransitionRecord, Trigger};
+use crate::modes::layout::{ALPHA, THETA, U_X, U_Y, V_C};
+use crate::modes::{
+    ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM,
+};
+use model_runtime::{Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, Transition};
+use std::cell::{Cell, RefCell};
+use std::collections::VecDeque;
+
+/// What the integrator is doing: one of the two modes, or a bridge between zero slip and the
+/// stick threshold (part of sliding).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Phase {
+    Rolling,
+    Sliding,
+    Bridge,
+}
+
+impl Phase {
+    /// The contact mode this phase belongs to.
+    pub(crate) fn mode(self) -> Mode {
+        match self {
+            Phase::Rolling => Mode::Rolling,
+            Phase::Sliding | Phase::Bridge => Mode::Sliding,
+        }
+    }
+}
+
+/// The disk's guards.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DiskGuard {
+    /// Rolling: `T − μ_st N`, upward.
+    FrictionLimit,
+    /// Sliding: slip speed minus the stick threshold, downward.
+    SlipStops,
+    /// Either mode: `N`, downward.
+    ContactLost,
+    /// Either mode: `θ − θ_min`, downward.
+    InclinationFloor,
+    /// Bridge: time minus the bridge's end, upward.
+    BridgeEnd,
+}
+
+const fn guard(id: DiskGuard, direction: Direction) -> GuardSpec<DiskGuard> {
+    GuardSpec { id, direction }
+}
+
+const ROLLING_GUARDS: [GuardSpec<DiskGuard>; 3] = [
+    guard(DiskGuard::FrictionLimit, Direction::Up),
+    guard(DiskGuard::ContactLost, Direction::Down),
+    guard(DiskGuard::InclinationFloor, Direction::Down),
+];
+const SLIDING_GUARDS: [GuardSpec<DiskGuard>; 3] = [
+    guard(DiskGuard::SlipStops, Direction::Down),
+    guard(DiskGuard::ContactLost, Direction::Down),
+    guard(DiskGuard::InclinationFloor, Direction::Down),
+];
+const BRIDGE_GUARDS: [GuardSpec<DiskGuard>; 1] = [guard(DiskGuard::BridgeEnd, Direction::Up)];
+
+/// What happens when a bridge ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum AfterBridge {
+    /// The slip has reached zero: the rolling equations decide.
+    StickDecision,
+    /// The slip has grown to the stick threshold's double: sliding proper starts with it.
+    StartSliding { slip: Slip },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct BridgePlan {
+    t_end: f64,
+    slope: [f64; DIM],
+    then: AfterBridge,
+}
+
+/// The first state of a bridge into sliding, or why sliding cannot start.
+pub(crate) type BridgeStart = Result<[f64; DIM], OnsetError>;
+
+/// The transition into a planned bridge (or the stop when there is none).
+fn into_bridge(t: f64, start: BridgeStart) -> Transition<DIM, Phase, Halt> {
+    match start {
+        Ok(y) => Transition::Switch {
+            to: Phase::Bridge,
+            y,
+        },
+        Err(source) => Transition::Stop(Halt::Onset { t, source }),
+    }
+}
+
+/// Why the system asked the driver to stop.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Halt {
+    Stop(StopReason),
+    Onset { t: f64, source: OnsetError },
+}
+
+/// Output shared between the system (which makes the decisions) and the observer adaptor
+/// (which streams them): the driver holds both mutably, so they meet in cells.
+#[derive(Debug, Default)]
+pub(crate) struct Shared {
+    pub records: RefCell<VecDeque<TransitionRecord>>,
+    /// Slip at the start of the current bridge (its direction labels bridge samples).
+    pub bridge_slip: Cell<Option<Slip>>,
+}
+
+/// The settings the transition maps need.
+#[derive(Clone, Copy, Debug)]
+struct Settings {
+    stick: f64,
+    sign: SlipSign,
+    min_inclination: f64,
+    project_each_step: bool,
+    chatter_max: usize,
+    chatter_window: f64,
+}
+
+pub(crate) struct DiskSystem<'a, R, S> {
+    models: &'a DiskModels<R, S>,
+    settings: Settings,
+    bridge: BridgePlan,
+    shared: &'a Shared,
+    /// Event-driven mode decisions so far.
+    pub transitions: u64,
+    recent: VecDeque<f64>,
+    max_drift: Cell<ConstraintResiduals>,
+}
+
+impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
+    pub(crate) fn new(models: &'a DiskModels<R, S>, config: &DiskConfig, shared: &'a Shared) -> Self {
+        DiskSystem {
+            models,
+            settings: Settings {
+                stick: config.stick_threshold,
+                sign: config.slip_sign,
+                min_inclination: config.min_inclination,
+                project_each_step: config.project_each_step,
+                chatter_max: config.chatter.max_transitions,
+                chatter_window: config.chatter.window,
+            },
+            bridge: BridgePlan {
+                t_end: f64::NEG_INFINITY,
+                slope: [0.0; DIM],
+                then: AfterBridge::StickDecision,
+            },
+            shared,
+            transitions: 0,
+            recent: VecDeque::new(),
+            max_drift: Cell::new(ConstraintResiduals::default()),
+        }
+    }
+
+    pub(crate) fn max_drift(&self) -> ConstraintResiduals {
+        self.max_drift.get()
+    }
+
+    fn a(&self) -> f64 {
+        self.models.params.a
+    }
+
+    fn note_drift(&self, r: ConstraintResiduals) {
+        let m = self.max_drift.get();
+        self.max_drift.set(ConstraintResiduals {
+            height: m.height.max(r.height.abs()),
+            vertical_speed: m.vertical_speed.max(r.vertical_speed.abs()),
+            no_slip: m.no_slip.max(r.no_slip),
+        });
+    }
+
+    /// The slip speed the stick guard watches (signed readings watch its magnitude).
+    fn slip_speed(&self, y: &[f64; DIM]) -> f64 {
+        match self.models.chart {
+            SlipChart::Cartesian => y[U_X].hypot(y[U_Y]),
+            SlipChart::Polar => y[V_C].abs(),
+        }
+    }
+
+    /// Evaluates the rolling model at a physical state and returns its contact force.
+    pub(crate) fn rolling_force(&self, t: f64, state: &PhysicalState) -> Result<ContactForce, EvalError> {
+        let mut dy = [0.0; DIM];
+        self.models.rolling.rhs(t, &state.y, &mut dy)?;
+        Ok(ContactForce::rolling(&self.models.params, state, &dy))
+    }
+
+    fn record(&mut self, record: TransitionRecord, counted: bool) {
+        if counted {
+            self.transitions += 1;
+        }
+        self.shared.records.borrow_mut().push_back(record);
+    }
+
+    /// Counts a mode decision; true when the chattering limit is exceeded.
+    fn chattering(&mut self, t: f64) -> bool {
+        self.recent.push_back(t);
+        while self
+            .recent
+            .front()
+            .is_some_and(|&t0| t0 < t - self.settings.chatter_window)
+        {
+            self.recent.pop_front();
+        }
+        self.recent.len() > self.settings.chatter_max
+    }
+
+    /// Starts sliding from zero slip at `state` (rolling variables, on the constraints): finds
+    /// the consistent direction nearest `guess` and plans the bridge of the slip to `2δ`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn begin_sliding(
+        &mut self,
+        t: f64,
+        state: PhysicalState,
+        guess: f64,
+        from: Mode,
+        trigger: Trigger,
+        drift: ConstraintResiduals,
+        counted: bool,
+    ) -> Result<BridgeStart, EvalError> {
+        let models = self.models;
+        let probe = |alpha| models.probe_onset(t, &state, alpha).map(|(acc, _)| acc);
+        let onset = match consistent_slip_direction(guess, probe) {
+            Ok(onset) => onset,
+            Err(OnsetError::Model { source, .. }) => return Err(source),
+            Err(source) => return Ok(Err(source)),
+        };
+        self.record(
+            TransitionRecord {
+                t,
+                from,
+                to: Mode::Sliding,
+                trigger,
+                slip_direction: Some(onset.direction),
+                drift,
+            },
+            counted,
+        );
+        self.bridge_into_sliding(t, &state, onset.direction, onset.acceleration.along)
+    }
+
+    /// Plans a bridge from zero slip to `|v_C| = 2δ` along `e_s(direction)`, the slip speed
+    /// signed like `along` (its rate), and returns the bridge's first state.
+    fn bridge_into_sliding(
+        &mut self,
+        t: f64,
+        state: &PhysicalState,
+        direction: f64,
+        along: f64,
+    ) -> Result<BridgeStart, EvalError> {
+        if !(along != 0.0 && along.is_finite()) {
+            return Ok(Err(OnsetError::NoConsistentDirection { guess: direction }));
+        }
+        let (_, dy) = self.models.probe_onset(t, state, direction)?;
+        let target = Slip {
+            speed: 2.0 * self.settings.stick * along.signum(),
+            direction,
+        };
+        let duration = 2.0 * self.settings.stick / along.abs();
+        let start = state.sliding_vector(self.models.chart, Slip { speed: 0.0, direction });
+        let end = state.sliding_vector(self.models.chart, target);
+        let mut slope = dy;
+        for i in [U_X, U_Y] {
+            // U_X/U_Y and V_C/ALPHA share indices 3 and 4: a straight line in either chart.
+            slope[i] = (end[i] - start[i]) / duration;
+        }
+        self.bridge = BridgePlan {
+            t_end: t + duration,
+            slope,
+            then: AfterBridge::StartSliding { slip: target },
+        };
+        self.shared
+            .bridge_slip
+            .set(Some(Slip { speed: 0.0, direction }));
+        Ok(Ok(start))
+    }
+
+    /// The slip reached the stick threshold: bridge it to its exact zero.
+    fn bridge_to_stop(&mut self, hit: &EventHit<DIM, DiskGuard>) -> Transition<DIM, Phase, Halt> {
+        let (y, dy) = (&hit.y, &hit.dy);
+        let duration = match self.models.chart {
+            SlipChart::Cartesian => {
+                let (u, du) = ([y[U_X], y[U_Y]], [dy[U_X], dy[U_Y]]);
+                -(u[0] * du[0] + u[1] * du[1]) / (du[0] * du[0] + du[1] * du[1])
+            }
+            SlipChart::Polar => -y[V_C] / dy[V_C],
+        };
+        let duration = if duration.is_finite() && duration > 0.0 {
+            duration
+        } else {
+            0.0
+        };
+        let mut slope = *dy;
+        if self.models.chart == SlipChart::Polar {
+            // α̇ = w / v_C is not followed through zero: the slip direction is held.
+            slope[ALPHA] = 0.0;
+        }
+        self.bridge = BridgePlan {
+            t_end: hit.t + duration,
+            slope,
+            then: AfterBridge::StickDecision,
+        };
+        self.shared
+            .bridge_slip
+            .set(Some(self.models.sliding_state(y).slip));
+        Transition::Switch {
+            to: Phase::Bridge,
+            y: *y,
+        }
+    }
+
+    /// At the exact zero of the slip: roll if static friction can hold, else slide on.
+    fn decide_at_stop(
+        &mut self,
+        t: f64,
+        y: &[f64; DIM],
+    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
+        let a = self.a();
+        let before = self.models.sliding_state(y);
+        let drift = before.residuals(a, Mode::Sliding);
+        self.note_drift(drift);
+        let mut state = before;
+        // v_C = 0: the centre's velocity is the no-slip one (S1/S2 with v_C = 0).
+        state.project(a, Mode::Rolling);
+        state.slip.speed = 0.0;
+        let force = self.rolling_force(t, &state)?;
+        let trigger = Trigger::SlipStopped {
+            rolling_ratio: force.ratio(),
+            rolling_normal: force.normal,
+        };
+        if self.chattering(t) {
+            return Ok(self.chatter_stop(t));
+        }
+        if force.admits_rolling(self.models.params.mu_st) {
+            state.slip.direction = force.direction();
+            self.record(
+                TransitionRecord {
+                    t,
+                    from: Mode::Sliding,
+                    to: Mode::Rolling,
+                    trigger,
+                    slip_direction: None,
+                    drift,
+                },
+                true,
+            );
+            return Ok(Transition::Switch {
+                to: Phase::Rolling,
+                y: state.rolling_vector(),
+            });
+        }
+        match self.settings.sign {
+            SlipSign::Physical => {
+                let start = self.begin_sliding(
+                    t,
+                    state,
+                    force.direction(),
+                    Mode::Sliding,
+                    trigger,
+                    drift,
+                    true,
+                )?;
+                Ok(into_bridge(t, start))
+            }
+            SlipSign::Paper => {
+                let direction = before.slip.direction;
+                let (acc, _) = self.models.probe_onset(t, &state, direction)?;
+                self.record(
+                    TransitionRecord {
+                        t,
+                        from: Mode::Sliding,
+                        to: Mode::Sliding,
+                        trigger,
+                        slip_direction: Some(direction),
+                        drift,
+                    },
+                    true,
+                );
+                let start = self.bridge_into_sliding(t, &state, direction, acc.along)?;
+                Ok(into_bridge(t, start))
+            }
+        }
+    }
+
+    fn chatter_stop(&self, t: f64) -> Transition<DIM, Phase, Halt> {
+        Transition::Stop(Halt::Stop(StopReason::Chattering {
+            t,
+            transitions: self.recent.len(),
+            window: self.settings.chatter_window,
+        }))
+    }
+
+    /// The bridge into sliding is over: sliding proper starts with the planned slip.
+    fn start_sliding(&self, y: &[f64; DIM], slip: Slip) -> [f64; DIM] {
+        let mut state = self.models.sliding_state(y);
+        state.project(self.a(), Mode::Sliding);
+        state.sliding_vector(self.models.chart, slip)
+    }
+}
+
+impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
+    type Mode = Phase;
+    type Guard = DiskGuard;
+    type Stop = Halt;
+
+    #[inline]
+    fn rhs(&self, phase: Phase, t: f64, y: &[f64; DIM], dy: &mut [f64; DIM]) -> Result<(), EvalError> {
+        match phase {
+            Phase::Rolling => self.models.rolling.rhs(t, y, dy),
+            Phase::Sliding => self.models.sliding.rhs(t, y, dy),
+            Phase::Bridge => {
+                *dy = self.bridge.slope;
+                Ok(())
+            }
+        }
+    }
+
+    fn guards(&self, phase: Phase) -> &[GuardSpec<DiskGuard>] {
+        match phase {
+            Phase::Rolling => &ROLLING_GUARDS,
+            Phase::Sliding => &SLIDING_GUARDS,
+            Phase::Bridge => &BRIDGE_GUARDS,
+        }
+    }
+
+    fn guard_values(
+        &self,
+        phase: Phase,
+        t: f64,
+        y: &[f64; DIM],
+        dy: &[f64; DIM],
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let p = &self.models.params;
+        let floor = y[THETA] - self.settings.min_inclination;
+        match phase {
+            Phase::Rolling => {
+                let f = ContactForce::rolling(p, &PhysicalState::from_rolling(y, 0.0), dy);
+                values[0] = f.friction() - p.mu_st * f.normal;
+                values[1] = f.normal;
+                values[2] = floor;
+            }
+            Phase::Sliding => {
+                let f = ContactForce::sliding(p, &self.models.sliding_state(y), dy);
+                values[0] = self.slip_speed(y) - self.settings.stick;
+                values[1] = f.normal;
+                values[2] = floor;
+            }
+            Phase::Bridge => values[0] = t - self.bridge.t_end,
+        }
+        Ok(())
+    }
+
+    fn on_event(
+        &mut self,
+        phase: Phase,
+        hit: &EventHit<DIM, DiskGuard>,
+    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
+        match hit.guard {
+            DiskGuard::ContactLost => Ok(Transition::Stop(Halt::Stop(StopReason::ContactLost {
+                t: hit.t,
+                mode: phase.mode(),
+            }))),
+            DiskGuard::InclinationFloor => Ok(Transition::Stop(Halt::Stop(
+                StopReason::InclinationReachedFloor {
+                    t: hit.t,
+                    theta: hit.y[THETA],
+                },
+            ))),
+            DiskGuard::FrictionLimit => {
+                let a = self.a();
+                let mut state = PhysicalState::from_rolling(&hit.y, 0.0);
+                let force = ContactForce::rolling(&self.models.params, &state, &hit.dy);
+                let drift = state.residuals(a, Mode::Rolling);
+                self.note_drift(drift);
+                state.project(a, Mode::Rolling);
+                if self.chattering(hit.t) {
+                    return Ok(self.chatter_stop(hit.t));
+                }
+                let trigger = Trigger::FrictionLimit {
+                    ratio: force.ratio(),
+                };
+                let start = self.begin_sliding(
+                    hit.t,
+                    state,
+                    force.direction(),
+                    Mode::Rolling,
+                    trigger,
+                    drift,
+                    true,
+                )?;
+                Ok(into_bridge(hit.t, start))
+            }
+            DiskGuard::SlipStops => Ok(self.bridge_to_stop(hit)),
+            DiskGuard::BridgeEnd => match self.bridge.then {
+                AfterBridge::StickDecision => self.decide_at_stop(hit.t, &hit.y),
+                AfterBridge::StartSliding { slip } => Ok(Transition::Switch {
+                    to: Phase::Sliding,
+                    y: self.start_sliding(&hit.y, slip),
+                }),
+            },
+        }
+    }
+
+    fn project(&self, phase: Phase, _t: f64, y: &mut [f64; DIM]) -> bool {
+        if phase == Phase::Bridge {
+            return false;
+        }
+        let mode = phase.mode();
+        let mut state = PhysicalState::from_rolling(y, 0.0);
+        self.note_drift(state.residuals(self.a(), mode));
+        if !self.settings.project_each_step {
+            return false;
+        }
+        // In sliding only Z and V_Z move, which sit at the same indices in every layout.
+        state.project(self.a(), mode);
+        let changed = state.y != *y;
+        *y = state.y;
+        changed
+    }
+}

@@ -1,0 +1,381 @@
+//! The disk's two contact modes and the maps between their state vectors.
+//!
+//! Rolling and sliding integrate different 12-vectors: rolling carries the centre's horizontal
+//! velocity `(V_X, V_Y)`, sliding carries the slip of the contact particle instead, either in the
+//! paper's polar form `(v_C, α)` or in the Cartesian form `u = v_C e_s` (EQUATIONS.md §6.4).
+//! Everything that has to compare or report states across modes (guards, transition maps,
+//! constraint projection, samples) goes through one *physical* view — the rolling variables plus
+//! the slip — so that each conversion is written once. The contact force is recovered from the
+//! state derivative the integrator already holds (the secondary outputs of Box 1 and Box 3), so a
+//! guard costs no extra model evaluation.
+
+use crate::params::DiskParams;
+
+/// Number of states of every disk model.
+pub const DIM: usize = 12;
+
+/// Indices shared by every disk model's state vector.
+///
+/// Indices 3 and 4 differ between the layouts: `(V_X, V_Y)` in rolling, `(v_C, alpha)` in the
+/// polar sliding chart, `(u_X, u_Y)` in the Cartesian sliding chart.
+pub mod layout {
+    /// Centre of mass, X (m).
+    pub const X: usize = 0;
+    /// Centre of mass, Y (m).
+    pub const Y: usize = 1;
+    /// Centre of mass height Z (m).
+    pub const Z: usize = 2;
+    /// Rolling: centre velocity V_X (m/s).
+    pub const V_X: usize = 3;
+    /// Rolling: centre velocity V_Y (m/s).
+    pub const V_Y: usize = 4;
+    /// Polar sliding chart: slip speed v_C (m/s).
+    pub const V_C: usize = 3;
+    /// Polar sliding chart: friction direction alpha (rad).
+    pub const ALPHA: usize = 4;
+    /// Cartesian sliding chart: slip velocity u_X (m/s).
+    pub const U_X: usize = 3;
+    /// Cartesian sliding chart: slip velocity u_Y (m/s).
+    pub const U_Y: usize = 4;
+    /// Vertical centre velocity V_Z (m/s).
+    pub const V_Z: usize = 5;
+    /// Precession angle psi (rad).
+    pub const PSI: usize = 6;
+    /// Inclination theta (rad).
+    pub const THETA: usize = 7;
+    /// Spin angle phi (rad).
+    pub const PHI: usize = 8;
+    /// Angular velocity Omega_x (rad/s).
+    pub const OMEGA_X: usize = 9;
+    /// Angular velocity Omega_y (rad/s).
+    pub const OMEGA_Y: usize = 10;
+    /// Angular velocity Omega_z (rad/s).
+    pub const OMEGA_Z: usize = 11;
+}
+
+use layout::*;
+
+/// The contact mode of the disk.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// No slip at the contact: `v_C = 0`, friction below `mu_st N`.
+    Rolling,
+    /// The contact particle slips: friction `mu_d N` opposes the slip.
+    Sliding,
+}
+
+impl Mode {
+    /// Lower-case name, as written in output files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Rolling => "rolling",
+            Mode::Sliding => "sliding",
+        }
+    }
+}
+
+impl std::fmt::Display for Mode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The coordinates in which the sliding model carries the slip.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlipChart {
+    /// `u = v_C e_s = (u_X, u_Y)`: smooth wherever `u ≠ 0`, including near misses of the origin.
+    Cartesian,
+    /// The paper's `(v_C, α)`: `α̇ = w / v_C` is singular at every onset of sliding.
+    Polar,
+}
+
+/// The slip of the contact particle, in the paper's polar terms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slip {
+    /// Slip speed `v_C` (m/s); negative only under [`crate::hybrid::SlipSign::Paper`].
+    pub speed: f64,
+    /// Direction `α` of the friction force (rad): the slip points along `-(cos α, sin α)`.
+    pub direction: f64,
+}
+
+impl Slip {
+    /// The slip velocity vector `u = v_C e_s = -v_C (cos α, sin α)`.
+    pub fn vector(&self) -> [f64; 2] {
+        let (s, c) = self.direction.sin_cos();
+        [-self.speed * c, -self.speed * s]
+    }
+
+    /// The slip of a Cartesian slip vector `u` (direction `atan2(-u_Y, -u_X)`).
+    pub fn from_vector(u: [f64; 2]) -> Slip {
+        Slip {
+            speed: u[0].hypot(u[1]),
+            direction: (-u[1]).atan2(-u[0]),
+        }
+    }
+}
+
+/// The horizontal velocity of the centre when the contact particle is at rest (Box 2):
+/// `a (Ω_y cos ψ sin θ + Ω_z sin ψ, Ω_y sin ψ sin θ − Ω_z cos ψ)`.
+pub fn no_slip_velocity(a: f64, y: &[f64; DIM]) -> [f64; 2] {
+    let (sp, cp) = y[PSI].sin_cos();
+    let st = y[THETA].sin();
+    let (oy, oz) = (y[OMEGA_Y], y[OMEGA_Z]);
+    [a * (oy * cp * st + oz * sp), a * (oy * sp * st - oz * cp)]
+}
+
+/// A disk state in the rolling variables `(X, Y, Z, V_X, V_Y, V_Z, ψ, θ, φ, Ω_x, Ω_y, Ω_z)`
+/// together with its slip: the common view of every mode's state vector.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhysicalState {
+    /// The state in rolling variables (the centre's velocity includes the slip).
+    pub y: [f64; DIM],
+    /// The slip; zero speed in rolling.
+    pub slip: Slip,
+}
+
+impl PhysicalState {
+    /// Reads a rolling state vector; `friction_direction` is reported as the slip direction.
+    pub fn from_rolling(y: &[f64; DIM], friction_direction: f64) -> Self {
+        PhysicalState {
+            y: *y,
+            slip: Slip {
+                speed: 0.0,
+                direction: friction_direction,
+            },
+        }
+    }
+
+    /// Reads a sliding state vector of the given chart (the centre's velocity from S1/S2).
+    pub fn from_sliding(chart: SlipChart, a: f64, y: &[f64; DIM]) -> Self {
+        let slip = match chart {
+            SlipChart::Cartesian => Slip::from_vector([y[U_X], y[U_Y]]),
+            SlipChart::Polar => Slip {
+                speed: y[V_C],
+                direction: y[ALPHA],
+            },
+        };
+        let roll = no_slip_velocity(a, y);
+        let u = slip.vector();
+        let mut phys = *y;
+        phys[V_X] = roll[0] + u[0];
+        phys[V_Y] = roll[1] + u[1];
+        PhysicalState { y: phys, slip }
+    }
+
+    /// The slip velocity `V_hor − V_no-slip` computed from the centre's velocity.
+    pub fn velocity_slip(&self, a: f64) -> [f64; 2] {
+        let roll = no_slip_velocity(a, &self.y);
+        [self.y[V_X] - roll[0], self.y[V_Y] - roll[1]]
+    }
+
+    /// The state vector of the rolling model.
+    pub fn rolling_vector(&self) -> [f64; DIM] {
+        self.y
+    }
+
+    /// The state vector of a sliding chart with the given slip (the centre's velocity in `self`
+    /// is not used: S1/S2 determine it from the slip).
+    pub fn sliding_vector(&self, chart: SlipChart, slip: Slip) -> [f64; DIM] {
+        let mut y = self.y;
+        match chart {
+            SlipChart::Cartesian => {
+                let u = slip.vector();
+                y[U_X] = u[0];
+                y[U_Y] = u[1];
+            }
+            SlipChart::Polar => {
+                y[V_C] = slip.speed;
+                y[ALPHA] = slip.direction;
+            }
+        }
+        y
+    }
+
+    /// Total mechanical energy (EQUATIONS.md §7).
+    pub fn energy(&self, p: &DiskParams) -> f64 {
+        let y = &self.y;
+        let v2 = y[V_X] * y[V_X] + y[V_Y] * y[V_Y] + y[V_Z] * y[V_Z];
+        0.5 * p.m * v2
+            + 0.5 * p.A() * (y[OMEGA_X] * y[OMEGA_X] + y[OMEGA_Y] * y[OMEGA_Y])
+            + 0.5 * p.C() * y[OMEGA_Z] * y[OMEGA_Z]
+            + p.m * p.g * y[Z]
+    }
+
+    /// Normal velocity of the centre `v_z = V · e_z` (the air-drag argument).
+    pub fn normal_velocity(&self) -> f64 {
+        let y = &self.y;
+        let (sp, cp) = y[PSI].sin_cos();
+        let (st, ct) = y[THETA].sin_cos();
+        (y[V_X] * cp + y[V_Y] * sp) * st + y[V_Z] * ct
+    }
+
+    /// The drift of the constraints imposed only in differential form.
+    pub fn residuals(&self, a: f64, mode: Mode) -> ConstraintResiduals {
+        let y = &self.y;
+        let (st, ct) = y[THETA].sin_cos();
+        let no_slip = match mode {
+            Mode::Rolling => {
+                let s = self.velocity_slip(a);
+                s[0].hypot(s[1])
+            }
+            Mode::Sliding => 0.0,
+        };
+        ConstraintResiduals {
+            height: y[Z] - a * st,
+            vertical_speed: y[V_Z] - a * y[OMEGA_Y] * ct,
+            no_slip,
+        }
+    }
+
+    /// Puts the state back onto the contact constraints: `Z = a sin θ`, `V_Z = a Ω_y cos θ`,
+    /// and in rolling the no-slip velocity. Only the redundant coordinates move.
+    pub fn project(&mut self, a: f64, mode: Mode) {
+        let (st, ct) = self.y[THETA].sin_cos();
+        self.y[Z] = a * st;
+        self.y[V_Z] = a * self.y[OMEGA_Y] * ct;
+        if mode == Mode::Rolling {
+            let roll = no_slip_velocity(a, &self.y);
+            self.y[V_X] = roll[0];
+            self.y[V_Y] = roll[1];
+        }
+    }
+}
+
+/// How far a state is from the contact constraints.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ConstraintResiduals {
+    /// `Z − a sin θ` (m).
+    pub height: f64,
+    /// `V_Z − a Ω_y cos θ` (m/s).
+    pub vertical_speed: f64,
+    /// Rolling only: `|V_hor − V_no-slip|` (m/s); zero in sliding, where the slip is a state.
+    pub no_slip: f64,
+}
+
+impl ConstraintResiduals {
+    /// The larger of the absolute residuals, each in its own unit (m or m/s).
+    pub fn max_abs(&self) -> f64 {
+        self.height
+            .abs()
+            .max(self.vertical_speed.abs())
+            .max(self.no_slip)
+    }
+}
+
+/// The contact reaction `R = (R_X, R_Y, N)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactForce {
+    /// Horizontal component along E_X (N).
+    pub r_x: f64,
+    /// Horizontal component along E_Y (N).
+    pub r_y: f64,
+    /// Normal force N (N).
+    pub normal: f64,
+}
+
+impl ContactForce {
+    /// The secondary outputs of Box 1 (rolling) from the state and its derivative `dy`.
+    pub fn rolling(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
+        let air = p.k_F() * (state.normal_velocity() - p.w_z);
+        let (sp, cp) = state.y[PSI].sin_cos();
+        let (st, ct) = state.y[THETA].sin_cos();
+        ContactForce {
+            r_x: p.m * dy[V_X] + air * st * cp,
+            r_y: p.m * dy[V_Y] + air * st * sp,
+            normal: p.m * (dy[V_Z] + p.g) + air * ct,
+        }
+    }
+
+    /// The secondary outputs of Box 3 (sliding): `N` from `V̇_Z`, friction `mu_d N` along α.
+    pub fn sliding(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
+        let air = p.k_F() * (state.normal_velocity() - p.w_z);
+        let normal = p.m * (dy[V_Z] + p.g) + air * state.y[THETA].cos();
+        let (sa, ca) = state.slip.direction.sin_cos();
+        let t = p.mu_d * normal;
+        ContactForce {
+            r_x: t * ca,
+            r_y: t * sa,
+            normal,
+        }
+    }
+
+    /// Friction magnitude `T = |(R_X, R_Y)|`.
+    pub fn friction(&self) -> f64 {
+        self.r_x.hypot(self.r_y)
+    }
+
+    /// Friction ratio `nu = T / N`.
+    pub fn ratio(&self) -> f64 {
+        self.friction() / self.normal
+    }
+
+    /// Direction of the friction force `atan2(R_Y, R_X)`.
+    pub fn direction(&self) -> f64 {
+        self.r_y.atan2(self.r_x)
+    }
+
+    /// Whether static friction can hold the contact: `N > 0` and `T < mu_st N` (§6.2).
+    pub fn admits_rolling(&self, mu_st: f64) -> bool {
+        self.normal > 0.0 && self.friction() < mu_st * self.normal
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample_state() -> [f64; DIM] {
+        [
+            0.1, -0.2, 0.02, 0.3, -0.4, 0.05, 0.7, 0.6, 1.1, 2.0, -3.0, 5.0,
+        ]
+    }
+
+    #[test]
+    fn charts_round_trip_through_the_physical_state() {
+        let a = 0.03755;
+        let slip = Slip {
+            speed: 0.25,
+            direction: 2.0,
+        };
+        let base = PhysicalState::from_rolling(&sample_state(), 0.0);
+        for chart in [SlipChart::Cartesian, SlipChart::Polar] {
+            let y = base.sliding_vector(chart, slip);
+            let back = PhysicalState::from_sliding(chart, a, &y);
+            assert!((back.slip.speed - 0.25).abs() < 1e-15);
+            assert!((back.slip.direction - 2.0).abs() < 1e-15);
+            let u = back.velocity_slip(a);
+            let expected = slip.vector();
+            assert!((u[0] - expected[0]).abs() < 1e-15 && (u[1] - expected[1]).abs() < 1e-15);
+            let again = back.sliding_vector(chart, back.slip);
+            for i in 0..DIM {
+                assert!((again[i] - y[i]).abs() < 1e-15, "component {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn projection_zeroes_the_residuals() {
+        let a = 0.03755;
+        let mut s = PhysicalState::from_rolling(&sample_state(), 0.0);
+        assert!(s.residuals(a, Mode::Rolling).max_abs() > 1e-3);
+        s.project(a, Mode::Rolling);
+        let r = s.residuals(a, Mode::Rolling);
+        assert!(r.max_abs() < 1e-16, "{r:?}");
+    }
+
+    #[test]
+    fn admissibility_is_strict_and_needs_compression() {
+        let f = ContactForce {
+            r_x: 0.3,
+            r_y: 0.4,
+            normal: 2.5,
+        };
+        assert!((f.ratio() - 0.2).abs() < 1e-15);
+        assert!(!f.admits_rolling(0.2 - 1e-12) && f.admits_rolling(0.2 + 1e-12));
+        let lifted = ContactForce {
+            normal: -1.0,
+            ..f
+        };
+        assert!(!lifted.admits_rolling(10.0));
+    }
+}

@@ -1,0 +1,245 @@
+//! The generated models (the paper's boxes through the equation compiler) against the
+//! hand-written reference, at 10⁴ random states per mode, half of them at the extremes:
+//! θ within 1e-6 of 0 and of π/2, rates up to 1e3 rad/s, slip speeds down to 1e-12 m/s.
+//!
+//! Tolerance: every derivative and output agrees to `1e-12 · max(|a|, |b|, scale)`. The
+//! derivative scales are the row scales of `common::scales` and the running rounding bounds of
+//! the explicit forms (`common::tracked`), floored at ε times the largest scale of the same
+//! units; the output scales follow from them through the output's formula (below).
+
+mod common;
+
+use common::explicit;
+use common::subject::{
+    eval, CartesianGen, CartesianRef, Eval, Family, RollingGen, RollingRef, SlidingGen,
+    SlidingRef, CARTESIAN_OUTPUTS, ROLLING_OUTPUTS, SLIDING_OUTPUTS,
+};
+use common::tracked::Tracked;
+use common::{scales, Agreement, Reach, Rng};
+use equations::models;
+use equations::reference::{rolling, sliding_cartesian as cart, sliding_polar as polar};
+use equations::DiskParams;
+
+const REL: f64 = 1e-12;
+const STATES_PER_REACH: usize = 5000;
+
+/// The size of the contact force's rounding: `m (g + |V̇|)` with `|V̇|` at its row scale, plus
+/// the air force.
+fn force_scale(p: &DiskParams, row: &[f64; 12], dy: &[f64; 12], air_speed: f64) -> f64 {
+    let accel = (3..6).map(|i| row[i].max(dy[i].abs())).fold(0.0, f64::max);
+    p.m * (p.g.abs() + accel) + p.k_F() * air_speed
+}
+
+fn angle_gap(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn compare_common_outputs<const M: usize>(
+    agreement: &mut Agreement,
+    y: &[f64; 12],
+    gen: &Eval<M>,
+    refr: &Eval<M>,
+    names: &[&str; M],
+    idx: [usize; 4], // N, T, R_X, R_Y
+    force: f64,
+    energy_scale: f64,
+) {
+    let [n, t, rx, ry] = idx;
+    for i in [n, t, rx, ry] {
+        agreement.check(REL, gen.out[i], refr.out[i], force, || format!("{} at {y:?}", names[i]));
+    }
+    let nu = "nu";
+    let k = names.iter().position(|x| *x == nu).unwrap();
+    // ν = T/N: δν ≈ (δT + ν δN)/N.
+    let nu_scale = (1.0 + refr.out[k].abs()) * force / refr.out[n].abs();
+    agreement.check(REL, gen.out[k], refr.out[k], nu_scale, || format!("nu at {y:?}"));
+    let e = names.iter().position(|x| *x == "energy").unwrap();
+    agreement.check(REL, gen.out[e], refr.out[e], energy_scale, || format!("energy at {y:?}"));
+}
+
+/// Energy's natural scale: the sum of the sizes of its terms.
+fn energy_scale(p: &DiskParams, y: &[f64; 12], v_hor: f64) -> f64 {
+    let w = [y[9], y[10], y[11]];
+    0.5 * p.m * (v_hor * v_hor + y[5] * y[5])
+        + 0.5 * p.A() * (w[0] * w[0] + w[1] * w[1])
+        + 0.5 * p.C() * w[2] * w[2]
+        + (p.m * p.g * y[2]).abs()
+}
+
+fn rolling_agrees<G: Family<ROLLING_OUTPUTS>, R: Family<ROLLING_OUTPUTS>>() {
+    let mut rng = Rng::new(51);
+    let mut agreement = Agreement::default();
+    for reach in [Reach::Typical, Reach::Extreme] {
+        for _ in 0..STATES_PER_REACH {
+            let p = common::some_params(&mut rng);
+            let y = common::rolling_state(&mut rng, &p, reach);
+            let gen = eval(&G::build(&p), &y).unwrap_or_else(|e| panic!("{}: {e} at {y:?}", G::NAME));
+            let refr = eval(&R::build(&p), &y).unwrap();
+            let ex = explicit::rolling::<Tracked>(&p, &y);
+            let row = scales::rolling(&p, &y, &ex.dy.map(|x| x.v));
+            let kinds = &common::KINDS_VELOCITY_PAIR;
+            agreement.check_derivatives(REL, &rolling::STATE_NAMES, &y, &gen.dy, &ex.dy, &row, kinds);
+            agreement.check_derivatives(REL, &rolling::STATE_NAMES, &y, &refr.dy, &ex.dy, &row, kinds);
+            let scale = std::array::from_fn(|i| row[i].max(ex.dy[i].scale));
+            agreement.check_derivative_pair(REL, &rolling::STATE_NAMES, &y, &gen.dy, &refr.dy, &scale, kinds);
+            let (sp, cp) = y[6].sin_cos();
+            let (st, ct) = y[7].sin_cos();
+            let v_z = (y[3] * cp + y[4] * sp) * st + y[5] * ct;
+            let force = force_scale(&p, &row, &refr.dy, (v_z - p.w_z).abs());
+            let v_hor = y[3].hypot(y[4]);
+            let o = rolling::output::N;
+            let idx = [o, rolling::output::T, rolling::output::R_X, rolling::output::R_Y];
+            let e_scale = energy_scale(&p, &y, v_hor);
+            compare_common_outputs(&mut agreement, &y, &gen, &refr, &rolling::OUTPUT_NAMES, idx, force, e_scale);
+            let t = refr.out[rolling::output::T];
+            let gap = angle_gap(gen.out[rolling::output::alpha_r], refr.out[rolling::output::alpha_r]);
+            agreement.check(REL, gap, 0.0, force / t, || format!("alpha_r at {y:?}"));
+            let rim = p.a * (y[10].abs() + y[11].abs());
+            for (i, scale) in [
+                (rolling::output::z_residual, y[2].abs() + p.a),
+                (rolling::output::vz_residual, y[5].abs() + rim),
+                (rolling::output::vx_residual, y[3].abs() + rim),
+                (rolling::output::vy_residual, y[4].abs() + rim),
+            ] {
+                agreement.check(REL, gen.out[i], refr.out[i], scale, || {
+                    format!("{} at {y:?}", rolling::OUTPUT_NAMES[i])
+                });
+            }
+        }
+    }
+    agreement.assert_within(&format!("{} vs {}", G::NAME, R::NAME));
+}
+
+fn sliding_agrees<G: Family<SLIDING_OUTPUTS>, R: Family<SLIDING_OUTPUTS>>() {
+    let mut rng = Rng::new(52);
+    let mut agreement = Agreement::default();
+    for reach in [Reach::Typical, Reach::Extreme] {
+        for _ in 0..STATES_PER_REACH {
+            let p = common::some_params(&mut rng);
+            let y = common::sliding_state(&mut rng, &p, reach);
+            let gen = eval(&G::build(&p), &y).unwrap_or_else(|e| panic!("{}: {e} at {y:?}", G::NAME));
+            let refr = eval(&R::build(&p), &y).unwrap();
+            let ex = explicit::sliding_polar::<Tracked>(&p, &y);
+            let row = scales::sliding_polar(&p, &y, &ex.dy.map(|x| x.v));
+            let kinds = &common::KINDS_POLAR;
+            agreement.check_derivatives(REL, &polar::STATE_NAMES, &y, &gen.dy, &ex.dy, &row, kinds);
+            agreement.check_derivatives(REL, &polar::STATE_NAMES, &y, &refr.dy, &ex.dy, &row, kinds);
+            let scale = std::array::from_fn(|i| row[i].max(ex.dy[i].scale));
+            agreement.check_derivative_pair(REL, &polar::STATE_NAMES, &y, &gen.dy, &refr.dy, &scale, kinds);
+            let v_z = (-y[3] * (y[4] - y[6]).cos() * y[7].sin()).abs()
+                + p.a * y[10].abs()
+                + y[5].abs()
+                + p.w_z.abs();
+            let force = force_scale(&p, &row, &refr.dy, v_z);
+            let v_hor = row[0].hypot(row[1]);
+            let idx = [polar::output::N, polar::output::T, polar::output::R_X, polar::output::R_Y];
+            let e_scale = energy_scale(&p, &y, v_hor);
+            compare_common_outputs(&mut agreement, &y, &gen, &refr, &polar::OUTPUT_NAMES, idx, force, e_scale);
+            for (i, scale) in [
+                (polar::output::V_X, row[0]),
+                (polar::output::V_Y, row[1]),
+                (polar::output::friction_power, p.mu_d * force * y[3].abs()),
+                (polar::output::z_residual, y[2].abs() + p.a),
+                (polar::output::vz_residual, y[5].abs() + p.a * y[10].abs()),
+            ] {
+                agreement.check(REL, gen.out[i], refr.out[i], scale, || {
+                    format!("{} at {y:?}", polar::OUTPUT_NAMES[i])
+                });
+            }
+        }
+    }
+    agreement.assert_within(&format!("{} vs {}", G::NAME, R::NAME));
+}
+
+fn cartesian_agrees<G: Family<CARTESIAN_OUTPUTS>, R: Family<CARTESIAN_OUTPUTS>>() {
+    let mut rng = Rng::new(53);
+    let mut agreement = Agreement::default();
+    for reach in [Reach::Typical, Reach::Extreme] {
+        for _ in 0..STATES_PER_REACH {
+            let p = common::some_params(&mut rng);
+            let yp = common::sliding_state(&mut rng, &p, reach);
+            let y = common::polar_to_cartesian(&yp);
+            let gen = eval(&G::build(&p), &y).unwrap_or_else(|e| panic!("{}: {e} at {y:?}", G::NAME));
+            let refr = eval(&R::build(&p), &y).unwrap();
+            let ex = explicit::sliding_cartesian::<Tracked>(&p, &y);
+            let polar_y = common::cartesian_to_polar(&y);
+            let polar_dy = explicit::sliding_polar::<f64>(&p, &polar_y).dy;
+            let row = scales::sliding_cartesian(&p, &polar_y, &polar_dy);
+            let kinds = &common::KINDS_VELOCITY_PAIR;
+            agreement.check_derivatives(REL, &cart::STATE_NAMES, &y, &gen.dy, &ex.dy, &row, kinds);
+            agreement.check_derivatives(REL, &cart::STATE_NAMES, &y, &refr.dy, &ex.dy, &row, kinds);
+            let scale = std::array::from_fn(|i| row[i].max(ex.dy[i].scale));
+            agreement.check_derivative_pair(REL, &cart::STATE_NAMES, &y, &gen.dy, &refr.dy, &scale, kinds);
+            let v_z = yp[3].abs() + p.a * y[10].abs() + y[5].abs() + p.w_z.abs();
+            let force = force_scale(&p, &row, &refr.dy, v_z);
+            let v_hor = row[0].hypot(row[1]);
+            let idx = [cart::output::N, cart::output::T, cart::output::R_X, cart::output::R_Y];
+            let e_scale = energy_scale(&p, &y, v_hor);
+            compare_common_outputs(&mut agreement, &y, &gen, &refr, &cart::OUTPUT_NAMES, idx, force, e_scale);
+            for (i, scale) in [
+                (cart::output::V_X, row[0]),
+                (cart::output::V_Y, row[1]),
+                (cart::output::slip_speed, yp[3]),
+                (cart::output::friction_power, p.mu_d * force * yp[3]),
+                (cart::output::z_residual, y[2].abs() + p.a),
+                (cart::output::vz_residual, y[5].abs() + p.a * y[10].abs()),
+            ] {
+                agreement.check(REL, gen.out[i], refr.out[i], scale, || {
+                    format!("{} at {y:?}", cart::OUTPUT_NAMES[i])
+                });
+            }
+            let i = cart::output::slip_direction;
+            let gap = angle_gap(gen.out[i], refr.out[i]);
+            agreement.check(REL, gap, 0.0, 1.0, || format!("slip_direction at {y:?}"));
+        }
+    }
+    agreement.assert_within(&format!("{} vs {}", G::NAME, R::NAME));
+}
+
+#[test]
+fn generated_models_name_things_like_the_reference() {
+    assert_eq!(models::rolling::STATE_NAMES, rolling::STATE_NAMES);
+    assert_eq!(models::rolling::OUTPUT_NAMES, rolling::OUTPUT_NAMES);
+    assert_eq!(models::sliding::STATE_NAMES, polar::STATE_NAMES);
+    assert_eq!(models::sliding::OUTPUT_NAMES, polar::OUTPUT_NAMES);
+    assert_eq!(models::sliding_cartesian::STATE_NAMES, cart::STATE_NAMES);
+    assert_eq!(models::sliding_cartesian::OUTPUT_NAMES, cart::OUTPUT_NAMES);
+    for names in [
+        models::rolling::PARAM_NAMES,
+        models::sliding::PARAM_NAMES,
+        models::sliding_cartesian::PARAM_NAMES,
+    ] {
+        assert_eq!(names, DiskParams::NAMES);
+    }
+    let paper = DiskParams::paper().to_array().map(Some);
+    assert_eq!(models::rolling::PARAM_DEFAULTS, paper);
+    assert_eq!(models::sliding::PARAM_DEFAULTS, paper);
+    assert_eq!(models::sliding_cartesian::PARAM_DEFAULTS, paper);
+}
+
+#[test]
+fn generated_rolling_matches_the_reference() {
+    rolling_agrees::<RollingGen, RollingRef>();
+}
+
+#[test]
+fn generated_sliding_matches_the_reference() {
+    sliding_agrees::<SlidingGen, SlidingRef>();
+}
+
+#[test]
+fn generated_cartesian_sliding_matches_the_reference() {
+    cartesian_agrees::<CartesianGen, CartesianRef>();
+}
+
+#[test]
+fn print_variants() {
+    println!("{:?} {:?} {:?}", models::rolling::pruned::STATE_NAMES, models::rolling::pruned::OUTPUT_NAMES, models::rolling::pruned::PARAM_NAMES);
+    println!("{:?} {:?}", models::sliding::pruned::STATE_NAMES, models::sliding::pruned::OUTPUT_NAMES);
+    println!("{:?} {:?}", models::sliding_cartesian::pruned::STATE_NAMES, models::sliding_cartesian::pruned::OUTPUT_NAMES);
+    for info in [&models::rolling::INFO, &models::sliding::INFO, &models::sliding_cartesian::INFO, &models::rolling::pruned::INFO, &models::sliding::pruned::INFO, &models::sliding_cartesian::pruned::INFO] {
+        println!("{} rhs {:?} jac {:?} out {:?} pivots {:?} numeric {:?}", info.name, info.rhs_ops, info.jacobian_ops.total(), info.outputs_ops.total(), info.pivots, info.numeric_blocks);
+    }
+}

@@ -1,0 +1,207 @@
+//! Forward-mode symbolic differentiation over the DAG.
+//!
+//! One engine serves three needs: the partial derivative of an expression by one symbol, the
+//! time derivative `der(f) = Σ ∂f/∂y_i der(y_i) + ∂f/∂t` of the DSL, and the Jacobian of the
+//! solved system, where a symbol defined earlier (a solved derivative) has a derivative that was
+//! itself computed earlier. The caller says what the derivative of each leaf symbol is; the
+//! engine applies the chain rule node by node, children before parents, each node once (the
+//! memo is keyed by node, so shared subexpressions are differentiated once).
+
+use std::collections::HashMap;
+
+use crate::expr::{ExprId, Node, Pool, Sym};
+use crate::spec::Func;
+
+/// The derivative of `root`, given the derivative of every symbol by `leaf`.
+///
+/// `memo` may be reused across calls that differentiate by the same variable.
+pub fn derivative(
+    pool: &mut Pool,
+    memo: &mut HashMap<ExprId, ExprId>,
+    root: ExprId,
+    leaf: &mut dyn FnMut(&mut Pool, Sym) -> ExprId,
+) -> ExprId {
+    if let Some(&d) = memo.get(&root) {
+        return d;
+    }
+    for id in pool.reachable(&[root]) {
+        if memo.contains_key(&id) {
+            continue;
+        }
+        let d = node_derivative(pool, memo, id, leaf);
+        memo.insert(id, d);
+    }
+    memo[&root]
+}
+
+/// The partial derivative of `root` by the symbol `by`.
+pub fn partial(pool: &mut Pool, root: ExprId, by: Sym) -> ExprId {
+    let mut memo = HashMap::new();
+    derivative(pool, &mut memo, root, &mut |_, s| {
+        if s == by {
+            ExprId::ONE
+        } else {
+            ExprId::ZERO
+        }
+    })
+}
+
+/// The time derivative of an expression of the states and `t`: each state `y_i` has the
+/// derivative `der(y_i)`, `t` has `1`, parameters `0`. A `der(..)` inside `root` has no known
+/// derivative: the caller must reject that first (this returns `None`).
+pub fn time_derivative(pool: &mut Pool, root: ExprId) -> Option<ExprId> {
+    if pool.has_der(root) || pool.symbols(root).iter().any(|s| matches!(s, Sym::Aux(_))) {
+        return None;
+    }
+    let mut memo = HashMap::new();
+    Some(derivative(pool, &mut memo, root, &mut |pool, s| match s {
+        Sym::State(i) => pool.sym(Sym::Der(i)),
+        Sym::Time => ExprId::ONE,
+        _ => ExprId::ZERO,
+    }))
+}
+
+fn node_derivative(
+    pool: &mut Pool,
+    memo: &HashMap<ExprId, ExprId>,
+    id: ExprId,
+    leaf: &mut dyn FnMut(&mut Pool, Sym) -> ExprId,
+) -> ExprId {
+    let d = |c: &ExprId| memo[c];
+    match pool.node(id).clone() {
+        Node::Const(_) => ExprId::ZERO,
+        Node::Sym(s) => leaf(pool, s),
+        Node::Add(ts) => {
+            let ds: Vec<ExprId> = ts.iter().map(d).collect();
+            pool.add(&ds)
+        }
+        Node::Mul(fs) => {
+            let mut terms = Vec::new();
+            for (k, f) in fs.iter().enumerate() {
+                let df = d(f);
+                if df == ExprId::ZERO {
+                    continue;
+                }
+                let mut factors: Vec<ExprId> = fs.to_vec();
+                factors[k] = df;
+                terms.push(pool.mul(&factors));
+            }
+            pool.add(&terms)
+        }
+        Node::Pow([base, exponent]) => {
+            let (db, de) = (d(&base), d(&exponent));
+            if de == ExprId::ZERO {
+                if db == ExprId::ZERO {
+                    return ExprId::ZERO;
+                }
+                // e * b^(e-1) * db
+                let em1 = pool.sub(exponent, ExprId::ONE);
+                let p = pool.pow(base, em1);
+                pool.mul(&[exponent, p, db])
+            } else {
+                // b^e * (de * ln b + e * db / b)
+                let ln = pool.call(Func::Ln, base);
+                let t1 = pool.mul2(de, ln);
+                let q = pool.div(db, base);
+                let t2 = pool.mul2(exponent, q);
+                let s = pool.add2(t1, t2);
+                pool.mul2(id, s)
+            }
+        }
+        Node::Call(f, [a]) => {
+            let da = d(&a);
+            if da == ExprId::ZERO {
+                return ExprId::ZERO;
+            }
+            let outer = match f {
+                Func::Sin => pool.call(Func::Cos, a),
+                Func::Cos => {
+                    let s = pool.call(Func::Sin, a);
+                    pool.neg(s)
+                }
+                Func::Tan => {
+                    let t2 = pool.powf(id, 2.0);
+                    pool.add2(ExprId::ONE, t2)
+                }
+                Func::Exp => id,
+                Func::Ln => pool.pow(a, ExprId::MINUS_ONE),
+                // d|a| = a/|a| (undefined at 0, like the derivative itself).
+                Func::Abs => pool.div(a, id),
+                Func::Sqrt => {
+                    let r = pool.powf(a, -0.5);
+                    let half = pool.num(0.5);
+                    pool.mul2(half, r)
+                }
+                Func::Atan2 => ExprId::ZERO,
+            };
+            pool.mul2(outer, da)
+        }
+        Node::Atan2([y, x]) => {
+            // (x dy - y dx) / (x² + y²)
+            let (dy, dx) = (d(&y), d(&x));
+            let a = pool.mul2(x, dy);
+            let b = pool.mul2(y, dx);
+            let num = pool.sub(a, b);
+            let x2 = pool.powf(x, 2.0);
+            let y2 = pool.powf(y, 2.0);
+            let den = pool.add2(x2, y2);
+            pool.div(num, den)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_of_partials() {
+        let mut p = Pool::new();
+        let x = p.sym(Sym::State(0));
+        let y = p.sym(Sym::State(1));
+        let rows: Vec<(ExprId, ExprId)> = vec![
+            // d(x*y)/dx = y
+            (p.mul2(x, y), y),
+            // d(x^3)/dx = 3x^2
+            ({ p.powf(x, 3.0) }, {
+                let x2 = p.powf(x, 2.0);
+                let three = p.num(3.0);
+                p.mul2(three, x2)
+            }),
+            // d(sin x)/dx = cos x
+            (p.call(Func::Sin, x), p.call(Func::Cos, x)),
+            // d(ln x)/dx = 1/x
+            (p.call(Func::Ln, x), p.pow(x, ExprId::MINUS_ONE)),
+            // d(y)/dx = 0
+            (y, ExprId::ZERO),
+        ];
+        for (e, expected) in rows {
+            assert_eq!(partial(&mut p, e, Sym::State(0)), expected);
+        }
+    }
+
+    #[test]
+    fn time_derivative_uses_der_symbols() {
+        let mut p = Pool::new();
+        let x = p.sym(Sym::State(0));
+        let t = p.sym(Sym::Time);
+        let e = p.mul2(x, t);
+        let d = time_derivative(&mut p, e).unwrap();
+        let dx = p.sym(Sym::Der(0));
+        let a = p.mul2(dx, t);
+        let expected = p.add2(a, x);
+        assert_eq!(d, expected);
+        assert_eq!(time_derivative(&mut p, dx), None);
+    }
+
+    #[test]
+    fn atan2_derivative_matches_formula() {
+        let mut p = Pool::new();
+        let y = p.sym(Sym::State(0));
+        let x = p.sym(Sym::State(1));
+        let a = p.atan2(y, x);
+        let dy = partial(&mut p, a, Sym::State(0));
+        let v = p.eval(dy, &|s| if s == Sym::State(0) { 0.3 } else { 0.7 });
+        assert!((v - 0.7 / (0.49 + 0.09)).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,141 @@
+//! The solved system: named values defined in dependency order.
+//!
+//! Solutions are kept as *definitions* of symbols (`der(x) := ...`), not substituted into each
+//! other: a later block reads `der(x)` as a symbol, the Jacobian differentiates through the
+//! definitions by the chain rule, and the emitter computes each definition once. This is what
+//! keeps a cascade of blocks from multiplying out into one huge expression.
+
+use std::collections::{BTreeSet, HashMap};
+
+use crate::expr::{ExprId, Node, Pool, Sym};
+
+/// A pivot that must be checked (nonzero, finite) at run time before its block is used.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pivot {
+    /// The pivot's value.
+    pub value: ExprId,
+    /// The pivot in the user's terms.
+    pub text: String,
+}
+
+/// How a group defines its symbols.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Body {
+    /// Each symbol by an expression, in order (later ones may read earlier ones).
+    Symbolic(Vec<(Sym, ExprId)>),
+    /// The symbols are the solution `x` of `matrix · x = rhs`, solved at run time.
+    Numeric {
+        /// Row-major `n × n`.
+        matrix: Vec<ExprId>,
+        /// `n` entries.
+        rhs: Vec<ExprId>,
+        /// The symbols receiving `x`.
+        results: Vec<Sym>,
+        /// The block named by its derivatives.
+        text: String,
+    },
+}
+
+/// Definitions that belong together (one block of the solve, or one piece of a Jacobian).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    /// Pivots checked before any of the group's values is used.
+    pub pivots: Vec<Pivot>,
+    /// The definitions.
+    pub body: Body,
+}
+
+impl Group {
+    /// The symbols this group defines.
+    pub fn defines(&self) -> Vec<Sym> {
+        match &self.body {
+            Body::Symbolic(defs) => defs.iter().map(|(s, _)| *s).collect(),
+            Body::Numeric { results, .. } => results.clone(),
+        }
+    }
+
+    /// Every expression the group evaluates.
+    pub fn expressions(&self) -> Vec<ExprId> {
+        let mut out: Vec<ExprId> = self.pivots.iter().map(|p| p.value).collect();
+        match &self.body {
+            Body::Symbolic(defs) => out.extend(defs.iter().map(|(_, e)| *e)),
+            Body::Numeric { matrix, rhs, .. } => {
+                out.extend(matrix);
+                out.extend(rhs);
+            }
+        }
+        out
+    }
+}
+
+/// Definitions in dependency order, with an index from symbol to group.
+#[derive(Clone, Debug, Default)]
+pub struct System {
+    /// The groups, each reading only inputs and symbols of earlier groups (or earlier
+    /// definitions of its own).
+    pub groups: Vec<Group>,
+    owner: HashMap<Sym, usize>,
+}
+
+impl System {
+    /// Appends a group.
+    pub fn push(&mut self, group: Group) {
+        for s in group.defines() {
+            self.owner.insert(s, self.groups.len());
+        }
+        self.groups.push(group);
+    }
+
+    /// The group defining `s`, if any (inputs have none).
+    pub fn owner(&self, s: Sym) -> Option<usize> {
+        self.owner.get(&s).copied()
+    }
+
+    /// The definition of `s` when it is defined by an expression.
+    pub fn expression_of(&self, s: Sym) -> Option<ExprId> {
+        let g = self.owner(s)?;
+        match &self.groups[g].body {
+            Body::Symbolic(defs) => defs.iter().find(|(d, _)| *d == s).map(|(_, e)| *e),
+            Body::Numeric { .. } => None,
+        }
+    }
+
+    /// The input symbols (states, parameters, time, undefined derivatives) that `roots` read,
+    /// directly or through definitions.
+    pub fn inputs_read(&self, pool: &Pool, roots: &[ExprId]) -> BTreeSet<Sym> {
+        let mut inputs = BTreeSet::new();
+        let mut seen_groups = vec![false; self.groups.len()];
+        let mut seen_syms: BTreeSet<Sym> = BTreeSet::new();
+        let mut todo: Vec<ExprId> = roots.to_vec();
+        while let Some(e) = todo.pop() {
+            for n in pool.reachable(&[e]) {
+                let Node::Sym(s) = pool.node(n) else {
+                    continue;
+                };
+                if !seen_syms.insert(*s) {
+                    continue;
+                }
+                match self.owner(*s) {
+                    None => {
+                        inputs.insert(*s);
+                    }
+                    Some(g) => match (&self.groups[g].body, seen_groups[g]) {
+                        (Body::Symbolic(_), _) => {
+                            todo.extend(self.expression_of(*s));
+                            if !seen_groups[g] {
+                                seen_groups[g] = true;
+                                todo.extend(self.groups[g].pivots.iter().map(|p| p.value));
+                            }
+                        }
+                        (Body::Numeric { .. }, false) => {
+                            seen_groups[g] = true;
+                            todo.extend(self.groups[g].expressions());
+                        }
+                        (Body::Numeric { .. }, true) => {}
+                    },
+                }
+            }
+        }
+        inputs
+    }
+}

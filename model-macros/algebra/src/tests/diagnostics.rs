@@ -1,0 +1,113 @@
+//! Malformed models: each gives diagnostics at the right node, never a panic.
+
+use crate::compile::{compile, CompileOptions};
+use crate::spec::{Ast, Diagnostic, ModelSpec, NodeId};
+use crate::testing::model;
+
+fn diagnose(text: &str) -> (ModelSpec, Vec<Diagnostic>) {
+    let spec = model(text);
+    let diags = compile(&spec, &CompileOptions::default()).expect_err("must be rejected");
+    assert!(!diags.is_empty());
+    (spec, diags)
+}
+
+/// The node ids of every subexpression of `ast` and their sources, to find a node by text.
+fn find<'a>(ast: &'a Ast, pred: &dyn Fn(&Ast) -> bool, out: &mut Vec<&'a Ast>) {
+    if pred(ast) {
+        out.push(ast);
+    }
+    match ast {
+        Ast::Neg(_, a) | Ast::Der(_, a) => find(a, pred, out),
+        Ast::Bin(_, _, a, b) => {
+            find(a, pred, out);
+            find(b, pred, out);
+        }
+        Ast::Call(_, _, args) => args.iter().for_each(|a| find(a, pred, out)),
+        Ast::Num(..) | Ast::Name(..) => {}
+    }
+}
+
+/// The id of the (first) root-level node of equation `k`'s side matching `pred`.
+fn node_in(spec: &ModelSpec, k: usize, pred: &dyn Fn(&Ast) -> bool) -> NodeId {
+    let mut out = Vec::new();
+    find(&spec.equations[k].lhs, pred, &mut out);
+    find(&spec.equations[k].rhs, pred, &mut out);
+    out.first().expect("node").id()
+}
+
+macro_rules! rejected {
+    ($($name:ident: $text:expr => $needle:expr;)*) => {$(
+        #[test]
+        fn $name() {
+            let (_, diags) = diagnose($text);
+            assert!(
+                diags.iter().any(|d| d.message.contains($needle)),
+                "expected a diagnostic containing {:?}, got {:#?}",
+                $needle,
+                diags
+            );
+        }
+    )*};
+}
+
+rejected! {
+    product_of_derivatives: "states x, y\n eq a: der(x)*der(y) = 1\n eq b: der(y) = x"
+        => "a product of two derivatives";
+    function_of_derivative: "states x\n eq a: sin(der(x)) = 1" => "`sin` of a derivative";
+    division_by_derivative: "states x\n eq a: 1/der(x) = 1" => "a division by a derivative";
+    square_of_derivative: "states x\n eq a: der(x)^2 = 1" => "a power of a derivative";
+    nonlinear_through_let: "states x, y\n let v = der(x)\n eq a: v*der(y) = 1\n eq b: der(y) = 1"
+        => "a product of two derivatives";
+    second_derivative: "states x\n eq a: der(der(x)) = 1" => "only first derivatives";
+    structurally_singular: "states x, y, z\n eq R4: der(x) = 1\n eq R5: 2*der(x) = y\n eq R6: der(y) + der(z) = 0"
+        => "structurally singular: equations R4, R5 cannot determine der(x)";
+    unused_derivative: "states x, y\n eq a: der(x) = y\n eq b: der(x) = 1" => "der(y) appears in no equation";
+    no_states: "params m = 1" => "no states";
+    too_few_equations: "states x, y\n eq a: der(x) = y" => "1 equation(s) for 2 state(s)";
+    unknown_name: "states x\n eq a: der(x) = not_declared" => "unknown name";
+    division_by_zero: "states x\n eq a: der(x) = x/0" => "division by zero";
+    log_of_zero: "states x\n eq a: der(x) = x + ln(0)" => "not finite";
+    zero_to_negative_power: "states x\n eq a: der(x) = 0^(0-1)" => "not finite";
+    let_cycle: "states x\n let a = b + 1\n let b = a*x\n eq e: der(x) = a" => "depends on itself";
+    output_before_definition: "states x\n eq e: der(x) = 1\n out o1 = o2\n out o2 = x" => "used before it is defined";
+    output_in_equation: "states x\n eq e: der(x) = o\n out o = x" => "only be used in later outputs";
+    cancelling_coefficients: "states x, y\n eq a: der(x) + der(y) = 1\n eq b: 2*der(x) + 2*der(y) = x"
+        => "singular";
+    variant_keeps_unknown: "states x\n eq e: der(x) = 1\n variant v keep nothing_here" => "neither a state nor an output";
+    variant_fixes_unknown: "states x\n eq e: der(x) = 1\n variant v keep x fix q = 1" => "not a parameter";
+}
+
+#[test]
+fn nonlinear_diagnostic_points_at_the_operator() {
+    let (spec, diags) = diagnose("states x, y\n eq a: x*der(x)*der(y) = 1\n eq b: der(y) = x");
+    let mul = node_in(&spec, 0, &|a| {
+        matches!(a, Ast::Bin(_, crate::spec::BinOp::Mul, _, r) if matches!(**r, Ast::Der(..)))
+            && matches!(a, Ast::Bin(_, _, l, _) if matches!(**l, Ast::Bin(..)))
+    });
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert_eq!(diags[0].id, mul);
+}
+
+#[test]
+fn non_finite_literal_is_reported_at_the_literal() {
+    let mut spec = model("states x\n eq a: der(x) = 1");
+    let id = NodeId(999);
+    spec.equations[0].rhs = Ast::Num(id, f64::NAN);
+    let diags = compile(&spec, &CompileOptions::default()).unwrap_err();
+    assert_eq!(diags[0].id, id);
+    assert!(diags[0].message.contains("not finite"));
+}
+
+#[test]
+fn all_errors_of_a_model_are_reported_together() {
+    let (_, diags) = diagnose(
+        "states x, y\n eq a: der(x)*der(y) = 1\n eq b: der(y) = x/0\n out o = zz",
+    );
+    assert_eq!(diags.len(), 3, "{diags:#?}");
+}
+
+#[test]
+fn singular_block_names_its_equations() {
+    let (spec, diags) = diagnose("states x, y, z\n eq R4: der(x) = 1\n eq R5: 2*der(x) = y\n eq R6: der(y) + der(z) = 0");
+    assert_eq!(diags[0].id, spec.equations[0].id);
+}

@@ -1,0 +1,274 @@
+//! Property tests over generated expressions and models.
+//!
+//! Values are compared at random points against an independent evaluation of the user's tree.
+//! Where the tree itself is ill-conditioned at the point (its value moves by more than the
+//! tolerance when the inputs move by 1e-13), any two evaluation orders may legitimately differ;
+//! the tolerance then grows by that measured spread instead of being loosened everywhere.
+
+use proptest::prelude::*;
+
+use crate::compile::{compile, CompileOptions};
+use crate::diff::partial;
+use crate::eval::Inputs;
+use crate::expr::{call_value, ExprId, Sym};
+use crate::lower::Lowerer;
+use crate::spec::{Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId};
+
+/// `x`, `y` are states 0, 1; `z` is parameter 0.
+const NAMES: [&str; 3] = ["x", "y", "z"];
+
+fn leaf(weird: bool) -> BoxedStrategy<Ast> {
+    let mut numbers = vec![0.0, 1.0, 2.0, 0.5, 3.0, 1.5];
+    if weird {
+        numbers.extend([f64::NAN, f64::INFINITY, -0.0, 1e300]);
+    }
+    prop_oneof![
+        prop::sample::select(numbers).prop_map(|v| Ast::Num(NodeId(1), v)),
+        prop::sample::select(NAMES.to_vec()).prop_map(|n| Ast::Name(NodeId(2), n.into())),
+    ]
+    .boxed()
+}
+
+fn func() -> impl Strategy<Value = Func> {
+    prop::sample::select(vec![
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Sqrt,
+        Func::Exp,
+        Func::Ln,
+        Func::Abs,
+    ])
+}
+
+fn binop() -> impl Strategy<Value = BinOp> {
+    prop::sample::select(vec![BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div])
+}
+
+/// Random expressions over `x, y, z`; with `der`, also time derivatives; with `weird`, also
+/// non-finite and huge literals.
+fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
+    leaf(weird)
+        .prop_recursive(4, 32, 2, move |inner| {
+            let b = |a: Ast, b: Ast, op| Ast::Bin(NodeId(3), op, Box::new(a), Box::new(b));
+            let mut options = vec![
+                (inner.clone(), inner.clone(), binop())
+                    .prop_map(move |(x, y, op)| b(x, y, op))
+                    .boxed(),
+                (inner.clone(), inner.clone(), binop())
+                    .prop_map(move |(x, y, op)| b(x, y, op))
+                    .boxed(),
+                inner
+                    .clone()
+                    .prop_map(|a| Ast::Neg(NodeId(4), Box::new(a)))
+                    .boxed(),
+                (inner.clone(), func())
+                    .prop_map(|(a, f)| Ast::Call(NodeId(5), f, vec![a]))
+                    .boxed(),
+                (inner.clone(), inner.clone())
+                    .prop_map(|(a, c)| Ast::Call(NodeId(6), Func::Atan2, vec![a, c]))
+                    .boxed(),
+                (
+                    inner.clone(),
+                    prop::sample::select(vec![2.0, 3.0, -1.0, 0.5, -2.0, 1.0, 0.0]),
+                )
+                    .prop_map(move |(a, e)| b(a, Ast::Num(NodeId(7), e), BinOp::Pow))
+                    .boxed(),
+            ];
+            if with_der {
+                options.push(
+                    inner
+                        .clone()
+                        .prop_map(|a| Ast::Der(NodeId(8), Box::new(a)))
+                        .boxed(),
+                );
+            }
+            proptest::strategy::Union::new(options)
+        })
+        .boxed()
+}
+
+/// Direct evaluation of the user's tree (no `der`).
+fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
+    match a {
+        Ast::Num(_, x) => *x,
+        Ast::Name(_, n) => v[NAMES.iter().position(|m| m == n).unwrap()],
+        Ast::Neg(_, x) => -eval_ast(x, v),
+        Ast::Bin(_, op, l, r) => {
+            let (l, r) = (eval_ast(l, v), eval_ast(r, v));
+            match op {
+                BinOp::Add => l + r,
+                BinOp::Sub => l - r,
+                BinOp::Mul => l * r,
+                BinOp::Div => l / r,
+                BinOp::Pow => l.powf(r),
+            }
+        }
+        Ast::Call(_, Func::Atan2, args) => eval_ast(&args[0], v).atan2(eval_ast(&args[1], v)),
+        Ast::Call(_, f, args) => call_value(*f, eval_ast(&args[0], v)),
+        Ast::Der(..) => f64::NAN,
+    }
+}
+
+fn spec_with_outputs(outputs: &[Ast]) -> ModelSpec {
+    let named = |name: &str, value| Named {
+        name: name.into(),
+        id: NodeId(10),
+        value,
+    };
+    let one = || Ast::Num(NodeId(11), 1.0);
+    let der = |n: &str| Ast::Der(NodeId(12), Box::new(Ast::Name(NodeId(13), n.into())));
+    ModelSpec {
+        name: "props".into(),
+        params: vec![named("z", None)],
+        states: vec![named("x", ()), named("y", ())],
+        lets: vec![],
+        equations: ["x", "y"]
+            .iter()
+            .map(|n| EquationSpec {
+                label: format!("d{n}"),
+                id: NodeId(14),
+                lhs: der(n),
+                rhs: one(),
+            })
+            .collect(),
+        outputs: outputs
+            .iter()
+            .enumerate()
+            .map(|(k, a)| named(&format!("o{k}"), a.clone()))
+            .collect(),
+        variants: vec![],
+    }
+}
+
+/// How much `f` moves when the point moves by a relative 1e-13 (its conditioning here).
+fn spread(f: &dyn Fn(&[f64; 3]) -> f64, point: &[f64; 3]) -> f64 {
+    let base = f(point);
+    let mut worst: f64 = 0.0;
+    for pattern in 0..8u32 {
+        let p: [f64; 3] = std::array::from_fn(|k| {
+            let sign = if pattern >> k & 1 == 1 { 1.0 } else { -1.0 };
+            point[k] * (1.0 + sign * 1e-13)
+        });
+        worst = worst.max((f(&p) - base).abs());
+    }
+    worst
+}
+
+fn close(a: f64, b: f64, reference: &dyn Fn(&[f64; 3]) -> f64, point: &[f64; 3]) -> bool {
+    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()) + spread(reference, point)
+}
+
+fn point() -> impl Strategy<Value = [f64; 3]> {
+    [0.3f64..2.0, 0.3f64..2.0, 0.3f64..2.0]
+}
+
+fn sym_value(v: &[f64; 3]) -> impl Fn(Sym) -> f64 + '_ {
+    move |s| match s {
+        Sym::State(i) => v[i],
+        Sym::Param(0) => v[2],
+        _ => f64::NAN,
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn simplify_preserves_values(a in ast(false, false), v in point()) {
+        let spec = spec_with_outputs(std::slice::from_ref(&a));
+        let mut lower = Lowerer::new(&spec, vec![None]);
+        let Some(e) = lower.output(0) else { return Ok(()); };
+        let want = eval_ast(&a, &v);
+        let got = lower.pool.eval(e, &sym_value(&v));
+        if !want.is_finite() {
+            return Ok(());
+        }
+        prop_assert!(
+            close(got, want, &|p| eval_ast(&a, p), &v),
+            "simplified {got} vs tree {want}"
+        );
+    }
+
+    #[test]
+    fn derivative_matches_finite_differences(a in ast(false, false), v in point()) {
+        let spec = spec_with_outputs(std::slice::from_ref(&a));
+        let mut lower = Lowerer::new(&spec, vec![None]);
+        let Some(e) = lower.output(0) else { return Ok(()); };
+        let d = partial(&mut lower.pool, e, Sym::State(0));
+        let got = lower.pool.eval(d, &sym_value(&v));
+        let f = |x: f64| eval_ast(&a, &[x, v[1], v[2]]);
+        let h = 1e-4;
+        let central = |h: f64| (f(v[0] + h) - f(v[0] - h)) / (2.0 * h);
+        let (d1, d2) = (central(h), central(h / 2.0));
+        let richardson = (4.0 * d2 - d1) / 3.0;
+        let scale = 1.0 + richardson.abs() + f(v[0]).abs();
+        if !(got.is_finite() && richardson.is_finite()) || (d1 - d2).abs() > 1e-4 * scale {
+            // Not smooth enough here (a kink, a pole nearby): differences say nothing.
+            return Ok(());
+        }
+        prop_assert!(
+            (got - richardson).abs() <= 1e-6 * scale,
+            "symbolic {got} vs differences {richardson}"
+        );
+    }
+
+    #[test]
+    fn program_equals_direct_evaluation(
+        exprs in prop::collection::vec(ast(false, false), 1..5),
+        v in point(),
+    ) {
+        let spec = spec_with_outputs(&exprs);
+        let Ok(model) = compile(&spec, &CompileOptions::default()) else { return Ok(()); };
+        let mut lower = Lowerer::new(&spec, vec![None]);
+        let lowered: Vec<ExprId> = (0..exprs.len()).filter_map(|k| lower.output(k)).collect();
+        prop_assert_eq!(lowered.len(), exprs.len());
+        let dag = lower.pool.eval_many(&lowered, &sym_value(&v));
+        let out = model
+            .outputs_program
+            .eval(&Inputs { t: 0.0, states: &v[..2], params: &v[2..], ders: &[1.0, 1.0] })
+            .unwrap()
+            .outputs(exprs.len());
+        for k in 0..exprs.len() {
+            let tree = eval_ast(&exprs[k], &v);
+            if !tree.is_finite() || !dag[k].is_finite() {
+                continue;
+            }
+            let reference = |p: &[f64; 3]| lower.pool.eval(lowered[k], &sym_value(p));
+            prop_assert!(
+                close(out[k], dag[k], &reference, &v),
+                "output {k}: program {} vs dag {}", out[k], dag[k]
+            );
+        }
+    }
+
+    #[test]
+    fn random_specs_never_panic(
+        eqs in prop::collection::vec(ast(true, true), 0..4),
+        outs in prop::collection::vec(ast(true, true), 0..3),
+        n_states in 0usize..3,
+        v in point(),
+    ) {
+        let mut spec = spec_with_outputs(&outs);
+        spec.states.truncate(n_states);
+        spec.equations = eqs
+            .into_iter()
+            .enumerate()
+            .map(|(k, e)| EquationSpec {
+                label: format!("e{k}"),
+                id: NodeId(20 + k as u32),
+                lhs: e,
+                rhs: Ast::Num(NodeId(30), 0.0),
+            })
+            .collect();
+        match compile(&spec, &CompileOptions::default()) {
+            Ok(m) => {
+                let inputs = Inputs { t: 0.0, states: &v[..n_states], params: &v[2..], ders: &v[..n_states] };
+                let _ = m.rhs.eval(&inputs);
+                let _ = m.jacobian.eval(&inputs);
+                let _ = m.outputs_program.eval(&inputs);
+            }
+            Err(diags) => prop_assert!(!diags.is_empty()),
+        }
+    }
+}

@@ -1,0 +1,122 @@
+//! The model as written: a typed view of the DSL before any name is resolved.
+//!
+//! Names are plain strings here and calls keep the function's spelling, so that the validator can
+//! say "unknown function `sine`" or "`m` is a parameter" with the user's own words; every node
+//! carries a [`NodeId`] whose source range lives in [`Spans`].
+
+use crate::span::{SpanRange, Spans};
+use model_algebra::spec::{BinOp, Named, NodeId};
+
+/// An expression before name resolution.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    /// A numeric literal.
+    Num(NodeId, f64),
+    /// A name, not yet resolved.
+    Name(NodeId, String),
+    /// `-x`
+    Neg(NodeId, Box<Expr>),
+    /// `x op y`
+    Bin(NodeId, BinOp, Box<Expr>, Box<Expr>),
+    /// `f(args..)`, including `der(..)`.
+    Call(Call),
+}
+
+/// A call `f(args..)` as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Call {
+    /// The whole call.
+    pub id: NodeId,
+    /// The function's name as written.
+    pub func: String,
+    /// The function name's token.
+    pub func_id: NodeId,
+    /// The arguments.
+    pub args: Vec<Expr>,
+}
+
+impl Expr {
+    /// The node this expression came from.
+    pub fn id(&self) -> NodeId {
+        match self {
+            Expr::Num(id, _) | Expr::Name(id, _) | Expr::Neg(id, _) | Expr::Bin(id, ..) => *id,
+            Expr::Call(call) => call.id,
+        }
+    }
+
+    /// Calls `visit` on this expression and every sub-expression, parents first.
+    pub fn walk<'a>(&'a self, visit: &mut impl FnMut(&'a Expr)) {
+        visit(self);
+        match self {
+            Expr::Num(..) | Expr::Name(..) => {}
+            Expr::Neg(_, arg) => arg.walk(visit),
+            Expr::Bin(_, _, lhs, rhs) => {
+                lhs.walk(visit);
+                rhs.walk(visit);
+            }
+            Expr::Call(call) => call.args.iter().for_each(|arg| arg.walk(visit)),
+        }
+    }
+}
+
+/// One equation `label: lhs = rhs;`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equation {
+    /// The label and its token, when one was written.
+    pub label: Option<Named<()>>,
+    /// The `=` token.
+    pub eq_id: NodeId,
+    /// Left-hand side.
+    pub lhs: Expr,
+    /// Right-hand side.
+    pub rhs: Expr,
+}
+
+/// `variant NAME { keep { .. } fix { .. } }`.
+#[derive(Clone, Debug)]
+pub struct Variant {
+    /// Doc comments written before `variant`.
+    pub attrs: Vec<syn::Attribute>,
+    /// The variant's module name.
+    pub name: syn::Ident,
+    /// The name's node.
+    pub id: NodeId,
+    /// States and outputs to keep.
+    pub keep: Vec<Named<()>>,
+    /// Parameters fixed at compile time.
+    pub fix: Vec<Named<f64>>,
+}
+
+/// A section keyword and where it was written (for diagnostics about the section as a whole).
+#[derive(Clone, Copy, Debug)]
+pub struct Section {
+    /// The keyword's span.
+    pub keyword: SpanRange,
+}
+
+/// A whole `model!` invocation as written.
+#[derive(Clone, Debug)]
+pub struct ModelAst {
+    /// Doc comments on the module.
+    pub attrs: Vec<syn::Attribute>,
+    /// The module's visibility.
+    pub vis: syn::Visibility,
+    /// The module's name.
+    pub name: syn::Ident,
+    /// Parameters with optional defaults.
+    pub params: Vec<Named<Option<f64>>>,
+    /// States, in index order.
+    pub states: Vec<Named<()>>,
+    /// Named intermediate expressions.
+    pub lets: Vec<Named<Expr>>,
+    /// The `equations` keyword, if the section was written.
+    pub equations_section: Option<Section>,
+    /// The equations.
+    pub equations: Vec<Equation>,
+    /// Outputs, in order.
+    pub outputs: Vec<Named<Expr>>,
+    /// Reduced variants.
+    pub variants: Vec<Variant>,
+    /// Source ranges of every node.
+    pub spans: Spans,
+}

@@ -1,0 +1,313 @@
+//! The compiled model as Rust items: the module, its constants, `INFO`, the `Model` type and its
+//! trait implementations, and one nested module per variant.
+//!
+//! Everything the user can name is documented, so a crate with `#![deny(missing_docs)]` accepts
+//! the expansion, and the lints that generated straight-line code trips are allowed on the module.
+
+use crate::ast::ModelAst;
+use crate::emit_program::{constant, statements, stored_targets, target_place};
+use model_algebra::program::{CompiledModel, Program, Target};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+
+/// Emits the whole expansion of a compiled model.
+pub fn emit(ast: &ModelAst, compiled: &CompiledModel) -> TokenStream {
+    let name = ast.name.to_string();
+    let default_doc = format!(" The `{name}` model, solved for its derivatives at compile time.");
+    let docs = docs_or(&ast.attrs, &default_doc);
+    if compiled.variants.len() != ast.variants.len() {
+        let message = format!(
+            "the equation compiler returned {} variants for the {} declared",
+            compiled.variants.len(),
+            ast.variants.len()
+        );
+        return syn::Error::new(ast.name.span(), message).to_compile_error();
+    }
+    let variants = ast.variants.iter().zip(&compiled.variants).map(|(variant, model)| {
+        let default_doc = format!(" A reduced variant of `{name}`.");
+        let docs = docs_or(&variant.attrs, &default_doc);
+        let vis = syn::parse_quote!(pub);
+        let info_name = format!("{name}::{}", variant.name);
+        module(&vis, &variant.name, &docs, &info_name, model, TokenStream::new())
+    });
+    let variants: TokenStream = variants.collect();
+    module(&ast.vis, &ast.name, &docs, &name, compiled, variants)
+}
+
+/// The doc attributes written by the user, or one default line.
+fn docs_or(attrs: &[syn::Attribute], default: &str) -> TokenStream {
+    if attrs.is_empty() {
+        quote! { #[doc = #default] }
+    } else {
+        quote! { #(#attrs)* }
+    }
+}
+
+fn module(
+    vis: &syn::Visibility,
+    ident: &Ident,
+    docs: &TokenStream,
+    info_name: &str,
+    model: &CompiledModel,
+    nested: TokenStream,
+) -> TokenStream {
+    let n_states = model.states.len();
+    let n_params = model.params.len();
+    let n_outputs = model.outputs.len();
+    let param_names: Vec<&str> = model.params.iter().map(|(name, _)| name.as_str()).collect();
+    let states = index_module("state", "state", &model.states.iter().map(String::as_str).collect::<Vec<_>>());
+    let params = index_module("param", "parameter", &param_names);
+    let outputs = index_module("output", "output", &model.outputs.iter().map(String::as_str).collect::<Vec<_>>());
+    let state_names = &model.states;
+    let output_names = &model.outputs;
+    let defaults = model.params.iter().map(|(_, default)| match default {
+        Some(value) => {
+            let value = constant(*value);
+            quote! { ::core::option::Option::Some(#value) }
+        }
+        None => quote! { ::core::option::Option::None },
+    });
+    let info = info(info_name, model);
+    let default_impl = default_impl(model);
+    let model_impl = model_impl(model);
+    let outputs_impl = outputs_impl(model);
+    quote! {
+        #docs
+        #[allow(
+            non_upper_case_globals,
+            non_snake_case,
+            unused_variables,
+            unused_parens,
+            clippy::all,
+            clippy::pedantic,
+            clippy::nursery
+        )]
+        #vis mod #ident {
+            /// The number of states.
+            pub const N_STATES: usize = #n_states;
+            /// The number of parameters.
+            pub const N_PARAMS: usize = #n_params;
+            /// The number of outputs.
+            pub const N_OUTPUTS: usize = #n_outputs;
+            #states
+            #params
+            #outputs
+            /// State names, in index order.
+            pub const STATE_NAMES: [&str; N_STATES] = [#(#state_names),*];
+            /// Parameter names, in index order.
+            pub const PARAM_NAMES: [&str; N_PARAMS] = [#(#param_names),*];
+            /// Output names, in index order.
+            pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = [#(#output_names),*];
+            /// Parameter defaults (`None` where the model gives none), in index order.
+            pub const PARAM_DEFAULTS: [::core::option::Option<f64>; N_PARAMS] = [#(#defaults),*];
+            const MODEL_NAME: &str = #info_name;
+            #info
+            /// The model with its parameter values.
+            #[derive(Clone, Debug, PartialEq)]
+            pub struct Model {
+                /// Parameter values, indexed by the constants of [`param`].
+                pub params: [f64; N_PARAMS],
+            }
+            impl Model {
+                /// A model with these parameter values (indexed by the constants of [`param`]).
+                pub const fn new(params: [f64; N_PARAMS]) -> Self {
+                    Model { params }
+                }
+            }
+            #default_impl
+            #model_impl
+            #outputs_impl
+            #nested
+        }
+    }
+}
+
+/// `pub mod NAME { pub const x: usize = 0; ... }`
+fn index_module(module: &str, what: &str, names: &[&str]) -> TokenStream {
+    let module = Ident::new(module, Span::call_site());
+    let module_doc = format!(" Index of each {what} in the {what} array.");
+    let consts = names.iter().enumerate().map(|(index, name)| {
+        let ident = format_ident!("{}", name);
+        let doc = format!(" Index of {what} `{name}`.");
+        quote! {
+            #[doc = #doc]
+            pub const #ident: usize = #index;
+        }
+    });
+    quote! {
+        #[doc = #module_doc]
+        pub mod #module {
+            #(#consts)*
+        }
+    }
+}
+
+fn info(info_name: &str, model: &CompiledModel) -> TokenStream {
+    let rhs_ops = ops(&model.rhs);
+    let jacobian_ops = ops(&model.jacobian);
+    let outputs_ops = ops(&model.outputs_program);
+    let pivots = &model.pivots;
+    let blocks = &model.numeric_blocks;
+    quote! {
+        /// Names, sizes, operation counts, checked pivots and numerically solved blocks.
+        pub static INFO: ::model_runtime::ModelInfo = ::model_runtime::ModelInfo {
+            name: #info_name,
+            state_names: &STATE_NAMES,
+            param_names: &PARAM_NAMES,
+            output_names: &OUTPUT_NAMES,
+            rhs_ops: #rhs_ops,
+            jacobian_ops: #jacobian_ops,
+            outputs_ops: #outputs_ops,
+            pivots: &[#(#pivots),*],
+            numeric_blocks: &[#(#blocks),*],
+        };
+    }
+}
+
+fn ops(program: &Program) -> TokenStream {
+    let ops = program.ops();
+    let (add, mul, div) = (ops.add, ops.mul, ops.div);
+    let (sqrt, trig, transcendental) = (ops.sqrt, ops.trig, ops.transcendental);
+    quote! {
+        ::model_runtime::OpCounts {
+            add: #add, mul: #mul, div: #div, sqrt: #sqrt, trig: #trig, transcendental: #transcendental,
+        }
+    }
+}
+
+fn default_impl(model: &CompiledModel) -> TokenStream {
+    let Some(values) = model
+        .params
+        .iter()
+        .map(|(_, default)| default.map(constant))
+        .collect::<Option<Vec<_>>>()
+    else {
+        return TokenStream::new();
+    };
+    quote! {
+        /// Every parameter at its default.
+        impl ::core::default::Default for Model {
+            fn default() -> Self {
+                Model::new([#(#values),*])
+            }
+        }
+    }
+}
+
+/// `dst[k] = 0.0;` for every place of `all` the program does not store to.
+fn zero_unstored(program: &Program, all: impl Iterator<Item = Target>) -> TokenStream {
+    let stored = stored_targets(program);
+    all.filter(|target| !stored.contains(target))
+        .map(|target| {
+            let place = target_place(target);
+            quote! { #place = 0.0; }
+        })
+        .collect()
+}
+
+fn model_impl(model: &CompiledModel) -> TokenStream {
+    let n = model.states.len();
+    let der_names = model.states.iter().map(|state| format!("der({state})"));
+    let jac_names = model.states.iter().map(|row| {
+        let row = model
+            .states
+            .iter()
+            .map(|col| format!("jacobian entry d der({row}) / d {col}"));
+        quote! { [#(#row),*] }
+    });
+    let rhs = statements(&model.rhs);
+    let rhs_zero = zero_unstored(&model.rhs, (0..n).map(Target::Der));
+    let jacobian = statements(&model.jacobian);
+    let jac_zero = zero_unstored(
+        &model.jacobian,
+        (0..n).flat_map(|i| (0..n).map(move |j| Target::Jac(i, j))),
+    );
+    quote! {
+        const DER_NAMES: [&str; N_STATES] = [#(#der_names),*];
+        const JACOBIAN_NAMES: [[&str; N_STATES]; N_STATES] = [#(#jac_names),*];
+        impl ::model_runtime::Model<N_STATES> for Model {
+            #[inline]
+            fn info(&self) -> &'static ::model_runtime::ModelInfo {
+                &INFO
+            }
+
+            #[inline]
+            fn rhs(
+                &self,
+                t: f64,
+                y: &[f64; N_STATES],
+                dy: &mut [f64; N_STATES],
+            ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                let p = &self.params;
+                #rhs_zero
+                #rhs
+                for (quantity, value) in DER_NAMES.iter().zip(dy.iter()) {
+                    if !value.is_finite() {
+                        return ::core::result::Result::Err(::model_runtime::EvalError::NonFinite {
+                            model: MODEL_NAME,
+                            quantity: *quantity,
+                            value: *value,
+                        });
+                    }
+                }
+                ::core::result::Result::Ok(())
+            }
+
+            #[inline]
+            fn jacobian(
+                &self,
+                t: f64,
+                y: &[f64; N_STATES],
+                jac: &mut [[f64; N_STATES]; N_STATES],
+            ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                let p = &self.params;
+                #jac_zero
+                #jacobian
+                for (names, row) in JACOBIAN_NAMES.iter().zip(jac.iter()) {
+                    for (quantity, value) in names.iter().zip(row.iter()) {
+                        if !value.is_finite() {
+                            return ::core::result::Result::Err(::model_runtime::EvalError::NonFinite {
+                                model: MODEL_NAME,
+                                quantity: *quantity,
+                                value: *value,
+                            });
+                        }
+                    }
+                }
+                ::core::result::Result::Ok(())
+            }
+        }
+    }
+}
+
+fn outputs_impl(model: &CompiledModel) -> TokenStream {
+    let program = &model.outputs_program;
+    let body = statements(program);
+    let zero = zero_unstored(program, (0..model.outputs.len()).map(Target::Output));
+    quote! {
+        impl ::model_runtime::WithOutputs<N_STATES, N_OUTPUTS> for Model {
+            #[inline]
+            fn outputs(
+                &self,
+                t: f64,
+                y: &[f64; N_STATES],
+                dy: &[f64; N_STATES],
+                out: &mut [f64; N_OUTPUTS],
+            ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                let p = &self.params;
+                #zero
+                #body
+                for (quantity, value) in OUTPUT_NAMES.iter().zip(out.iter()) {
+                    if !value.is_finite() {
+                        return ::core::result::Result::Err(::model_runtime::EvalError::NonFinite {
+                            model: MODEL_NAME,
+                            quantity: *quantity,
+                            value: *value,
+                        });
+                    }
+                }
+                ::core::result::Result::Ok(())
+            }
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! The pipeline: parse -> validate -> compile -> emit, timed stage by stage.
+//!
+//! Set `MODEL_MACROS_TIMING=1` in the environment of the build to have every expansion print
+//! the time of each stage to stderr (expansion runs inside rustc, so this is the only place the
+//! cost of the equation compiler can be seen).
+
+use crate::compile::compile;
+use crate::emit::emit;
+use crate::parse::parse_model;
+use crate::validate::validate;
+use proc_macro2::TokenStream;
+use quote::quote;
+use std::time::{Duration, Instant};
+use syn::parse::{ParseStream, Parser};
+use syn::Token;
+
+/// The environment variable that turns the timing report on.
+pub const TIMING_VAR: &str = "MODEL_MACROS_TIMING";
+
+/// Expands one `model!` invocation.
+pub fn expand(tokens: TokenStream) -> TokenStream {
+    let (output, timing) = expand_timed(tokens);
+    if std::env::var_os(TIMING_VAR).is_some_and(|v| !v.is_empty() && v != "0") {
+        eprintln!("{timing}");
+    }
+    output
+}
+
+/// How long one stage took.
+#[derive(Clone, Copy, Debug)]
+pub struct StageTime {
+    /// The stage's name.
+    pub stage: &'static str,
+    /// Its duration.
+    pub elapsed: Duration,
+}
+
+/// The stages of one expansion.
+#[derive(Clone, Debug, Default)]
+pub struct Timing {
+    /// The model's name, once parsed.
+    pub model: String,
+    /// The stages run, in order.
+    pub stages: Vec<StageTime>,
+}
+
+impl Timing {
+    fn stage<T>(&mut self, stage: &'static str, run: impl FnOnce() -> T) -> T {
+        let start = Instant::now();
+        let result = run();
+        self.stages.push(StageTime {
+            stage,
+            elapsed: start.elapsed(),
+        });
+        result
+    }
+
+    /// The sum of all stages.
+    pub fn total(&self) -> Duration {
+        self.stages.iter().map(|s| s.elapsed).sum()
+    }
+}
+
+impl std::fmt::Display for Timing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "model!({}):", self.model)?;
+        for stage in &self.stages {
+            write!(f, " {} {:.3} ms,", stage.stage, millis(stage.elapsed))?;
+        }
+        write!(f, " total {:.3} ms", millis(self.total()))
+    }
+}
+
+fn millis(duration: Duration) -> f64 {
+    duration.as_secs_f64() * 1e3
+}
+
+/// Expands and reports how long each stage took.
+pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
+    let mut timing = Timing::default();
+    let placeholder = placeholder(tokens.clone());
+    let ast = match timing.stage("parse", || parse_model(tokens)) {
+        Ok(ast) => ast,
+        Err(error) => return (failure(error, placeholder), timing),
+    };
+    timing.model = ast.name.to_string();
+    let compiled = timing
+        .stage("validate", || validate(&ast))
+        .and_then(|spec| timing.stage("compile", || compile(&spec, &ast.spans)));
+    match compiled {
+        Ok(compiled) => {
+            let output = timing.stage("emit", || emit(&ast, &compiled));
+            (output, timing)
+        }
+        Err(error) => (failure(error, placeholder), timing),
+    }
+}
+
+fn failure(error: syn::Error, placeholder: TokenStream) -> TokenStream {
+    let mut output = error.to_compile_error();
+    output.extend(placeholder);
+    output
+}
+
+/// A module of the model's name holding a placeholder `Model` type, so that code using the model
+/// reports nothing more than the model's own errors. Empty if even the header is unreadable.
+fn placeholder(tokens: TokenStream) -> TokenStream {
+    let header = |input: ParseStream| {
+        input.call(syn::Attribute::parse_outer)?;
+        let vis: syn::Visibility = input.parse()?;
+        input.parse::<Token![mod]>()?;
+        let name: syn::Ident = input.parse()?;
+        input.parse::<TokenStream>()?;
+        Ok((vis, name))
+    };
+    match header.parse2(tokens) {
+        Ok((vis, name)) => quote! {
+            #[allow(missing_docs)]
+            #vis mod #name {
+                pub struct Model;
+            }
+        },
+        Err(_) => TokenStream::new(),
+    }
+}

@@ -1,0 +1,153 @@
+//! Expressions of the DSL, parsed by precedence climbing.
+//!
+//! Precedence, loosest first: `+ -`, `* /`, unary `-`, `^`. The power binds tighter than the unary
+//! minus and associates to the right, as in mathematics: `-x^2 = -(x^2)`, `a^b^c = a^(b^c)`, and
+//! an exponent may itself be negated, `2^-x = 2^(-x)`.
+
+use crate::ast::{Call, Expr};
+use crate::span::{SpanRange, Spans};
+use model_algebra::spec::BinOp;
+use syn::parse::ParseStream;
+use syn::{token, Token};
+
+/// Parses one expression; stops before the first token that cannot continue it (`;`, `=`, `,`).
+pub fn parse_expr(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    let mut lhs = parse_product(input, spans)?;
+    loop {
+        let op = if input.peek(Token![+]) {
+            input.parse::<Token![+]>()?;
+            BinOp::Add
+        } else if input.peek(Token![-]) {
+            input.parse::<Token![-]>()?;
+            BinOp::Sub
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_product(input, spans)?;
+        lhs = binary(spans, op, lhs, rhs);
+    }
+}
+
+fn parse_product(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    let mut lhs = parse_unary(input, spans)?;
+    loop {
+        let op = if input.peek(Token![*]) {
+            input.parse::<Token![*]>()?;
+            BinOp::Mul
+        } else if input.peek(Token![/]) {
+            input.parse::<Token![/]>()?;
+            BinOp::Div
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_unary(input, spans)?;
+        lhs = binary(spans, op, lhs, rhs);
+    }
+}
+
+fn parse_unary(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    if input.peek(Token![-]) {
+        let minus: Token![-] = input.parse()?;
+        let arg = parse_unary(input, spans)?;
+        let range = SpanRange::single(minus.span).to(range_of(spans, &arg));
+        return Ok(Expr::Neg(spans.push(range), Box::new(arg)));
+    }
+    parse_power(input, spans)
+}
+
+fn parse_power(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    let base = parse_atom(input, spans)?;
+    if input.peek(Token![^]) {
+        input.parse::<Token![^]>()?;
+        // The exponent may be negated and is itself a power: right-associative.
+        let exponent = parse_unary(input, spans)?;
+        return Ok(binary(spans, BinOp::Pow, base, exponent));
+    }
+    Ok(base)
+}
+
+fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    if input.peek(token::Paren) {
+        let content;
+        syn::parenthesized!(content in input);
+        let inner = parse_expr(&content, spans)?;
+        if !content.is_empty() {
+            return Err(content.error("expected an operator or `)`"));
+        }
+        return Ok(inner);
+    }
+    if input.peek(syn::Lit) {
+        let (value, span) = parse_number(input)?;
+        return Ok(Expr::Num(spans.push(SpanRange::single(span)), value));
+    }
+    if input.peek(syn::Ident) {
+        let ident: syn::Ident = input.parse()?;
+        let name_range = SpanRange::single(ident.span());
+        let name = ident.to_string();
+        if !input.peek(token::Paren) {
+            return Ok(Expr::Name(spans.push(name_range), name));
+        }
+        let func_id = spans.push(name_range);
+        let content;
+        let parens = syn::parenthesized!(content in input);
+        let mut args = Vec::new();
+        while !content.is_empty() {
+            args.push(parse_expr(&content, spans)?);
+            if content.is_empty() {
+                break;
+            }
+            content.parse::<Token![,]>()?;
+        }
+        let range = name_range.to(SpanRange::single(parens.span.close()));
+        return Ok(Expr::Call(Call {
+            id: spans.push(range),
+            func: name,
+            func_id,
+            args,
+        }));
+    }
+    Err(input.error("expected a number, a name, `(` or `-`"))
+}
+
+/// Parses an unsuffixed numeric literal (integer or float) as `f64`.
+pub fn parse_number(input: ParseStream) -> syn::Result<(f64, proc_macro2::Span)> {
+    let lit: syn::Lit = input.parse()?;
+    let (value, suffix) = match &lit {
+        syn::Lit::Int(int) => (int.base10_parse::<f64>(), int.suffix()),
+        syn::Lit::Float(float) => (float.base10_parse::<f64>(), float.suffix()),
+        _ => return Err(syn::Error::new(lit.span(), "expected a number")),
+    };
+    if !suffix.is_empty() {
+        return Err(syn::Error::new(
+            lit.span(),
+            format!("number suffixes are not allowed (`{suffix}`): every quantity is an f64"),
+        ));
+    }
+    let value = value?;
+    if !value.is_finite() {
+        return Err(syn::Error::new(
+            lit.span(),
+            "number is too large to be an f64",
+        ));
+    }
+    Ok((value, lit.span()))
+}
+
+/// Parses `NUMBER` or `-NUMBER`.
+pub fn parse_signed_number(input: ParseStream) -> syn::Result<f64> {
+    let negative = input.parse::<Option<Token![-]>>()?.is_some();
+    let (value, _) = parse_number(input)?;
+    Ok(if negative { -value } else { value })
+}
+
+/// The source range of an already-parsed expression.
+pub fn range_of(spans: &Spans, expr: &Expr) -> SpanRange {
+    spans
+        .get(expr.id())
+        .unwrap_or_else(|| SpanRange::single(proc_macro2::Span::call_site()))
+}
+
+fn binary(spans: &mut Spans, op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
+    let range = range_of(spans, &lhs).to(range_of(spans, &rhs));
+    Expr::Bin(spans.push(range), op, Box::new(lhs), Box::new(rhs))
+}

@@ -1,0 +1,393 @@
+//! The DSL's items: module, sections, statements.
+//!
+//! Parsing recovers at statement and section boundaries (`;` and `{..}`), so one typo does not
+//! hide the next: every syntax error of the invocation is collected and reported together.
+
+use crate::ast::{Equation, ModelAst, Section, Variant};
+use crate::expr::{parse_expr, parse_signed_number};
+use crate::span::{Errors, SpanRange, Spans};
+use model_algebra::spec::Named;
+use proc_macro2::{TokenStream, TokenTree};
+use syn::parse::{ParseStream, Parser};
+use syn::{token, Token};
+
+/// Parses a whole `model!` invocation; `Err` carries every syntax error found.
+pub fn parse_model(tokens: TokenStream) -> syn::Result<ModelAst> {
+    let mut errors = Errors::default();
+    let parsed = (|input: ParseStream| parse_module(input, &mut errors)).parse2(tokens);
+    match parsed {
+        Ok(model) => errors.finish().map(|()| model),
+        Err(error) => Err(match errors.finish() {
+            Ok(()) => error,
+            Err(mut earlier) => {
+                earlier.combine(error);
+                earlier
+            }
+        }),
+    }
+}
+
+/// Sections seen so far (each may be written once).
+#[derive(Default)]
+struct Seen {
+    params: Option<SpanRange>,
+    states: Option<SpanRange>,
+    outputs: Option<SpanRange>,
+}
+
+fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst> {
+    let attrs = input.call(syn::Attribute::parse_outer)?;
+    check_docs_only(&attrs, errors);
+    let vis: syn::Visibility = input.parse()?;
+    input.parse::<Token![mod]>()?;
+    let name: syn::Ident = input.parse()?;
+    let body;
+    syn::braced!(body in input);
+    if !input.is_empty() {
+        return Err(input.error("one `model!` holds exactly one module: unexpected tokens after it"));
+    }
+    let mut model = ModelAst {
+        attrs,
+        vis,
+        name,
+        params: Vec::new(),
+        states: Vec::new(),
+        lets: Vec::new(),
+        equations_section: None,
+        equations: Vec::new(),
+        outputs: Vec::new(),
+        variants: Vec::new(),
+        spans: Spans::default(),
+    };
+    let mut seen = Seen::default();
+    while !body.is_empty() {
+        if let Err(error) = parse_item(&body, &mut model, &mut seen, errors) {
+            errors.push(error);
+            // The item's extent is unknown: give up on the rest of the body.
+            skip_all(&body);
+        }
+    }
+    Ok(model)
+}
+
+fn parse_item(
+    input: ParseStream,
+    model: &mut ModelAst,
+    seen: &mut Seen,
+    errors: &mut Errors,
+) -> syn::Result<()> {
+    let attrs = input.call(syn::Attribute::parse_outer)?;
+    check_docs_only(&attrs, errors);
+    if input.peek(Token![let]) {
+        no_docs_here(&attrs, "a `let`", errors);
+        recover_statement(input, errors, |input| {
+            input.parse::<Token![let]>()?;
+            let binding = parse_binding(input, &mut model.spans)?;
+            input.parse::<Token![;]>()?;
+            model.lets.push(binding);
+            Ok(())
+        });
+        return Ok(());
+    }
+    let keyword: syn::Ident = input.parse().map_err(|_| {
+        input.error("expected `params`, `states`, `let`, `equations`, `outputs` or `variant`")
+    })?;
+    let range = SpanRange::single(keyword.span());
+    match keyword.to_string().as_str() {
+        "params" => {
+            no_docs_here(&attrs, "`params`", errors);
+            once(&mut seen.params, range, "params", errors);
+            let content = braced(input)?;
+            recover_section(&content, errors, |input| {
+                model.params = parse_list(input, |input| {
+                    let name = parse_name(input, &mut model.spans)?;
+                    let default = if input.peek(Token![=]) {
+                        input.parse::<Token![=]>()?;
+                        Some(parse_signed_number(input)?)
+                    } else {
+                        None
+                    };
+                    Ok(with_value(name, default))
+                })?;
+                Ok(())
+            });
+        }
+        "states" => {
+            no_docs_here(&attrs, "`states`", errors);
+            once(&mut seen.states, range, "states", errors);
+            let content = braced(input)?;
+            recover_section(&content, errors, |input| {
+                model.states = parse_list(input, |input| parse_name(input, &mut model.spans))?;
+                Ok(())
+            });
+        }
+        "equations" => {
+            no_docs_here(&attrs, "`equations`", errors);
+            if model.equations_section.is_some() {
+                errors.at(
+                    range,
+                    "`equations` is written twice: put all equations in one section",
+                );
+            } else {
+                model.equations_section = Some(Section { keyword: range });
+            }
+            let content = braced(input)?;
+            while !content.is_empty() {
+                recover_statement(&content, errors, |input| {
+                    let equation = parse_equation(input, &mut model.spans)?;
+                    model.equations.push(equation);
+                    Ok(())
+                });
+            }
+        }
+        "outputs" => {
+            no_docs_here(&attrs, "`outputs`", errors);
+            once(&mut seen.outputs, range, "outputs", errors);
+            let content = braced(input)?;
+            while !content.is_empty() {
+                recover_statement(&content, errors, |input| {
+                    let binding = parse_binding(input, &mut model.spans)?;
+                    input.parse::<Token![;]>()?;
+                    model.outputs.push(binding);
+                    Ok(())
+                });
+            }
+        }
+        "variant" => {
+            let variant = parse_variant(input, attrs, &mut model.spans, errors)?;
+            model.variants.push(variant);
+        }
+        other => {
+            return Err(syn::Error::new(
+                keyword.span(),
+                format!(
+                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs` or `variant`"
+                ),
+            ))
+        }
+    }
+    Ok(())
+}
+
+fn parse_variant(
+    input: ParseStream,
+    attrs: Vec<syn::Attribute>,
+    spans: &mut Spans,
+    errors: &mut Errors,
+) -> syn::Result<Variant> {
+    let name: syn::Ident = input.parse()?;
+    let id = spans.push(SpanRange::single(name.span()));
+    let content = braced(input)?;
+    let mut keep = None;
+    let mut fix = None;
+    let result = (|| -> syn::Result<()> {
+        while !content.is_empty() {
+            let keyword: syn::Ident = content
+                .parse()
+                .map_err(|_| content.error("expected `keep { .. }` or `fix { .. }`"))?;
+            let inner = braced(&content)?;
+            match keyword.to_string().as_str() {
+                "keep" if keep.is_none() => {
+                    keep = Some(parse_list(&inner, |input| parse_name(input, spans))?);
+                }
+                "fix" if fix.is_none() => {
+                    fix = Some(parse_list(&inner, |input| {
+                        let name = parse_name(input, spans)?;
+                        input.parse::<Token![=]>()?;
+                        let value = parse_signed_number(input)?;
+                        Ok(with_value(name, value))
+                    })?);
+                }
+                "keep" | "fix" => {
+                    return Err(syn::Error::new(
+                        keyword.span(),
+                        format!("`{keyword}` is written twice in variant `{name}`"),
+                    ))
+                }
+                _ => {
+                    return Err(syn::Error::new(
+                        keyword.span(),
+                        format!("unknown section `{keyword}` in variant `{name}`: expected `keep` or `fix`"),
+                    ))
+                }
+            }
+        }
+        Ok(())
+    })();
+    if let Err(error) = result {
+        errors.push(error);
+        skip_all(&content);
+    }
+    let keep = match keep {
+        Some(keep) => keep,
+        None => {
+            errors.push(syn::Error::new(
+                name.span(),
+                format!("variant `{name}` has no `keep {{ .. }}`: name the states and outputs it keeps"),
+            ));
+            Vec::new()
+        }
+    };
+    Ok(Variant {
+        attrs,
+        name,
+        id,
+        keep,
+        fix: fix.unwrap_or_default(),
+    })
+}
+
+/// `label: lhs = rhs;` or `lhs = rhs;`
+fn parse_equation(input: ParseStream, spans: &mut Spans) -> syn::Result<Equation> {
+    let label = if input.peek(syn::Ident) && input.peek2(Token![:]) && !input.peek2(Token![::]) {
+        let label = parse_name(input, spans)?;
+        input.parse::<Token![:]>()?;
+        Some(label)
+    } else {
+        None
+    };
+    let lhs = parse_expr(input, spans)?;
+    let eq: Token![=] = input
+        .parse()
+        .map_err(|_| input.error("expected `=`: an equation reads `lhs = rhs;`"))?;
+    let eq_id = spans.push(SpanRange::single(eq.span));
+    let rhs = parse_expr(input, spans)?;
+    input.parse::<Token![;]>()?;
+    Ok(Equation {
+        label,
+        eq_id,
+        lhs,
+        rhs,
+    })
+}
+
+/// `NAME = EXPR` (without the `;`).
+fn parse_binding(
+    input: ParseStream,
+    spans: &mut Spans,
+) -> syn::Result<Named<crate::ast::Expr>> {
+    let name = parse_name(input, spans)?;
+    input.parse::<Token![=]>()?;
+    let value = parse_expr(input, spans)?;
+    Ok(with_value(name, value))
+}
+
+fn parse_name(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<()>> {
+    let ident: syn::Ident = input.parse()?;
+    Ok(Named {
+        name: ident.to_string(),
+        id: spans.push(SpanRange::single(ident.span())),
+        value: (),
+    })
+}
+
+fn with_value<T>(name: Named<()>, value: T) -> Named<T> {
+    Named {
+        name: name.name,
+        id: name.id,
+        value,
+    }
+}
+
+/// `item, item, ...` with an optional trailing comma, up to the end of `input`.
+fn parse_list<T>(
+    input: ParseStream,
+    mut item: impl FnMut(ParseStream) -> syn::Result<T>,
+) -> syn::Result<Vec<T>> {
+    let mut items = Vec::new();
+    while !input.is_empty() {
+        items.push(item(input)?);
+        if input.is_empty() {
+            break;
+        }
+        input.parse::<Token![,]>()?;
+    }
+    Ok(items)
+}
+
+fn braced<'a>(input: ParseStream<'a>) -> syn::Result<syn::parse::ParseBuffer<'a>> {
+    if !input.peek(token::Brace) {
+        return Err(input.error("expected `{`"));
+    }
+    let content;
+    syn::braced!(content in input);
+    Ok(content)
+}
+
+/// Runs one `;`-terminated statement; on error records it and skips past the next `;`.
+fn recover_statement(
+    input: ParseStream,
+    errors: &mut Errors,
+    statement: impl FnOnce(ParseStream) -> syn::Result<()>,
+) {
+    if let Err(error) = statement(input) {
+        errors.push(error);
+        skip_past_semicolon(input);
+    }
+}
+
+/// Runs a whole `{..}` section; on error records it and skips the rest of the section.
+fn recover_section(
+    input: ParseStream,
+    errors: &mut Errors,
+    section: impl FnOnce(ParseStream) -> syn::Result<()>,
+) {
+    if let Err(error) = section(input) {
+        errors.push(error);
+        skip_all(input);
+    }
+}
+
+fn skip_past_semicolon(input: ParseStream) {
+    let _ = input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tree, next)) = rest.token_tree() {
+            rest = next;
+            if matches!(&tree, TokenTree::Punct(p) if p.as_char() == ';') {
+                break;
+            }
+        }
+        Ok(((), rest))
+    });
+}
+
+fn skip_all(input: ParseStream) {
+    let _ = input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((_, next)) = rest.token_tree() {
+            rest = next;
+        }
+        Ok(((), rest))
+    });
+}
+
+fn once(slot: &mut Option<SpanRange>, range: SpanRange, section: &str, errors: &mut Errors) {
+    if slot.is_some() {
+        errors.at(
+            range,
+            format!("`{section}` is written twice: declare everything in one section"),
+        );
+    } else {
+        *slot = Some(range);
+    }
+}
+
+fn check_docs_only(attrs: &[syn::Attribute], errors: &mut Errors) {
+    for attr in attrs {
+        if !attr.path().is_ident("doc") {
+            errors.push(syn::Error::new_spanned(
+                attr,
+                "only doc comments (`/// ..`) are allowed in a model",
+            ));
+        }
+    }
+}
+
+fn no_docs_here(attrs: &[syn::Attribute], what: &str, errors: &mut Errors) {
+    if let Some(attr) = attrs.iter().find(|attr| attr.path().is_ident("doc")) {
+        errors.push(syn::Error::new_spanned(
+            attr,
+            format!("doc comments go on the module or a variant, not on {what}; use `//` here"),
+        ));
+    }
+}

@@ -1,0 +1,109 @@
+//! Where each node of the user's model came from.
+//!
+//! The algebra crate reports problems by [`NodeId`]; it never sees a span. The parser gives every
+//! node an id and records the source range here, so any diagnostic — found by the front end or by
+//! the compiler — can be drawn under the exact tokens the user wrote.
+
+use model_algebra::spec::NodeId;
+use proc_macro2::{Punct, Spacing, Span, TokenStream};
+use quote::{ToTokens, TokenStreamExt};
+
+/// A source range: the first and the last token of a node.
+///
+/// A stable proc macro cannot join two spans, but `syn::Error::new_spanned` underlines from the
+/// first to the last token of what it is given; emitting two tokens carrying these spans gets the
+/// same result.
+#[derive(Clone, Copy, Debug)]
+pub struct SpanRange {
+    /// The first token's span.
+    pub first: Span,
+    /// The last token's span.
+    pub last: Span,
+}
+
+impl SpanRange {
+    /// A range covering one token.
+    pub fn single(span: Span) -> Self {
+        SpanRange {
+            first: span,
+            last: span,
+        }
+    }
+
+    /// From the start of `self` to the end of `other`.
+    pub fn to(self, other: SpanRange) -> Self {
+        SpanRange {
+            first: self.first,
+            last: other.last,
+        }
+    }
+
+    /// An error underlining this range.
+    pub fn error(self, message: impl std::fmt::Display) -> syn::Error {
+        syn::Error::new_spanned(self, message)
+    }
+}
+
+impl ToTokens for SpanRange {
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        let mut first = Punct::new('<', Spacing::Alone);
+        first.set_span(self.first);
+        let mut last = Punct::new('>', Spacing::Alone);
+        last.set_span(self.last);
+        tokens.append(first);
+        tokens.append(last);
+    }
+}
+
+/// The side table `NodeId -> SpanRange`, filled by the parser in the order ids are handed out.
+#[derive(Clone, Debug, Default)]
+pub struct Spans {
+    ranges: Vec<SpanRange>,
+}
+
+impl Spans {
+    /// Hands out a fresh id for a node covering `range`.
+    pub fn push(&mut self, range: SpanRange) -> NodeId {
+        let id = NodeId(self.ranges.len() as u32);
+        self.ranges.push(range);
+        id
+    }
+
+    /// The range of `id`; `None` for an id this table never handed out.
+    pub fn get(&self, id: NodeId) -> Option<SpanRange> {
+        self.ranges.get(id.0 as usize).copied()
+    }
+}
+
+/// Gathers every error of one model before failing (serde_derive's `Ctxt`, without the drop
+/// check: the pipeline consumes it explicitly).
+#[derive(Default)]
+pub struct Errors {
+    errors: Vec<syn::Error>,
+}
+
+impl Errors {
+    /// Records one error.
+    pub fn push(&mut self, error: syn::Error) {
+        self.errors.push(error);
+    }
+
+    /// Records an error underlining `range`.
+    pub fn at(&mut self, range: SpanRange, message: impl std::fmt::Display) {
+        self.push(range.error(message));
+    }
+
+    /// `Ok(())` when nothing was recorded, otherwise all errors combined into one.
+    pub fn finish(self) -> syn::Result<()> {
+        let mut iter = self.errors.into_iter();
+        match iter.next() {
+            None => Ok(()),
+            Some(mut first) => {
+                for error in iter {
+                    first.combine(error);
+                }
+                Err(first)
+            }
+        }
+    }
+}

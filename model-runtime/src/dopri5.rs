@@ -1,0 +1,147 @@
+//! Dormand–Prince 5(4) with its fourth-order dense output (Hairer's DOPRI5 interpolant).
+//!
+//! The workhorse explicit method: seven stages, the last of which is `f` at the new point and
+//! is reused as the next step's first (first same as last), so an accepted step costs six
+//! evaluations and its interpolant none.
+
+use crate::error::SolveError;
+use crate::stats::Stats;
+use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
+use crate::tableau::{combine, sum};
+use crate::tolerance::{ErrorEstimate, Tolerance};
+
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+/// Row `i` lists the `(stage, a_ij)` pairs of stage `i` (0-based).
+const A: [&[(usize, f64)]; 7] = [
+    &[],
+    &[(0, 0.2)],
+    &[(0, 3.0 / 40.0), (1, 9.0 / 40.0)],
+    &[(0, 44.0 / 45.0), (1, -56.0 / 15.0), (2, 32.0 / 9.0)],
+    &[
+        (0, 19372.0 / 6561.0),
+        (1, -25360.0 / 2187.0),
+        (2, 64448.0 / 6561.0),
+        (3, -212.0 / 729.0),
+    ],
+    &[
+        (0, 9017.0 / 3168.0),
+        (1, -355.0 / 33.0),
+        (2, 46732.0 / 5247.0),
+        (3, 49.0 / 176.0),
+        (4, -5103.0 / 18656.0),
+    ],
+    // The fifth-order solution (its stage 7 is f at the new point).
+    &[
+        (0, 35.0 / 384.0),
+        (2, 500.0 / 1113.0),
+        (3, 125.0 / 192.0),
+        (4, -2187.0 / 6784.0),
+        (5, 11.0 / 84.0),
+    ],
+];
+/// Difference between the fifth- and fourth-order weights.
+const E: [(usize, f64); 6] = [
+    (0, 71.0 / 57600.0),
+    (2, -71.0 / 16695.0),
+    (3, 71.0 / 1920.0),
+    (4, -17253.0 / 339200.0),
+    (5, 22.0 / 525.0),
+    (6, -1.0 / 40.0),
+];
+/// Shampine's dense-output weights.
+const D: [(usize, f64); 6] = [
+    (0, -12715105075.0 / 11282082432.0),
+    (2, 87487479700.0 / 32700410799.0),
+    (3, -10690763975.0 / 1880347072.0),
+    (4, 701980252875.0 / 199316789632.0),
+    (5, -1453857185.0 / 822651844.0),
+    (6, 69997945.0 / 29380423.0),
+];
+
+/// Dormand–Prince 5(4).
+#[derive(Clone, Debug)]
+pub struct Dopri5<const N: usize> {
+    k: [[f64; N]; 7],
+    cont: [[f64; N]; 5],
+}
+
+impl<const N: usize> Dopri5<N> {
+    /// A stepper.
+    pub fn new() -> Self {
+        Dopri5 {
+            k: [[0.0; N]; 7],
+            cont: [[0.0; N]; 5],
+        }
+    }
+}
+
+impl<const N: usize> Default for Dopri5<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> Stepper<N> for Dopri5<N> {
+    const NAME: &'static str = "DOPRI5";
+    const ERROR_ORDER: u32 = 4;
+    const DENSE_ORDER: u32 = 4;
+
+    fn attempt<F: Rhs<N>>(
+        &mut self,
+        sys: &F,
+        start: StepStart<'_, N>,
+        h: f64,
+        tol: &Tolerance<N>,
+        end: StepEnd<'_, N>,
+        stats: &mut Stats,
+    ) -> Result<ErrorEstimate, SolveError> {
+        self.k[0] = *start.f;
+        let mut yt = [0.0; N];
+        for s in 1..6 {
+            combine(start.y, h, A[s], &self.k, &mut yt);
+            let mut ks = [0.0; N];
+            eval(sys, start.t + C[s] * h, &yt, &mut ks, stats)?;
+            self.k[s] = ks;
+        }
+        combine(start.y, h, A[6], &self.k, end.y);
+        eval(sys, start.t + h, end.y, end.f, stats)?;
+        self.k[6] = *end.f;
+        let mut err = [0.0; N];
+        sum(&E, &self.k, &mut err);
+        for e in err.iter_mut() {
+            *e *= h;
+        }
+        Ok(tol.norm(&err, start.y, end.y))
+    }
+
+    fn prepare_dense<F: Rhs<N>>(
+        &mut self,
+        _sys: &F,
+        start: StepStart<'_, N>,
+        end_y: &[f64; N],
+        end_f: &[f64; N],
+        h: f64,
+        _stats: &mut Stats,
+    ) -> Result<(), SolveError> {
+        let mut d = [0.0; N];
+        sum(&D, &self.k, &mut d);
+        for i in 0..N {
+            let ydiff = end_y[i] - start.y[i];
+            let bspl = h * start.f[i] - ydiff;
+            self.cont[0][i] = start.y[i];
+            self.cont[1][i] = ydiff;
+            self.cont[2][i] = bspl;
+            self.cont[3][i] = ydiff - h * end_f[i] - bspl;
+            self.cont[4][i] = h * d[i];
+        }
+        Ok(())
+    }
+
+    fn interpolate(&self, s: f64, out: &mut [f64; N]) {
+        let s1 = 1.0 - s;
+        let c = &self.cont;
+        for i in 0..N {
+            out[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! Typed failures of an integration.
+//!
+//! Every way a run can fail carries the numbers that explain it (the time, the step size, the
+//! component that would not converge), so a caller can report the problem in the model's terms
+//! instead of reading a log. Nothing here panics and no failure is reported as a NaN state.
+
+use crate::model::EvalError;
+use std::fmt;
+
+/// Why a single-mode integration (or one segment of a hybrid run) failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SolveError {
+    /// The step size fell below the smallest usable step while the local error stayed too large:
+    /// the solution is (nearly) singular here, or the tolerances are unreachable.
+    StepSizeCollapse {
+        /// Time at which the step was attempted.
+        t: f64,
+        /// The step size that was still rejected.
+        h: f64,
+        /// The smallest step the solver may take at `t`.
+        h_min: f64,
+        /// Index of the state component with the largest scaled error in the last attempt.
+        component: usize,
+        /// The scaled error norm of the last attempt (`> 1` means rejected; may be infinite).
+        error_norm: f64,
+    },
+    /// The model could not be evaluated.
+    Eval {
+        /// Time of the failed evaluation.
+        t: f64,
+        /// The model's own explanation.
+        source: EvalError,
+    },
+    /// The step budget was exhausted before the end time.
+    MaxSteps {
+        /// Time reached.
+        t: f64,
+        /// The budget (accepted plus rejected steps).
+        steps: u64,
+    },
+    /// The implicit method's iteration matrix `I/(h*gamma) - J` stayed singular after halving
+    /// the step several times.
+    SingularIterationMatrix {
+        /// Time of the step.
+        t: f64,
+        /// The last step size tried.
+        h: f64,
+    },
+    /// A guard function returned a value that is not finite.
+    GuardNotFinite {
+        /// Time of the evaluation.
+        t: f64,
+        /// Index of the guard in its mode's guard list.
+        guard: usize,
+        /// The value returned.
+        value: f64,
+    },
+    /// The problem was set up inconsistently.
+    InvalidInput(InputError),
+}
+
+/// A problem with the arguments of a run, found before any step is taken.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InputError {
+    /// A tolerance is negative or not finite, or both are zero for a component.
+    Tolerance {
+        /// The offending component.
+        component: usize,
+        /// Its relative tolerance.
+        rtol: f64,
+        /// Its absolute tolerance.
+        atol: f64,
+    },
+    /// An initial state component is not finite.
+    InitialState {
+        /// The offending component.
+        component: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The end time is before the start time, or either is not finite.
+    TimeSpan {
+        /// Start time.
+        t0: f64,
+        /// End time.
+        t_end: f64,
+    },
+    /// A fixed or initial step size is not positive and finite.
+    StepSize {
+        /// The step size given.
+        h: f64,
+    },
+    /// A sampling rate is not positive and finite.
+    SampleRate {
+        /// The rate given (samples per unit time).
+        rate: f64,
+    },
+    /// A chattering limit is unusable (zero transitions or a non-positive window).
+    ChatterLimit {
+        /// Transitions allowed within the window.
+        max_transitions: usize,
+        /// The window's width.
+        window: f64,
+    },
+}
+
+impl fmt::Display for SolveError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SolveError::StepSizeCollapse {
+                t,
+                h,
+                h_min,
+                component,
+                error_norm,
+            } => write!(
+                f,
+                "step size collapsed at t = {t}: h = {h:e} (minimum {h_min:e}), \
+                 largest error in component {component} (scaled error {error_norm:e})"
+            ),
+            SolveError::Eval { t, source } => write!(f, "at t = {t}: {source}"),
+            SolveError::MaxSteps { t, steps } => {
+                write!(f, "gave up at t = {t} after {steps} steps")
+            }
+            SolveError::SingularIterationMatrix { t, h } => write!(
+                f,
+                "iteration matrix singular at t = {t} even with step size {h:e}"
+            ),
+            SolveError::GuardNotFinite { t, guard, value } => {
+                write!(f, "guard {guard} is not finite at t = {t}: {value}")
+            }
+            SolveError::InvalidInput(e) => write!(f, "invalid input: {e}"),
+        }
+    }
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InputError::Tolerance {
+                component,
+                rtol,
+                atol,
+            } => write!(
+                f,
+                "tolerance of component {component} unusable (rtol = {rtol:e}, atol = {atol:e})"
+            ),
+            InputError::InitialState { component, value } => {
+                write!(f, "initial state component {component} is {value}")
+            }
+            InputError::TimeSpan { t0, t_end } => {
+                write!(f, "time span [{t0}, {t_end}] is empty or not finite")
+            }
+            InputError::StepSize { h } => write!(f, "step size {h} is not positive and finite"),
+            InputError::SampleRate { rate } => {
+                write!(f, "sample rate {rate} is not positive and finite")
+            }
+            InputError::ChatterLimit {
+                max_transitions,
+                window,
+            } => write!(
+                f,
+                "chattering limit of {max_transitions} transitions in {window} is unusable"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SolveError {}
+impl std::error::Error for InputError {}
+
+impl From<InputError> for SolveError {
+    fn from(e: InputError) -> Self {
+        SolveError::InvalidInput(e)
+    }
+}
+
+/// Attaches the time of the failed evaluation to a model error.
+pub(crate) fn at(t: f64) -> impl Fn(EvalError) -> SolveError {
+    move |source| SolveError::Eval { t, source }
+}

@@ -1,0 +1,428 @@
+//! Guards, their semantics, and the search for the earliest crossing inside a step.
+//!
+//! # Guard semantics
+//!
+//! A guard is a scalar function `g(t, y, dy)` of the current mode. The driver evaluates all
+//! guards of the mode at the start of a segment and after every accepted step (where `dy` is
+//! already known), and tracks for each guard a *reference sign*: the sign of its last nonzero
+//! value.
+//!
+//! * **Crossing.** A guard with reference sign `-` crosses *up* in a step when its value at the
+//!   step end is `>= 0`; with reference sign `+` it crosses *down* when the value is `<= 0`.
+//!   A value exactly zero at a step end therefore counts as a crossing, located at (or before)
+//!   that end.
+//! * **Direction filter.** [`Direction::Up`] guards fire only on up-crossings,
+//!   [`Direction::Down`] only on down-crossings, [`Direction::Both`] on either. A filtered
+//!   crossing fires nothing but still updates the reference sign.
+//! * **Re-arming after a transition.** A guard exactly zero at the start of a segment
+//!   (typically because the transition put the state on that guard's surface) does not fire
+//!   there: it has no reference sign until it moves away from zero, and its first nonzero value
+//!   at a later check point decides what happens:
+//!   - if it left zero in a direction its filter *admits*, the new mode was entered on its own
+//!     switching surface heading out through it: that departure is an event, reported at the
+//!     last check point where the guard was still zero (normally the segment start, with the
+//!     exact start state). This is how an immediate switch back (or a sliding-mode relay that
+//!     must chatter) becomes visible instead of silently continuing in an inconsistent mode;
+//!   - otherwise the value becomes the reference sign and nothing fires.
+//!
+//!   Exceptions, where a departure is *quiet* (never fires; the guard fires again only after a
+//!   later genuine crossing): after [`crate::hybrid::Transition::Continue`], the guard that
+//!   just fired (a reset such as a bounce leaves the state on the surface and moves on; that
+//!   is not a new event); and at the start of a run, every guard (no transition led there: a
+//!   run may well start on a surface, e.g. an orbit started at its periapsis).
+//! * **Exact location.** A crossing is located on the step's dense output by a bracketing root
+//!   finder ([`crate::root`]) to a few ulps of `t`. The reported time is the first point found
+//!   on the *far* side of the crossing (or exactly on zero), so the event state is already
+//!   past the surface and a restart from it cannot detect the same crossing again.
+//! * **Several guards in one step.** The earliest crossing wins; equal times go to the guard
+//!   listed first. The others are not reported (the segment ends at the event).
+//! * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
+//!   [`crate::hybrid::HybridOptions::guard_checks`] to sample the guards at that many interior
+//!   points of each step on the dense output; a double crossing between two samples still
+//!   goes unseen.
+
+/// Which crossings of zero fire a guard.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Direction {
+    /// From negative to non-negative.
+    Up,
+    /// From positive to non-positive.
+    Down,
+    /// Either.
+    Both,
+}
+
+/// The direction of an actual crossing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Crossed {
+    /// Negative before, non-negative at the event.
+    Up,
+    /// Positive before, non-positive at the event.
+    Down,
+}
+
+impl Direction {
+    /// Whether a crossing in direction `c` fires a guard with this filter.
+    pub fn admits(self, c: Crossed) -> bool {
+        matches!(
+            (self, c),
+            (Direction::Both, _) | (Direction::Up, Crossed::Up) | (Direction::Down, Crossed::Down)
+        )
+    }
+}
+
+/// One guard of a mode: an identifier chosen by the user and its direction filter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct GuardSpec<G> {
+    /// The user's name for the guard (typically a fieldless enum).
+    pub id: G,
+    /// Which crossings fire it.
+    pub direction: Direction,
+}
+
+/// A guard that fired: which one, exactly when, and the state there (from the dense output,
+/// not the end of the step).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EventHit<const N: usize, G> {
+    /// The guard's identifier.
+    pub guard: G,
+    /// Its index in the mode's guard list.
+    pub index: usize,
+    /// The event time.
+    pub t: f64,
+    /// The last time found on the near side of the crossing (`t - before` is a few ulps).
+    pub before: f64,
+    /// The state at `t`, interpolated on the step's dense output.
+    pub y: [f64; N],
+    /// `f(t, y)` in the mode in which the guard fired.
+    pub dy: [f64; N],
+    /// The guard's value at `t` (zero or of the far sign, tiny).
+    pub value: f64,
+    /// How it crossed.
+    pub direction: Crossed,
+}
+
+/// The crossing of a single reference sign by a new value, if any.
+#[inline]
+pub(crate) fn crossing(reference: f64, value: f64) -> Option<Crossed> {
+    if reference < 0.0 && value >= 0.0 {
+        Some(Crossed::Up)
+    } else if reference > 0.0 && value <= 0.0 {
+        Some(Crossed::Down)
+    } else {
+        None
+    }
+}
+
+/// Which guards' departures from zero are quiet at a segment start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Quiet {
+    /// None: after a switch.
+    None,
+    /// The guard that fired: after a restart in the same mode.
+    Guard(usize),
+    /// All: at the start of a run.
+    All,
+}
+
+/// A crossing found and located in a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Found {
+    pub index: usize,
+    pub t: f64,
+    pub before: f64,
+    pub direction: Crossed,
+}
+
+/// Per-guard reference signs and the guard values at the last check point.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct GuardTracker {
+    directions: Vec<Direction>,
+    /// Reference sign per guard: -1, +1, or 0 while pending (zero since the segment start).
+    reference: Vec<f64>,
+    /// For pending guards: whether leaving zero in an admitted direction fires.
+    departure_fires: Vec<bool>,
+    /// Guard values at the last check point.
+    lo_values: Vec<f64>,
+    scratch: Vec<f64>,
+    at_best: Vec<f64>,
+}
+
+impl GuardTracker {
+    /// Starts a segment with these guards and their values at the start; the departures from
+    /// zero of the `quiet` guards never fire (see the module docs).
+    pub(crate) fn start(
+        &mut self,
+        directions: impl Iterator<Item = Direction>,
+        values: &[f64],
+        quiet: Quiet,
+    ) {
+        self.directions.clear();
+        self.directions.extend(directions);
+        self.reference.clear();
+        self.reference.extend(values.iter().map(|&v| sign(v)));
+        self.departure_fires.clear();
+        self.departure_fires
+            .extend((0..values.len()).map(|i| match quiet {
+                Quiet::None => true,
+                Quiet::Guard(q) => q != i,
+                Quiet::All => false,
+            }));
+        self.lo_values.clear();
+        self.lo_values.extend_from_slice(values);
+        self.scratch.clear();
+        self.scratch.resize(values.len(), 0.0);
+        self.at_best.clear();
+        self.at_best.resize(values.len(), 0.0);
+    }
+
+    /// Number of guards.
+    pub(crate) fn len(&self) -> usize {
+        self.directions.len()
+    }
+
+    /// Looks for the earliest admitted crossing in the step `[t0, t1]` with guard values
+    /// `end_values` at `t1`, checking `checks` interior points first. `eval(t, out)` evaluates
+    /// all guards at an interior time on the dense output. When nothing fires, the reference
+    /// signs advance to the end of the step.
+    pub(crate) fn scan<E>(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        end_values: &[f64],
+        checks: u32,
+        mut eval: impl FnMut(f64, &mut [f64]) -> Result<(), E>,
+    ) -> Result<Option<Found>, E> {
+        let n = self.len();
+        if n == 0 {
+            return Ok(None);
+        }
+        let mut lo = t0;
+        for k in 1..=checks + 1 {
+            let tk = if k == checks + 1 {
+                self.scratch.copy_from_slice(end_values);
+                t1
+            } else {
+                let tk = t0 + (t1 - t0) * (k as f64 / (checks + 1) as f64);
+                eval(tk, &mut self.scratch)?;
+                tk
+            };
+            // A departure from zero happened at `lo` at the latest: earlier than any crossing.
+            for i in 0..n {
+                let v = self.scratch[i];
+                if self.reference[i] == 0.0 && v != 0.0 && self.departure_fires[i] {
+                    let c = if v > 0.0 { Crossed::Up } else { Crossed::Down };
+                    if self.directions[i].admits(c) {
+                        return Ok(Some(Found {
+                            index: i,
+                            t: lo,
+                            before: lo,
+                            direction: c,
+                        }));
+                    }
+                }
+            }
+            let mut any = false;
+            for i in 0..n {
+                if let Some(c) = crossing(self.reference[i], self.scratch[i]) {
+                    any |= self.directions[i].admits(c);
+                }
+            }
+            if any {
+                return self.locate(lo, tk, &mut eval).map(Some);
+            }
+            for i in 0..n {
+                let v = self.scratch[i];
+                if v != 0.0 {
+                    self.reference[i] = sign(v);
+                }
+                self.lo_values[i] = v;
+            }
+            lo = tk;
+        }
+        Ok(None)
+    }
+
+    /// Locates the earliest admitted crossing in `[lo, hi]`; `self.scratch` holds the values
+    /// at `hi` and `self.lo_values` those at `lo`.
+    fn locate<E>(
+        &mut self,
+        lo: f64,
+        hi: f64,
+        eval: &mut impl FnMut(f64, &mut [f64]) -> Result<(), E>,
+    ) -> Result<Found, E> {
+        let n = self.len();
+        let mut best: Option<Found> = None;
+        for i in 0..n {
+            let r = self.reference[i];
+            let Some(c) = crossing(r, self.scratch[i]) else {
+                continue;
+            };
+            if !self.directions[i].admits(c) {
+                continue;
+            }
+            let (upper, f_upper) = match best {
+                None => (hi, self.scratch[i]),
+                Some(b) => {
+                    // Only a crossing already complete at the best time can be earlier.
+                    if crossing(r, self.at_best[i]).is_none() {
+                        continue;
+                    }
+                    (b.t, self.at_best[i])
+                }
+            };
+            // The value at `lo` may be an exact zero left by a filtered crossing: any value of
+            // the reference sign keeps the bracket valid (the finder then bisects).
+            let f_lo = if self.lo_values[i] * r > 0.0 {
+                self.lo_values[i]
+            } else {
+                r * f64::MIN_POSITIVE
+            };
+            let scratch = &mut self.at_best;
+            let root = crate::root::find_crossing(lo, f_lo, upper, f_upper, r, |t| {
+                eval(t, scratch)?;
+                Ok(scratch[i])
+            })?;
+            let earlier = match best {
+                None => true,
+                Some(b) => root.t < b.t,
+            };
+            if earlier {
+                best = Some(Found {
+                    index: i,
+                    t: root.t,
+                    before: root.before,
+                    direction: c,
+                });
+            }
+            // Keep `at_best` consistent with the best time for the next guards.
+            let b = best.expect("set above");
+            if b.t == hi {
+                self.at_best.copy_from_slice(&self.scratch);
+            } else {
+                eval(b.t, &mut self.at_best)?;
+            }
+        }
+        Ok(best.expect("locate is called only when an admitted crossing exists"))
+    }
+}
+
+#[inline]
+fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(
+        dirs: &[Direction],
+        start: &[f64],
+        g: impl Fn(f64, &mut [f64]),
+        t1: f64,
+        checks: u32,
+    ) -> Option<Found> {
+        run_quiet(dirs, start, g, t1, checks, Quiet::None)
+    }
+
+    fn run_quiet(
+        dirs: &[Direction],
+        start: &[f64],
+        g: impl Fn(f64, &mut [f64]),
+        t1: f64,
+        checks: u32,
+        quiet: Quiet,
+    ) -> Option<Found> {
+        let mut tr = GuardTracker::default();
+        tr.start(dirs.iter().copied(), start, quiet);
+        let mut end = vec![0.0; dirs.len()];
+        g(t1, &mut end);
+        tr.scan::<()>(0.0, t1, &end, checks, |t, out| {
+            g(t, out);
+            Ok(())
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn earliest_of_two_guards_wins() {
+        let g = |t: f64, o: &mut [f64]| {
+            o[0] = t - 0.7;
+            o[1] = t - 0.3;
+        };
+        let f = run(&[Direction::Up, Direction::Up], &[-0.7, -0.3], g, 1.0, 0).unwrap();
+        assert_eq!(f.index, 1);
+        assert!((f.t - 0.3).abs() < 1e-15);
+    }
+
+    #[test]
+    fn direction_filter_skips_wrong_crossings() {
+        let g = |t: f64, o: &mut [f64]| {
+            o[0] = 0.3 - t; // down at 0.3
+            o[1] = t - 0.6; // up at 0.6
+        };
+        let f = run(&[Direction::Up, Direction::Up], &[0.3, -0.6], g, 1.0, 0).unwrap();
+        assert_eq!(f.index, 1);
+        let f = run(&[Direction::Both, Direction::Up], &[0.3, -0.6], g, 1.0, 0).unwrap();
+        assert_eq!((f.index, f.direction), (0, Crossed::Down));
+        assert!(run(
+            &[Direction::Down, Direction::Down],
+            &[0.3, -0.6],
+            |t, o| {
+                o[0] = t + 0.3;
+                o[1] = t - 0.6;
+            },
+            1.0,
+            0
+        )
+        .is_none());
+    }
+
+    #[test]
+    fn zero_at_segment_start_fires_only_on_an_admitted_departure() {
+        let g = |t: f64, o: &mut [f64]| o[0] = t;
+        // Leaves zero upwards: a Down guard stays quiet, an Up guard fires at the start.
+        assert!(run(&[Direction::Down], &[0.0], g, 1.0, 0).is_none());
+        let f = run(&[Direction::Up], &[0.0], g, 1.0, 0).unwrap();
+        assert_eq!((f.t, f.direction), (0.0, Crossed::Up));
+        // The guard that just fired (after a Continue) is quiet.
+        assert!(run_quiet(&[Direction::Both], &[0.0], g, 1.0, 0, Quiet::Guard(0)).is_none());
+        assert!(run_quiet(&[Direction::Up], &[0.0], g, 1.0, 0, Quiet::All).is_none());
+        // A departure wins over a crossing of another guard in the same step.
+        let g2 = |t: f64, o: &mut [f64]| {
+            o[0] = t - 0.5;
+            o[1] = -t;
+        };
+        let f = run(&[Direction::Up, Direction::Down], &[-0.5, 0.0], g2, 1.0, 0).unwrap();
+        assert_eq!((f.index, f.t), (1, 0.0));
+    }
+
+    #[test]
+    fn zero_at_step_end_fires() {
+        let g = |t: f64, o: &mut [f64]| o[0] = t - 1.0;
+        let f = run(&[Direction::Up], &[-1.0], g, 1.0, 0).unwrap();
+        assert_eq!(f.t, 1.0);
+    }
+
+    #[test]
+    fn sign_change_and_back_needs_interior_checks() {
+        // Negative, positive on (0.4, 0.6), negative again at the end.
+        let g = |t: f64, o: &mut [f64]| o[0] = 0.01 - (t - 0.5) * (t - 0.5);
+        assert!(run(&[Direction::Up], &[g0(g)], g, 1.0, 0).is_none());
+        let f = run(&[Direction::Up], &[g0(g)], g, 1.0, 3).unwrap();
+        assert!((f.t - 0.4).abs() < 1e-14, "{f:?}");
+    }
+
+    fn g0(g: impl Fn(f64, &mut [f64])) -> f64 {
+        let mut o = [0.0];
+        g(0.0, &mut o);
+        o[0]
+    }
+}

@@ -1,0 +1,681 @@
+//! A generic hybrid (mode-switching) driver.
+//!
+//! A hybrid system has a finite set of modes sharing one state dimension `N`. In each mode it
+//! has a right-hand side and a list of guards; when a guard fires, the system's transition map
+//! decides what happens: switch to another mode with a new state, restart the same mode from a
+//! reset state, or stop. The driver integrates one mode at a time with any [`Stepper`],
+//! locates the earliest guard crossing exactly (see [`crate::events`] for the semantics),
+//! applies the transition and restarts the integrator cleanly: no stage is reused across a
+//! transition (no first-same-as-last) and the initial step size is chosen afresh.
+//!
+//! The system is a trait with an enum-dispatch style (`fn rhs(&self, mode, ...)`), so the
+//! inner loop is monomorphised: no dynamic dispatch, no allocation per step.
+//!
+//! ```
+//! use model_runtime::hybrid::*;
+//! use model_runtime::{Dop853, Direction, EvalError, GuardSpec, EventHit, Tolerance};
+//!
+//! /// A ball bouncing on the ground with restitution 0.9: y = (height, velocity).
+//! struct Ball;
+//! const GROUND: [GuardSpec<&str>; 1] = [GuardSpec { id: "ground", direction: Direction::Down }];
+//! impl HybridSystem<2> for Ball {
+//!     type Mode = ();
+//!     type Guard = &'static str;
+//!     type Stop = ();
+//!     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+//!         *dy = [y[1], -9.81];
+//!         Ok(())
+//!     }
+//!     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GROUND }
+//!     fn guard_values(&self, _: (), _t: f64, y: &[f64; 2], _dy: &[f64; 2], g: &mut [f64])
+//!         -> Result<(), EvalError> { g[0] = y[0]; Ok(()) }
+//!     fn on_event(&mut self, _: (), hit: &EventHit<2, &'static str>)
+//!         -> Result<Transition<2, (), ()>, EvalError> {
+//!         Ok(Transition::Continue { y: [0.0, -0.9 * hit.y[1]] })
+//!     }
+//! }
+//!
+//! let mut solver = HybridSolver::new(Dop853::new(), Tolerance::scalar(1e-10, 1e-12),
+//!                                    HybridOptions::default()).unwrap();
+//! let out = solver.run(&mut Ball, (), 0.0, &[1.0, 0.0], 2.0, &mut ()).unwrap();
+//! assert_eq!(out.stop, StopReason::EndTime);
+//! assert!(out.transitions >= 2);
+//! ```
+
+use crate::control::StepOptions;
+use crate::error::{InputError, SolveError};
+use crate::events::{EventHit, GuardSpec, GuardTracker, Quiet};
+use crate::integrator::Integrator;
+use crate::model::EvalError;
+use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::stats::Stats;
+use crate::stepper::{Rhs, Stepper};
+use crate::tolerance::Tolerance;
+use std::collections::VecDeque;
+use std::fmt::{self, Debug};
+
+/// A system with modes, guards and a transition map.
+pub trait HybridSystem<const N: usize> {
+    /// The modes (typically a fieldless enum).
+    type Mode: Copy + PartialEq + Debug;
+    /// Guard identifiers (typically a fieldless enum).
+    type Guard: Copy + PartialEq + Debug;
+    /// Why the system asked to stop (user-defined).
+    type Stop: Clone + Debug;
+
+    /// `dy = f(t, y)` in `mode`.
+    fn rhs(
+        &self,
+        mode: Self::Mode,
+        t: f64,
+        y: &[f64; N],
+        dy: &mut [f64; N],
+    ) -> Result<(), EvalError>;
+
+    /// The Jacobian in `mode` (used by implicit steppers). The default uses central finite
+    /// differences of [`HybridSystem::rhs`].
+    fn jacobian(
+        &self,
+        mode: Self::Mode,
+        t: f64,
+        y: &[f64; N],
+        jac: &mut [[f64; N]; N],
+    ) -> Result<(), EvalError> {
+        finite_difference_jacobian(|y, dy| self.rhs(mode, t, y, dy), y, jac)
+    }
+
+    /// The guards of `mode`, in priority order (on equal event times the first wins).
+    fn guards(&self, mode: Self::Mode) -> &[GuardSpec<Self::Guard>];
+
+    /// Evaluates all guards of `mode` at `(t, y)`, where `dy = f(t, y)` is already computed;
+    /// `values` has one slot per entry of [`HybridSystem::guards`].
+    fn guard_values(
+        &self,
+        mode: Self::Mode,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        values: &mut [f64],
+    ) -> Result<(), EvalError>;
+
+    /// The transition map, called when a guard of `mode` fires (`hit` holds the guard, the
+    /// exact time and the state there).
+    fn on_event(
+        &mut self,
+        mode: Self::Mode,
+        hit: &EventHit<N, Self::Guard>,
+    ) -> Result<Transition<N, Self::Mode, Self::Stop>, EvalError>;
+
+    /// Optionally moves `y` back onto the constraints of `mode`; returns whether it changed
+    /// `y`. Called after every accepted step and on the state a transition starts from.
+    fn project(&self, _mode: Self::Mode, _t: f64, _y: &mut [f64; N]) -> bool {
+        false
+    }
+}
+
+/// What the transition map decided.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Transition<const N: usize, Md, R> {
+    /// Continue in mode `to` from state `y`.
+    Switch {
+        /// The new mode.
+        to: Md,
+        /// The state it starts from.
+        y: [f64; N],
+    },
+    /// Restart the same mode from state `y` (e.g. after a velocity reset).
+    Continue {
+        /// The state it restarts from.
+        y: [f64; N],
+    },
+    /// End the run here.
+    Stop(R),
+}
+
+/// Central-difference Jacobian of `f` at `y`.
+pub fn finite_difference_jacobian<const N: usize>(
+    mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), EvalError>,
+    y: &[f64; N],
+    jac: &mut [[f64; N]; N],
+) -> Result<(), EvalError> {
+    let mut yp = *y;
+    let mut fp = [0.0; N];
+    let mut fm = [0.0; N];
+    for j in 0..N {
+        let h = f64::EPSILON.cbrt() * y[j].abs().max(1.0);
+        yp[j] = y[j] + h;
+        f(&yp, &mut fp)?;
+        yp[j] = y[j] - h;
+        f(&yp, &mut fm)?;
+        yp[j] = y[j];
+        for i in 0..N {
+            jac[i][j] = (fp[i] - fm[i]) / (2.0 * h);
+        }
+    }
+    Ok(())
+}
+
+/// More than `max_transitions` transitions within any time window of width `window` is
+/// chattering: the run stops with [`HybridError::Chattering`] instead of looping.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChatterLimit {
+    /// Transitions allowed within one window.
+    pub max_transitions: usize,
+    /// The window's width (in the system's time unit).
+    pub window: f64,
+}
+
+impl Default for ChatterLimit {
+    /// 100 transitions within 1e-9 time units.
+    fn default() -> Self {
+        ChatterLimit {
+            max_transitions: 100,
+            window: 1e-9,
+        }
+    }
+}
+
+/// Options of a hybrid run.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct HybridOptions {
+    /// Step-size limits, initial step, step budget.
+    pub step: StepOptions,
+    /// Chattering detection.
+    pub chatter: ChatterLimit,
+    /// Samples per time unit delivered to [`Observer::on_sample`] at `t0 + k / rate`;
+    /// `None` for no samples.
+    pub sample_rate: Option<f64>,
+    /// Interior points of each step at which guards are also checked on the dense output
+    /// (0: only at step ends). Catches a sign change and back within one step.
+    pub guard_checks: u32,
+}
+
+/// Why a run ended normally.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StopReason<R> {
+    /// The end time was reached.
+    EndTime,
+    /// The transition map asked to stop.
+    User(R),
+}
+
+/// The end of a hybrid run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HybridOutcome<const N: usize, Md, R> {
+    /// Final time.
+    pub t: f64,
+    /// Final state.
+    pub y: [f64; N],
+    /// Final mode.
+    pub mode: Md,
+    /// Why it ended.
+    pub stop: StopReason<R>,
+    /// Work done.
+    pub stats: Stats,
+    /// Transitions applied (switches and restarts).
+    pub transitions: u64,
+}
+
+/// Why a hybrid run failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum HybridError<Md> {
+    /// Integration failed inside a mode.
+    Solve {
+        /// The mode being integrated.
+        mode: Md,
+        /// What went wrong.
+        error: SolveError,
+    },
+    /// The transition map could not evaluate the model at the event.
+    Transition {
+        /// The mode in which the event fired.
+        mode: Md,
+        /// The event time.
+        t: f64,
+        /// The model's explanation.
+        source: EvalError,
+    },
+    /// Too many transitions within a short window.
+    Chattering {
+        /// Time of the transition that exceeded the limit.
+        t: f64,
+        /// Transitions counted within the window ending at `t`.
+        transitions: usize,
+        /// The window's width.
+        window: f64,
+        /// The modes involved, in order of first appearance in the window.
+        modes: Vec<Md>,
+    },
+}
+
+impl<Md: Debug> fmt::Display for HybridError<Md> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            HybridError::Solve { mode, error } => write!(f, "in mode {mode:?}: {error}"),
+            HybridError::Transition { mode, t, source } => {
+                write!(f, "transition out of mode {mode:?} at t = {t}: {source}")
+            }
+            HybridError::Chattering {
+                t,
+                transitions,
+                window,
+                modes,
+            } => write!(
+                f,
+                "chattering at t = {t}: {transitions} transitions within {window:e} \
+                 between modes {modes:?}"
+            ),
+        }
+    }
+}
+
+impl<Md: Debug> std::error::Error for HybridError<Md> {}
+
+/// The system in one mode, as the stepper sees it.
+struct InMode<'a, H, Md> {
+    sys: &'a H,
+    mode: Md,
+}
+
+impl<const N: usize, H: HybridSystem<N>> Rhs<N> for InMode<'_, H, H::Mode> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+        self.sys.rhs(self.mode, t, y, dy)
+    }
+    #[inline]
+    fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
+        self.sys.jacobian(self.mode, t, y, jac)
+    }
+}
+
+/// The result of [`HybridSolver::run`] for a system `H`.
+pub type HybridResult<const N: usize, H> = Result<
+    HybridOutcome<N, <H as HybridSystem<N>>::Mode, <H as HybridSystem<N>>::Stop>,
+    HybridError<<H as HybridSystem<N>>::Mode>,
+>;
+
+/// Runs hybrid systems with one stepper and one set of options.
+#[derive(Clone, Debug)]
+pub struct HybridSolver<S, const N: usize> {
+    integrator: Integrator<S, N>,
+    options: HybridOptions,
+}
+
+impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
+    /// A solver; the options are checked here.
+    pub fn new(stepper: S, tol: Tolerance<N>, options: HybridOptions) -> Result<Self, InputError> {
+        if let Some(rate) = options.sample_rate {
+            if !rate.is_finite() || rate <= 0.0 {
+                return Err(InputError::SampleRate { rate });
+            }
+        }
+        let c = options.chatter;
+        if c.max_transitions == 0 || c.window.is_nan() || c.window <= 0.0 {
+            return Err(InputError::ChatterLimit {
+                max_transitions: c.max_transitions,
+                window: c.window,
+            });
+        }
+        Ok(HybridSolver {
+            integrator: Integrator::new(stepper, tol, options.step)?,
+            options,
+        })
+    }
+
+    /// Integrates `sys` from `(t0, y0)` in `mode` until `t_end` or until the transition map
+    /// stops, streaming output to `observer`.
+    pub fn run<H, O>(
+        &mut self,
+        sys: &mut H,
+        mode: H::Mode,
+        t0: f64,
+        y0: &[f64; N],
+        t_end: f64,
+        observer: &mut O,
+    ) -> HybridResult<N, H>
+    where
+        H: HybridSystem<N>,
+        O: Observer<N, H::Mode, H::Guard>,
+    {
+        let input = |e: InputError| HybridError::Solve {
+            mode,
+            error: e.into(),
+        };
+        if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+            return Err(input(InputError::TimeSpan { t0, t_end }));
+        }
+        self.integrator.reset_counters();
+        let mut run = Run {
+            it: &mut self.integrator,
+            opts: self.options,
+            tracker: GuardTracker::default(),
+            values: Vec::new(),
+            recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
+            next_sample: 0,
+            t_first: t0,
+            mode,
+            transitions: 0,
+        };
+        run.go(sys, t0, y0, t_end, observer)
+    }
+}
+
+/// The state of one run.
+struct Run<'a, S, const N: usize, Md> {
+    it: &'a mut Integrator<S, N>,
+    opts: HybridOptions,
+    tracker: GuardTracker,
+    values: Vec<f64>,
+    recent: VecDeque<(f64, Md, Md)>,
+    next_sample: u64,
+    t_first: f64,
+    mode: Md,
+    transitions: u64,
+}
+
+impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, Md> {
+    fn solve_err(&self, error: SolveError) -> HybridError<Md> {
+        HybridError::Solve {
+            mode: self.mode,
+            error,
+        }
+    }
+
+    fn go<H, O>(
+        &mut self,
+        sys: &mut H,
+        t0: f64,
+        y0: &[f64; N],
+        t_end: f64,
+        obs: &mut O,
+    ) -> Result<HybridOutcome<N, Md, H::Stop>, HybridError<Md>>
+    where
+        H: HybridSystem<N, Mode = Md>,
+        O: Observer<N, Md, H::Guard>,
+    {
+        self.start_segment(sys, t0, y0, Quiet::All)?;
+        self.emit_samples(sys, t0, obs)?;
+        loop {
+            if self.it.t() >= t_end {
+                return Ok(self.outcome(StopReason::EndTime));
+            }
+            let mode = self.mode;
+            let found = self.advance(sys, t_end).map_err(|e| self.solve_err(e))?;
+            let Some(found) = found else {
+                let t1 = self.it.t();
+                self.emit_samples(sys, t1, obs)?;
+                self.report_step(sys, obs, t1, None)?;
+                let mut y = *self.it.y();
+                if sys.project(mode, t1, &mut y) {
+                    let m = InMode { sys: &*sys, mode };
+                    self.it
+                        .replace_state(&m, &y)
+                        .map_err(|e| self.solve_err(e))?;
+                    self.rebase_guards(sys)?;
+                }
+                continue;
+            };
+            // The event: exact time, state from the dense output, derivative there.
+            let spec = sys.guards(mode)[found.index];
+            let m = InMode { sys: &*sys, mode };
+            let mut y = [0.0; N];
+            let mut dy = [0.0; N];
+            self.it
+                .interpolate(&m, found.t, &mut y)
+                .map_err(|e| self.solve_err(e))?;
+            crate::stepper::eval(&m, found.t, &y, &mut dy, self.it.stats_mut())
+                .map_err(|e| self.solve_err(e))?;
+            self.guards_at(sys, found.t, &y, &dy)?;
+            let hit = EventHit {
+                guard: spec.id,
+                index: found.index,
+                t: found.t,
+                before: found.before,
+                y,
+                dy,
+                value: self.values[found.index],
+                direction: found.direction,
+            };
+            self.it.stats_mut().events += 1;
+            self.emit_samples(sys, hit.t, obs)?;
+            self.report_step(sys, obs, hit.t, Some(&hit.y))?;
+            let transition =
+                sys.on_event(mode, &hit)
+                    .map_err(|source| HybridError::Transition {
+                        mode,
+                        t: hit.t,
+                        source,
+                    })?;
+            let (to, kind, mut y_after) = match transition {
+                Transition::Stop(reason) => {
+                    let mut out = self.outcome(StopReason::User(reason));
+                    out.t = hit.t;
+                    out.y = hit.y;
+                    return Ok(out);
+                }
+                Transition::Switch { to, y } => (to, TransitionKind::Switch { to }, y),
+                Transition::Continue { y } => (mode, TransitionKind::Continue, y),
+            };
+            sys.project(to, hit.t, &mut y_after);
+            self.transitions += 1;
+            self.check_chatter(hit.t, mode, to)?;
+            self.mode = to;
+            let quiet = match kind {
+                TransitionKind::Continue => Quiet::Guard(hit.index),
+                TransitionKind::Switch { .. } => Quiet::None,
+            };
+            self.start_segment(sys, hit.t, &y_after, quiet)?;
+            obs.on_transition(&TransitionRecord {
+                hit,
+                from: mode,
+                kind,
+                y_after,
+            });
+        }
+    }
+
+    /// One accepted step, then the search for the earliest admitted guard crossing in it.
+    fn advance<H: HybridSystem<N, Mode = Md>>(
+        &mut self,
+        sys: &H,
+        t_end: f64,
+    ) -> Result<Option<crate::events::Found>, SolveError> {
+        let m = InMode {
+            sys,
+            mode: self.mode,
+        };
+        self.it.step(&m, t_end)?;
+        let (t0, t1) = (self.it.t_prev(), self.it.t());
+        self.it.stats_mut().guard_evals += 1;
+        sys.guard_values(self.mode, t1, self.it.y(), self.it.f(), &mut self.values)
+            .map_err(crate::error::at(t1))?;
+        check_finite(t1, &self.values)?;
+        let it = &mut *self.it;
+        let mut y = [0.0; N];
+        let mut dy = [0.0; N];
+        self.tracker
+            .scan(t0, t1, &self.values, self.opts.guard_checks, |t, out| {
+                it.interpolate(&m, t, &mut y)?;
+                crate::stepper::eval(&m, t, &y, &mut dy, it.stats_mut())?;
+                it.stats_mut().guard_evals += 1;
+                sys.guard_values(m.mode, t, &y, &dy, out)
+                    .map_err(crate::error::at(t))?;
+                check_finite(t, out)
+            })
+    }
+
+    /// Starts a segment in the current mode at `(t, y)`: fresh integrator, guards armed
+    /// (`quiet`: the guard whose departure from zero must not fire).
+    fn start_segment<H: HybridSystem<N, Mode = Md>>(
+        &mut self,
+        sys: &H,
+        t: f64,
+        y: &[f64; N],
+        quiet: Quiet,
+    ) -> Result<(), HybridError<Md>> {
+        let m = InMode {
+            sys,
+            mode: self.mode,
+        };
+        self.it.restart(&m, t, y).map_err(|e| self.solve_err(e))?;
+        let specs = sys.guards(self.mode);
+        self.values.clear();
+        self.values.resize(specs.len(), 0.0);
+        let (y, f) = (*self.it.y(), *self.it.f());
+        self.guards_at(sys, t, &y, &f)?;
+        self.tracker
+            .start(specs.iter().map(|s| s.direction), &self.values, quiet);
+        Ok(())
+    }
+
+    /// After a projection: the guard values at the new end state become the reference.
+    fn rebase_guards<H: HybridSystem<N, Mode = Md>>(
+        &mut self,
+        sys: &H,
+    ) -> Result<(), HybridError<Md>> {
+        let (t, y, f) = (self.it.t(), *self.it.y(), *self.it.f());
+        self.guards_at(sys, t, &y, &f)?;
+        let specs = sys.guards(self.mode);
+        self.tracker
+            .start(specs.iter().map(|s| s.direction), &self.values, Quiet::All);
+        Ok(())
+    }
+
+    /// Evaluates all guards of the current mode into `self.values`.
+    fn guards_at<H: HybridSystem<N, Mode = Md>>(
+        &mut self,
+        sys: &H,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+    ) -> Result<(), HybridError<Md>> {
+        self.it.stats_mut().guard_evals += 1;
+        let r = sys
+            .guard_values(self.mode, t, y, dy, &mut self.values)
+            .map_err(crate::error::at(t))
+            .and_then(|()| check_finite(t, &self.values));
+        r.map_err(|e| self.solve_err(e))
+    }
+
+    /// Delivers the samples due up to and including `t_hi`.
+    fn emit_samples<H, O>(&mut self, sys: &H, t_hi: f64, obs: &mut O) -> Result<(), HybridError<Md>>
+    where
+        H: HybridSystem<N, Mode = Md>,
+        O: Observer<N, Md, H::Guard>,
+    {
+        let Some(rate) = self.opts.sample_rate else {
+            return Ok(());
+        };
+        let m = InMode {
+            sys,
+            mode: self.mode,
+        };
+        let mut y = [0.0; N];
+        loop {
+            let ts = self.t_first + self.next_sample as f64 / rate;
+            if ts > t_hi {
+                return Ok(());
+            }
+            self.it
+                .interpolate(&m, ts, &mut y)
+                .map_err(|e| self.solve_err(e))?;
+            obs.on_sample(&Sample {
+                t: ts,
+                mode: self.mode,
+                y: &y,
+            });
+            self.next_sample += 1;
+        }
+    }
+
+    /// Hands the last accepted step (cut at `t1` if an event ended it) to the observer.
+    fn report_step<H, O>(
+        &mut self,
+        sys: &H,
+        obs: &mut O,
+        t1: f64,
+        y1: Option<&[f64; N]>,
+    ) -> Result<(), HybridError<Md>>
+    where
+        H: HybridSystem<N, Mode = Md>,
+        O: Observer<N, Md, H::Guard>,
+    {
+        if obs.wants_dense() {
+            let m = InMode {
+                sys,
+                mode: self.mode,
+            };
+            self.it.ensure_dense(&m).map_err(|e| self.solve_err(e))?;
+        }
+        let it = &*self.it;
+        let dense = it.dense();
+        let view = StepView {
+            mode: self.mode,
+            t0: it.t_prev(),
+            t1,
+            y0: it.y_prev(),
+            y1: y1.unwrap_or(it.y()),
+            f0: it.f_prev(),
+            dense: if obs.wants_dense() {
+                dense
+                    .as_ref()
+                    .map(|d| d as &dyn crate::observer::Interpolant<N>)
+            } else {
+                None
+            },
+        };
+        obs.on_step(&view);
+        Ok(())
+    }
+
+    fn check_chatter(&mut self, t: f64, from: Md, to: Md) -> Result<(), HybridError<Md>> {
+        let limit = self.opts.chatter;
+        self.recent.push_back((t, from, to));
+        while let Some(&(t_old, _, _)) = self.recent.front() {
+            if t_old < t - limit.window {
+                self.recent.pop_front();
+            } else {
+                break;
+            }
+        }
+        if self.recent.len() > limit.max_transitions {
+            let mut modes = Vec::new();
+            for &(_, a, b) in &self.recent {
+                for m in [a, b] {
+                    if !modes.contains(&m) {
+                        modes.push(m);
+                    }
+                }
+            }
+            return Err(HybridError::Chattering {
+                t,
+                transitions: self.recent.len(),
+                window: limit.window,
+                modes,
+            });
+        }
+        Ok(())
+    }
+
+    fn outcome<R>(&self, stop: StopReason<R>) -> HybridOutcome<N, Md, R> {
+        HybridOutcome {
+            t: self.it.t(),
+            y: *self.it.y(),
+            mode: self.mode,
+            stop,
+            stats: *self.it.stats(),
+            transitions: self.transitions,
+        }
+    }
+}
+
+fn check_finite(t: f64, values: &[f64]) -> Result<(), SolveError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(guard) => Err(SolveError::GuardNotFinite {
+            t,
+            guard,
+            value: values[guard],
+        }),
+    }
+}

@@ -1,0 +1,368 @@
+//! The adaptive stepping loop, shared by plain integration and the hybrid driver.
+//!
+//! [`Integrator`] owns a [`Stepper`], the current point `(t, y, f)` and the previous one, and
+//! advances by one *accepted* step at a time; the caller decides what happens between steps
+//! (events, samples, projections, restarts). Keeping this loop in one place means every method
+//! gets the same rejection logic, end-time handling and collapse detection.
+
+use crate::control::{initial_step, min_step, Controller, StepOptions};
+use crate::error::{InputError, SolveError};
+use crate::model::Model;
+use crate::stats::Stats;
+use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
+use crate::tolerance::Tolerance;
+
+/// A stepper plus its step-size control and the current and previous accepted points.
+#[derive(Clone, Debug)]
+pub struct Integrator<S, const N: usize> {
+    stepper: S,
+    tol: Tolerance<N>,
+    opts: StepOptions,
+    ctrl: Controller,
+    t: f64,
+    y: [f64; N],
+    f: [f64; N],
+    t_prev: f64,
+    y_prev: [f64; N],
+    f_prev: [f64; N],
+    h: f64,
+    has_step: bool,
+    dense_ready: bool,
+    attempts: u64,
+    stats: Stats,
+}
+
+impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
+    /// An integrator; call [`Integrator::restart`] before the first step.
+    pub fn new(stepper: S, tol: Tolerance<N>, opts: StepOptions) -> Result<Self, InputError> {
+        tol.validate()?;
+        for h in [stepper.fixed_step(), opts.h_initial].into_iter().flatten() {
+            if !(h.is_finite() && h > 0.0) {
+                return Err(InputError::StepSize { h });
+            }
+        }
+        if opts.h_max.is_nan() || opts.h_max <= 0.0 || opts.h_min.is_nan() || opts.h_min < 0.0 {
+            return Err(InputError::StepSize {
+                h: if opts.h_max.is_nan() || opts.h_max <= 0.0 {
+                    opts.h_max
+                } else {
+                    opts.h_min
+                },
+            });
+        }
+        Ok(Integrator {
+            stepper,
+            tol,
+            opts,
+            ctrl: Controller::new(S::ERROR_ORDER),
+            t: 0.0,
+            y: [0.0; N],
+            f: [0.0; N],
+            t_prev: 0.0,
+            y_prev: [0.0; N],
+            f_prev: [0.0; N],
+            h: 0.0,
+            has_step: false,
+            dense_ready: false,
+            attempts: 0,
+            stats: Stats::default(),
+        })
+    }
+
+    /// Starts afresh at `(t, y)`: evaluates `f`, forgets the previous step (no first-same-as-last
+    /// reuse across a restart, no error history) and chooses a new initial step size.
+    pub fn restart<F: Rhs<N>>(&mut self, sys: &F, t: f64, y: &[f64; N]) -> Result<(), SolveError> {
+        if !t.is_finite() {
+            return Err(InputError::TimeSpan { t0: t, t_end: t }.into());
+        }
+        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+            return Err(InputError::InitialState {
+                component: i,
+                value: y[i],
+            }
+            .into());
+        }
+        self.t = t;
+        self.y = *y;
+        eval(sys, t, &self.y, &mut self.f, &mut self.stats)?;
+        self.ctrl.reset();
+        self.has_step = false;
+        self.dense_ready = false;
+        self.h = match (self.stepper.fixed_step(), self.opts.h_initial) {
+            (Some(h), _) | (None, Some(h)) => h,
+            (None, None) => initial_step(
+                sys,
+                StepStart {
+                    t,
+                    y: &self.y,
+                    f: &self.f,
+                },
+                S::ERROR_ORDER,
+                &self.tol,
+                self.opts.h_max,
+                &mut self.stats,
+            )?,
+        };
+        Ok(())
+    }
+
+    /// Takes one accepted step, never beyond `t_end` (the last step lands on it exactly).
+    /// Does nothing when `t >= t_end`.
+    pub fn step<F: Rhs<N>>(&mut self, sys: &F, t_end: f64) -> Result<(), SolveError> {
+        if self.t >= t_end {
+            return Ok(());
+        }
+        let fixed = self.stepper.fixed_step();
+        let mut h = self.h.min(self.opts.h_max);
+        loop {
+            if self.attempts >= self.opts.max_steps {
+                return Err(SolveError::MaxSteps {
+                    t: self.t,
+                    steps: self.attempts,
+                });
+            }
+            let h_min = min_step(self.t, self.opts.h_min);
+            if fixed.is_none() {
+                h = h.max(h_min);
+            }
+            let remaining = t_end - self.t;
+            // A fixed-step method lands on `t_end` with its last full step despite the
+            // round-off accumulated in `t`; an adaptive one stretches a step by up to 1 %.
+            let stretch = if fixed.is_some() { 1.0 + 1e-9 } else { 1.01 };
+            let last = stretch * h >= remaining;
+            if last {
+                h = remaining;
+            }
+            self.attempts += 1;
+            let mut y1 = [0.0; N];
+            let mut f1 = [0.0; N];
+            let est = self.stepper.attempt(
+                sys,
+                StepStart {
+                    t: self.t,
+                    y: &self.y,
+                    f: &self.f,
+                },
+                h,
+                &self.tol,
+                StepEnd {
+                    y: &mut y1,
+                    f: &mut f1,
+                },
+                &mut self.stats,
+            )?;
+            if est.norm <= 1.0 {
+                self.stats.steps += 1;
+                self.t_prev = self.t;
+                self.y_prev = self.y;
+                self.f_prev = self.f;
+                self.t = if last { t_end } else { self.t + h };
+                self.y = y1;
+                self.f = f1;
+                self.has_step = true;
+                self.dense_ready = false;
+                self.h = match fixed {
+                    Some(hf) => hf,
+                    None => self.ctrl.accepted(h, est.norm),
+                };
+                // After a shortened final step keep the step the controller wanted before.
+                if last && fixed.is_none() {
+                    self.h = self.h.max(h);
+                }
+                return Ok(());
+            }
+            self.stats.rejected += 1;
+            if h <= h_min {
+                return Err(SolveError::StepSizeCollapse {
+                    t: self.t,
+                    h,
+                    h_min,
+                    component: est.worst,
+                    error_norm: est.norm,
+                });
+            }
+            h = self.ctrl.rejected(h, est.norm);
+        }
+    }
+
+    /// Builds the interpolant of the last accepted step if it is not built yet.
+    pub fn ensure_dense<F: Rhs<N>>(&mut self, sys: &F) -> Result<(), SolveError> {
+        if self.has_step && !self.dense_ready {
+            self.stepper.prepare_dense(
+                sys,
+                StepStart {
+                    t: self.t_prev,
+                    y: &self.y_prev,
+                    f: &self.f_prev,
+                },
+                &self.y,
+                &self.f,
+                self.t - self.t_prev,
+                &mut self.stats,
+            )?;
+            self.dense_ready = true;
+        }
+        Ok(())
+    }
+
+    /// The interpolated state at `t` inside the last accepted step (`t` is clamped to it).
+    /// The end points are returned exactly.
+    pub fn interpolate<F: Rhs<N>>(
+        &mut self,
+        sys: &F,
+        t: f64,
+        out: &mut [f64; N],
+    ) -> Result<(), SolveError> {
+        if !self.has_step || t >= self.t {
+            *out = self.y;
+            return Ok(());
+        }
+        if t <= self.t_prev {
+            *out = self.y_prev;
+            return Ok(());
+        }
+        self.ensure_dense(sys)?;
+        let theta = (t - self.t_prev) / (self.t - self.t_prev);
+        self.stepper.interpolate(theta, out);
+        Ok(())
+    }
+
+    /// The interpolant of the last step, if it has been built (see [`Integrator::ensure_dense`]).
+    pub fn dense(&self) -> Option<DenseStep<'_, S, N>> {
+        (self.has_step && self.dense_ready).then_some(DenseStep {
+            stepper: &self.stepper,
+            t0: self.t_prev,
+            t1: self.t,
+            y0: &self.y_prev,
+            y1: &self.y,
+        })
+    }
+
+    /// Replaces the current state (e.g. by a projection onto constraints) and re-evaluates `f`.
+    /// The interpolant of the last step is left as it was.
+    pub fn replace_state<F: Rhs<N>>(&mut self, sys: &F, y: &[f64; N]) -> Result<(), SolveError> {
+        self.y = *y;
+        eval(sys, self.t, &self.y, &mut self.f, &mut self.stats)
+    }
+
+    /// Zeroes the work counters and the step budget (at the start of a run).
+    pub fn reset_counters(&mut self) {
+        self.stats = Stats::default();
+        self.attempts = 0;
+    }
+
+    /// Current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// Current state.
+    pub fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+    /// `f(t, y)` at the current point.
+    pub fn f(&self) -> &[f64; N] {
+        &self.f
+    }
+    /// Start time of the last accepted step (equals [`Integrator::t`] before the first step).
+    pub fn t_prev(&self) -> f64 {
+        if self.has_step {
+            self.t_prev
+        } else {
+            self.t
+        }
+    }
+    /// State at the start of the last accepted step.
+    pub fn y_prev(&self) -> &[f64; N] {
+        if self.has_step {
+            &self.y_prev
+        } else {
+            &self.y
+        }
+    }
+    /// `f` at the start of the last accepted step.
+    pub fn f_prev(&self) -> &[f64; N] {
+        if self.has_step {
+            &self.f_prev
+        } else {
+            &self.f
+        }
+    }
+    /// The step size the controller proposes next.
+    pub fn next_step_size(&self) -> f64 {
+        self.h
+    }
+    /// Work done so far.
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+    /// Mutable work counters (for drivers that evaluate the model themselves).
+    pub fn stats_mut(&mut self) -> &mut Stats {
+        &mut self.stats
+    }
+    /// The tolerances.
+    pub fn tolerance(&self) -> &Tolerance<N> {
+        &self.tol
+    }
+}
+
+/// Read access to the interpolant of one accepted step.
+#[derive(Clone, Copy, Debug)]
+pub struct DenseStep<'a, S, const N: usize> {
+    stepper: &'a S,
+    /// Start time of the step.
+    pub t0: f64,
+    /// End time of the step.
+    pub t1: f64,
+    y0: &'a [f64; N],
+    y1: &'a [f64; N],
+}
+
+impl<S: Stepper<N>, const N: usize> DenseStep<'_, S, N> {
+    /// The interpolated state at `t ∈ [t0, t1]` (clamped; end points are exact).
+    pub fn at(&self, t: f64, out: &mut [f64; N]) {
+        if t <= self.t0 {
+            *out = *self.y0;
+        } else if t >= self.t1 {
+            *out = *self.y1;
+        } else {
+            self.stepper
+                .interpolate((t - self.t0) / (self.t1 - self.t0), out);
+        }
+    }
+}
+
+/// The end of a plain integration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solution<const N: usize> {
+    /// Final time (the requested end time).
+    pub t: f64,
+    /// Final state.
+    pub y: [f64; N],
+    /// Work done.
+    pub stats: Stats,
+}
+
+/// Integrates `model` from `(t0, y0)` to `t_end` without events.
+pub fn integrate<M: Model<N>, S: Stepper<N>, const N: usize>(
+    model: &M,
+    stepper: S,
+    tol: Tolerance<N>,
+    opts: StepOptions,
+    t0: f64,
+    y0: &[f64; N],
+    t_end: f64,
+) -> Result<Solution<N>, SolveError> {
+    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+        return Err(InputError::TimeSpan { t0, t_end }.into());
+    }
+    let mut it = Integrator::new(stepper, tol, opts)?;
+    it.restart(model, t0, y0)?;
+    while it.t() < t_end {
+        it.step(model, t_end)?;
+    }
+    Ok(Solution {
+        t: it.t(),
+        y: *it.y(),
+        stats: *it.stats(),
+    })
+}

@@ -1,0 +1,126 @@
+//! Streaming output: a run hands every accepted step, dense sample, event and transition to an
+//! observer as it happens, so a long run never holds its trajectory in memory.
+
+use crate::events::EventHit;
+
+/// Evaluation of the interpolant of one accepted step.
+pub trait Interpolant<const N: usize> {
+    /// The interpolated state at `t` inside the step (clamped to it; end points exact).
+    fn at(&self, t: f64, out: &mut [f64; N]);
+}
+
+impl<S: crate::stepper::Stepper<N>, const N: usize> Interpolant<N>
+    for crate::integrator::DenseStep<'_, S, N>
+{
+    fn at(&self, t: f64, out: &mut [f64; N]) {
+        crate::integrator::DenseStep::at(self, t, out)
+    }
+}
+
+/// One accepted step as an observer sees it. If an event cut the step short, `t1`/`y1` are the
+/// event time and state (the part of the step after the event is discarded).
+pub struct StepView<'a, const N: usize, Md> {
+    /// The mode the step was taken in.
+    pub mode: Md,
+    /// Start time.
+    pub t0: f64,
+    /// End time.
+    pub t1: f64,
+    /// State at the start.
+    pub y0: &'a [f64; N],
+    /// State at the end.
+    pub y1: &'a [f64; N],
+    /// Derivative at the start.
+    pub f0: &'a [f64; N],
+    /// The step's interpolant: present when [`Observer::wants_dense`] returns true.
+    pub dense: Option<&'a dyn Interpolant<N>>,
+}
+
+/// A state sampled at a requested time from the dense output.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample<'a, const N: usize, Md> {
+    /// Sample time (`t0 + k / rate`).
+    pub t: f64,
+    /// The mode in force at `t` (at an event time: the mode before the transition).
+    pub mode: Md,
+    /// The interpolated state.
+    pub y: &'a [f64; N],
+}
+
+/// What happened at a transition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TransitionKind<Md> {
+    /// The mode changed.
+    Switch {
+        /// The new mode.
+        to: Md,
+    },
+    /// The same mode restarted (after a state reset).
+    Continue,
+}
+
+/// A transition as it was applied: which event triggered it and the state on both sides.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TransitionRecord<const N: usize, Md, G> {
+    /// The event that triggered it.
+    pub hit: EventHit<N, G>,
+    /// The mode before.
+    pub from: Md,
+    /// What happened.
+    pub kind: TransitionKind<Md>,
+    /// The state the next segment starts from (after the transition map and projection).
+    pub y_after: [f64; N],
+}
+
+/// Receives a run's output as it is produced. Every method has an empty default.
+pub trait Observer<const N: usize, Md, G> {
+    /// Whether [`StepView::dense`] should be provided (building it may cost extra evaluations,
+    /// e.g. three per step for DOP853).
+    fn wants_dense(&self) -> bool {
+        false
+    }
+    /// An accepted step.
+    fn on_step(&mut self, _step: &StepView<'_, N, Md>) {}
+    /// A dense sample at a requested time.
+    fn on_sample(&mut self, _sample: &Sample<'_, N, Md>) {}
+    /// A transition (the event that caused it is in the record).
+    fn on_transition(&mut self, _record: &TransitionRecord<N, Md, G>) {}
+}
+
+/// The observer that ignores everything.
+impl<const N: usize, Md, G> Observer<N, Md, G> for () {}
+
+/// An observer that keeps samples and transitions in memory: convenient for tests and short
+/// runs, not for long ones.
+#[derive(Clone, Debug, Default)]
+pub struct Recorder<const N: usize, Md, G> {
+    /// Samples `(t, mode, y)`.
+    pub samples: Vec<(f64, Md, [f64; N])>,
+    /// Transitions in order.
+    pub transitions: Vec<TransitionRecord<N, Md, G>>,
+    /// Number of accepted steps seen.
+    pub steps: u64,
+}
+
+impl<const N: usize, Md, G> Recorder<N, Md, G> {
+    /// An empty recorder.
+    pub fn new() -> Self {
+        Recorder {
+            samples: Vec::new(),
+            transitions: Vec::new(),
+            steps: 0,
+        }
+    }
+}
+
+impl<const N: usize, Md: Copy, G: Copy> Observer<N, Md, G> for Recorder<N, Md, G> {
+    fn on_step(&mut self, _step: &StepView<'_, N, Md>) {
+        self.steps += 1;
+    }
+    fn on_sample(&mut self, s: &Sample<'_, N, Md>) {
+        self.samples.push((s.t, s.mode, *s.y));
+    }
+    fn on_transition(&mut self, r: &TransitionRecord<N, Md, G>) {
+        self.transitions.push(*r);
+    }
+}

@@ -1,0 +1,184 @@
+//! Test problems with known solutions, shared by the integration tests.
+#![allow(dead_code)]
+
+use model_runtime::{EvalError, Model, ModelInfo, OpCounts};
+
+/// A `ModelInfo` for a hand-written test model.
+pub const fn info(name: &'static str, states: &'static [&'static str]) -> ModelInfo {
+    ModelInfo {
+        name,
+        state_names: states,
+        param_names: &[],
+        output_names: &[],
+        rhs_ops: OpCounts {
+            add: 0,
+            mul: 0,
+            div: 0,
+            sqrt: 0,
+            trig: 0,
+            transcendental: 0,
+        },
+        jacobian_ops: OpCounts {
+            add: 0,
+            mul: 0,
+            div: 0,
+            sqrt: 0,
+            trig: 0,
+            transcendental: 0,
+        },
+        outputs_ops: OpCounts {
+            add: 0,
+            mul: 0,
+            div: 0,
+            sqrt: 0,
+            trig: 0,
+            transcendental: 0,
+        },
+        pivots: &[],
+        numeric_blocks: &[],
+    }
+}
+
+/// x' = v, v' = -x, z' = cos(t) z: an oscillator plus a non-autonomous component.
+/// From (1, 0, 1) at t = 0: (cos t, -sin t, exp(sin t)).
+pub struct Forced;
+static FORCED: ModelInfo = info("forced", &["x", "v", "z"]);
+impl Model<3> for Forced {
+    fn info(&self) -> &'static ModelInfo {
+        &FORCED
+    }
+    fn rhs(&self, t: f64, y: &[f64; 3], dy: &mut [f64; 3]) -> Result<(), EvalError> {
+        *dy = [y[1], -y[0], t.cos() * y[2]];
+        Ok(())
+    }
+    fn jacobian(&self, t: f64, _y: &[f64; 3], jac: &mut [[f64; 3]; 3]) -> Result<(), EvalError> {
+        *jac = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, t.cos()]];
+        Ok(())
+    }
+}
+impl Forced {
+    pub const Y0: [f64; 3] = [1.0, 0.0, 1.0];
+    pub fn exact(t: f64) -> [f64; 3] {
+        [t.cos(), -t.sin(), t.sin().exp()]
+    }
+}
+
+/// Harmonic oscillator x' = v, v' = -x.
+pub struct Harmonic;
+static HARMONIC: ModelInfo = info("harmonic", &["x", "v"]);
+impl Model<2> for Harmonic {
+    fn info(&self) -> &'static ModelInfo {
+        &HARMONIC
+    }
+    fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+        *dy = [y[1], -y[0]];
+        Ok(())
+    }
+}
+
+/// The Kepler problem with GM = 1: (x, y, vx, vy).
+pub struct Kepler;
+static KEPLER: ModelInfo = info("kepler", &["x", "y", "vx", "vy"]);
+impl Model<4> for Kepler {
+    fn info(&self) -> &'static ModelInfo {
+        &KEPLER
+    }
+    fn rhs(&self, _t: f64, y: &[f64; 4], dy: &mut [f64; 4]) -> Result<(), EvalError> {
+        let r2 = y[0] * y[0] + y[1] * y[1];
+        let r3 = r2 * r2.sqrt();
+        *dy = [y[2], y[3], -y[0] / r3, -y[1] / r3];
+        Ok(())
+    }
+}
+impl Kepler {
+    /// Periapsis of the orbit with semi-major axis 1 and eccentricity `e`.
+    pub fn periapsis(e: f64) -> [f64; 4] {
+        [1.0 - e, 0.0, 0.0, ((1.0 + e) / (1.0 - e)).sqrt()]
+    }
+    /// The exact state at `t` (period 2π), from Kepler's equation.
+    pub fn exact(e: f64, t: f64) -> [f64; 4] {
+        let m = t;
+        let mut ea = if e > 0.8 { std::f64::consts::PI } else { m };
+        for _ in 0..60 {
+            let d = (ea - e * ea.sin() - m) / (1.0 - e * ea.cos());
+            ea -= d;
+            if d.abs() < 1e-16 {
+                break;
+            }
+        }
+        let b = (1.0 - e * e).sqrt();
+        let den = 1.0 - e * ea.cos();
+        [
+            ea.cos() - e,
+            b * ea.sin(),
+            -ea.sin() / den,
+            b * ea.cos() / den,
+        ]
+    }
+}
+
+/// Van der Pol: y1' = y2, y2' = mu (1 - y1²) y2 - y1.
+pub struct VanDerPol {
+    pub mu: f64,
+}
+static VDP: ModelInfo = info("van_der_pol", &["y1", "y2"]);
+impl Model<2> for VanDerPol {
+    fn info(&self) -> &'static ModelInfo {
+        &VDP
+    }
+    fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+        *dy = [y[1], self.mu * (1.0 - y[0] * y[0]) * y[1] - y[0]];
+        Ok(())
+    }
+    fn jacobian(&self, _t: f64, y: &[f64; 2], jac: &mut [[f64; 2]; 2]) -> Result<(), EvalError> {
+        *jac = [
+            [0.0, 1.0],
+            [
+                -2.0 * self.mu * y[0] * y[1] - 1.0,
+                self.mu * (1.0 - y[0] * y[0]),
+            ],
+        ];
+        Ok(())
+    }
+}
+
+/// y' = y², y(0) = 1: blows up at t = 1.
+pub struct Blowup;
+static BLOWUP: ModelInfo = info("blowup", &["y"]);
+impl Model<1> for Blowup {
+    fn info(&self) -> &'static ModelInfo {
+        &BLOWUP
+    }
+    fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        dy[0] = y[0] * y[0];
+        Ok(())
+    }
+}
+
+/// y' = 1 with a "singular pivot" once y exceeds 2: a model error to propagate.
+pub struct Fragile;
+static FRAGILE: ModelInfo = info("fragile", &["y"]);
+impl Model<1> for Fragile {
+    fn info(&self) -> &'static ModelInfo {
+        &FRAGILE
+    }
+    fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        if y[0] > 2.0 {
+            return Err(EvalError::SingularPivot {
+                model: "fragile",
+                pivot: "2 - y",
+                value: 2.0 - y[0],
+            });
+        }
+        dy[0] = 1.0;
+        Ok(())
+    }
+}
+
+/// Max-norm distance.
+pub fn dist<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}

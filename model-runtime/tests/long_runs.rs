@@ -1,0 +1,114 @@
+//! Long runs: energy drift of DOP853 over many periods, and the cost per step of the hybrid
+//! driver with many events (the scale of the disk's scene: about a million steps).
+
+mod common;
+
+use common::Harmonic;
+use model_runtime::{
+    Direction, Dop853, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver, HybridSystem,
+    Model, Tolerance, Transition,
+};
+
+/// The oscillator with one guard (x crosses zero upwards) that restarts in place: events
+/// without changing the solution.
+struct Clocked;
+const X_UP: [GuardSpec<()>; 1] = [GuardSpec {
+    id: (),
+    direction: Direction::Up,
+}];
+impl HybridSystem<2> for Clocked {
+    type Mode = ();
+    type Guard = ();
+    type Stop = ();
+    fn rhs(&self, _: (), t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+        Harmonic.rhs(t, y, dy)
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
+        &X_UP
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; 2],
+        _dy: &[f64; 2],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        g[0] = y[0];
+        Ok(())
+    }
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<2, ()>,
+    ) -> Result<Transition<2, (), ()>, EvalError> {
+        Ok(Transition::Continue { y: hit.y })
+    }
+}
+
+#[test]
+fn harmonic_energy_drift_over_1000_periods_is_below_1e_10() {
+    let periods = 1000.0;
+    let t_end = periods * 2.0 * std::f64::consts::PI;
+    let sol = model_runtime::integrate(
+        &Harmonic,
+        Dop853::new(),
+        Tolerance::scalar(1e-12, 1e-12),
+        Default::default(),
+        0.0,
+        &[1.0, 0.0],
+        t_end,
+    )
+    .unwrap();
+    let energy = 0.5 * (sol.y[0] * sol.y[0] + sol.y[1] * sol.y[1]);
+    let drift = (energy - 0.5).abs() / 0.5;
+    println!(
+        "relative energy drift {drift:e} after {} steps",
+        sol.stats.steps
+    );
+    assert!(drift < 1e-10, "drift {drift:e}");
+    // And the phase: back at (1, 0).
+    assert!(
+        (sol.y[0] - 1.0).abs() < 1e-8 && sol.y[1].abs() < 1e-8,
+        "{:?}",
+        sol.y
+    );
+}
+
+#[test]
+fn events_every_period_do_not_change_the_solution() {
+    let periods = 200.0;
+    let period = 2.0 * std::f64::consts::PI;
+    let mut solver = HybridSolver::new(
+        Dop853::new(),
+        Tolerance::scalar(1e-12, 1e-12),
+        HybridOptions::default(),
+    )
+    .unwrap();
+    let start = std::time::Instant::now();
+    let out = solver
+        .run(
+            &mut Clocked,
+            (),
+            0.0,
+            &[1.0, 0.0],
+            periods * period,
+            &mut (),
+        )
+        .unwrap();
+    let elapsed = start.elapsed();
+    println!(
+        "{} events, {:?}, {:?} ({:.0} ns per step)",
+        out.transitions,
+        out.stats,
+        elapsed,
+        elapsed.as_nanos() as f64 / out.stats.steps as f64
+    );
+    // x crosses upwards at 3π/2 + 2πk: 200 times in [0, 200 periods].
+    assert_eq!(out.transitions, 200);
+    assert!(
+        (out.y[0] - 1.0).abs() < 1e-8 && out.y[1].abs() < 1e-8,
+        "{:?}",
+        out.y
+    );
+}

@@ -1,0 +1,128 @@
+//! Properties over random configurations: event times of random bouncing balls, and the
+//! error of adaptive runs following the requested tolerance.
+
+mod common;
+
+use common::{dist, Forced};
+use model_runtime::{
+    integrate, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridOptions,
+    HybridSolver, HybridSystem, Recorder, StepOptions, Stepper, Tolerance, Transition,
+};
+use proptest::prelude::*;
+
+struct Ball {
+    g: f64,
+    e: f64,
+}
+const GROUND: [GuardSpec<()>; 1] = [GuardSpec {
+    id: (),
+    direction: Direction::Down,
+}];
+impl HybridSystem<2> for Ball {
+    type Mode = ();
+    type Guard = ();
+    type Stop = ();
+    fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+        *dy = [y[1], -self.g];
+        Ok(())
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
+        &GROUND
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; 2],
+        _dy: &[f64; 2],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        g[0] = y[0];
+        Ok(())
+    }
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<2, ()>,
+    ) -> Result<Transition<2, (), ()>, EvalError> {
+        Ok(Transition::Continue {
+            y: [0.0, -self.e * hit.y[1]],
+        })
+    }
+}
+
+fn check_ball<S: Stepper<2>>(
+    stepper: S,
+    h0: f64,
+    v0: f64,
+    e: f64,
+    rtol: f64,
+) -> Result<(), TestCaseError> {
+    let g = 9.81;
+    // First impact: h0 + v0 t - g t²/2 = 0.
+    let t1 = (v0 + (v0 * v0 + 2.0 * g * h0).sqrt()) / g;
+    let v1 = g * t1 - v0;
+    let mut times = vec![t1];
+    for k in 1..6 {
+        let last = times[k - 1];
+        times.push(last + 2.0 * e.powi(k as i32) * v1 / g);
+    }
+    let mut solver = HybridSolver::new(
+        stepper,
+        Tolerance::scalar(rtol, rtol * 1e-2),
+        HybridOptions::default(),
+    )
+    .unwrap();
+    let mut rec = Recorder::new();
+    solver
+        .run(
+            &mut Ball { g, e },
+            (),
+            0.0,
+            &[h0, v0],
+            times[5] + 1e-3,
+            &mut rec,
+        )
+        .unwrap();
+    prop_assert_eq!(rec.transitions.len(), 6);
+    for (tr, t) in rec.transitions.iter().zip(&times) {
+        // Parabolas are integrated and interpolated exactly: only round-off remains.
+        prop_assert!(
+            (tr.hit.t - t).abs() < 1e-12 * t.max(1.0),
+            "{} vs {}",
+            tr.hit.t,
+            t
+        );
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn random_balls_bounce_on_time(
+        h0 in 0.05f64..10.0,
+        v0 in -3.0f64..3.0,
+        e in 0.3f64..0.95,
+        log_rtol in -12.0f64..-5.0,
+    ) {
+        let rtol = 10f64.powf(log_rtol);
+        check_ball(Dop853::new(), h0, v0, e, rtol)?;
+        check_ball(Dopri5::new(), h0, v0, e, rtol)?;
+    }
+
+    #[test]
+    fn global_error_follows_the_tolerance(log_rtol in -12.0f64..-4.0, t_end in 0.5f64..8.0) {
+        let rtol = 10f64.powf(log_rtol);
+        let tol = Tolerance::scalar(rtol, rtol);
+        for (name, err) in [
+            ("DOP853", dist(&integrate(&Forced, Dop853::new(), tol, StepOptions::default(), 0.0, &Forced::Y0, t_end).unwrap().y, &Forced::exact(t_end))),
+            ("DOPRI5", dist(&integrate(&Forced, Dopri5::new(), tol, StepOptions::default(), 0.0, &Forced::Y0, t_end).unwrap().y, &Forced::exact(t_end))),
+        ] {
+            // The solution's components are O(1..e): the error stays within a modest multiple
+            // of the tolerance (global errors accumulate over the ~t_end/h steps).
+            prop_assert!(err < 100.0 * rtol * t_end.max(1.0), "{name}: error {err:e} at rtol {rtol:e}");
+        }
+    }
+}

@@ -1,0 +1,200 @@
+//! The quantities a run can record, with their units, under the paper's names.
+//!
+//! One table drives the CSV header, the `[output] quantities` check and the value lookup, so
+//! a quantity's name, unit and meaning cannot drift apart between those places.
+
+use crate::sample::Sample;
+use equations::params::DiskParams;
+
+/// A recordable quantity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[allow(non_camel_case_types)]
+pub enum Quantity {
+    /// Centre position X.
+    X,
+    /// Centre position Y.
+    Y,
+    /// Centre height Z.
+    Z,
+    /// Centre velocity X.
+    V_X,
+    /// Centre velocity Y.
+    V_Y,
+    /// Centre velocity Z.
+    V_Z,
+    /// Precession angle ψ.
+    Psi,
+    /// Inclination θ.
+    Theta,
+    /// Spin angle φ.
+    Phi,
+    /// Angular velocity Ω_x.
+    Omega_x,
+    /// Angular velocity Ω_y.
+    Omega_y,
+    /// Angular velocity Ω_z.
+    Omega_z,
+    /// Slip speed v_C (0 while rolling).
+    V_C,
+    /// Friction direction α (sliding) or the direction of the required friction (rolling).
+    Alpha,
+    /// θ̇ (= Ω_y).
+    ThetaDot,
+    /// ψ̇ (= −Ω_x / sin θ).
+    PsiDot,
+    /// φ̇ (= Ω_z + Ω_x cot θ).
+    PhiDot,
+    /// Normal contact force N.
+    N,
+    /// Friction force magnitude T.
+    T,
+    /// Friction ratio ν = T/N.
+    Nu,
+    /// Reduced normal force N/(m g).
+    NOverMg,
+    /// Contact reaction, X component.
+    R_X,
+    /// Contact reaction, Y component.
+    R_Y,
+    /// Total mechanical energy.
+    Energy,
+    /// Contact-constraint residual Z − a sin θ.
+    ResidualZ,
+    /// Velocity-constraint residual V_Z − a Ω_y cos θ.
+    ResidualV_Z,
+}
+
+impl Quantity {
+    /// Every quantity, in CSV column order.
+    pub const ALL: [Quantity; 26] = [
+        Quantity::X,
+        Quantity::Y,
+        Quantity::Z,
+        Quantity::V_X,
+        Quantity::V_Y,
+        Quantity::V_Z,
+        Quantity::Psi,
+        Quantity::Theta,
+        Quantity::Phi,
+        Quantity::Omega_x,
+        Quantity::Omega_y,
+        Quantity::Omega_z,
+        Quantity::V_C,
+        Quantity::Alpha,
+        Quantity::ThetaDot,
+        Quantity::PsiDot,
+        Quantity::PhiDot,
+        Quantity::N,
+        Quantity::T,
+        Quantity::Nu,
+        Quantity::NOverMg,
+        Quantity::R_X,
+        Quantity::R_Y,
+        Quantity::Energy,
+        Quantity::ResidualZ,
+        Quantity::ResidualV_Z,
+    ];
+
+    /// The name used in scenes and in `eval` output (the paper's notation).
+    pub fn name(self) -> &'static str {
+        self.spec().0
+    }
+
+    /// The unit, spelt for a CSV column (`m_per_s`, `rad`, `ratio` for dimensionless).
+    pub fn unit(self) -> &'static str {
+        self.spec().1
+    }
+
+    /// The CSV column name: name and unit, e.g. `theta_rad`.
+    pub fn column(self) -> String {
+        format!("{}_{}", self.name(), self.unit())
+    }
+
+    /// Looks a quantity up by its name.
+    pub fn from_name(name: &str) -> Option<Quantity> {
+        Quantity::ALL.iter().copied().find(|q| q.name() == name)
+    }
+
+    fn spec(self) -> (&'static str, &'static str) {
+        match self {
+            Quantity::X => ("X", "m"),
+            Quantity::Y => ("Y", "m"),
+            Quantity::Z => ("Z", "m"),
+            Quantity::V_X => ("V_X", "m_per_s"),
+            Quantity::V_Y => ("V_Y", "m_per_s"),
+            Quantity::V_Z => ("V_Z", "m_per_s"),
+            Quantity::Psi => ("psi", "rad"),
+            Quantity::Theta => ("theta", "rad"),
+            Quantity::Phi => ("phi", "rad"),
+            Quantity::Omega_x => ("Omega_x", "rad_per_s"),
+            Quantity::Omega_y => ("Omega_y", "rad_per_s"),
+            Quantity::Omega_z => ("Omega_z", "rad_per_s"),
+            Quantity::V_C => ("v_C", "m_per_s"),
+            Quantity::Alpha => ("alpha", "rad"),
+            Quantity::ThetaDot => ("theta_dot", "rad_per_s"),
+            Quantity::PsiDot => ("psi_dot", "rad_per_s"),
+            Quantity::PhiDot => ("phi_dot", "rad_per_s"),
+            Quantity::N => ("N", "N"),
+            Quantity::T => ("T", "N"),
+            Quantity::Nu => ("nu", "ratio"),
+            Quantity::NOverMg => ("N_over_mg", "ratio"),
+            Quantity::R_X => ("R_X", "N"),
+            Quantity::R_Y => ("R_Y", "N"),
+            Quantity::Energy => ("energy", "J"),
+            Quantity::ResidualZ => ("residual_Z", "m"),
+            Quantity::ResidualV_Z => ("residual_V_Z", "m_per_s"),
+        }
+    }
+
+    /// The quantity's value in a sample of a disk with parameters `p`.
+    pub fn value(self, s: &Sample, p: &DiskParams) -> f64 {
+        let st = &s.state;
+        match self {
+            Quantity::X => st.x,
+            Quantity::Y => st.y,
+            Quantity::Z => st.z,
+            Quantity::V_X => st.v_x,
+            Quantity::V_Y => st.v_y,
+            Quantity::V_Z => st.v_z,
+            Quantity::Psi => st.psi,
+            Quantity::Theta => st.theta,
+            Quantity::Phi => st.phi,
+            Quantity::Omega_x => st.omega_x,
+            Quantity::Omega_y => st.omega_y,
+            Quantity::Omega_z => st.omega_z,
+            Quantity::V_C => s.slip.v_c,
+            Quantity::Alpha => s.slip.alpha,
+            Quantity::ThetaDot => st.omega_y,
+            Quantity::PsiDot => st.psi_dot(),
+            Quantity::PhiDot => st.phi_dot(),
+            Quantity::N => s.forces.normal,
+            Quantity::T => s.forces.friction,
+            Quantity::Nu => s.forces.nu,
+            Quantity::NOverMg => s.forces.normal / (p.m * p.g),
+            Quantity::R_X => s.forces.r_x,
+            Quantity::R_Y => s.forces.r_y,
+            Quantity::Energy => s.energy,
+            Quantity::ResidualZ => st.z - p.a * st.theta.sin(),
+            Quantity::ResidualV_Z => st.v_z - p.a * st.omega_y * st.theta.cos(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn names_and_columns_are_unique_and_round_trip() {
+        let names: HashSet<_> = Quantity::ALL.iter().map(|q| q.name()).collect();
+        let columns: HashSet<_> = Quantity::ALL.iter().map(|q| q.column()).collect();
+        assert_eq!(names.len(), Quantity::ALL.len());
+        assert_eq!(columns.len(), Quantity::ALL.len());
+        for q in Quantity::ALL {
+            assert_eq!(Quantity::from_name(q.name()), Some(q));
+        }
+        assert_eq!(Quantity::Theta.column(), "theta_rad");
+        assert_eq!(Quantity::from_name("Theta"), None);
+    }
+}

@@ -1,0 +1,267 @@
+//! Scenes: TOML files that say which disk, which start, which solver and which outputs.
+//!
+//! Loading is a pipeline: text -> TOML tree -> command-line overrides applied to the tree ->
+//! typed tables (unknown keys and wrong types rejected with the key's path) -> rules between
+//! values (all collected) -> a validated [`Scene`]. Overrides act on the tree, before any
+//! checking, so `--set` and `--rtol` are held to exactly the rules the file is.
+//!
+//! The scenes shipped in `scenes/` are compiled into the binary, so `eulerdisk run
+//! tangent-toy` works from any directory.
+
+pub mod initial;
+pub mod issue;
+pub mod schema;
+pub mod validate;
+
+use std::path::{Path, PathBuf};
+
+pub use issue::{Issue, Rule};
+pub use schema::SceneFile;
+pub use validate::Scene;
+
+/// The scenes shipped with the program: (name, TOML text).
+pub const BUILTIN: &[(&str, &str)] = &[
+    ("tangent-toy", include_str!("../../scenes/tangent-toy.toml")),
+    (
+        "pure-rolling",
+        include_str!("../../scenes/pure-rolling.toml"),
+    ),
+    (
+        "spinning-in-place",
+        include_str!("../../scenes/spinning-in-place.toml"),
+    ),
+    (
+        "steady-circle",
+        include_str!("../../scenes/steady-circle.toml"),
+    ),
+    (
+        "upright-stable",
+        include_str!("../../scenes/upright-stable.toml"),
+    ),
+    (
+        "upright-unstable",
+        include_str!("../../scenes/upright-unstable.toml"),
+    ),
+    (
+        "high-friction",
+        include_str!("../../scenes/high-friction.toml"),
+    ),
+];
+
+/// The scene run when none is named.
+pub const DEFAULT_SCENE: &str = "tangent-toy";
+
+/// Why a scene could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// Neither a readable file nor a built-in scene.
+    #[error("scene `{name}` is neither a file nor a built-in scene (built-in: {builtin})")]
+    NotFound {
+        /// What was asked for.
+        name: String,
+        /// The built-in names, comma separated.
+        builtin: String,
+    },
+    /// The file exists but could not be read.
+    #[error("cannot read scene file {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// Not valid TOML.
+    #[error("scene `{name}` is not valid TOML: {message}")]
+    Syntax {
+        /// The scene.
+        name: String,
+        /// The parser's message (with line and column).
+        message: String,
+    },
+    /// A `--set` argument is malformed.
+    #[error("--set `{spec}`: {problem}")]
+    Override {
+        /// The argument as given.
+        spec: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A key is unknown, missing, or of the wrong type.
+    #[error("scene `{name}`, key `{key}`: {message}")]
+    Key {
+        /// The scene.
+        name: String,
+        /// The key's path (`table.key`).
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// One or more rules are broken.
+    #[error("scene `{name}` is invalid:\n  {}", issues.iter().map(|i| i.to_string()).collect::<Vec<_>>().join("\n  "))]
+    Invalid {
+        /// The scene.
+        name: String,
+        /// Every broken rule.
+        issues: Vec<Issue>,
+    },
+}
+
+impl SceneError {
+    /// The keys this error is about (empty when it is about no key).
+    pub fn keys(&self) -> Vec<&str> {
+        match self {
+            SceneError::Key { key, .. } => vec![key],
+            SceneError::Invalid { issues, .. } => issues.iter().map(|i| i.key.as_str()).collect(),
+            SceneError::Override { spec, .. } => vec![spec],
+            _ => vec![],
+        }
+    }
+}
+
+/// A command-line override `table.key=value`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Override {
+    /// The table.
+    pub table: String,
+    /// The key in the table.
+    pub key: String,
+    /// The new value.
+    pub value: toml::Value,
+}
+
+impl Override {
+    /// Parses `table.key=value`; the value is read as a TOML value (`0.2`, `true`,
+    /// `["rolling"]`), or as a string when it is not one (`dop853`).
+    pub fn parse(spec: &str) -> Result<Override, SceneError> {
+        let bad = |problem: &str| SceneError::Override {
+            spec: spec.to_string(),
+            problem: problem.to_string(),
+        };
+        let (path, text) = spec
+            .split_once('=')
+            .ok_or_else(|| bad("expected `table.key=value`"))?;
+        let (table, key) = path
+            .trim()
+            .split_once('.')
+            .ok_or_else(|| bad("the key must be `table.key`, e.g. `friction.mu_d`"))?;
+        let is_name = |s: &str| {
+            !s.is_empty()
+                && s
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        };
+        if !is_name(table) || !is_name(key) {
+            return Err(bad("the key must be `table.key`, e.g. `friction.mu_d`"));
+        }
+        let text = text.trim();
+        let value = match toml::from_str::<toml::Table>(&format!("v = {text}")) {
+            Ok(mut t) => t.remove("v").ok_or_else(|| bad("no value"))?,
+            Err(_) => toml::Value::String(text.to_string()),
+        };
+        Ok(Override {
+            table: table.to_string(),
+            key: key.to_string(),
+            value,
+        })
+    }
+
+    /// An override for a key from a dedicated flag (`--rtol` -> `solver.rtol`).
+    pub fn new(table: &str, key: &str, value: impl Into<toml::Value>) -> Override {
+        Override {
+            table: table.to_string(),
+            key: key.to_string(),
+            value: value.into(),
+        }
+    }
+}
+
+/// Finds the scene text: a readable file first, else a built-in scene by name.
+/// Returns (scene name, text).
+pub fn resolve(name_or_path: &str) -> Result<(String, String), SceneError> {
+    let path = Path::new(name_or_path);
+    if path.is_file() {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| name_or_path.to_string());
+        return Ok((name, text));
+    }
+    let stem = name_or_path.strip_suffix(".toml").unwrap_or(name_or_path);
+    let stem = stem.strip_prefix("scenes/").unwrap_or(stem);
+    BUILTIN
+        .iter()
+        .find(|(n, _)| *n == stem)
+        .map(|(n, text)| (n.to_string(), text.to_string()))
+        .ok_or_else(|| SceneError::NotFound {
+            name: name_or_path.to_string(),
+            builtin: BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+        })
+}
+
+/// Parses, overrides and validates a scene's text.
+pub fn parse(name: &str, text: &str, overrides: &[Override]) -> Result<Scene, SceneError> {
+    let mut tree: toml::Table = toml::from_str(text).map_err(|e| SceneError::Syntax {
+        name: name.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })?;
+    for o in overrides {
+        let entry = tree
+            .entry(o.table.clone())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        match entry {
+            toml::Value::Table(t) => {
+                t.insert(o.key.clone(), o.value.clone());
+            }
+            _ => {
+                return Err(SceneError::Key {
+                    name: name.to_string(),
+                    key: o.table.clone(),
+                    message: "is not a table, so it cannot take an override".into(),
+                })
+            }
+        }
+    }
+    let file: SceneFile = serde_path_to_error::deserialize(toml::Value::Table(tree))
+        .map_err(|e| key_error(name, e))?;
+    validate::validate(name, file).map_err(|issues| SceneError::Invalid {
+        name: name.to_string(),
+        issues,
+    })
+}
+
+/// Turns a typed-deserialisation error into one naming the key: the path serde was at, plus
+/// the field named in "missing field `x`" / "unknown field `x`" messages.
+fn key_error(name: &str, e: serde_path_to_error::Error<toml::de::Error>) -> SceneError {
+    let path = e.path().to_string();
+    let message = e.inner().message().trim_end().to_string();
+    let field = ["missing field `", "unknown field `"]
+        .iter()
+        .find_map(|prefix| message.strip_prefix(prefix))
+        .and_then(|rest| rest.split('`').next());
+    let base = if path == "." { String::new() } else { path };
+    let key = match field {
+        Some(field) if !base.ends_with(field) => {
+            if base.is_empty() {
+                field.to_string()
+            } else {
+                format!("{base}.{field}")
+            }
+        }
+        _ => base,
+    };
+    SceneError::Key {
+        name: name.to_string(),
+        key,
+        message,
+    }
+}
+
+/// Loads a scene by file path or built-in name and applies the overrides.
+pub fn load(name_or_path: &str, overrides: &[Override]) -> Result<Scene, SceneError> {
+    let (name, text) = resolve(name_or_path)?;
+    parse(&name, &text, overrides)
+}
