@@ -5,7 +5,14 @@
 //! per case.
 #![warn(missing_docs)]
 
+pub mod analysis;
+pub mod cli;
+pub mod eval;
+pub mod figures;
 pub mod named_numbers;
+pub mod output;
 pub mod quantity;
+pub mod record;
+pub mod run;
 pub mod sample;
 pub mod scene;

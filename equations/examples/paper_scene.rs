@@ -1,12 +1,12 @@
 //! Runs the paper's scene (EQUATIONS.md §9) on the hybrid driver and prints what it cost.
 //!
 //! ```text
-//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol]
+//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference]
 //! ```
 
 use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, InitialState, IntegratorChoice, ReferenceModels, SlipSign,
-    TransitionRecord,
+    simulate, DiskConfig, DiskModels, DiskObserver, GeneratedModels, InitialState,
+    IntegratorChoice, ReferenceModels, RunOutcome, SlipSign, TransitionRecord,
 };
 use equations::modes::{Mode, SlipChart};
 use equations::DiskParams;
@@ -72,13 +72,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(a) = arg(5) {
         config.atol = a.parse()?;
     }
-    let models = ReferenceModels::reference(params, chart)?;
+    let which = arg(6).unwrap_or("generated");
     let mut counter = Counter::default();
     let start = Instant::now();
-    let out = simulate(&models, &config, &InitialState::paper(&params), &mut counter)?;
+    let initial = InitialState::paper(&params);
+    let out: RunOutcome = if which == "reference" {
+        let models = ReferenceModels::reference(params, chart)?;
+        simulate(&models, &config, &initial, &mut counter)?
+    } else {
+        let models: GeneratedModels = DiskModels::generated(params, chart)?;
+        simulate(&models, &config, &initial, &mut counter)?
+    };
     let elapsed = start.elapsed();
     println!(
-        "paper scene, reference models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}",
+        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}",
         config.integrator, config.slip_sign, config.rtol, config.atol
     );
     println!("stop: {} at t = {}", out.stop.name(), out.last.t);
@@ -99,7 +106,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         counter.to_rolling,
         counter.restarts
     );
-    println!("shortest sliding phase ending in rolling: {:e} s", counter.shortest_sliding);
+    println!(
+        "shortest sliding phase ending in rolling: {:e} s",
+        counter.shortest_sliding
+    );
     println!(
         "max drift: |Z - a sin th| {:e} m, |V_Z - a Om_y cos th| {:e} m/s, no-slip {:e} m/s",
         out.max_drift.height, out.max_drift.vertical_speed, out.max_drift.no_slip

@@ -141,7 +141,7 @@ pub fn air_power(p: &DiskParams, normal_velocity: f64, w: &BodyRates) -> f64 {
 /// `θ0`: `p² = m g a / (A sin θ0)` (rad/s). Both signs of `p` are steady.
 pub fn spinning_in_place_rate(p: &DiskParams, theta0: f64) -> Result<f64, FormulaError> {
     let s = sin_theta_checked(theta0)?;
-    if !(p.g > 0.0) {
+    if p.g.is_nan() || p.g <= 0.0 {
         return Err(FormulaError::NoGravity { g: p.g });
     }
     Ok((p.m * p.g * p.a / (p.A() * s)).sqrt())
@@ -182,7 +182,12 @@ pub struct RollingConsistent {
 }
 
 /// Box 2: the contact point on the floor and at rest.
-pub fn rolling_consistent(p: &DiskParams, psi: f64, theta: f64, w: &BodyRates) -> RollingConsistent {
+pub fn rolling_consistent(
+    p: &DiskParams,
+    psi: f64,
+    theta: f64,
+    w: &BodyRates,
+) -> RollingConsistent {
     let (sp, cp) = psi.sin_cos();
     let (st, ct) = theta.sin_cos();
     RollingConsistent {
@@ -203,7 +208,8 @@ mod tests {
     fn spinning_in_place_matches_the_table() {
         // EQUATIONS.md §7: |p| = 44.0, 102, 187 rad/s at θ0 = 0.57, 0.1, 0.03.
         let p = DiskParams::paper();
-        for (theta0, expected, tol) in [(0.57, 44.0, 0.05), (0.1, 102.3, 0.05), (0.03, 186.7, 0.05)] {
+        for (theta0, expected, tol) in [(0.57, 44.0, 0.05), (0.1, 102.3, 0.05), (0.03, 186.7, 0.05)]
+        {
             let rate = spinning_in_place_rate(&p, theta0).unwrap();
             assert!((rate - expected).abs() < tol, "{theta0}: {rate}");
         }
@@ -239,9 +245,16 @@ mod tests {
     fn sliding_formulas_reduce_to_rolling_ones_without_friction_and_with_no_spin_coupling() {
         // With μ_d = 0, β0 = A + m a² cos² θ; α3 + α4/s and α1 + α2/s differ only through
         // the denominators, so at Ω = 0 both give N/mg = A / β0 resp. 1 - m a² c² / (m a² + A).
-        let p = DiskParams { mu_d: 0.0, ..DiskParams::paper() };
-        let w = BodyRates { omega_x: 0.0, omega_y: 0.0, omega_z: 0.0 };
-        let theta = 0.7;
+        let p = DiskParams {
+            mu_d: 0.0,
+            ..DiskParams::paper()
+        };
+        let w = BodyRates {
+            omega_x: 0.0,
+            omega_y: 0.0,
+            omega_z: 0.0,
+        };
+        let theta: f64 = 0.7;
         let c = theta.cos();
         let ma2 = p.m * p.a * p.a;
         let rolling = rolling_normal_force_ratio(&p, theta, &w).unwrap();

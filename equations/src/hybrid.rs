@@ -28,7 +28,7 @@ pub mod onset;
 mod run;
 mod system;
 
-pub use models::{DiskModels, ReferenceModels, SlidingModel, PROBE_SLIP_SPEED};
+pub use models::{DiskModels, GeneratedModels, ReferenceModels, SlidingModel, PROBE_SLIP_SPEED};
 pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
 pub use run::simulate;
 pub use system::DiskGuard;

@@ -372,10 +372,7 @@ mod tests {
         };
         assert!((f.ratio() - 0.2).abs() < 1e-15);
         assert!(!f.admits_rolling(0.2 - 1e-12) && f.admits_rolling(0.2 + 1e-12));
-        let lifted = ContactForce {
-            normal: -1.0,
-            ..f
-        };
+        let lifted = ContactForce { normal: -1.0, ..f };
         assert!(!lifted.admits_rolling(10.0));
     }
 }

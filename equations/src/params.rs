@@ -91,7 +91,11 @@ impl DiskParams {
                 return Err(ParamError::NotFinite { name, value });
             }
         }
-        for (name, value) in [("mu_d", self.mu_d), ("mu_st", self.mu_st), ("mu_a", self.mu_a)] {
+        for (name, value) in [
+            ("mu_d", self.mu_d),
+            ("mu_st", self.mu_st),
+            ("mu_a", self.mu_a),
+        ] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(ParamError::Negative { name, value });
             }
@@ -164,7 +168,13 @@ mod tests {
             (DiskParams { m: 0.0, ..p }, "m"),
             (DiskParams { a: -1.0, ..p }, "a"),
             (DiskParams { a: f64::NAN, ..p }, "a"),
-            (DiskParams { g: f64::INFINITY, ..p }, "g"),
+            (
+                DiskParams {
+                    g: f64::INFINITY,
+                    ..p
+                },
+                "g",
+            ),
             (DiskParams { w_z: f64::NAN, ..p }, "w_z"),
             (DiskParams { mu_d: -0.1, ..p }, "mu_d"),
             (DiskParams { mu_a: -1e-3, ..p }, "mu_a"),

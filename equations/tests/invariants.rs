@@ -5,8 +5,8 @@ mod common;
 
 use common::dual::{energy_rate, Chart};
 use common::subject::{
-    eval, CartesianRef, Family, RollingRef, SlidingRef, CARTESIAN_OUTPUTS, ROLLING_OUTPUTS,
-    SLIDING_OUTPUTS,
+    eval, CartesianGen, CartesianRef, Family, RollingGen, RollingRef, SlidingGen, SlidingRef,
+    CARTESIAN_OUTPUTS, ROLLING_OUTPUTS, SLIDING_OUTPUTS,
 };
 use common::{scales, Reach, Rng};
 use equations::formulas::{self, BodyRates};
@@ -14,7 +14,6 @@ use equations::reference::{rolling, sliding_cartesian, sliding_polar};
 use equations::DiskParams;
 use nalgebra::Vector3;
 
-const REL: f64 = 1e-12;
 const STATES: usize = 2000;
 
 fn rates(y: &[f64; 12]) -> BodyRates {
@@ -50,10 +49,22 @@ fn rolling_energy_balance<F: Family<ROLLING_OUTPUTS>>(air: bool) {
             let p = params_with_air(&mut rng, air);
             let y = common::rolling_consistent_state(&mut rng, &p, reach);
             let e = eval(&F::build(&p), &y).unwrap();
-            let rate = energy_rate(&p, Chart::Rolling, &y, &e.dy, &scales::rolling(&p, &y, &e.dy));
+            let rate = energy_rate(
+                &p,
+                Chart::Rolling,
+                &y,
+                &e.dy,
+                &scales::rolling(&p, &y, &e.dy),
+            );
+            let v = Vector3::new(y[3], y[4], y[5]);
+            let energy = formulas::total_energy(&p, &v, &rates(&y), y[2]);
+            let energy_scale = energy.abs() + 2.0 * (p.m * p.g * y[2]).abs();
+            agreement.check(e.out[rolling::output::energy], energy, energy_scale, || {
+                format!("{}: energy at {y:?}", F::NAME)
+            });
             // Rolling: the contact force does no work; only air drains energy.
             let expected = air_power(&p, &y, Vector3::new(y[3], y[4], y[5]));
-            agreement.check(REL, rate.rate, expected, rate.scale, || {
+            agreement.check(rate.rate, expected, rate.scale, || {
                 format!("{}: dE/dt at {y:?}", F::NAME)
             });
         }
@@ -72,18 +83,25 @@ fn sliding_energy_balance<F: Family<SLIDING_OUTPUTS>>(air: bool) {
             let row = scales::sliding_polar(&p, &y, &e.dy);
             let rate = energy_rate(&p, Chart::SlidingPolar, &y, &e.dy, &row);
             let o = &e.out;
-            let v = Vector3::new(o[sliding_polar::output::V_X], o[sliding_polar::output::V_Y], y[5]);
+            let v = Vector3::new(
+                o[sliding_polar::output::V_X],
+                o[sliding_polar::output::V_Y],
+                y[5],
+            );
             let friction = formulas::friction_power(o[sliding_polar::output::T], y[3]);
             let expected = friction + air_power(&p, &y, v);
             // The friction power's own scale: T is known to the scale of N.
             let scale = rate.scale + (friction * row[5] / (row[5] + p.g)).abs();
-            agreement.check(REL, rate.rate, expected, scale, || {
+            agreement.check(rate.rate, expected, scale, || {
                 format!("{}: dE/dt at {y:?}", F::NAME)
             });
-            agreement.check(REL, o[sliding_polar::output::friction_power], friction, friction.abs(), || {
-                format!("{}: friction power at {y:?}", F::NAME)
-            });
-            agreement.check(REL, o[sliding_polar::output::nu], p.mu_d, p.mu_d, || {
+            agreement.check(
+                o[sliding_polar::output::friction_power],
+                friction,
+                friction.abs(),
+                || format!("{}: friction power at {y:?}", F::NAME),
+            );
+            agreement.check(o[sliding_polar::output::nu], p.mu_d, p.mu_d, || {
                 format!("{}: nu at {y:?}", F::NAME)
             });
         }
@@ -109,7 +127,7 @@ fn cartesian_energy_balance<F: Family<CARTESIAN_OUTPUTS>>(air: bool) {
             let friction = formulas::friction_power(o[sliding_cartesian::output::T], polar[3]);
             let expected = friction + air_power(&p, &y, v);
             let scale = rate.scale + (friction * row[5] / (row[5] + p.g)).abs();
-            agreement.check(REL, rate.rate, expected, scale, || {
+            agreement.check(rate.rate, expected, scale, || {
                 format!("{}: dE/dt at {y:?}", F::NAME)
             });
         }
@@ -144,24 +162,30 @@ fn steady_motions<F: Family<ROLLING_OUTPUTS>>() {
         let e = eval(&F::build(&p), &y).unwrap();
         // The natural size of the angular accelerations here: the gyroscopic terms.
         let accel_scale = precession * precession + omega_z * omega_z + p.g / p.a;
-        for i in [rolling::state::Omega_x, rolling::state::Omega_y, rolling::state::Omega_z] {
-            agreement.check(REL, e.dy[i], 0.0, accel_scale, || {
+        for i in [
+            rolling::state::Omega_x,
+            rolling::state::Omega_y,
+            rolling::state::Omega_z,
+        ] {
+            agreement.check(e.dy[i], 0.0, accel_scale, || {
                 format!("{}: der({}) at {y:?}", F::NAME, rolling::STATE_NAMES[i])
             });
         }
         let rate_scale = precession.abs() + omega_z.abs();
-        agreement.check(REL, e.dy[rolling::state::theta], 0.0, rate_scale, || {
+        agreement.check(e.dy[rolling::state::theta], 0.0, rate_scale, || {
             format!("{}: der(theta) at {y:?}", F::NAME)
         });
-        agreement.check(REL, e.dy[rolling::state::psi], precession, rate_scale, || {
+        agreement.check(e.dy[rolling::state::psi], precession, rate_scale, || {
             format!("{}: der(psi) at {y:?}", F::NAME)
         });
         let weight = p.m * p.g;
         let n = e.out[rolling::output::N];
         let force_scale = weight + p.m * p.a * accel_scale;
-        agreement.check(REL, n, weight, force_scale, || format!("{}: N at {y:?}", F::NAME));
+        agreement.check(n, weight, force_scale, || {
+            format!("{}: N at {y:?}", F::NAME)
+        });
         let friction = p.m * p.a * (omega_z * precession).abs();
-        agreement.check(REL, e.out[rolling::output::T], friction, force_scale, || {
+        agreement.check(e.out[rolling::output::T], friction, force_scale, || {
             format!("{}: T at {y:?}", F::NAME)
         });
     }
@@ -193,4 +217,31 @@ fn reference_cartesian_sliding_loses_energy_to_friction_and_air() {
 #[test]
 fn reference_steady_motions_are_steady() {
     steady_motions::<RollingRef>();
+}
+
+#[test]
+fn generated_rolling_conserves_energy_without_air() {
+    rolling_energy_balance::<RollingGen>(false);
+}
+
+#[test]
+fn generated_rolling_loses_energy_to_air_only() {
+    rolling_energy_balance::<RollingGen>(true);
+}
+
+#[test]
+fn generated_sliding_loses_energy_to_friction_and_air() {
+    sliding_energy_balance::<SlidingGen>(false);
+    sliding_energy_balance::<SlidingGen>(true);
+}
+
+#[test]
+fn generated_cartesian_sliding_loses_energy_to_friction_and_air() {
+    cartesian_energy_balance::<CartesianGen>(false);
+    cartesian_energy_balance::<CartesianGen>(true);
+}
+
+#[test]
+fn generated_steady_motions_are_steady() {
+    steady_motions::<RollingGen>();
 }

@@ -2,7 +2,7 @@
 //! N/mg = 0.4345, more than μ_st allows, so the disk slides from the start with
 //! α0 = π and v̇_C(0) = 4.239 m/s².
 
-use equations::reference::{rolling, RollingReference, Slip, SlidingPolarReference};
+use equations::reference::{rolling, RollingReference, SlidingPolarReference, Slip};
 use equations::DiskParams;
 use model_runtime::{Model, WithOutputs};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -49,9 +49,23 @@ fn sliding_starts_with_the_papers_slip_acceleration() {
     let model = SlidingPolarReference::new(p).unwrap();
     let y = initial_state(&p);
     let onset = model
-        .slip_acceleration(&y, Slip { speed: 0.0, alpha: PI })
+        .slip_acceleration(
+            &y,
+            Slip {
+                speed: 0.0,
+                alpha: PI,
+            },
+        )
         .unwrap();
-    assert!((onset.along - 4.239).abs() < 5e-4, "dv_C/dt = {}", onset.along);
+    assert!(
+        (onset.along - 4.239).abs() < 5e-4,
+        "dv_C/dt = {}",
+        onset.along
+    );
     // α0 = π is consistent: the contact accelerates along e_s, not across it.
-    assert!(onset.across.abs() < 1e-12 * onset.along, "w = {}", onset.across);
+    assert!(
+        onset.across.abs() < 1e-12 * onset.along,
+        "w = {}",
+        onset.across
+    );
 }

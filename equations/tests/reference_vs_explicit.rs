@@ -8,12 +8,10 @@ use common::scales;
 use common::tracked::Tracked;
 use common::{Agreement, Reach, Rng};
 use equations::reference::{
-    rolling, sliding_cartesian, sliding_polar, RollingReference, SlidingCartesianReference,
-    SlidingPolarReference,
+    rolling, sliding_polar, RollingReference, SlidingCartesianReference, SlidingPolarReference,
 };
 use model_runtime::{Model, WithOutputs};
 
-const REL: f64 = 1e-12;
 const STATES: usize = 3000;
 
 #[test]
@@ -29,7 +27,7 @@ fn rolling_reference_matches_the_explicit_form() {
             model.rhs(0.0, &y, &mut dy).unwrap();
             let e = explicit::rolling::<Tracked>(&p, &y);
             let rows = scales::rolling(&p, &y, &e.dy.map(|x| x.v));
-            agreement.check_derivatives(REL, &rolling::STATE_NAMES, &y, &dy, &e.dy, &rows, &common::KINDS_VELOCITY_PAIR);
+            agreement.check_derivatives(&common::ROLLING, &y, &dy, &e.dy, &rows);
             let mut out = [0.0; rolling::N_OUTPUTS];
             model.outputs(0.0, &y, &dy, &mut out).unwrap();
             for (i, x) in [
@@ -37,7 +35,7 @@ fn rolling_reference_matches_the_explicit_form() {
                 (rolling::output::R_X, e.r_x),
                 (rolling::output::R_Y, e.r_y),
             ] {
-                agreement.check(REL, out[i], x.v, x.scale, || {
+                agreement.check(out[i], x.v, x.scale, || {
                     format!("{} at {y:?}", rolling::OUTPUT_NAMES[i])
                 });
             }
@@ -59,7 +57,7 @@ fn sliding_polar_reference_matches_the_explicit_form() {
             model.rhs(0.0, &y, &mut dy).unwrap();
             let e = explicit::sliding_polar::<Tracked>(&p, &y);
             let rows = scales::sliding_polar(&p, &y, &e.dy.map(|x| x.v));
-            agreement.check_derivatives(REL, &sliding_polar::STATE_NAMES, &y, &dy, &e.dy, &rows, &common::KINDS_POLAR);
+            agreement.check_derivatives(&common::POLAR, &y, &dy, &e.dy, &rows);
             let mut out = [0.0; sliding_polar::N_OUTPUTS];
             model.outputs(0.0, &y, &dy, &mut out).unwrap();
             for (i, x) in [
@@ -69,7 +67,7 @@ fn sliding_polar_reference_matches_the_explicit_form() {
                 (sliding_polar::output::V_X, e.v_x),
                 (sliding_polar::output::V_Y, e.v_y),
             ] {
-                agreement.check(REL, out[i], x.v, x.scale, || {
+                agreement.check(out[i], x.v, x.scale, || {
                     format!("{} at {y:?}", sliding_polar::OUTPUT_NAMES[i])
                 });
             }
@@ -93,7 +91,7 @@ fn sliding_cartesian_reference_matches_the_explicit_form() {
             let polar_y = common::cartesian_to_polar(&y);
             let polar_dy = explicit::sliding_polar::<f64>(&p, &polar_y).dy;
             let rows = scales::sliding_cartesian(&p, &polar_y, &polar_dy);
-            agreement.check_derivatives(REL, &sliding_cartesian::STATE_NAMES, &y, &dy, &e.dy, &rows, &common::KINDS_VELOCITY_PAIR);
+            agreement.check_derivatives(&common::CARTESIAN, &y, &dy, &e.dy, &rows);
         }
     }
     agreement.assert_within("sliding cartesian");

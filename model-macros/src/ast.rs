@@ -117,6 +117,8 @@ pub struct ModelAst {
     pub outputs: Vec<Named<Expr>>,
     /// Reduced variants.
     pub variants: Vec<Variant>,
+    /// Compiler options (`options { name = value }`).
+    pub options: Vec<Named<f64>>,
     /// Source ranges of every node.
     pub spans: Spans,
 }

@@ -2,15 +2,14 @@
 //! tokens.
 
 use crate::span::{Errors, Spans};
-use crate::validate::range;
+use crate::validate::{range, Validated};
 use model_algebra::program::CompiledModel;
-use model_algebra::spec::ModelSpec;
-use model_algebra::CompileOptions;
 
 /// Compiles a validated model; a diagnostic of the compiler becomes an error under the tokens of
 /// the node it names, and all of them are reported together.
-pub fn compile(spec: &ModelSpec, spans: &Spans) -> syn::Result<CompiledModel> {
-    model_algebra::compile(spec, &CompileOptions::default()).map_err(|diagnostics| {
+pub fn compile(model: &Validated, spans: &Spans) -> syn::Result<CompiledModel> {
+    let spec = &model.spec;
+    model_algebra::compile(spec, &model.options).map_err(|diagnostics| {
         let mut errors = Errors::default();
         for diagnostic in diagnostics {
             errors.at(range(spans, diagnostic.id), diagnostic.message);

@@ -23,13 +23,24 @@ pub fn emit(ast: &ModelAst, compiled: &CompiledModel) -> TokenStream {
         );
         return syn::Error::new(ast.name.span(), message).to_compile_error();
     }
-    let variants = ast.variants.iter().zip(&compiled.variants).map(|(variant, model)| {
-        let default_doc = format!(" A reduced variant of `{name}`.");
-        let docs = docs_or(&variant.attrs, &default_doc);
-        let vis = syn::parse_quote!(pub);
-        let info_name = format!("{name}::{}", variant.name);
-        module(&vis, &variant.name, &docs, &info_name, model, TokenStream::new())
-    });
+    let variants = ast
+        .variants
+        .iter()
+        .zip(&compiled.variants)
+        .map(|(variant, model)| {
+            let default_doc = format!(" A reduced variant of `{name}`.");
+            let docs = docs_or(&variant.attrs, &default_doc);
+            let vis = syn::parse_quote!(pub);
+            let info_name = format!("{name}::{}", variant.name);
+            module(
+                &vis,
+                &variant.name,
+                &docs,
+                &info_name,
+                model,
+                TokenStream::new(),
+            )
+        });
     let variants: TokenStream = variants.collect();
     module(&ast.vis, &ast.name, &docs, &name, compiled, variants)
 }
@@ -55,9 +66,17 @@ fn module(
     let n_params = model.params.len();
     let n_outputs = model.outputs.len();
     let param_names: Vec<&str> = model.params.iter().map(|(name, _)| name.as_str()).collect();
-    let states = index_module("state", "state", &model.states.iter().map(String::as_str).collect::<Vec<_>>());
+    let states = index_module(
+        "state",
+        "state",
+        &model.states.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
     let params = index_module("param", "parameter", &param_names);
-    let outputs = index_module("output", "output", &model.outputs.iter().map(String::as_str).collect::<Vec<_>>());
+    let outputs = index_module(
+        "output",
+        "output",
+        &model.outputs.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
     let state_names = &model.states;
     let output_names = &model.outputs;
     let defaults = model.params.iter().map(|(_, default)| match default {

@@ -86,7 +86,7 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
     timing.model = ast.name.to_string();
     let compiled = timing
         .stage("validate", || validate(&ast))
-        .and_then(|spec| timing.stage("compile", || compile(&spec, &ast.spans)));
+        .and_then(|model| timing.stage("compile", || compile(&model, &ast.spans)));
     match compiled {
         Ok(compiled) => {
             let output = timing.stage("emit", || emit(&ast, &compiled));

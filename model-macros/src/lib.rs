@@ -8,6 +8,7 @@ mod emit_program;
 mod expand;
 mod expr;
 mod names;
+mod options;
 mod parse;
 mod span;
 mod validate;

@@ -92,7 +92,8 @@ impl Names {
             self.clashed.push(name.to_string());
             return Err(*earlier);
         }
-        self.table.insert(name.to_string(), Decl { kind, id: Some(id) });
+        self.table
+            .insert(name.to_string(), Decl { kind, id: Some(id) });
         let list = match kind {
             Kind::Param => &mut self.params,
             Kind::State => &mut self.states,

@@ -33,6 +33,7 @@ struct Seen {
     params: Option<SpanRange>,
     states: Option<SpanRange>,
     outputs: Option<SpanRange>,
+    options: Option<SpanRange>,
 }
 
 fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst> {
@@ -44,7 +45,9 @@ fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst
     let body;
     syn::braced!(body in input);
     if !input.is_empty() {
-        return Err(input.error("one `model!` holds exactly one module: unexpected tokens after it"));
+        return Err(
+            input.error("one `model!` holds exactly one module: unexpected tokens after it")
+        );
     }
     let mut model = ModelAst {
         attrs,
@@ -57,6 +60,7 @@ fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst
         equations: Vec::new(),
         outputs: Vec::new(),
         variants: Vec::new(),
+        options: Vec::new(),
         spans: Spans::default(),
     };
     let mut seen = Seen::default();
@@ -90,7 +94,9 @@ fn parse_item(
         return Ok(());
     }
     let keyword: syn::Ident = input.parse().map_err(|_| {
-        input.error("expected `params`, `states`, `let`, `equations`, `outputs` or `variant`")
+        input.error(
+            "expected `params`, `states`, `let`, `equations`, `outputs`, `variant` or `options`",
+        )
     })?;
     let range = SpanRange::single(keyword.span());
     match keyword.to_string().as_str() {
@@ -153,6 +159,19 @@ fn parse_item(
                 });
             }
         }
+        "options" => {
+            no_docs_here(&attrs, "`options`", errors);
+            once(&mut seen.options, range, "options", errors);
+            let content = braced(input)?;
+            recover_section(&content, errors, |input| {
+                model.options = parse_list(input, |input| {
+                    let name = parse_name(input, &mut model.spans)?;
+                    input.parse::<Token![=]>()?;
+                    Ok(with_value(name, parse_signed_number(input)?))
+                })?;
+                Ok(())
+            });
+        }
         "variant" => {
             let variant = parse_variant(input, attrs, &mut model.spans, errors)?;
             model.variants.push(variant);
@@ -161,7 +180,7 @@ fn parse_item(
             return Err(syn::Error::new(
                 keyword.span(),
                 format!(
-                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs` or `variant`"
+                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `variant` or `options`"
                 ),
             ))
         }
@@ -207,7 +226,9 @@ fn parse_variant(
                 _ => {
                     return Err(syn::Error::new(
                         keyword.span(),
-                        format!("unknown section `{keyword}` in variant `{name}`: expected `keep` or `fix`"),
+                        format!(
+                        "unknown section `{keyword}` in variant `{name}`: expected `keep` or `fix`"
+                    ),
                     ))
                 }
             }
@@ -223,7 +244,9 @@ fn parse_variant(
         None => {
             errors.push(syn::Error::new(
                 name.span(),
-                format!("variant `{name}` has no `keep {{ .. }}`: name the states and outputs it keeps"),
+                format!(
+                    "variant `{name}` has no `keep {{ .. }}`: name the states and outputs it keeps"
+                ),
             ));
             Vec::new()
         }
@@ -262,10 +285,7 @@ fn parse_equation(input: ParseStream, spans: &mut Spans) -> syn::Result<Equation
 }
 
 /// `NAME = EXPR` (without the `;`).
-fn parse_binding(
-    input: ParseStream,
-    spans: &mut Spans,
-) -> syn::Result<Named<crate::ast::Expr>> {
+fn parse_binding(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<crate::ast::Expr>> {
     let name = parse_name(input, spans)?;
     input.parse::<Token![=]>()?;
     let value = parse_expr(input, spans)?;

@@ -6,15 +6,25 @@
 
 use crate::ast::{Call, Expr, ModelAst};
 use crate::names::{function_list, quoted, Decl, Kind, Names, DER};
+use crate::options::compile_options;
 use crate::span::{Errors, SpanRange, Spans};
 use model_algebra::spec::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
+use model_algebra::CompileOptions;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Module names the emitter uses inside every model, so a variant cannot take them.
 const RESERVED_MODULES: [&str; 4] = ["state", "param", "output", "Model"];
 
+/// A model ready for the compiler.
+pub struct Validated {
+    /// The model with its names resolved.
+    pub spec: ModelSpec,
+    /// The compiler's options for it.
+    pub options: CompileOptions,
+}
+
 /// Checks the model and resolves its names; `Err` carries every problem found.
-pub fn validate(ast: &ModelAst) -> syn::Result<ModelSpec> {
+pub fn validate(ast: &ModelAst) -> syn::Result<Validated> {
     let mut validator = Validator {
         ast,
         names: Names::new(),
@@ -31,8 +41,9 @@ pub fn validate(ast: &ModelAst) -> syn::Result<ModelSpec> {
     validator.check_counts();
     validator.check_labels();
     let variants = validator.check_variants();
+    let options = compile_options(&ast.options, &ast.spans, &mut validator.errors);
     validator.errors.finish()?;
-    Ok(ModelSpec {
+    let spec = ModelSpec {
         name: ast.name.to_string(),
         params: ast.params.clone(),
         states: ast.states.clone(),
@@ -40,7 +51,8 @@ pub fn validate(ast: &ModelAst) -> syn::Result<ModelSpec> {
         equations,
         outputs,
         variants,
-    })
+    };
+    Ok(Validated { spec, options })
 }
 
 /// What an expression depends on, through lets and outputs.
@@ -88,15 +100,15 @@ impl<'a> Validator<'a> {
         let params = ast.params.iter().map(|p| (&p.name, p.id, Kind::Param));
         let states = ast.states.iter().map(|s| (&s.name, s.id, Kind::State));
         let lets = ast.lets.iter().map(|l| (&l.name, l.id, Kind::Let));
-        let outputs = (ast.outputs.iter().enumerate()).map(|(k, o)| (&o.name, o.id, Kind::Output(k)));
+        let outputs =
+            (ast.outputs.iter().enumerate()).map(|(k, o)| (&o.name, o.id, Kind::Output(k)));
         for (name, id, kind) in params.chain(states).chain(lets).chain(outputs) {
             if let Err(earlier) = self.names.declare(name, kind, id) {
                 let message = match earlier.id {
                     None => format!("`{name}` is reserved: it is {}", earlier.kind),
-                    Some(_) => format!(
-                        "`{name}` is declared twice: it is already {}",
-                        earlier.kind
-                    ),
+                    Some(_) => {
+                        format!("`{name}` is declared twice: it is already {}", earlier.kind)
+                    }
                 };
                 self.errors.at(self.range(id), message);
             }
@@ -132,8 +144,10 @@ impl<'a> Validator<'a> {
             Black,
         }
         let lets = &self.ast.lets;
-        let mut color: BTreeMap<&str, Color> =
-            lets.iter().map(|l| (l.name.as_str(), Color::White)).collect();
+        let mut color: BTreeMap<&str, Color> = lets
+            .iter()
+            .map(|l| (l.name.as_str(), Color::White))
+            .collect();
         let mut cycles: Vec<Vec<&str>> = Vec::new();
         // Iterative DFS: (let, index of the next reference to follow).
         for root in lets {
@@ -269,7 +283,12 @@ impl<'a> Validator<'a> {
                 None => (format!("equation {}", k + 1), equation.eq_id),
             };
             if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
-                equations.push(EquationSpec { label, id, lhs, rhs });
+                equations.push(EquationSpec {
+                    label,
+                    id,
+                    lhs,
+                    rhs,
+                });
             }
         }
         equations
@@ -354,14 +373,20 @@ impl<'a> Validator<'a> {
         } else {
             let message = match self.names.get(name) {
                 Some(decl) => format!("`{name}` is {}, not a function", decl.kind),
-                None => format!("unknown function `{name}`; the functions are {}", function_list()),
+                None => format!(
+                    "unknown function `{name}`; the functions are {}",
+                    function_list()
+                ),
             };
             self.errors.at(self.range(call.func_id), message);
             return None;
         };
         if args.len() != arity {
             let plural = if arity == 1 { "" } else { "s" };
-            let message = format!("`{name}` takes {arity} argument{plural}, found {}", args.len());
+            let message = format!(
+                "`{name}` takes {arity} argument{plural}, found {}",
+                args.len()
+            );
             self.errors.at(self.range(call.id), message);
             return None;
         }
@@ -453,13 +478,17 @@ impl<'a> Validator<'a> {
             if RESERVED_MODULES.contains(&name.as_str()) {
                 self.errors.at(
                     range,
-                    format!("a variant cannot be called `{name}`: the model already defines `{name}`"),
+                    format!(
+                        "a variant cannot be called `{name}`: the model already defines `{name}`"
+                    ),
                 );
             } else if !seen.insert(name.clone()) {
-                self.errors.at(range, format!("variant `{name}` is declared twice"));
+                self.errors
+                    .at(range, format!("variant `{name}` is declared twice"));
             }
             if variant.keep.is_empty() {
-                self.errors.at(range, format!("variant `{name}` keeps nothing"));
+                self.errors
+                    .at(range, format!("variant `{name}` keeps nothing"));
             }
             let mut kept = BTreeSet::new();
             for keep in &variant.keep {
@@ -473,7 +502,8 @@ impl<'a> Validator<'a> {
                     );
                     self.errors.at(range, message);
                 } else if !kept.insert(keep.name.as_str()) {
-                    self.errors.at(range, format!("`{}` is kept twice", keep.name));
+                    self.errors
+                        .at(range, format!("`{}` is kept twice", keep.name));
                 }
             }
             let mut fixed = BTreeSet::new();
@@ -488,7 +518,8 @@ impl<'a> Validator<'a> {
                     );
                     self.errors.at(range, message);
                 } else if !fixed.insert(fix.name.as_str()) {
-                    self.errors.at(range, format!("`{}` is fixed twice", fix.name));
+                    self.errors
+                        .at(range, format!("`{}` is fixed twice", fix.name));
                 }
             }
             variants.push(VariantSpec {

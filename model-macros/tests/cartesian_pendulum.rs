@@ -4,7 +4,9 @@
 
 mod common;
 
-use common::{assert_close, assert_jacobian_matches_differences, assert_same_derivatives, assert_singular};
+use common::{
+    assert_close, assert_jacobian_matches_differences, assert_same_derivatives, assert_singular,
+};
 use model_runtime::{EvalError, Model as _, WithOutputs as _};
 use proptest::prelude::*;
 
@@ -34,7 +36,12 @@ fn hand_rhs(p: &[f64; 3], y: &[f64; 4]) -> [f64; 4] {
     let [x, y, u, v] = *y;
     let r2 = x * x + y * y;
     let speed2 = u * u + v * v;
-    [u, v, (g * x * y - x * speed2) / r2, -(y * speed2 + g * x * x) / r2]
+    [
+        u,
+        v,
+        (g * x * y - x * speed2) / r2,
+        -(y * speed2 + g * x * x) / r2,
+    ]
 }
 
 fn hand_tension(p: &[f64; 3], y: &[f64; 4]) -> f64 {
@@ -46,7 +53,10 @@ fn hand_tension(p: &[f64; 3], y: &[f64; 4]) -> f64 {
 fn index_constants_and_info_follow_the_declaration() {
     assert_eq!(cartesian_pendulum::STATE_NAMES, ["x", "y", "u", "v"]);
     assert_eq!((state::x, state::v, output::tension), (0, 3, 1));
-    assert_eq!(cartesian_pendulum::PARAM_DEFAULTS, [Some(1.5), Some(0.7), Some(9.81)]);
+    assert_eq!(
+        cartesian_pendulum::PARAM_DEFAULTS,
+        [Some(1.5), Some(0.7), Some(9.81)]
+    );
     let info = cartesian_pendulum::INFO;
     assert_eq!(info.name, "cartesian_pendulum");
     assert!(!info.pivots.is_empty());
@@ -87,9 +97,14 @@ fn the_pivot_point_is_a_singular_pivot_not_a_nan() {
 fn a_non_finite_state_is_reported() {
     let model = Model::default();
     let mut dy = [0.0; 4];
-    let error = model.rhs(0.0, &[0.3, -0.2, f64::INFINITY, 0.0], &mut dy).unwrap_err();
+    let error = model
+        .rhs(0.0, &[0.3, -0.2, f64::INFINITY, 0.0], &mut dy)
+        .unwrap_err();
     assert!(
-        matches!(error, EvalError::NonFinite { .. } | EvalError::SingularPivot { .. }),
+        matches!(
+            error,
+            EvalError::NonFinite { .. } | EvalError::SingularPivot { .. }
+        ),
         "{error}"
     );
 }

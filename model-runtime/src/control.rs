@@ -11,7 +11,8 @@ use crate::tolerance::Tolerance;
 /// Limits and initial values for step-size selection.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepOptions {
-    /// First step size; `None` chooses it automatically (Hairer's algorithm).
+    /// First step size of every segment (a run's start and each restart after a transition);
+    /// `None` chooses it automatically each time (Hairer's algorithm).
     pub h_initial: Option<f64>,
     /// Largest step size.
     pub h_max: f64,

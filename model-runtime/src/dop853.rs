@@ -306,18 +306,11 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         let mut e3 = [0.0; N];
         sum(&BHH, &self.k, &mut e3);
         let (mut err5, mut err3) = (0.0, 0.0);
-        let mut worst = 0;
-        let mut worst_value = -1.0;
         for i in 0..N {
             let sk = tol.scale(i, start.y[i], end.y[i]);
             let a = e5[i] / sk;
             let c = (b[i] - e3[i]) / sk;
-            let a2 = a * a;
-            if a2.is_nan() || a2 > worst_value {
-                worst_value = if a2.is_nan() { f64::INFINITY } else { a2 };
-                worst = i;
-            }
-            err5 += a2;
+            err5 += a * a;
             err3 += c * c;
         }
         let mut deno = err5 + 0.01 * err3;
@@ -329,12 +322,16 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         } else {
             h.abs() * err5 * (1.0 / (N as f64 * deno)).sqrt()
         };
-        let norm = if norm.is_nan() { f64::INFINITY } else { norm };
         if norm <= 1.0 {
             eval(sys, start.t + h, end.y, end.f, stats)?;
             self.k[12] = *end.f;
+            return Ok(ErrorEstimate { norm, worst: 0 });
         }
-        Ok(ErrorEstimate { norm, worst })
+        // Rejected (or NaN): the fifth-order estimate names the worst component.
+        Ok(ErrorEstimate {
+            norm: if norm.is_nan() { f64::INFINITY } else { norm },
+            worst: tol.worst(&e5, start.y, end.y),
+        })
     }
 
     fn prepare_dense<F: Rhs<N>>(

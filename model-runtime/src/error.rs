@@ -38,8 +38,8 @@ pub enum SolveError {
         /// The budget (accepted plus rejected steps).
         steps: u64,
     },
-    /// The implicit method's iteration matrix `I/(h*gamma) - J` stayed singular after halving
-    /// the step several times.
+    /// The implicit method's iteration matrix `I/(h*gamma) - J` stayed singular while the
+    /// step shrank to its minimum.
     SingularIterationMatrix {
         /// Time of the step.
         t: f64,
@@ -53,6 +53,15 @@ pub enum SolveError {
         /// Index of the guard in its mode's guard list.
         guard: usize,
         /// The value returned.
+        value: f64,
+    },
+    /// A transition map returned a state with a component that is not finite.
+    TransitionState {
+        /// The event time.
+        t: f64,
+        /// The offending component.
+        component: usize,
+        /// Its value.
         value: f64,
     },
     /// The problem was set up inconsistently.
@@ -129,6 +138,14 @@ impl fmt::Display for SolveError {
             SolveError::GuardNotFinite { t, guard, value } => {
                 write!(f, "guard {guard} is not finite at t = {t}: {value}")
             }
+            SolveError::TransitionState {
+                t,
+                component,
+                value,
+            } => write!(
+                f,
+                "the transition at t = {t} returned state component {component} = {value}"
+            ),
             SolveError::InvalidInput(e) => write!(f, "invalid input: {e}"),
         }
     }

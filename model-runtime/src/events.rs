@@ -39,7 +39,9 @@
 //! * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
 //!   [`crate::hybrid::HybridOptions::guard_checks`] to sample the guards at that many interior
 //!   points of each step on the dense output; a double crossing between two samples still
-//!   goes unseen.
+//!   goes unseen. The same holds for an excursion shorter than a step right after a
+//!   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
+//!   point): the quiet guard's first nonzero value is already back on the near side.
 
 /// Which crossings of zero fire a guard.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -42,15 +42,18 @@
 //! assert!(out.transitions >= 2);
 //! ```
 
+mod run;
+
 use crate::control::StepOptions;
 use crate::error::{InputError, SolveError};
-use crate::events::{EventHit, GuardSpec, GuardTracker, Quiet};
+use crate::events::{EventHit, GuardSpec, GuardTracker};
 use crate::integrator::Integrator;
 use crate::model::EvalError;
-use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::Observer;
 use crate::stats::Stats;
-use crate::stepper::{Rhs, Stepper};
+use crate::stepper::Stepper;
 use crate::tolerance::Tolerance;
+use run::Run;
 use std::collections::VecDeque;
 use std::fmt::{self, Debug};
 
@@ -219,9 +222,10 @@ pub struct HybridOutcome<const N: usize, Md, R> {
 /// Why a hybrid run failed.
 #[derive(Clone, Debug, PartialEq)]
 pub enum HybridError<Md> {
-    /// Integration failed inside a mode.
+    /// Integration failed inside a mode (or, for [`SolveError::TransitionState`], the mode's
+    /// transition map returned an unusable state).
     Solve {
-        /// The mode being integrated.
+        /// The mode being integrated (whose transition map failed).
         mode: Md,
         /// What went wrong.
         error: SolveError,
@@ -270,23 +274,6 @@ impl<Md: Debug> fmt::Display for HybridError<Md> {
 }
 
 impl<Md: Debug> std::error::Error for HybridError<Md> {}
-
-/// The system in one mode, as the stepper sees it.
-struct InMode<'a, H, Md> {
-    sys: &'a H,
-    mode: Md,
-}
-
-impl<const N: usize, H: HybridSystem<N>> Rhs<N> for InMode<'_, H, H::Mode> {
-    #[inline]
-    fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
-        self.sys.rhs(self.mode, t, y, dy)
-    }
-    #[inline]
-    fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
-        self.sys.jacobian(self.mode, t, y, jac)
-    }
-}
 
 /// The result of [`HybridSolver::run`] for a system `H`.
 pub type HybridResult<const N: usize, H> = Result<
@@ -357,325 +344,5 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             transitions: 0,
         };
         run.go(sys, t0, y0, t_end, observer)
-    }
-}
-
-/// The state of one run.
-struct Run<'a, S, const N: usize, Md> {
-    it: &'a mut Integrator<S, N>,
-    opts: HybridOptions,
-    tracker: GuardTracker,
-    values: Vec<f64>,
-    recent: VecDeque<(f64, Md, Md)>,
-    next_sample: u64,
-    t_first: f64,
-    mode: Md,
-    transitions: u64,
-}
-
-impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, Md> {
-    fn solve_err(&self, error: SolveError) -> HybridError<Md> {
-        HybridError::Solve {
-            mode: self.mode,
-            error,
-        }
-    }
-
-    fn go<H, O>(
-        &mut self,
-        sys: &mut H,
-        t0: f64,
-        y0: &[f64; N],
-        t_end: f64,
-        obs: &mut O,
-    ) -> Result<HybridOutcome<N, Md, H::Stop>, HybridError<Md>>
-    where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
-    {
-        self.start_segment(sys, t0, y0, Quiet::All)?;
-        self.emit_samples(sys, t0, obs)?;
-        loop {
-            if self.it.t() >= t_end {
-                return Ok(self.outcome(StopReason::EndTime));
-            }
-            let mode = self.mode;
-            let found = self.advance(sys, t_end).map_err(|e| self.solve_err(e))?;
-            let Some(found) = found else {
-                let t1 = self.it.t();
-                self.emit_samples(sys, t1, obs)?;
-                self.report_step(sys, obs, t1, None)?;
-                let mut y = *self.it.y();
-                if sys.project(mode, t1, &mut y) {
-                    let m = InMode { sys: &*sys, mode };
-                    self.it
-                        .replace_state(&m, &y)
-                        .map_err(|e| self.solve_err(e))?;
-                    self.rebase_guards(sys)?;
-                }
-                continue;
-            };
-            // The event: exact time, state from the dense output, derivative there.
-            let spec = sys.guards(mode)[found.index];
-            let m = InMode { sys: &*sys, mode };
-            let mut y = [0.0; N];
-            let mut dy = [0.0; N];
-            self.it
-                .interpolate(&m, found.t, &mut y)
-                .map_err(|e| self.solve_err(e))?;
-            crate::stepper::eval(&m, found.t, &y, &mut dy, self.it.stats_mut())
-                .map_err(|e| self.solve_err(e))?;
-            self.guards_at(sys, found.t, &y, &dy)?;
-            let hit = EventHit {
-                guard: spec.id,
-                index: found.index,
-                t: found.t,
-                before: found.before,
-                y,
-                dy,
-                value: self.values[found.index],
-                direction: found.direction,
-            };
-            self.it.stats_mut().events += 1;
-            self.emit_samples(sys, hit.t, obs)?;
-            self.report_step(sys, obs, hit.t, Some(&hit.y))?;
-            let transition =
-                sys.on_event(mode, &hit)
-                    .map_err(|source| HybridError::Transition {
-                        mode,
-                        t: hit.t,
-                        source,
-                    })?;
-            let (to, kind, mut y_after) = match transition {
-                Transition::Stop(reason) => {
-                    let mut out = self.outcome(StopReason::User(reason));
-                    out.t = hit.t;
-                    out.y = hit.y;
-                    return Ok(out);
-                }
-                Transition::Switch { to, y } => (to, TransitionKind::Switch { to }, y),
-                Transition::Continue { y } => (mode, TransitionKind::Continue, y),
-            };
-            sys.project(to, hit.t, &mut y_after);
-            self.transitions += 1;
-            self.check_chatter(hit.t, mode, to)?;
-            self.mode = to;
-            let quiet = match kind {
-                TransitionKind::Continue => Quiet::Guard(hit.index),
-                TransitionKind::Switch { .. } => Quiet::None,
-            };
-            self.start_segment(sys, hit.t, &y_after, quiet)?;
-            obs.on_transition(&TransitionRecord {
-                hit,
-                from: mode,
-                kind,
-                y_after,
-            });
-        }
-    }
-
-    /// One accepted step, then the search for the earliest admitted guard crossing in it.
-    fn advance<H: HybridSystem<N, Mode = Md>>(
-        &mut self,
-        sys: &H,
-        t_end: f64,
-    ) -> Result<Option<crate::events::Found>, SolveError> {
-        let m = InMode {
-            sys,
-            mode: self.mode,
-        };
-        self.it.step(&m, t_end)?;
-        let (t0, t1) = (self.it.t_prev(), self.it.t());
-        self.it.stats_mut().guard_evals += 1;
-        sys.guard_values(self.mode, t1, self.it.y(), self.it.f(), &mut self.values)
-            .map_err(crate::error::at(t1))?;
-        check_finite(t1, &self.values)?;
-        let it = &mut *self.it;
-        let mut y = [0.0; N];
-        let mut dy = [0.0; N];
-        self.tracker
-            .scan(t0, t1, &self.values, self.opts.guard_checks, |t, out| {
-                it.interpolate(&m, t, &mut y)?;
-                crate::stepper::eval(&m, t, &y, &mut dy, it.stats_mut())?;
-                it.stats_mut().guard_evals += 1;
-                sys.guard_values(m.mode, t, &y, &dy, out)
-                    .map_err(crate::error::at(t))?;
-                check_finite(t, out)
-            })
-    }
-
-    /// Starts a segment in the current mode at `(t, y)`: fresh integrator, guards armed
-    /// (`quiet`: the guard whose departure from zero must not fire).
-    fn start_segment<H: HybridSystem<N, Mode = Md>>(
-        &mut self,
-        sys: &H,
-        t: f64,
-        y: &[f64; N],
-        quiet: Quiet,
-    ) -> Result<(), HybridError<Md>> {
-        let m = InMode {
-            sys,
-            mode: self.mode,
-        };
-        self.it.restart(&m, t, y).map_err(|e| self.solve_err(e))?;
-        let specs = sys.guards(self.mode);
-        self.values.clear();
-        self.values.resize(specs.len(), 0.0);
-        let (y, f) = (*self.it.y(), *self.it.f());
-        self.guards_at(sys, t, &y, &f)?;
-        self.tracker
-            .start(specs.iter().map(|s| s.direction), &self.values, quiet);
-        Ok(())
-    }
-
-    /// After a projection: the guard values at the new end state become the reference.
-    fn rebase_guards<H: HybridSystem<N, Mode = Md>>(
-        &mut self,
-        sys: &H,
-    ) -> Result<(), HybridError<Md>> {
-        let (t, y, f) = (self.it.t(), *self.it.y(), *self.it.f());
-        self.guards_at(sys, t, &y, &f)?;
-        let specs = sys.guards(self.mode);
-        self.tracker
-            .start(specs.iter().map(|s| s.direction), &self.values, Quiet::All);
-        Ok(())
-    }
-
-    /// Evaluates all guards of the current mode into `self.values`.
-    fn guards_at<H: HybridSystem<N, Mode = Md>>(
-        &mut self,
-        sys: &H,
-        t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
-    ) -> Result<(), HybridError<Md>> {
-        self.it.stats_mut().guard_evals += 1;
-        let r = sys
-            .guard_values(self.mode, t, y, dy, &mut self.values)
-            .map_err(crate::error::at(t))
-            .and_then(|()| check_finite(t, &self.values));
-        r.map_err(|e| self.solve_err(e))
-    }
-
-    /// Delivers the samples due up to and including `t_hi`.
-    fn emit_samples<H, O>(&mut self, sys: &H, t_hi: f64, obs: &mut O) -> Result<(), HybridError<Md>>
-    where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
-    {
-        let Some(rate) = self.opts.sample_rate else {
-            return Ok(());
-        };
-        let m = InMode {
-            sys,
-            mode: self.mode,
-        };
-        let mut y = [0.0; N];
-        loop {
-            let ts = self.t_first + self.next_sample as f64 / rate;
-            if ts > t_hi {
-                return Ok(());
-            }
-            self.it
-                .interpolate(&m, ts, &mut y)
-                .map_err(|e| self.solve_err(e))?;
-            obs.on_sample(&Sample {
-                t: ts,
-                mode: self.mode,
-                y: &y,
-            });
-            self.next_sample += 1;
-        }
-    }
-
-    /// Hands the last accepted step (cut at `t1` if an event ended it) to the observer.
-    fn report_step<H, O>(
-        &mut self,
-        sys: &H,
-        obs: &mut O,
-        t1: f64,
-        y1: Option<&[f64; N]>,
-    ) -> Result<(), HybridError<Md>>
-    where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
-    {
-        if obs.wants_dense() {
-            let m = InMode {
-                sys,
-                mode: self.mode,
-            };
-            self.it.ensure_dense(&m).map_err(|e| self.solve_err(e))?;
-        }
-        let it = &*self.it;
-        let dense = it.dense();
-        let view = StepView {
-            mode: self.mode,
-            t0: it.t_prev(),
-            t1,
-            y0: it.y_prev(),
-            y1: y1.unwrap_or(it.y()),
-            f0: it.f_prev(),
-            dense: if obs.wants_dense() {
-                dense
-                    .as_ref()
-                    .map(|d| d as &dyn crate::observer::Interpolant<N>)
-            } else {
-                None
-            },
-        };
-        obs.on_step(&view);
-        Ok(())
-    }
-
-    fn check_chatter(&mut self, t: f64, from: Md, to: Md) -> Result<(), HybridError<Md>> {
-        let limit = self.opts.chatter;
-        self.recent.push_back((t, from, to));
-        while let Some(&(t_old, _, _)) = self.recent.front() {
-            if t_old < t - limit.window {
-                self.recent.pop_front();
-            } else {
-                break;
-            }
-        }
-        if self.recent.len() > limit.max_transitions {
-            let mut modes = Vec::new();
-            for &(_, a, b) in &self.recent {
-                for m in [a, b] {
-                    if !modes.contains(&m) {
-                        modes.push(m);
-                    }
-                }
-            }
-            return Err(HybridError::Chattering {
-                t,
-                transitions: self.recent.len(),
-                window: limit.window,
-                modes,
-            });
-        }
-        Ok(())
-    }
-
-    fn outcome<R>(&self, stop: StopReason<R>) -> HybridOutcome<N, Md, R> {
-        HybridOutcome {
-            t: self.it.t(),
-            y: *self.it.y(),
-            mode: self.mode,
-            stop,
-            stats: *self.it.stats(),
-            transitions: self.transitions,
-        }
-    }
-}
-
-fn check_finite(t: f64, values: &[f64]) -> Result<(), SolveError> {
-    match values.iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(guard) => Err(SolveError::GuardNotFinite {
-            t,
-            guard,
-            value: values[guard],
-        }),
     }
 }

@@ -108,6 +108,11 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
 
     /// Takes one accepted step, never beyond `t_end` (the last step lands on it exactly).
     /// Does nothing when `t >= t_end`.
+    ///
+    /// A model error at a trial stage of an adaptive method, or a singular iteration matrix of
+    /// an implicit one, rejects the attempt (a shorter step may stay clear of the singular
+    /// region); it is returned, with its time, once the step cannot shrink any further.
+    /// Fixed-step methods return it at once.
     pub fn step<F: Rhs<N>>(&mut self, sys: &F, t_end: f64) -> Result<(), SolveError> {
         if self.t >= t_end {
             return Ok(());
@@ -136,7 +141,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
             self.attempts += 1;
             let mut y1 = [0.0; N];
             let mut f1 = [0.0; N];
-            let est = self.stepper.attempt(
+            let attempt = self.stepper.attempt(
                 sys,
                 StepStart {
                     t: self.t,
@@ -150,7 +155,21 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
                     f: &mut f1,
                 },
                 &mut self.stats,
-            )?;
+            );
+            let est = match attempt {
+                Ok(est) => est,
+                // A model that cannot be evaluated at a trial stage (the step overshot into a
+                // region where it is singular) is treated as a rejection: a shorter step may
+                // stay clear of it. Only when the step cannot shrink further is it an error.
+                Err(SolveError::Eval { .. } | SolveError::SingularIterationMatrix { .. })
+                    if fixed.is_none() && h > h_min =>
+                {
+                    self.stats.rejected += 1;
+                    h = self.ctrl.rejected(h, f64::INFINITY);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
             if est.norm <= 1.0 {
                 self.stats.steps += 1;
                 self.t_prev = self.t;
@@ -165,10 +184,6 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
                     Some(hf) => hf,
                     None => self.ctrl.accepted(h, est.norm),
                 };
-                // After a shortened final step keep the step the controller wanted before.
-                if last && fixed.is_none() {
-                    self.h = self.h.max(h);
-                }
                 return Ok(());
             }
             self.stats.rejected += 1;

@@ -8,6 +8,30 @@
 //!   collapse detection); [`integrate`] for a plain run.
 //! * [`hybrid`]: modes, guards with exact crossing location ([`events`] documents the guard
 //!   semantics), transition maps, chattering detection, projection, streaming [`observer`]s.
+//!
+//! ```
+//! use model_runtime::{integrate, Dop853, EvalError, Model, ModelInfo, OpCounts, StepOptions, Tolerance};
+//!
+//! /// y' = -y.
+//! struct Decay;
+//! const ZERO: OpCounts = OpCounts { add: 0, mul: 0, div: 0, sqrt: 0, trig: 0, transcendental: 0 };
+//! static INFO: ModelInfo = ModelInfo {
+//!     name: "decay", state_names: &["y"], param_names: &[], output_names: &[],
+//!     rhs_ops: ZERO, jacobian_ops: ZERO, outputs_ops: ZERO, pivots: &[], numeric_blocks: &[],
+//! };
+//! impl Model<1> for Decay {
+//!     fn info(&self) -> &'static ModelInfo { &INFO }
+//!     fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+//!         dy[0] = -y[0];
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let sol = integrate(&Decay, Dop853::new(), Tolerance::scalar(1e-12, 1e-12),
+//!                     StepOptions::default(), 0.0, &[1.0], 2.0).unwrap();
+//! assert!((sol.y[0] - (-2.0f64).exp()).abs() < 1e-11);
+//! assert!(sol.stats.steps < 40);
+//! ```
 #![warn(missing_docs)]
 // Numerical kernels index several arrays with one loop variable, as the formulas do.
 #![allow(clippy::needless_range_loop)]

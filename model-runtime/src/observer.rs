@@ -18,7 +18,8 @@ impl<S: crate::stepper::Stepper<N>, const N: usize> Interpolant<N>
 }
 
 /// One accepted step as an observer sees it. If an event cut the step short, `t1`/`y1` are the
-/// event time and state (the part of the step after the event is discarded).
+/// event time and state (the part of the step after the event is discarded); a step cut to
+/// nothing (an event at its very start) is not reported.
 pub struct StepView<'a, const N: usize, Md> {
     /// The mode the step was taken in.
     pub mode: Md,

@@ -126,11 +126,9 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
         }
         stats.decompositions += 1;
         let Ok(lu) = Lu::new(m) else {
-            // A singular iteration matrix: reject, the driver retries with a smaller step.
-            return Ok(ErrorEstimate {
-                norm: f64::INFINITY,
-                worst: 0,
-            });
+            // The driver retries with a smaller step (which shifts the matrix by a larger
+            // multiple of the identity) before reporting this.
+            return Err(SolveError::SingularIterationMatrix { t, h });
         };
         let a: [&[f64]; 4] = [&[A21], &[A31, A32], &[A41, A42, A43], &[A51, A52, A53, A54]];
         let cs = [C2, C3, C4, 1.0];

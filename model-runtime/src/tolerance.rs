@@ -54,28 +54,33 @@ impl<const N: usize> Tolerance<N> {
 
     /// The root-mean-square scaled norm of `v` with scales taken from `y0` and `y1`.
     pub fn norm(&self, v: &[f64; N], y0: &[f64; N], y1: &[f64; N]) -> ErrorEstimate {
+        let scaled = |i: usize| v[i] / self.scale(i, y0[i], y1[i]);
         let mut sum = 0.0;
-        let mut worst = 0;
-        let mut worst_value = -1.0;
         for i in 0..N {
-            let s = v[i] / self.scale(i, y0[i], y1[i]);
-            let s2 = s * s;
-            if s2 > worst_value {
-                worst_value = s2;
-                worst = i;
-            }
-            sum += s2;
+            let s = scaled(i);
+            sum += s * s;
         }
         let norm = if N == 0 { 0.0 } else { (sum / N as f64).sqrt() };
-        if norm.is_nan() {
-            // A NaN component is the worst one; the step must be rejected.
-            let worst = (0..N).find(|&i| v[i].is_nan() || y1[i].is_nan()).unwrap_or(worst);
-            return ErrorEstimate {
-                norm: f64::INFINITY,
-                worst,
-            };
+        if norm <= 1.0 {
+            // Accepted: which component is worst matters only for reports of failures, so the
+            // common path does not search for it.
+            return ErrorEstimate { norm, worst: 0 };
         }
-        ErrorEstimate { norm, worst }
+        // Rejected (or NaN, which counts as infinitely bad): name the worst component.
+        ErrorEstimate {
+            norm: if norm.is_nan() { f64::INFINITY } else { norm },
+            worst: self.worst(v, y0, y1),
+        }
+    }
+
+    /// The component of `v` with the largest scaled magnitude (a NaN one first).
+    pub fn worst(&self, v: &[f64; N], y0: &[f64; N], y1: &[f64; N]) -> usize {
+        let scaled = |i: usize| v[i] / self.scale(i, y0[i], y1[i]);
+        (0..N).find(|&i| scaled(i).is_nan()).unwrap_or_else(|| {
+            (0..N)
+                .max_by(|&a, &b| scaled(a).abs().total_cmp(&scaled(b).abs()))
+                .unwrap_or(0)
+        })
     }
 }
 
@@ -85,7 +90,8 @@ pub struct ErrorEstimate {
     /// Scaled norm: the step is acceptable when it is at most one. Never NaN (a NaN error is
     /// reported as infinite).
     pub norm: f64,
-    /// The component with the largest scaled error.
+    /// The component with the largest scaled error; only determined when `norm > 1` (zero
+    /// otherwise).
     pub worst: usize,
 }
 

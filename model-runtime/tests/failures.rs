@@ -92,6 +92,8 @@ fn model_errors_propagate_with_the_time() {
     ] {
         match result.unwrap_err() {
             SolveError::Eval { t, source } => {
+                // RK4 fails at its first stage beyond y = 2; the adaptive method first shrinks
+                // its steps towards the singular point.
                 assert!(t > 1.5 && t <= 2.3, "t = {t}");
                 assert!(matches!(
                     source,
@@ -198,5 +200,41 @@ fn errors_display_their_numbers() {
     assert!(
         s.contains("t = 0.5") && s.contains("component 3") && s.contains("1e-17"),
         "{s}"
+    );
+}
+
+/// A model whose Jacobian is infinite: no step size makes the iteration matrix usable.
+struct SingularJacobian;
+static SINGULAR_JACOBIAN: model_runtime::ModelInfo = common::info("singular_jacobian", &["y"]);
+impl model_runtime::Model<1> for SingularJacobian {
+    fn info(&self) -> &'static model_runtime::ModelInfo {
+        &SINGULAR_JACOBIAN
+    }
+    fn rhs(&self, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        dy[0] = 1.0;
+        Ok(())
+    }
+    fn jacobian(&self, _t: f64, _y: &[f64; 1], jac: &mut [[f64; 1]; 1]) -> Result<(), EvalError> {
+        // Infinite: the iteration matrix is not finite at any step size.
+        jac[0][0] = f64::INFINITY;
+        Ok(())
+    }
+}
+
+#[test]
+fn a_singular_iteration_matrix_is_a_typed_error() {
+    let err = integrate(
+        &SingularJacobian,
+        Rodas4::new(),
+        Tolerance::scalar(1e-6, 1e-6),
+        StepOptions::default(),
+        0.0,
+        &[0.0],
+        1.0,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(err, SolveError::SingularIterationMatrix { t, h } if t == 0.0 && h > 0.0),
+        "{err:?}"
     );
 }

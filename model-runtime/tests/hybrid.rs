@@ -298,3 +298,113 @@ fn a_non_finite_guard_is_a_typed_error_naming_the_mode() {
         "{err:?}"
     );
 }
+
+/// `y' = 1`, singular beyond `y = 2`, with a stop guard at `y = 1.9`.
+struct Cliff;
+impl HybridSystem<1> for Cliff {
+    type Mode = ();
+    type Guard = ();
+    type Stop = ();
+    fn rhs(&self, _: (), t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        model_runtime::Model::rhs(&common::Fragile, t, y, dy)
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
+        &[GuardSpec {
+            id: (),
+            direction: Direction::Up,
+        }]
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; 1],
+        _dy: &[f64; 1],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        g[0] = y[0] - 1.9;
+        Ok(())
+    }
+    fn on_event(&mut self, _: (), _: &EventHit<1, ()>) -> Result<Transition<1, (), ()>, EvalError> {
+        Ok(Transition::Stop(()))
+    }
+}
+
+#[test]
+fn a_step_overshooting_into_a_singular_region_is_retried_and_the_guard_found() {
+    let options = HybridOptions {
+        step: model_runtime::StepOptions {
+            h_initial: Some(1.5),
+            ..Default::default()
+        },
+        ..HybridOptions::default()
+    };
+    let mut solver =
+        HybridSolver::new(Dopri5::new(), Tolerance::scalar(1e-8, 1e-8), options).unwrap();
+    let out = solver
+        .run(&mut Cliff, (), 0.0, &[0.0], 5.0, &mut ())
+        .unwrap();
+    assert_eq!(out.stop, StopReason::User(()));
+    assert!((out.t - 1.9).abs() < 1e-14, "{}", out.t);
+    assert!(out.stats.rejected >= 1, "{:?}", out.stats);
+}
+
+/// `y' = 1` whose transition map at `y = 1` returns a NaN state.
+struct Broken;
+impl HybridSystem<1> for Broken {
+    type Mode = ();
+    type Guard = ();
+    type Stop = ();
+    fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        dy[0] = 1.0;
+        Ok(())
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
+        &[GuardSpec {
+            id: (),
+            direction: Direction::Up,
+        }]
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; 1],
+        _dy: &[f64; 1],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        g[0] = y[0] - 1.0;
+        Ok(())
+    }
+    fn on_event(&mut self, _: (), _: &EventHit<1, ()>) -> Result<Transition<1, (), ()>, EvalError> {
+        Ok(Transition::Continue { y: [f64::NAN] })
+    }
+}
+
+#[test]
+fn a_non_finite_state_from_the_transition_map_is_named() {
+    let mut solver = HybridSolver::new(
+        Dopri5::new(),
+        Tolerance::scalar(1e-8, 1e-8),
+        HybridOptions::default(),
+    )
+    .unwrap();
+    let err = solver
+        .run(&mut Broken, (), 0.0, &[0.0], 10.0, &mut ())
+        .unwrap_err();
+    match err {
+        HybridError::Solve {
+            mode: (),
+            error:
+                SolveError::TransitionState {
+                    t,
+                    component: 0,
+                    value,
+                },
+        } => {
+            assert!((t - 1.0).abs() < 1e-12);
+            assert!(value.is_nan());
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -6,6 +6,7 @@
 //! slip — is derived from `rhs` and the shared state layout ([`crate::modes::layout`]).
 
 use super::onset::SlipAcceleration;
+use crate::models::{rolling, sliding, sliding_cartesian};
 use crate::modes::{PhysicalState, Slip, SlipChart, DIM};
 use crate::params::DiskParams;
 use crate::reference::{RollingReference, SlidingCartesianReference, SlidingPolarReference};
@@ -77,21 +78,43 @@ pub struct DiskModels<R, S> {
 }
 
 /// The hand-written reference models.
-pub type ReferenceModels = DiskModels<
-    RollingReference,
-    SlidingModel<SlidingCartesianReference, SlidingPolarReference>,
->;
+pub type ReferenceModels =
+    DiskModels<RollingReference, SlidingModel<SlidingCartesianReference, SlidingPolarReference>>;
 
 impl ReferenceModels {
     /// The reference models for `params`, sliding in `chart`.
     pub fn reference(params: DiskParams, chart: SlipChart) -> Result<Self, ParamError> {
         let sliding = match chart {
-            SlipChart::Cartesian => SlidingModel::Cartesian(SlidingCartesianReference::new(params)?),
+            SlipChart::Cartesian => {
+                SlidingModel::Cartesian(SlidingCartesianReference::new(params)?)
+            }
             SlipChart::Polar => SlidingModel::Polar(SlidingPolarReference::new(params)?),
         };
         Ok(DiskModels {
             params: params.validated()?,
             rolling: RollingReference::new(params)?,
+            sliding,
+            chart,
+        })
+    }
+}
+
+/// The models the equation compiler generated from the paper's boxes (the default for runs).
+pub type GeneratedModels =
+    DiskModels<rolling::Model, SlidingModel<sliding_cartesian::Model, sliding::Model>>;
+
+impl GeneratedModels {
+    /// The generated models for `params`, sliding in `chart`.
+    pub fn generated(params: DiskParams, chart: SlipChart) -> Result<Self, ParamError> {
+        let params = params.validated()?;
+        let values = params.to_array();
+        let sliding = match chart {
+            SlipChart::Cartesian => SlidingModel::Cartesian(sliding_cartesian::Model::new(values)),
+            SlipChart::Polar => SlidingModel::Polar(sliding::Model::new(values)),
+        };
+        Ok(DiskModels {
+            params,
+            rolling: rolling::Model::new(values),
             sliding,
             chart,
         })

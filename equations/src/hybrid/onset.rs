@@ -106,9 +106,11 @@ pub fn consistent_slip_direction(
             }
             let root = refine(lo, f_lo.across, hi, f_hi.across, &mut eval)?;
             let at_root = eval(root)?;
-            if at_root.along > 0.0
-                && best.map_or(true, |(b, _, _)| (root - guess).abs() < (b - guess).abs())
-            {
+            let nearer = match best {
+                None => true,
+                Some((b, _, _)) => (root - guess).abs() < (b - guess).abs(),
+            };
+            if at_root.along > 0.0 && nearer {
                 // w falls through zero as alpha grows: deviations shrink (dα/d ln t = w/v̇_C).
                 best = Some((root, at_root, f_lo.across > 0.0));
             }

@@ -126,6 +126,26 @@ where
     let mut system = DiskSystem::new(models, config, &shared);
     let (phase, y0) = initial_phase(&mut system, models, config, initial)?;
     drain(&shared, observer);
+    let first = sample_at(models, &shared, initial.t, phase, &y0).map_err(|source| {
+        SimError::Transition {
+            mode: phase.mode(),
+            t: initial.t,
+            source,
+        }
+    })?;
+    if first.force.normal <= 0.0 || first.force.normal.is_nan() {
+        // The floor would have to pull: the disk leaves it at once.
+        return Ok(RunOutcome {
+            stop: StopReason::ContactLost {
+                t: initial.t,
+                mode: phase.mode(),
+            },
+            last: first,
+            transitions: 0,
+            stats: Default::default(),
+            max_drift: Default::default(),
+        });
+    }
     let options = HybridOptions {
         step: StepOptions {
             max_steps: config.max_steps,
@@ -152,7 +172,14 @@ where
         user: observer,
         failure: None,
     };
-    let result = solver.run(&mut system, phase, initial.t, &y0, config.t_end, &mut adaptor);
+    let result = solver.run(
+        &mut system,
+        phase,
+        initial.t,
+        &y0,
+        config.t_end,
+        &mut adaptor,
+    );
     let failure = adaptor.failure.take();
     drain(&shared, observer);
     let out = result.map_err(|e| match e {
@@ -233,10 +260,18 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
         ratio: force.ratio(),
     };
     let start = system
-        .begin_sliding(t, state, force.direction(), Mode::Rolling, trigger, drift, false)
+        .begin_sliding(
+            t,
+            state,
+            force.direction(),
+            Mode::Rolling,
+            trigger,
+            drift,
+            false,
+        )
         .map_err(eval_error)?;
     match start {
-        Ok(y) => Ok((Phase::Bridge, y)),
+        Ok(start) => Ok(start),
         Err(source) => Err(SimError::Onset { t, source }),
     }
 }

@@ -10,9 +10,7 @@ use super::models::DiskModels;
 use super::onset::{consistent_slip_direction, OnsetError};
 use super::{DiskConfig, SlipSign, StopReason, TransitionRecord, Trigger};
 use crate::modes::layout::{ALPHA, THETA, U_X, U_Y, V_C};
-use crate::modes::{
-    ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM,
-};
+use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use model_runtime::{Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, Transition};
 use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
@@ -83,16 +81,14 @@ struct BridgePlan {
     then: AfterBridge,
 }
 
-/// The first state of a bridge into sliding, or why sliding cannot start.
-pub(crate) type BridgeStart = Result<[f64; DIM], OnsetError>;
+/// Where sliding starts — the bridge's first state, or sliding proper when the bridge would
+/// be shorter than an ulp of `t` — or why sliding cannot start.
+pub(crate) type BridgeStart = Result<(Phase, [f64; DIM]), OnsetError>;
 
-/// The transition into a planned bridge (or the stop when there is none).
+/// The transition into a planned start (or the stop when there is none).
 fn into_bridge(t: f64, start: BridgeStart) -> Transition<DIM, Phase, Halt> {
     match start {
-        Ok(y) => Transition::Switch {
-            to: Phase::Bridge,
-            y,
-        },
+        Ok((to, y)) => Transition::Switch { to, y },
         Err(source) => Transition::Stop(Halt::Onset { t, source }),
     }
 }
@@ -133,10 +129,16 @@ pub(crate) struct DiskSystem<'a, R, S> {
     pub transitions: u64,
     recent: VecDeque<f64>,
     max_drift: Cell<ConstraintResiduals>,
+    /// Sign of the polar slip speed in the current sliding segment.
+    speed_sign: Cell<f64>,
 }
 
 impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
-    pub(crate) fn new(models: &'a DiskModels<R, S>, config: &DiskConfig, shared: &'a Shared) -> Self {
+    pub(crate) fn new(
+        models: &'a DiskModels<R, S>,
+        config: &DiskConfig,
+        shared: &'a Shared,
+    ) -> Self {
         DiskSystem {
             models,
             settings: Settings {
@@ -156,6 +158,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             transitions: 0,
             recent: VecDeque::new(),
             max_drift: Cell::new(ConstraintResiduals::default()),
+            speed_sign: Cell::new(1.0),
         }
     }
 
@@ -176,16 +179,22 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         });
     }
 
-    /// The slip speed the stick guard watches (signed readings watch its magnitude).
+    /// The slip speed the stick guard watches. In the polar chart `v_C` is signed and passes
+    /// through zero smoothly, so the guard follows `v_C` times the sign it had when the segment
+    /// started (its magnitude would touch zero inside a step without changing sign).
     fn slip_speed(&self, y: &[f64; DIM]) -> f64 {
         match self.models.chart {
             SlipChart::Cartesian => y[U_X].hypot(y[U_Y]),
-            SlipChart::Polar => y[V_C].abs(),
+            SlipChart::Polar => self.speed_sign.get() * y[V_C],
         }
     }
 
     /// Evaluates the rolling model at a physical state and returns its contact force.
-    pub(crate) fn rolling_force(&self, t: f64, state: &PhysicalState) -> Result<ContactForce, EvalError> {
+    pub(crate) fn rolling_force(
+        &self,
+        t: f64,
+        state: &PhysicalState,
+    ) -> Result<ContactForce, EvalError> {
         let mut dy = [0.0; DIM];
         self.models.rolling.rhs(t, &state.y, &mut dy)?;
         Ok(ContactForce::rolling(&self.models.params, state, &dy))
@@ -263,8 +272,19 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             direction,
         };
         let duration = 2.0 * self.settings.stick / along.abs();
-        let start = state.sliding_vector(self.models.chart, Slip { speed: 0.0, direction });
+        let start = state.sliding_vector(
+            self.models.chart,
+            Slip {
+                speed: 0.0,
+                direction,
+            },
+        );
         let end = state.sliding_vector(self.models.chart, target);
+        if t + duration <= t {
+            // Shorter than an ulp of t: a bridge guard would start at exactly zero and never
+            // arm, so sliding starts at once.
+            return Ok(Ok((Phase::Sliding, self.start_sliding(&end, target))));
+        }
         let mut slope = dy;
         for i in [U_X, U_Y] {
             // U_X/U_Y and V_C/ALPHA share indices 3 and 4: a straight line in either chart.
@@ -275,14 +295,18 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             slope,
             then: AfterBridge::StartSliding { slip: target },
         };
-        self.shared
-            .bridge_slip
-            .set(Some(Slip { speed: 0.0, direction }));
-        Ok(Ok(start))
+        self.shared.bridge_slip.set(Some(Slip {
+            speed: 0.0,
+            direction,
+        }));
+        Ok(Ok((Phase::Bridge, start)))
     }
 
     /// The slip reached the stick threshold: bridge it to its exact zero.
-    fn bridge_to_stop(&mut self, hit: &EventHit<DIM, DiskGuard>) -> Transition<DIM, Phase, Halt> {
+    fn bridge_to_stop(
+        &mut self,
+        hit: &EventHit<DIM, DiskGuard>,
+    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
         let (y, dy) = (&hit.y, &hit.dy);
         let duration = match self.models.chart {
             SlipChart::Cartesian => {
@@ -291,11 +315,10 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             }
             SlipChart::Polar => -y[V_C] / dy[V_C],
         };
-        let duration = if duration.is_finite() && duration > 0.0 {
-            duration
-        } else {
-            0.0
-        };
+        if !(duration.is_finite() && hit.t + duration > hit.t) {
+            // Already at the zero to within an ulp of t (or receding from it): decide here.
+            return self.decide_at_stop(hit.t, y);
+        }
         let mut slope = *dy;
         if self.models.chart == SlipChart::Polar {
             // α̇ = w / v_C is not followed through zero: the slip direction is held.
@@ -309,10 +332,10 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         self.shared
             .bridge_slip
             .set(Some(self.models.sliding_state(y).slip));
-        Transition::Switch {
+        Ok(Transition::Switch {
             to: Phase::Bridge,
             y: *y,
-        }
+        })
     }
 
     /// At the exact zero of the slip: roll if static friction can hold, else slide on.
@@ -397,7 +420,9 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
     }
 
     /// The bridge into sliding is over: sliding proper starts with the planned slip.
-    fn start_sliding(&self, y: &[f64; DIM], slip: Slip) -> [f64; DIM] {
+    pub(crate) fn start_sliding(&self, y: &[f64; DIM], slip: Slip) -> [f64; DIM] {
+        self.speed_sign
+            .set(if slip.speed < 0.0 { -1.0 } else { 1.0 });
         let mut state = self.models.sliding_state(y);
         state.project(self.a(), Mode::Sliding);
         state.sliding_vector(self.models.chart, slip)
@@ -410,7 +435,13 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
     type Stop = Halt;
 
     #[inline]
-    fn rhs(&self, phase: Phase, t: f64, y: &[f64; DIM], dy: &mut [f64; DIM]) -> Result<(), EvalError> {
+    fn rhs(
+        &self,
+        phase: Phase,
+        t: f64,
+        y: &[f64; DIM],
+        dy: &mut [f64; DIM],
+    ) -> Result<(), EvalError> {
         match phase {
             Phase::Rolling => self.models.rolling.rhs(t, y, dy),
             Phase::Sliding => self.models.sliding.rhs(t, y, dy),
@@ -497,7 +528,7 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                 )?;
                 Ok(into_bridge(hit.t, start))
             }
-            DiskGuard::SlipStops => Ok(self.bridge_to_stop(hit)),
+            DiskGuard::SlipStops => self.bridge_to_stop(hit),
             DiskGuard::BridgeEnd => match self.bridge.then {
                 AfterBridge::StickDecision => self.decide_at_stop(hit.t, &hit.y),
                 AfterBridge::StartSliding { slip } => Ok(Transition::Switch {

@@ -200,10 +200,13 @@ mod tests {
         let vv = v.eval(&dy);
         let tol = 1e-13 * (1.0 + vv.norm());
         assert!((v.crossed_by(&u).eval(&dy) - u.cross(&vv)).norm() < tol);
-        assert!((v.transformed(&nalgebra::Matrix3::from_columns(&[u, w, u.cross(&w)])).eval(&dy)
-            - nalgebra::Matrix3::from_columns(&[u, w, u.cross(&w)]) * vv)
-            .norm()
-            < tol * 10.0);
+        assert!(
+            (v.transformed(&nalgebra::Matrix3::from_columns(&[u, w, u.cross(&w)]))
+                .eval(&dy)
+                - nalgebra::Matrix3::from_columns(&[u, w, u.cross(&w)]) * vv)
+                .norm()
+                < tol * 10.0
+        );
         assert!((v.component(1).eval(&dy) - vv[1]).abs() < tol);
         assert!(((2.0 * v - v).eval(&dy) - vv).norm() < tol);
     }

@@ -70,8 +70,22 @@ impl Body {
         self.to_frame.column(k).into_owned()
     }
 
-    /// Checks the pivot every chart shares: the Euler-angle chart is singular at `sin θ = 0`.
-    pub fn check_chart(&self, model: &'static str, y: &[f64; DIM]) -> Result<(), EvalError> {
+    /// Checks the input and the pivot every chart shares: a non-finite state is refused by
+    /// name (it would otherwise ride along silently, e.g. `X` feeds nothing back), and the
+    /// Euler-angle chart is singular at `sin θ = 0`.
+    pub fn check_chart(
+        &self,
+        model: &'static str,
+        state_names: &[&'static str],
+        y: &[f64; DIM],
+    ) -> Result<(), EvalError> {
+        if let Some(k) = y.iter().position(|v| !v.is_finite()) {
+            return Err(EvalError::NonFinite {
+                model,
+                quantity: state_names[k],
+                value: y[k],
+            });
+        }
         let s = y[idx::THETA].sin();
         if s == 0.0 || !s.is_finite() {
             return Err(EvalError::SingularPivot {
@@ -95,7 +109,11 @@ impl Body {
     pub fn kinematic_rows(&self, frame_rate: &AffineVec) -> [Affine; 3] {
         let mismatch = *frame_rate + AffineVec::along(Vector3::z(), Affine::derivative(idx::PHI))
             - AffineVec::constant(self.spin);
-        [mismatch.component(0), mismatch.component(1), mismatch.component(2)]
+        [
+            mismatch.component(0),
+            mismatch.component(1),
+            mismatch.component(2),
+        ]
     }
 
     /// Centre-to-contact vector `a e_x`, frame components.
@@ -139,10 +157,16 @@ impl Body {
             + AffineVec::along(Vector3::z(), c_in * Affine::derivative(idx::OMEGA_Z))
             - frame_rate.crossed_by(&h);
         let air_moment = -self.p.k_M() * Vector3::new(w.x, w.y, 0.0);
-        let moment = reaction.transformed(&self.to_frame).crossed_by(&self.contact_arm())
+        let moment = reaction
+            .transformed(&self.to_frame)
+            .crossed_by(&self.contact_arm())
             + AffineVec::constant(air_moment);
         let balance = h_rate - moment;
-        [balance.component(0), balance.component(1), balance.component(2)]
+        [
+            balance.component(0),
+            balance.component(1),
+            balance.component(2),
+        ]
     }
 
     /// Kinetic plus potential energy for spatial centre velocity `v` and height `z`.
@@ -217,4 +241,62 @@ pub(crate) fn solve_rows(
         *out = *v;
     }
     Ok(dy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The frame of EQUATIONS.md §1, written out component by component.
+    fn printed_frame(psi: f64, theta: f64) -> [Vector3<f64>; 3] {
+        let (sp, cp) = psi.sin_cos();
+        let (st, ct) = theta.sin_cos();
+        [
+            Vector3::new(cp * ct, sp * ct, -st),
+            Vector3::new(-sp, cp, 0.0),
+            Vector3::new(cp * st, sp * st, ct),
+        ]
+    }
+
+    #[test]
+    fn frame_is_the_printed_one_and_orthonormal() {
+        for (psi, theta) in [
+            (0.3, 0.7),
+            (-2.0, 1e-9),
+            (5.0, std::f64::consts::FRAC_PI_2 - 1e-7),
+            (40.0, 2.5),
+        ] {
+            let mut y = [0.0; DIM];
+            y[idx::PSI] = psi;
+            y[idx::THETA] = theta;
+            let body = Body::new(DiskParams::paper(), &y);
+            let printed = printed_frame(psi, theta);
+            for (k, e) in printed.iter().enumerate() {
+                let ours = body.to_space.column(k);
+                assert!((ours - e).norm() < 1e-15, "e_{k} at ψ={psi}, θ={theta}");
+            }
+            let gram = body.to_frame * body.to_space;
+            assert!((gram - Matrix3::identity()).norm() < 1e-15);
+            // e_y = e_z × e_x, and the spatial axes are rows of the frame matrix.
+            let (e_x, e_z) = (body.to_space.column(0), body.to_space.column(2));
+            assert!((e_z.cross(&e_x) - body.to_space.column(1)).norm() < 1e-15);
+            assert_eq!(body.axis(2), body.to_frame * Vector3::z());
+        }
+    }
+
+    #[test]
+    fn rim_velocity_is_the_printed_one() {
+        // EQUATIONS.md §1: Ω × a e_x = -a (Ω_y e_z - Ω_z e_y).
+        let mut y = [0.0; DIM];
+        y[idx::PSI] = 0.8;
+        y[idx::THETA] = 0.4;
+        y[idx::OMEGA_X] = 1.5;
+        y[idx::OMEGA_Y] = -2.0;
+        y[idx::OMEGA_Z] = 30.0;
+        let p = DiskParams::paper();
+        let body = Body::new(p, &y);
+        let [_, e_y, e_z] = printed_frame(0.8, 0.4);
+        let printed = -p.a * (-2.0 * e_z - 30.0 * e_y);
+        assert!((body.rim_velocity() - printed).norm() < 1e-15);
+    }
 }

@@ -6,8 +6,8 @@
 
 use super::affine::{Affine, AffineVec, DIM};
 use super::body::{idx, solve_rows, Body};
-use crate::{DiskParams, ParamError};
 use super::ZERO_OPS;
+use crate::{DiskParams, ParamError};
 use model_runtime::{EvalError, Model, ModelInfo, WithOutputs};
 use nalgebra::Vector3;
 
@@ -148,7 +148,7 @@ impl RollingReference {
 
     fn assemble(&self, y: &[f64; DIM]) -> Result<Assembled, EvalError> {
         let body = Body::new(self.params, y);
-        body.check_chart(NAME, y)?;
+        body.check_chart(NAME, &STATE_NAMES, y)?;
         let p = &self.params;
         let velocity = Vector3::new(y[state::V_X], y[state::V_Y], y[state::V_Z]);
         let accel = AffineVec::along(Vector3::x(), Affine::derivative(state::V_X))
@@ -156,7 +156,8 @@ impl RollingReference {
             + AffineVec::along(Vector3::z(), Affine::derivative(state::V_Z));
         let frame_rate = body.frame_rate();
         // Linear momentum gives the contact force: m V̇ = -m g E_Z + R + F_a.
-        let reaction = p.m * accel + AffineVec::constant(p.m * p.g * Vector3::z() - body.air_force(&velocity));
+        let reaction =
+            p.m * accel + AffineVec::constant(p.m * p.g * Vector3::z() - body.air_force(&velocity));
         // No slip, differentiated: the contact particle's acceleration vanishes.
         let no_slip = accel + body.rim_acceleration(&frame_rate);
         let position = |i: usize, v: f64| Affine::derivative(i) - Affine::constant(v);

@@ -36,7 +36,7 @@ impl Slip {
     }
 }
 
-/// The rate of the slip velocity, `d/dt (v_C e_s) = along · x[3] + across · x[4]`, where `x`
+/// The rate of the slip velocity, `d/dt (v_C e_s) = first · x[3] + second · x[4]`, where `x`
 /// are the unknowns of the solve in the chart's slots 3 and 4.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlipRateColumns {
@@ -151,11 +151,11 @@ impl<C: SlipChart> SlidingReference<C> {
 
     fn assemble_at(&self, y: &[f64; DIM], slip: Slip) -> Result<Assembled, EvalError> {
         let body = Body::new(self.params, y);
-        body.check_chart(C::NAME, y)?;
+        body.check_chart(C::NAME, C::info().state_names, y)?;
         let p = &self.params;
         let beta0 = formulas::beta0(p, y[idx::THETA], slip.alpha - y[idx::PSI]);
         let beta0_scale = p.A() + p.m * p.a * p.a * (1.0 + p.mu_d);
-        if !(beta0.abs() > 16.0 * f64::EPSILON * beta0_scale) {
+        if beta0.is_nan() || beta0.abs() <= 16.0 * f64::EPSILON * beta0_scale {
             return Err(EvalError::SingularPivot {
                 model: C::NAME,
                 pivot: "beta0",
@@ -274,5 +274,64 @@ impl<C: SlipChart> Model<DIM> for SlidingReference<C> {
         C::unknowns_to_derivatives(&sys.slip, &mut x)?;
         *dy = x;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::{Cartesian, Polar};
+
+    fn state(v_c: f64, alpha: f64) -> [f64; DIM] {
+        let p = DiskParams::paper();
+        let theta: f64 = 0.5;
+        [
+            0.0,
+            0.0,
+            p.a * theta.sin(),
+            v_c,
+            alpha,
+            0.01,
+            0.3,
+            theta,
+            0.0,
+            2.0,
+            -1.0,
+            25.0,
+        ]
+    }
+
+    #[test]
+    fn slip_acceleration_is_what_the_polar_rhs_implies() {
+        let model = SlidingReference::<Polar>::new(DiskParams::paper()).unwrap();
+        let y = state(0.2, 1.1);
+        let mut dy = [0.0; DIM];
+        model.rhs(0.0, &y, &mut dy).unwrap();
+        let acc = model
+            .slip_acceleration(
+                &y,
+                Slip {
+                    speed: 0.2,
+                    alpha: 1.1,
+                },
+            )
+            .unwrap();
+        assert!((acc.along - dy[idx::PAIR_1]).abs() < 1e-13 * acc.along.abs().max(1.0));
+        let w = 0.2 * dy[idx::PAIR_2];
+        assert!((acc.across - w).abs() < 1e-13 * w.abs().max(1.0));
+    }
+
+    #[test]
+    fn slip_acceleration_is_continuous_at_zero_slip() {
+        let model = SlidingReference::<Cartesian>::new(DiskParams::paper()).unwrap();
+        let y = state(0.0, 0.0);
+        let at = |speed| {
+            model
+                .slip_acceleration(&y, Slip { speed, alpha: 2.0 })
+                .unwrap()
+        };
+        let (zero, tiny) = (at(0.0), at(1e-9));
+        assert!((zero.along - tiny.along).abs() < 1e-6 * zero.along.abs().max(1.0));
+        assert!((zero.across - tiny.across).abs() < 1e-6 * zero.along.abs().max(1.0));
     }
 }

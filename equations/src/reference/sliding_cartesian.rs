@@ -5,7 +5,7 @@
 //! direction `u / |u|` is undefined at `u = 0`.
 
 use super::affine::DIM;
-use super::sliding::{Slip, SlidingReference, SlipChart, SlipRateColumns};
+use super::sliding::{SlidingReference, Slip, SlipChart, SlipRateColumns};
 use super::ZERO_OPS;
 use crate::DiskParams;
 use model_runtime::{EvalError, ModelInfo, WithOutputs};

@@ -4,7 +4,7 @@
 //! regular at `v_C = 0`; only the final `α̇ = w / v_C` is singular there, and reports it.
 
 use super::affine::DIM;
-use super::sliding::{Slip, SlidingReference, SlipChart, SlipRateColumns};
+use super::sliding::{SlidingReference, Slip, SlipChart, SlipRateColumns};
 use super::ZERO_OPS;
 use crate::DiskParams;
 use model_runtime::{EvalError, ModelInfo, WithOutputs};

@@ -68,14 +68,16 @@ pub fn rolling<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> Explicit<T> {
         - q.k_M * Oy)
         / (q.A + q.ma2);
     let Oz_d = -q.ma2 * Ox * Oy / (q.C + q.ma2);
-    let VX_d = q.a
-        * (s * cp * Oy_d + sp * Oz_d + c * cp * Oy * th_d + (Oz * cp - Oy * s * sp) * psi_d);
-    let VY_d = q.a
-        * (s * sp * Oy_d - cp * Oz_d + c * sp * Oy * th_d + (Oy * s * cp + Oz * sp) * psi_d);
+    let VX_d =
+        q.a * (s * cp * Oy_d + sp * Oz_d + c * cp * Oy * th_d + (Oz * cp - Oy * s * sp) * psi_d);
+    let VY_d =
+        q.a * (s * sp * Oy_d - cp * Oz_d + c * sp * Oy * th_d + (Oy * s * cp + Oz * sp) * psi_d);
     let VZ_d = q.a * (c * Oy_d - s * Oy * th_d);
     let air = q.k_F * (v_z - q.w_z);
     Explicit {
-        dy: [V_X, V_Y, V_Z, VX_d, VY_d, VZ_d, psi_d, th_d, phi_d, Ox_d, Oy_d, Oz_d],
+        dy: [
+            V_X, V_Y, V_Z, VX_d, VY_d, VZ_d, psi_d, th_d, phi_d, Ox_d, Oy_d, Oz_d,
+        ],
         n: q.m * (VZ_d + q.g) + air * c,
         r_x: q.m * VX_d + air * s * cp,
         r_y: q.m * VY_d + air * s * sp,
@@ -115,7 +117,9 @@ pub fn sliding<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> SlidingExplicit<T> {
     let Ox_d = -Ox * Oy * c / s - q.C / q.A * Oy * Oz - q.k_M / q.A * Ox;
     // 3.
     let beta0 = q.A + q.ma2 * c * k;
-    let Oy_d = (q.A * Ox * Ox * c / s + q.C * Ox * Oz - q.m * q.g * q.a * k - q.a * air * c * k
+    let Oy_d = (q.A * Ox * Ox * c / s + q.C * Ox * Oz
+        - q.m * q.g * q.a * k
+        - q.a * air * c * k
         - q.k_M * Oy
         + q.ma2 * k * s * Oy * Oy)
         / beta0;
@@ -135,7 +139,9 @@ pub fn sliding<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> SlidingExplicit<T> {
     let t = q.mu_d * n;
     SlidingExplicit {
         with_w: Explicit {
-            dy: [V_X, V_Y, V_Z, vC_d, w, VZ_d, psi_d, th_d, phi_d, Ox_d, Oy_d, Oz_d],
+            dy: [
+                V_X, V_Y, V_Z, vC_d, w, VZ_d, psi_d, th_d, phi_d, Ox_d, Oy_d, Oz_d,
+            ],
             n,
             r_x: t * alpha.cos(),
             r_y: t * alpha.sin(),

@@ -89,7 +89,10 @@ impl Sub for Tracked {
 impl Mul for Tracked {
     type Output = Tracked;
     fn mul(self, o: Tracked) -> Tracked {
-        Tracked::rounded(self.v * o.v, self.v.abs() * o.scale + o.v.abs() * self.scale)
+        Tracked::rounded(
+            self.v * o.v,
+            self.v.abs() * o.scale + o.v.abs() * self.scale,
+        )
     }
 }
 

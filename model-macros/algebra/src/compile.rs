@@ -13,10 +13,10 @@ use crate::linear::{split, LinearForm};
 use crate::lower::Lowerer;
 use crate::print::to_dsl;
 use crate::program::{CompiledModel, Operand, Program, Target};
-use crate::solve::{solve_block, BlockSystem};
+use crate::solve::{default_sample, solve_block, BlockSystem, SolveContext};
 use crate::spec::{Diagnostic, ModelSpec, NodeId};
 use crate::structure::{blocks, StructureError};
-use crate::system::System;
+use crate::system::{Pivot, System};
 
 /// Knobs of the compiler.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -121,19 +121,22 @@ impl Solved {
         }
         let mut forms: Vec<Option<LinearForm>> = Vec::new();
         for (k, eq) in spec.equations.iter().enumerate() {
-            let form = lower.equation(k).and_then(|r| match split(&mut lower.pool, r) {
-                Ok(f) => Some(f),
-                Err(_) => {
-                    lower.diags.push(Diagnostic {
-                        id: eq.id,
-                        message: format!("`{}` is not linear in the derivatives", eq.label),
-                    });
-                    None
-                }
-            });
+            let form = lower
+                .equation(k)
+                .and_then(|r| match split(&mut lower.pool, r) {
+                    Ok(f) => Some(f),
+                    Err(_) => {
+                        lower.diags.push(Diagnostic {
+                            id: eq.id,
+                            message: format!("`{}` is not linear in the derivatives", eq.label),
+                        });
+                        None
+                    }
+                });
             forms.push(form);
         }
-        let outputs: Vec<Option<ExprId>> = (0..spec.outputs.len()).map(|k| lower.output(k)).collect();
+        let outputs: Vec<Option<ExprId>> =
+            (0..spec.outputs.len()).map(|k| lower.output(k)).collect();
         diags.append(&mut lower.diags);
         let mut pool = lower.pool;
         if !diags.is_empty() || forms.iter().any(|f| f.is_none()) {
@@ -210,8 +213,16 @@ impl Solved {
             &selection.states,
             &selection.states,
         );
-        let roots: Vec<ExprId> = entries.iter().map(|x| x.value).collect();
+        let mut roots: Vec<ExprId> = entries.iter().map(|x| x.value).collect();
+        for &i in &selection.states {
+            if let Some(g) = self.system.owner(Sym::Der(i)) {
+                roots.extend(self.system.groups[g].pivots.iter().map(|p| p.value));
+            }
+        }
         let mut e = Emitter::new(&mut self.pool, &jac_system, &rhs_input, &roots);
+        for &i in &selection.states {
+            e.check_pivots_of(Sym::Der(i))?;
+        }
         for x in &entries {
             let (Some(r), Some(c)) = (state_map[x.row], state_map[x.col]) else {
                 continue;
@@ -253,7 +264,11 @@ impl Solved {
 
 /// The user's name of a symbol, for pivot texts.
 pub fn symbol_name(spec: &ModelSpec, s: Sym) -> String {
-    let state = |i: usize| spec.states.get(i).map_or_else(|| format!("y{i}"), |s| s.name.clone());
+    let state = |i: usize| {
+        spec.states
+            .get(i)
+            .map_or_else(|| format!("y{i}"), |s| s.name.clone())
+    };
     match s {
         Sym::Time => "t".into(),
         Sym::State(i) => state(i),
@@ -263,6 +278,35 @@ pub fn symbol_name(spec: &ModelSpec, s: Sym) -> String {
             .map_or_else(|| format!("p{i}"), |p| p.name.clone()),
         Sym::Der(i) => format!("der({})", state(i)),
         Sym::Aux(k) => format!("aux{k}"),
+    }
+}
+
+/// A solved derivative costing at most this many operations is substituted into later blocks
+/// instead of read as a symbol, so that it can cancel against its coefficient (`sin(theta)`
+/// times `der(psi) = -Omega_x/sin(theta)` is `-Omega_x`). Substitution costs nothing at run
+/// time: the expression is shared, so it is still computed once.
+pub const INLINE_OPS: u32 = 4;
+
+/// `der(y_j)` as later blocks see it: its solution if that is small (then the pivots guarding
+/// it are added to `inherited`), else its symbol.
+fn known_derivative(
+    pool: &mut Pool,
+    system: &System,
+    j: usize,
+    inherited: &mut Vec<Pivot>,
+) -> ExprId {
+    match system.expression_of(Sym::Der(j)) {
+        Some(e) if pool.dag_ops(&[e]) <= INLINE_OPS => {
+            if let Some(g) = system.owner(Sym::Der(j)) {
+                for p in &system.groups[g].pivots {
+                    if !inherited.contains(p) {
+                        inherited.push(p.clone());
+                    }
+                }
+            }
+            e
+        }
+        _ => pool.sym(Sym::Der(j)),
     }
 }
 
@@ -323,10 +367,18 @@ fn solve_all(
         }
     };
     let text = |pool: &Pool, e: ExprId| to_dsl(pool, e, &|s| symbol_name(spec, s));
+    let param = |i: usize| spec.params.get(i).and_then(|p| p.value).unwrap_or(1.0);
+    let sample = |s: Sym, k: usize| default_sample(s, k, &param);
+    let ctx = SolveContext {
+        text: &text,
+        sample: &sample,
+        swell_bound: options.swell_bound,
+    };
     let mut system = System::default();
     let mut diags = Vec::new();
     for block in order {
         let m = block.vars.len();
+        let mut inherited = Vec::new();
         let mut matrix = Vec::with_capacity(m * m);
         let mut rhs = Vec::with_capacity(m);
         for &eq in &block.equations {
@@ -337,7 +389,7 @@ fn solve_all(
             let mut terms = vec![f.rest];
             for (&j, &c) in &f.coefficients {
                 if !block.vars.contains(&j) {
-                    let d = pool.sym(Sym::Der(j));
+                    let d = known_derivative(pool, &system, j, &mut inherited);
                     terms.push(pool.mul2(c, d));
                 }
             }
@@ -349,8 +401,16 @@ fn solve_all(
             rhs,
             vars: block.vars.clone(),
         };
-        match solve_block(pool, &bs, &text, options.swell_bound) {
-            Ok(sol) => system.push(sol.group),
+        match solve_block(pool, &bs, &ctx) {
+            Ok(mut sol) => {
+                for p in sol.group.pivots.drain(..) {
+                    if !inherited.contains(&p) {
+                        inherited.push(p);
+                    }
+                }
+                sol.group.pivots = inherited;
+                system.push(sol.group);
+            }
             Err(singular) => diags.push(Diagnostic {
                 id: spec.equations[block.equations[0]].id,
                 message: format!(

@@ -160,7 +160,12 @@ impl<'a> Emitter<'a> {
     /// Factors ordered so that the most shared ones are multiplied first (their partial
     /// products are then shared by value numbering).
     fn order_factors(&self, factors: &mut [ExprId]) {
-        factors.sort_by_key(|f| (std::cmp::Reverse(self.factor_uses.get(f).copied().unwrap_or(0)), *f));
+        factors.sort_by_key(|f| {
+            (
+                std::cmp::Reverse(self.factor_uses.get(f).copied().unwrap_or(0)),
+                *f,
+            )
+        });
     }
 
     fn multiply_all(&mut self, factors: &[ExprId]) -> Result<Option<Operand>, Unbound> {
@@ -190,7 +195,11 @@ impl<'a> Emitter<'a> {
                 let a_op = self.operand(a)?;
                 if matches!(f, Func::Sin | Func::Cos) && self.sincos.contains(&a) {
                     let (sin, cos) = (self.tmp(), self.tmp());
-                    self.stmts.push(Stmt::SinCos { sin, cos, arg: a_op });
+                    self.stmts.push(Stmt::SinCos {
+                        sin,
+                        cos,
+                        arg: a_op,
+                    });
                     let sin_id = self.pool.call(Func::Sin, a);
                     let cos_id = self.pool.call(Func::Cos, a);
                     self.value.insert(sin_id, Operand::Tmp(sin));
@@ -208,6 +217,40 @@ impl<'a> Emitter<'a> {
         Ok(v)
     }
 
+    /// Emits the pivot checks of group `g` (once).
+    fn check_pivots(&mut self, g: usize) -> Result<(), Unbound> {
+        if self.group_started[g] {
+            return Ok(());
+        }
+        self.group_started[g] = true;
+        let system = self.system;
+        for p in &system.groups[g].pivots {
+            if self.pivots.contains(&p.text) {
+                // The same pivot guards another group already checked.
+                continue;
+            }
+            let value = self.operand(p.value)?;
+            self.stmts.push(Stmt::CheckPivot {
+                value,
+                text: p.text.clone(),
+            });
+            self.pivots.push(p.text.clone());
+        }
+        Ok(())
+    }
+
+    /// Emits the pivot checks of the symbolic group defining `s`, even if `s` itself is never
+    /// read (a program that reads only what its definition was inlined into, like a Jacobian
+    /// column, must still refuse a singular point).
+    pub fn check_pivots_of(&mut self, s: Sym) -> Result<(), Unbound> {
+        match self.system.owner(s) {
+            Some(g) if matches!(self.system.groups[g].body, Body::Symbolic(_)) => {
+                self.check_pivots(g)
+            }
+            _ => Ok(()),
+        }
+    }
+
     fn symbol(&mut self, s: Sym) -> Result<Operand, Unbound> {
         if let Some(&v) = self.sym_value.get(&s) {
             return Ok(v);
@@ -218,15 +261,7 @@ impl<'a> Emitter<'a> {
         let system = self.system;
         let group = &system.groups[g];
         if !self.group_started[g] {
-            self.group_started[g] = true;
-            for p in &group.pivots {
-                let value = self.operand(p.value)?;
-                self.stmts.push(Stmt::CheckPivot {
-                    value,
-                    text: p.text.clone(),
-                });
-                self.pivots.push(p.text.clone());
-            }
+            self.check_pivots(g)?;
             if let Body::Numeric {
                 matrix,
                 rhs,
@@ -265,8 +300,105 @@ impl<'a> Emitter<'a> {
         Ok(v)
     }
 
-    /// A sum: positive terms added, negative ones subtracted.
+    /// `Σ f·r_i + rest` as `f·Σ r_i + rest` for the factor `f` shared by the most terms (at
+    /// least two), or `None` if no factor is shared.
+    fn factored(&mut self, terms: &[ExprId]) -> Option<ExprId> {
+        let split: Vec<(f64, Vec<ExprId>)> = terms
+            .iter()
+            .map(|&t| {
+                let (c, rest) = self.pool.split_coefficient(t);
+                let factors = match self.pool.node(rest) {
+                    Node::Mul(fs) => fs.to_vec(),
+                    Node::Const(_) => Vec::new(),
+                    _ => vec![rest],
+                };
+                (c, factors)
+            })
+            .collect();
+        let mut uses: HashMap<ExprId, usize> = HashMap::new();
+        for (_, factors) in &split {
+            for &f in factors {
+                *uses.entry(f).or_default() += 1;
+            }
+        }
+        let Some((&f, _)) = uses
+            .iter()
+            .filter(|(_, &n)| n >= 2)
+            .max_by_key(|(&f, &n)| (n, std::cmp::Reverse(f)))
+        else {
+            return self.factored_coefficient(&split, terms);
+        };
+        let mut inner = Vec::new();
+        let mut rest = Vec::new();
+        for ((c, factors), &t) in split.iter().zip(terms) {
+            if factors.contains(&f) {
+                let mut others: Vec<ExprId> = factors.iter().copied().filter(|&g| g != f).collect();
+                others.push(self.pool.num(*c));
+                inner.push(self.pool.mul(&others));
+            } else {
+                rest.push(t);
+            }
+        }
+        let inner = self.pool.add(&inner);
+        rest.push(self.pool.mul2(f, inner));
+        Some(self.pool.add(&rest))
+    }
+
+    /// `Σ c·r_i + rest` as `c·Σ r_i + rest` for the numeric coefficient (up to sign, other
+    /// than one) shared by the most terms.
+    fn factored_coefficient(
+        &mut self,
+        split: &[(f64, Vec<ExprId>)],
+        terms: &[ExprId],
+    ) -> Option<ExprId> {
+        let mut uses: HashMap<u64, (usize, usize)> = HashMap::new();
+        for (c, factors) in split {
+            if c.abs() != 1.0 && !factors.is_empty() {
+                let entry = uses.entry(c.abs().to_bits()).or_default();
+                entry.0 += 1;
+                entry.1 += usize::from(*c < 0.0);
+            }
+        }
+        let (&bits, &(_, negative)) = uses
+            .iter()
+            .filter(|(_, &(n, _))| n >= 2)
+            .max_by_key(|(&bits, &(n, _))| (n, std::cmp::Reverse(bits)))?;
+        let magnitude = f64::from_bits(bits);
+        let common = if 2 * negative > uses[&bits].0 {
+            -magnitude
+        } else {
+            magnitude
+        };
+        let mut inner = Vec::new();
+        let mut rest = Vec::new();
+        for ((c, factors), &t) in split.iter().zip(terms) {
+            if c.abs() == magnitude && !factors.is_empty() {
+                let mut parts = factors.clone();
+                parts.push(self.pool.num(c / common));
+                inner.push(self.pool.mul(&parts));
+            } else {
+                rest.push(t);
+            }
+        }
+        let inner = self.pool.add(&inner);
+        let c = self.pool.num(common);
+        // `c * (sum)` would be distributed again by the sum constructor; keep it apart.
+        let scaled = self.pool.intern(Node::Mul(vec![c, inner].into()));
+        if rest.is_empty() {
+            return Some(scaled);
+        }
+        rest.push(scaled);
+        Some(self.pool.intern_sum(rest))
+    }
+
+    /// A sum: common factors pulled out, then positive terms added and negative ones
+    /// subtracted.
     fn sum(&mut self, terms: &[ExprId]) -> Result<Operand, Unbound> {
+        if let Some(e) = self.factored(terms) {
+            if !matches!(self.pool.node(e), Node::Add(ts) if **ts == *terms) {
+                return self.operand(e);
+            }
+        }
         let mut plus = Vec::new();
         let mut minus = Vec::new();
         for &t in terms {

@@ -61,7 +61,10 @@ impl fmt::Display for Program {
                     text,
                 } => {
                     let list = |v: &[Operand]| {
-                        v.iter().map(|o| o.to_string()).collect::<Vec<_>>().join(", ")
+                        v.iter()
+                            .map(|o| o.to_string())
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     };
                     let res: Vec<String> = result.iter().map(|r| format!("t{r}")).collect();
                     writeln!(

@@ -158,6 +158,16 @@ impl Pool {
         id
     }
 
+    /// A sum of `terms` exactly as given (sorted, not simplified): for the emitter, which
+    /// must keep a factored form that the simplifying constructor would distribute again.
+    pub(crate) fn intern_sum(&mut self, mut terms: Vec<ExprId>) -> ExprId {
+        if terms.len() == 1 {
+            return terms[0];
+        }
+        terms.sort_unstable();
+        self.intern(Node::Add(terms.into()))
+    }
+
     /// The id of `node` if it was interned already (never creates it).
     pub fn lookup(&self, node: &Node) -> Option<ExprId> {
         self.index.get(node).copied()

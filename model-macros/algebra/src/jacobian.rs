@@ -62,13 +62,15 @@ pub fn jacobian(
                     let n = results.len();
                     let mut new_rhs = Vec::with_capacity(n);
                     for k in 0..n {
-                        let mut terms = vec![derivative(pool, &mut memo, rhs[k], &mut |_, leaf| {
-                            leaf_derivative(&dsym, j, leaf)
-                        })];
-                        for (l, &x) in results.iter().enumerate() {
-                            let da = derivative(pool, &mut memo, matrix[k * n + l], &mut |_, leaf| {
+                        let mut terms =
+                            vec![derivative(pool, &mut memo, rhs[k], &mut |_, leaf| {
                                 leaf_derivative(&dsym, j, leaf)
-                            });
+                            })];
+                        for (l, &x) in results.iter().enumerate() {
+                            let da =
+                                derivative(pool, &mut memo, matrix[k * n + l], &mut |_, leaf| {
+                                    leaf_derivative(&dsym, j, leaf)
+                                });
                             if da != ExprId::ZERO {
                                 let xs = pool.sym(x);
                                 let p = pool.mul2(da, xs);

@@ -9,6 +9,36 @@
 //! that would swell), [`jacobian`] (chain rule through the solution), [`cse`] (the DAG as a
 //! program) and [`variant`] (reduced models). [`expr`], [`simplify`] and [`diff`] are the
 //! algebra underneath; [`eval`] interprets a program, for tests.
+//!
+//! ```
+//! use model_algebra::spec::{Ast, BinOp, EquationSpec, ModelSpec, Named, NodeId};
+//! use model_algebra::{compile, CompileOptions, Inputs};
+//!
+//! // `der(x*x) = -k*x*x`, i.e. `2 x der(x) = -k x^2`: the compiler solves for `der(x)`.
+//! let name = |n: &str| Ast::Name(NodeId(0), n.into());
+//! let mul = |a, b| Ast::Bin(NodeId(0), BinOp::Mul, Box::new(a), Box::new(b));
+//! let named = |n: &str| Named { name: n.into(), id: NodeId(0), value: () };
+//! let spec = ModelSpec {
+//!     name: "decay".into(),
+//!     params: vec![Named { name: "k".into(), id: NodeId(0), value: Some(0.5) }],
+//!     states: vec![named("x")],
+//!     lets: vec![],
+//!     equations: vec![EquationSpec {
+//!         label: "decay".into(),
+//!         id: NodeId(1),
+//!         lhs: Ast::Der(NodeId(0), Box::new(mul(name("x"), name("x")))),
+//!         rhs: Ast::Neg(NodeId(0), Box::new(mul(name("k"), mul(name("x"), name("x"))))),
+//!     }],
+//!     outputs: vec![],
+//!     variants: vec![],
+//! };
+//! let model = compile(&spec, &CompileOptions::default()).expect("compiles");
+//! // The pivot `2*x` is checked at run time, named as the user would write it.
+//! assert_eq!(model.pivots, vec!["2*x"]);
+//! let inputs = Inputs { t: 0.0, states: &[3.0], params: &[0.5], ders: &[] };
+//! let dy = model.rhs.eval(&inputs).unwrap().ders(1);
+//! assert!((dy[0] - -1.5).abs() < 1e-15);
+//! ```
 #![warn(missing_docs)]
 
 pub mod compile;

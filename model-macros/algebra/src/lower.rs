@@ -115,7 +115,9 @@ impl<'s> Lowerer<'s> {
     /// Lowers output `k` (outputs must be lowered in order).
     pub fn output(&mut self, k: usize) -> Option<ExprId> {
         let spec = self.spec;
-        let e = self.lower(&spec.outputs[k].value, Context::Output(k)).map(|l| l.expr);
+        let e = self
+            .lower(&spec.outputs[k].value, Context::Output(k))
+            .map(|l| l.expr);
         self.outputs[k] = e;
         e
     }
@@ -204,7 +206,8 @@ impl<'s> Lowerer<'s> {
                         pool.div(e[0], e[1])
                     }
                     BinOp::Pow => {
-                        if has_der(pool, 1) || (has_der(pool, 0) && pool.as_const(e[1]) != Some(1.0))
+                        if has_der(pool, 1)
+                            || (has_der(pool, 0) && pool.as_const(e[1]) != Some(1.0))
                         {
                             nonlinear.push(nonlinear_at(id, "a power of a derivative"));
                         }
@@ -309,8 +312,6 @@ impl<'s> Lowerer<'s> {
 fn nonlinear_at(id: NodeId, what: &str) -> Diagnostic {
     Diagnostic {
         id,
-        message: format!(
-            "the equation must be linear in the derivatives, but this is {what}"
-        ),
+        message: format!("the equation must be linear in the derivatives, but this is {what}"),
     }
 }

@@ -94,7 +94,16 @@ mod tests {
 
     #[test]
     fn powi_multiplications() {
-        let table = [(0, 0), (1, 0), (2, 1), (3, 2), (4, 2), (5, 3), (8, 3), (-2, 1)];
+        let table = [
+            (0, 0),
+            (1, 0),
+            (2, 1),
+            (3, 2),
+            (4, 2),
+            (5, 3),
+            (8, 3),
+            (-2, 1),
+        ];
         for (n, m) in table {
             assert_eq!(powi_muls(n), m, "powi({n})");
         }

@@ -215,7 +215,11 @@ impl Pool {
         let mut out: Vec<ExprId> = Vec::with_capacity(bases.len());
         for base in bases {
             let es = &exponents[&base];
-            let e = if es.len() == 1 { es[0] } else { self.add(&es.clone()) };
+            let e = if es.len() == 1 {
+                es[0]
+            } else {
+                self.add(&es.clone())
+            };
             let p = self.pow(base, e);
             match self.node(p) {
                 Node::Const(bits) => coefficient *= f64::from_bits(*bits),

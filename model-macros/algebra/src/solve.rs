@@ -1,8 +1,12 @@
 //! Solving one block `A x = b` for its derivatives, symbolically when that stays small.
 //!
-//! Gaussian elimination on expressions: at each step the pivot is chosen by structure, never by
-//! value (there is no value at compile time): a constant pivot first, then the one with the
-//! fewest operations, ties broken by position. Every non-constant pivot is recorded, to be
+//! Gaussian elimination on expressions. There are no values at compile time, so the pivot is
+//! chosen by structure, guarded by magnitude at a few sample points (typical parameter values,
+//! states spread over `[0.2, 1.2]`): among the candidates that are not small compared with
+//! their column at every sample (threshold pivoting, as sparse LU codes do), a constant pivot
+//! first, then the one with the fewest operations, ties broken by position. Without the guard,
+//! the cheapest entry of a column may be a tiny coupling term, and the solution would lose
+//! digits. Every non-constant pivot is recorded, to be
 //! checked at run time with its text in the user's terms. The reciprocal of each pivot is one
 //! shared node, so the emitted code divides once per pivot and multiplies elsewhere. Back
 //! substitution reads the derivatives solved before it as symbols, which keeps the solution a
@@ -41,16 +45,45 @@ pub struct Solution {
     pub symbolic_ops: u32,
 }
 
-/// Solves `block`; `text` prints a pivot in the user's terms, `swell_bound` caps the
-/// operations of a symbolic solution.
+/// How many sample points guard the pivot choice.
+pub const SAMPLES: usize = 3;
+
+/// A pivot is acceptable when it is at least this fraction of its column's largest entry at
+/// every sample point.
+pub const PIVOT_THRESHOLD: f64 = 0.1;
+
+/// What the solve needs besides the block.
+pub struct SolveContext<'a> {
+    /// Prints a pivot in the user's terms.
+    pub text: &'a dyn Fn(&Pool, ExprId) -> String,
+    /// The value of a symbol at sample point `k < SAMPLES`.
+    pub sample: &'a dyn Fn(Sym, usize) -> f64,
+    /// The most operations a symbolic solution may cost.
+    pub swell_bound: usize,
+}
+
+/// Sample values for a model: states spread over `[0.2, 1.2]`, parameters at `param(i)`.
+pub fn default_sample(s: Sym, k: usize, param: &dyn Fn(usize) -> f64) -> f64 {
+    let spread = |i: usize| 0.2 + ((i * 7 + k * 3 + 1) as f64 * 0.618_033_988_75).fract();
+    match s {
+        Sym::State(i) => spread(i),
+        Sym::Param(i) => param(i),
+        Sym::Time => 0.5 + k as f64,
+        Sym::Der(i) => spread(i + 101),
+        Sym::Aux(i) => spread(i as usize + 211),
+    }
+}
+
+/// Solves `block` symbolically, or numerically if the symbolic solution would cost more than
+/// `ctx.swell_bound` operations.
 pub fn solve_block(
     pool: &mut Pool,
     block: &BlockSystem,
-    text: &dyn Fn(&Pool, ExprId) -> String,
-    swell_bound: usize,
+    ctx: &SolveContext,
 ) -> Result<Solution, SingularBlock> {
+    let (text, swell_bound) = (ctx.text, ctx.swell_bound);
     let n = block.vars.len();
-    let Elimination { pivots, defs } = eliminate(pool, block)?;
+    let Elimination { pivots, defs } = eliminate(pool, block, ctx.sample)?;
     let mut roots: Vec<ExprId> = defs.iter().map(|(_, e)| *e).collect();
     roots.extend(pivots.iter());
     let mut entries = block.matrix.clone();
@@ -97,9 +130,11 @@ struct Elimination {
     defs: Vec<(Sym, ExprId)>,
 }
 
-/// How a candidate pivot ranks: constants first, then the cheapest, then by position.
+/// How a candidate pivot ranks: large enough first, then constants, then the cheapest, then
+/// by position.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct PivotRank {
+    small: bool,
     not_constant: bool,
     ops: u32,
     row: usize,
@@ -107,7 +142,11 @@ struct PivotRank {
 }
 
 /// Symbolic elimination with structurally chosen pivots, then back substitution.
-fn eliminate(pool: &mut Pool, block: &BlockSystem) -> Result<Elimination, SingularBlock> {
+fn eliminate(
+    pool: &mut Pool,
+    block: &BlockSystem,
+    sample: &dyn Fn(Sym, usize) -> f64,
+) -> Result<Elimination, SingularBlock> {
     let n = block.vars.len();
     let mut a = block.matrix.clone();
     let mut b = block.rhs.clone();
@@ -116,6 +155,24 @@ fn eliminate(pool: &mut Pool, block: &BlockSystem) -> Result<Elimination, Singul
     let mut steps: Vec<(usize, usize, ExprId)> = Vec::with_capacity(n);
     let mut pivots = Vec::new();
     for _ in 0..n {
+        let magnitudes: Vec<Vec<f64>> = (0..SAMPLES)
+            .map(|k| {
+                pool.eval_many(&a, &|s| sample(s, k))
+                    .into_iter()
+                    .map(f64::abs)
+                    .collect()
+            })
+            .collect();
+        let small = |r: usize, c: usize| {
+            magnitudes.iter().any(|m| {
+                let column = (0..n)
+                    .filter(|&i| !row_done[i])
+                    .map(|i| m[i * n + c])
+                    .fold(0.0, f64::max);
+                let entry = m[r * n + c];
+                entry.is_nan() || entry < PIVOT_THRESHOLD * column
+            })
+        };
         let mut best: Option<PivotRank> = None;
         for r in (0..n).filter(|&r| !row_done[r]) {
             for c in (0..n).filter(|&c| !col_done[c]) {
@@ -124,6 +181,7 @@ fn eliminate(pool: &mut Pool, block: &BlockSystem) -> Result<Elimination, Singul
                     continue;
                 }
                 let rank = PivotRank {
+                    small: small(r, c),
                     not_constant: pool.as_const(p).is_none(),
                     ops: pool.dag_ops(&[p]),
                     row: r,

@@ -165,8 +165,7 @@ fn tarjan_blocks(incidence: &[Vec<usize>], m: &Matching) -> Vec<Block> {
                 }
             }
             vars.sort_unstable();
-            let mut equations: Vec<usize> =
-                vars.iter().filter_map(|&w| s.m.eq_of_var[w]).collect();
+            let mut equations: Vec<usize> = vars.iter().filter_map(|&w| s.m.eq_of_var[w]).collect();
             equations.sort_unstable();
             s.out.push(Block { equations, vars });
         }

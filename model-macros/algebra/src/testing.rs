@@ -4,9 +4,7 @@
 //! `eq LABEL: lhs = rhs`, `out name = expr`, `variant NAME keep a, b fix m = 1`. Expressions
 //! follow the DSL's grammar (`^` right-associative and binding tighter than unary minus).
 
-use crate::spec::{
-    Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec,
-};
+use crate::spec::{Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 
 struct Parser<'a> {
     chars: Vec<char>,
@@ -225,7 +223,10 @@ pub fn model(text: &str) -> ModelSpec {
                 spec.variants.push(VariantSpec {
                     name: v.name,
                     id: v.id,
-                    keep: list(keep).into_iter().map(|k| named(k, (), &mut id)).collect(),
+                    keep: list(keep)
+                        .into_iter()
+                        .map(|k| named(k, (), &mut id))
+                        .collect(),
                     fix: list(fix)
                         .into_iter()
                         .map(|f| {

@@ -95,15 +95,13 @@ pub fn compile_variant(
         states: kept_states.into_iter().collect(),
         outputs: kept_outputs.into_iter().collect(),
     };
-    solved
-        .emit(spec, &variant.name, &selection)
-        .map_err(|u| {
-            vec![Diagnostic {
-                id: variant.id,
-                message: format!(
-                    "variant `{}`: the compiler lost track of {:?} (this is a bug)",
-                    variant.name, u.0
-                ),
-            }]
-        })
+    solved.emit(spec, &variant.name, &selection).map_err(|u| {
+        vec![Diagnostic {
+            id: variant.id,
+            message: format!(
+                "variant `{}`: the compiler lost track of {:?} (this is a bug)",
+                variant.name, u.0
+            ),
+        }]
+    })
 }

@@ -10,26 +10,59 @@ use quote::quote;
 fn compiled() -> CompiledModel {
     let rhs = Program {
         stmts: vec![
-            Stmt::SinCos { sin: 0, cos: 1, arg: Operand::State(0) },
-            Stmt::CheckPivot { value: Operand::Tmp(0), text: "sin(a)".into() },
-            Stmt::Let { tmp: 2, node: Node::Div(Operand::Tmp(1), Operand::Tmp(0)) },
-            Stmt::Let { tmp: 3, node: Node::Powi(Operand::Const(-2.0), 3) },
-            Stmt::Let { tmp: 4, node: Node::Call(Func::Sqrt, Operand::Param(0)) },
+            Stmt::SinCos {
+                sin: 0,
+                cos: 1,
+                arg: Operand::State(0),
+            },
+            Stmt::CheckPivot {
+                value: Operand::Tmp(0),
+                text: "sin(a)".into(),
+            },
+            Stmt::Let {
+                tmp: 2,
+                node: Node::Div(Operand::Tmp(1), Operand::Tmp(0)),
+            },
+            Stmt::Let {
+                tmp: 3,
+                node: Node::Powi(Operand::Const(-2.0), 3),
+            },
+            Stmt::Let {
+                tmp: 4,
+                node: Node::Call(Func::Sqrt, Operand::Param(0)),
+            },
             Stmt::SolveBlock {
                 n: 2,
-                matrix: vec![Operand::Tmp(2), Operand::Const(1.0), Operand::Const(1.0), Operand::Tmp(3)],
+                matrix: vec![
+                    Operand::Tmp(2),
+                    Operand::Const(1.0),
+                    Operand::Const(1.0),
+                    Operand::Tmp(3),
+                ],
                 rhs: vec![Operand::Time, Operand::Tmp(4)],
                 result: vec![5, 6],
                 text: "der(a), der(b)".into(),
             },
-            Stmt::Store { target: Target::Der(0), value: Operand::Tmp(5) },
-            Stmt::Store { target: Target::Der(1), value: Operand::Tmp(6) },
+            Stmt::Store {
+                target: Target::Der(0),
+                value: Operand::Tmp(5),
+            },
+            Stmt::Store {
+                target: Target::Der(1),
+                value: Operand::Tmp(6),
+            },
         ],
     };
     let outputs_program = Program {
         stmts: vec![
-            Stmt::Let { tmp: 0, node: Node::Atan2(Operand::Der(0), Operand::State(1)) },
-            Stmt::Store { target: Target::Output(0), value: Operand::Tmp(0) },
+            Stmt::Let {
+                tmp: 0,
+                node: Node::Atan2(Operand::Der(0), Operand::State(1)),
+            },
+            Stmt::Store {
+                target: Target::Output(0),
+                value: Operand::Tmp(0),
+            },
         ],
     };
     CompiledModel {
@@ -39,7 +72,10 @@ fn compiled() -> CompiledModel {
         outputs: vec!["o".into()],
         rhs,
         jacobian: Program {
-            stmts: vec![Stmt::Store { target: Target::Jac(1, 0), value: Operand::Const(0.5) }],
+            stmts: vec![Stmt::Store {
+                target: Target::Jac(1, 0),
+                value: Operand::Const(0.5),
+            }],
         },
         outputs_program,
         pivots: vec!["sin(a)".into()],
@@ -49,7 +85,11 @@ fn compiled() -> CompiledModel {
 }
 
 fn normalized(tokens: proc_macro2::TokenStream) -> String {
-    tokens.to_string().split_whitespace().collect::<Vec<_>>().join(" ")
+    tokens
+        .to_string()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 #[test]

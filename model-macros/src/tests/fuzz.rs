@@ -1,7 +1,8 @@
 //! The front end never panics, whatever tokens it is given: random token soups and random
 //! mutations of a valid model go through parse and validate, which must return `Ok` or a
-//! diagnostic.
+//! diagnostic; mutated models also go through the whole expansion, compiler included.
 
+use crate::expand::expand_timed;
 use crate::parse::parse_model;
 use crate::validate::validate;
 use proc_macro2::TokenStream;
@@ -28,9 +29,49 @@ const VALID: &str = "
 
 /// Tokens the soups are made of: every keyword, operator and delimiter of the DSL.
 const ALPHABET: &[&str] = &[
-    "mod", "pub", "m", "params", "states", "let", "equations", "outputs", "variant", "keep", "fix",
-    "der", "sin", "atan2", "t", "pi", "x", "y", "k", "{", "}", "(", ")", "=", ";", ":", ",", "+",
-    "-", "*", "/", "^", "1", "2.5", "1e-3", "0", "///", "#", "[", "]", "::", "==", "-1",
+    "mod",
+    "pub",
+    "m",
+    "params",
+    "states",
+    "let",
+    "equations",
+    "outputs",
+    "variant",
+    "keep",
+    "fix",
+    "der",
+    "sin",
+    "atan2",
+    "t",
+    "pi",
+    "x",
+    "y",
+    "k",
+    "{",
+    "}",
+    "(",
+    ")",
+    "=",
+    ";",
+    ":",
+    ",",
+    "+",
+    "-",
+    "*",
+    "/",
+    "^",
+    "1",
+    "2.5",
+    "1e-3",
+    "0",
+    "///",
+    "#",
+    "[",
+    "]",
+    "::",
+    "==",
+    "-1",
 ];
 
 fn check(text: &str) {
@@ -103,5 +144,25 @@ proptest! {
             apply(&mut words, edit);
         }
         check(&words.join(" "));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn mutated_models_expand_without_panicking(edits in prop::collection::vec(edit(), 1..4)) {
+        let mut words = valid_words();
+        for edit in &edits {
+            if words.is_empty() {
+                break;
+            }
+            apply(&mut words, edit);
+        }
+        if let Ok(tokens) = words.join(" ").parse::<TokenStream>() {
+            let (output, _) = expand_timed(tokens);
+            // Whatever happened, the output is valid Rust (items and/or `compile_error!`s).
+            prop_assert!(syn::parse2::<syn::File>(output).is_ok());
+        }
     }
 }

@@ -55,7 +55,11 @@ fn sections_and_defaults_are_read() {
     .unwrap();
     assert_eq!(model.name, "pend");
     assert_eq!(model.attrs.len(), 1);
-    let params: Vec<_> = model.params.iter().map(|p| (p.name.as_str(), p.value)).collect();
+    let params: Vec<_> = model
+        .params
+        .iter()
+        .map(|p| (p.name.as_str(), p.value))
+        .collect();
     assert_eq!(params, [("m", Some(1.0)), ("l", None), ("g", Some(-9.81))]);
     assert_eq!(model.states.len(), 2);
     assert_eq!(model.equations.len(), 2);
@@ -63,7 +67,10 @@ fn sections_and_defaults_are_read() {
     assert!(model.equations[1].label.is_none());
     assert_eq!(model.outputs[0].name, "e");
     let variant = &model.variants[0];
-    assert_eq!((variant.name.to_string(), variant.attrs.len()), ("small".into(), 1));
+    assert_eq!(
+        (variant.name.to_string(), variant.attrs.len()),
+        ("small".into(), 1)
+    );
     assert_eq!(variant.fix[0].value, 2.0);
 }
 
@@ -87,7 +94,10 @@ fn syntax_errors_in_several_statements_are_all_reported() {
 #[test]
 fn number_suffixes_are_rejected() {
     let error = parse_model(quote! { mod m { params { a = 1f32 } } }).unwrap_err();
-    assert!(error.to_string().contains("suffixes are not allowed"), "{error}");
+    assert!(
+        error.to_string().contains("suffixes are not allowed"),
+        "{error}"
+    );
 }
 
 #[test]

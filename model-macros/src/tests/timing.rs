@@ -7,7 +7,9 @@ use proc_macro2::TokenStream;
 /// The body of the `model!` call in the crate docs.
 pub fn docs_example() -> TokenStream {
     let docs = include_str!("../../DSL.md");
-    let start = docs.find("model_macros::model! {").expect("the docs hold an example");
+    let start = docs
+        .find("model_macros::model! {")
+        .expect("the docs hold an example");
     let body = &docs[start + "model_macros::model! {".len()..];
     let end = body.find("\n}\n").expect("the example's call is closed");
     body[..end].parse().expect("the example tokenizes")

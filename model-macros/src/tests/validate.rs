@@ -94,6 +94,12 @@ rejects! {
     variant_cannot_shadow_an_emitted_module: {
         states { x } equations { der(x) = 1; } variant state { keep { x } }
     } => ["a variant cannot be called `state`"];
+    unknown_option: {
+        states { x } equations { der(x) = 1; } options { swell = 3 }
+    } => ["unknown option `swell`; the options are `swell_bound` (the most operations"];
+    swell_bound_is_a_whole_number: {
+        states { x } equations { der(x) = 1; } options { swell_bound = 1.5 }
+    } => ["`swell_bound` must be a whole number of operations, not 1.5"];
     duplicate_labels: {
         states { x, y } equations { a: der(x) = 1; a: der(y) = 1; }
     } => ["equation label `a` is used twice"];
@@ -115,11 +121,13 @@ fn a_valid_model_resolves_to_the_spec() {
         }
     })
     .unwrap();
-    let spec = validate(&ast).unwrap();
+    let spec = validate(&ast).unwrap().spec;
     assert_eq!(spec.name, "pend");
     assert_eq!(spec.equations[0].label, "kin");
     assert_eq!(spec.equations[1].label, "equation 2");
-    assert!(matches!(&spec.equations[0].lhs, Ast::Der(_, arg) if **arg == Ast::Name(arg.id(), "phi".into())));
+    assert!(
+        matches!(&spec.equations[0].lhs, Ast::Der(_, arg) if **arg == Ast::Name(arg.id(), "phi".into()))
+    );
     assert_eq!(spec.outputs.len(), 2);
     assert_eq!(spec.variants[0].fix[0].value, 1.0);
     // Every node id points into the span table.
@@ -140,5 +148,7 @@ fn a_valid_model_resolves_to_the_spec() {
         collect(&eq.lhs, &mut ids);
         collect(&eq.rhs, &mut ids);
     }
-    assert!(ids.iter().all(|&id| ast.spans.get(model_algebra::spec::NodeId(id)).is_some()));
+    assert!(ids
+        .iter()
+        .all(|&id| ast.spans.get(model_algebra::spec::NodeId(id)).is_some()));
 }

@@ -54,7 +54,11 @@ pub fn assert_singular<const N: usize>(model: &impl Model<N>, t: f64, y: &[f64; 
     let mut dy = [0.0; N];
     let error = model.rhs(t, y, &mut dy).unwrap_err();
     match &error {
-        EvalError::SingularPivot { model: name, pivot, value } => {
+        EvalError::SingularPivot {
+            model: name,
+            pivot,
+            value,
+        } => {
             assert_eq!(*name, model.info().name);
             assert!(
                 model.info().pivots.contains(pivot) || model.info().numeric_blocks.contains(pivot),
@@ -65,6 +69,9 @@ pub fn assert_singular<const N: usize>(model: &impl Model<N>, t: f64, y: &[f64; 
         }
         other => panic!("expected a singular pivot, got {other}"),
     }
-    assert!(dy.iter().all(|v| !v.is_nan()), "a NaN leaked into dy: {dy:?}");
+    assert!(
+        dy.iter().all(|v| !v.is_nan()),
+        "a NaN leaked into dy: {dy:?}"
+    );
     error
 }

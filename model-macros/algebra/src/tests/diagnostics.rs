@@ -100,14 +100,15 @@ fn non_finite_literal_is_reported_at_the_literal() {
 
 #[test]
 fn all_errors_of_a_model_are_reported_together() {
-    let (_, diags) = diagnose(
-        "states x, y\n eq a: der(x)*der(y) = 1\n eq b: der(y) = x/0\n out o = zz",
-    );
+    let (_, diags) =
+        diagnose("states x, y\n eq a: der(x)*der(y) = 1\n eq b: der(y) = x/0\n out o = zz");
     assert_eq!(diags.len(), 3, "{diags:#?}");
 }
 
 #[test]
 fn singular_block_names_its_equations() {
-    let (spec, diags) = diagnose("states x, y, z\n eq R4: der(x) = 1\n eq R5: 2*der(x) = y\n eq R6: der(y) + der(z) = 0");
+    let (spec, diags) = diagnose(
+        "states x, y, z\n eq R4: der(x) = 1\n eq R5: 2*der(x) = y\n eq R6: der(y) + der(z) = 0",
+    );
     assert_eq!(diags[0].id, spec.equations[0].id);
 }

@@ -18,7 +18,7 @@ fn rhs(m: &CompiledModel, t: f64, y: &[f64], p: &[f64]) -> Vec<f64> {
     stores.ders(y.len())
 }
 
-const PENDULUM: &str = "
+pub const PENDULUM: &str = "
     params m = 1.5, g = 9.81
     states x, y, vx, vy, P
     eq kx: der(x) = vx
@@ -35,7 +35,11 @@ fn cartesian_pendulum_matches_hand_derivation() {
     let spec = model(PENDULUM);
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
     let p = [1.5, 9.81];
-    for (x, y, vx, vy) in [(0.6, -0.8, 0.3, 0.7), (1.0, 0.2, -0.5, 2.0), (-0.3, -0.4, 1.0, 0.1)] {
+    for (x, y, vx, vy) in [
+        (0.6, -0.8, 0.3, 0.7),
+        (1.0, 0.2, -0.5, 2.0),
+        (-0.3, -0.4, 1.0, 0.1),
+    ] {
         let (mass, g) = (p[0], p[1]);
         let lam = mass * (vx * vx + vy * vy - g * y) / (x * x + y * y);
         let expected = [vx, vy, -lam * x / mass, -lam * y / mass - g, lam];
@@ -82,10 +86,7 @@ pub fn assert_jacobian_matches(m: &CompiledModel, y: &[f64], p: &[f64]) {
         .expect("jacobian evaluates");
     let jac = stores.jacobian(n);
     let fd = finite_difference_jacobian(m, y, p);
-    let scale = fd
-        .iter()
-        .flatten()
-        .fold(1.0f64, |a, b| a.max(b.abs()));
+    let scale = fd.iter().flatten().fold(1.0f64, |a, b| a.max(b.abs()));
     for i in 0..n {
         for j in 0..n {
             assert!(

@@ -2,5 +2,8 @@
 
 mod diagnostics;
 mod end_to_end;
+mod linear_systems;
+mod op_counts;
 mod props;
 mod rolling_disk;
+mod sliding_disk;

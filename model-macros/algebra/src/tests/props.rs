@@ -88,8 +88,18 @@ fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
         .boxed()
 }
 
-/// Direct evaluation of the user's tree (no `der`).
+/// Direct evaluation of the user's tree (no `der`). Zero is unsigned, as in the compiler's
+/// constants (it only matters on the branch cut of `atan2`).
 fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
+    let r = eval_signed(a, v);
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+fn eval_signed(a: &Ast, v: &[f64; 3]) -> f64 {
     match a {
         Ast::Num(_, x) => *x,
         Ast::Name(_, n) => v[NAMES.iter().position(|m| m == n).unwrap()],
@@ -111,11 +121,13 @@ fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
 }
 
 fn spec_with_outputs(outputs: &[Ast]) -> ModelSpec {
-    let named = |name: &str, value| Named {
-        name: name.into(),
-        id: NodeId(10),
-        value,
-    };
+    fn named<T>(name: &str, value: T) -> Named<T> {
+        Named {
+            name: name.into(),
+            id: NodeId(10),
+            value,
+        }
+    }
     let one = || Ast::Num(NodeId(11), 1.0);
     let der = |n: &str| Ast::Der(NodeId(12), Box::new(Ast::Name(NodeId(13), n.into())));
     ModelSpec {

@@ -35,7 +35,9 @@ pub const ROLLING: &str = "
 pub const PARAMS: [f64; 5] = [0.4387, 0.03755, 9.81, 0.0, 0.0];
 
 pub fn state() -> [f64; 12] {
-    [0.1, -0.2, 0.02, 0.05, -0.03, 0.01, 0.3, 0.57, 0.2, 1.0, 0.4, -2.0]
+    [
+        0.1, -0.2, 0.02, 0.05, -0.03, 0.01, 0.3, 0.57, 0.2, 1.0, 0.4, -2.0,
+    ]
 }
 
 /// The reduced explicit form of the rolling equations (μ_a = 0), derived by hand.
@@ -50,12 +52,15 @@ fn reference(y: &[f64; 12], p: &[f64; 5]) -> [f64; 12] {
     let dth = oy;
     let dphi = oz + ox * c / s;
     let dox = -ox * oy * c / s - cc / aa * oy * oz;
-    let doy = (aa * ox * ox * c / s + (cc + m * a * a) * ox * oz - m * g * a * c) / (aa + m * a * a);
+    let doy =
+        (aa * ox * ox * c / s + (cc + m * a * a) * ox * oz - m * g * a * c) / (aa + m * a * a);
     let doz = -m * a * a * ox * oy / (cc + m * a * a);
     let dvx = a * (s * cp * doy + sp * doz + c * cp * oy * dth + (oz * cp - oy * s * sp) * dpsi);
     let dvy = a * (s * sp * doy - cp * doz + c * sp * oy * dth + (oy * s * cp + oz * sp) * dpsi);
     let dvz = a * (c * doy - s * oy * dth);
-    [y[3], y[4], y[5], dvx, dvy, dvz, dpsi, dth, dphi, dox, doy, doz]
+    [
+        y[3], y[4], y[5], dvx, dvy, dvz, dpsi, dth, dphi, dox, doy, doz,
+    ]
 }
 
 fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<f64> {
@@ -93,4 +98,57 @@ fn rolling_matches_the_reduced_explicit_form() {
         );
     }
     super::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
+}
+
+#[test]
+fn variant_keeps_what_its_quantities_need() {
+    let spec = model(ROLLING);
+    let m = compile(&spec, &CompileOptions::default()).expect("compiles");
+    let v = &m.variants[0];
+    assert_eq!(v.name, "spin");
+    // der(theta) = Omega_y; der(Omega_x) reads theta, Omega_x, Omega_y, Omega_z.
+    assert_eq!(v.states, vec!["theta", "Omega_x", "Omega_y", "Omega_z"]);
+    let names: Vec<&str> = v.params.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, vec!["m", "a", "g"]);
+    assert!(v.outputs.is_empty());
+    let y = state();
+    let full = rhs(&m, &y, &PARAMS);
+    let reduced_y = [y[7], y[9], y[10], y[11]];
+    let reduced = rhs(v, &reduced_y, &PARAMS[..3]);
+    for (k, &i) in [7, 9, 10, 11].iter().enumerate() {
+        assert!(
+            (reduced[k] - full[i]).abs() <= 1e-13 * (1.0 + full[i].abs()),
+            "{}: {} vs {}",
+            v.states[k],
+            reduced[k],
+            full[i]
+        );
+    }
+    super::end_to_end::assert_jacobian_matches(v, &reduced_y, &PARAMS[..3]);
+}
+
+#[test]
+fn flat_disk_is_a_singular_pivot_everywhere() {
+    let spec = model(ROLLING);
+    let m = compile(&spec, &CompileOptions::default()).expect("compiles");
+    let mut y = state();
+    y[7] = 0.0;
+    let flat = |p: &crate::program::Program, y: &[f64], params: &[f64]| {
+        p.eval(&Inputs {
+            t: 0.0,
+            states: y,
+            params,
+            ders: &[],
+        })
+    };
+    let expected = Err(crate::eval::EvalFailure::SingularPivot {
+        text: "sin(theta)".into(),
+        value: 0.0,
+    });
+    assert_eq!(flat(&m.rhs, &y, &PARAMS), expected);
+    assert_eq!(flat(&m.jacobian, &y, &PARAMS), expected);
+    let v = &m.variants[0];
+    let reduced = [0.0, y[9], y[10], y[11]];
+    assert_eq!(flat(&v.rhs, &reduced, &PARAMS[..3]), expected);
+    assert_eq!(flat(&v.jacobian, &reduced, &PARAMS[..3]), expected);
 }

@@ -1,0 +1,171 @@
+//! The pruned variants (still air, only what the mode switching needs) against their full
+//! models: same derivatives for the states they keep, same outputs, matched by name.
+
+mod common;
+
+use common::{scales, Agreement, Reach, Rng};
+use equations::models;
+use equations::DiskParams;
+use model_runtime::WithOutputs;
+
+fn index(names: &[&str], name: &str) -> usize {
+    names
+        .iter()
+        .position(|n| *n == name)
+        .unwrap_or_else(|| panic!("no `{name}` in {names:?}"))
+}
+
+/// Still-air parameters in the variants' order (`mu_a`, `w_z` fixed away).
+fn still_air(rng: &mut Rng) -> DiskParams {
+    DiskParams {
+        mu_a: 0.0,
+        w_z: 0.0,
+        ..common::some_params(rng)
+    }
+}
+
+fn variant_params(p: &DiskParams) -> [f64; 5] {
+    [p.m, p.a, p.g, p.mu_d, p.mu_st]
+}
+
+#[allow(clippy::too_many_arguments)]
+fn variant_matches<F, V, const M: usize, const N: usize, const K: usize>(
+    full: &F,
+    variant: &V,
+    y: &[f64; 12],
+    row: &[f64; 12],
+    force: f64,
+    agreement: &mut Agreement,
+) where
+    F: WithOutputs<12, M>,
+    V: WithOutputs<N, K>,
+{
+    let (fi, vi) = (full.info(), variant.info());
+    let mut dy = [0.0; 12];
+    full.rhs(0.0, y, &mut dy).unwrap();
+    let mut out = [0.0; M];
+    full.outputs(0.0, y, &dy, &mut out).unwrap();
+    let yv: [f64; N] = std::array::from_fn(|i| y[index(fi.state_names, vi.state_names[i])]);
+    let mut dyv = [0.0; N];
+    variant.rhs(0.0, &yv, &mut dyv).unwrap();
+    let mut outv = [0.0; K];
+    variant.outputs(0.0, &yv, &dyv, &mut outv).unwrap();
+    for (i, name) in vi.state_names.iter().enumerate() {
+        let j = index(fi.state_names, name);
+        agreement.check(dyv[i], dy[j], row[j], || {
+            format!("{}: der({name}) at {y:?}", vi.name)
+        });
+    }
+    for (i, name) in vi.output_names.iter().enumerate() {
+        let j = index(fi.output_names, name);
+        let scale = match *name {
+            "N" | "T" => force,
+            "nu" => force / out[index(fi.output_names, "N")].abs(),
+            _ => force / out[index(fi.output_names, "T")].abs(),
+        };
+        agreement.check(outv[i], out[j], scale, || {
+            format!("{}: {name} at {y:?}", vi.name)
+        });
+    }
+}
+
+fn force_scale(p: &DiskParams, row: &[f64; 12]) -> f64 {
+    p.m * (p.g + row[3].max(row[4]).max(row[5]))
+}
+
+#[test]
+fn pruned_rolling_agrees_with_rolling() {
+    let mut rng = Rng::new(71);
+    let mut agreement = Agreement::default();
+    for reach in [Reach::Typical, Reach::Extreme] {
+        for _ in 0..2000 {
+            let p = still_air(&mut rng);
+            let y = common::rolling_state(&mut rng, &p, reach);
+            let ex = common::explicit::rolling::<f64>(&p, &y).dy;
+            let row = scales::rolling(&p, &y, &ex);
+            let full = models::rolling::Model::new(p.to_array());
+            let variant = models::rolling::pruned::Model::new(variant_params(&p));
+            variant_matches(
+                &full,
+                &variant,
+                &y,
+                &row,
+                force_scale(&p, &row),
+                &mut agreement,
+            );
+        }
+    }
+    agreement.assert_within("rolling::pruned");
+}
+
+#[test]
+fn pruned_sliding_agrees_with_sliding() {
+    let mut rng = Rng::new(72);
+    let mut agreement = Agreement::default();
+    for reach in [Reach::Typical, Reach::Extreme] {
+        for _ in 0..2000 {
+            let p = still_air(&mut rng);
+            let y = common::sliding_state(&mut rng, &p, reach);
+            let ex = common::explicit::sliding_polar::<f64>(&p, &y).dy;
+            let row = scales::sliding_polar(&p, &y, &ex);
+            let full = models::sliding::Model::new(p.to_array());
+            let variant = models::sliding::pruned::Model::new(variant_params(&p));
+            variant_matches(
+                &full,
+                &variant,
+                &y,
+                &row,
+                force_scale(&p, &row),
+                &mut agreement,
+            );
+        }
+    }
+    agreement.assert_within("sliding::pruned");
+}
+
+#[test]
+fn pruned_cartesian_sliding_agrees_with_cartesian_sliding() {
+    let mut rng = Rng::new(73);
+    let mut agreement = Agreement::default();
+    for reach in [Reach::Typical, Reach::Extreme] {
+        for _ in 0..2000 {
+            let p = still_air(&mut rng);
+            let polar = common::sliding_state(&mut rng, &p, reach);
+            let y = common::polar_to_cartesian(&polar);
+            let ex = common::explicit::sliding_polar::<f64>(&p, &polar).dy;
+            let row = scales::sliding_cartesian(&p, &polar, &ex);
+            let full = models::sliding_cartesian::Model::new(p.to_array());
+            let variant = models::sliding_cartesian::pruned::Model::new(variant_params(&p));
+            variant_matches(
+                &full,
+                &variant,
+                &y,
+                &row,
+                force_scale(&p, &row),
+                &mut agreement,
+            );
+        }
+    }
+    agreement.assert_within("sliding_cartesian::pruned");
+}
+
+#[test]
+fn pruned_variants_drop_position_and_spin_angle() {
+    for info in [
+        &models::rolling::pruned::INFO,
+        &models::sliding::pruned::INFO,
+        &models::sliding_cartesian::pruned::INFO,
+    ] {
+        for kept in ["theta", "psi", "Omega_x", "Omega_y", "Omega_z"] {
+            assert!(info.state_names.contains(&kept), "{}: {kept}", info.name);
+        }
+        for dropped in ["X", "Y", "Z", "phi"] {
+            assert!(
+                !info.state_names.contains(&dropped),
+                "{}: {dropped}",
+                info.name
+            );
+        }
+        assert_eq!(info.param_names, ["m", "a", "g", "mu_d", "mu_st"]);
+    }
+}

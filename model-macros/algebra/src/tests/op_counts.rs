@@ -1,0 +1,151 @@
+//! Exact operation counts of compiled models: a change that makes emitted code bigger (or an
+//! elimination that starts to swell) fails here first.
+
+use crate::compile::{compile, CompileOptions};
+use crate::eval::Inputs;
+use crate::program::{Ops, Program};
+use crate::testing::model;
+
+/// `(add, mul, div, sqrt, trig, transcendental)`.
+fn counts(p: &Program) -> [u32; 6] {
+    let Ops {
+        add,
+        mul,
+        div,
+        sqrt,
+        trig,
+        transcendental,
+    } = p.ops();
+    [add, mul, div, sqrt, trig, transcendental]
+}
+
+#[test]
+fn pendulum_counts() {
+    let spec = model(super::end_to_end::PENDULUM);
+    let m = compile(&spec, &CompileOptions::default()).unwrap();
+    assert_eq!(counts(&m.rhs), PENDULUM_RHS, "{}", m.rhs);
+    assert_eq!(counts(&m.jacobian), PENDULUM_JACOBIAN);
+    assert_eq!(
+        counts(&m.outputs_program),
+        PENDULUM_OUTPUTS,
+        "{}",
+        m.outputs_program
+    );
+}
+
+const PENDULUM_RHS: [u32; 6] = [7, 10, 2, 0, 0, 0];
+const PENDULUM_JACOBIAN: [u32; 6] = [14, 29, 4, 0, 0, 0];
+const PENDULUM_OUTPUTS: [u32; 6] = [2, 5, 0, 0, 0, 0];
+
+#[test]
+fn rolling_counts() {
+    let spec = model(super::rolling_disk::ROLLING);
+    let m = compile(&spec, &CompileOptions::default()).unwrap();
+    assert_eq!(counts(&m.rhs), ROLLING_RHS, "{}", m.rhs);
+    assert_eq!(counts(&m.jacobian), ROLLING_JACOBIAN);
+    assert_eq!(
+        counts(&m.variants[0].rhs),
+        ROLLING_SPIN_RHS,
+        "{}",
+        m.variants[0].rhs
+    );
+}
+
+const ROLLING_RHS: [u32; 6] = [20, 51, 3, 0, 2, 0];
+const ROLLING_JACOBIAN: [u32; 6] = [53, 148, 7, 0, 2, 0];
+const ROLLING_SPIN_RHS: [u32; 6] = [4, 18, 2, 0, 1, 0];
+
+#[test]
+fn sliding_counts() {
+    let spec = model(super::sliding_disk::SLIDING);
+    let m = compile(&spec, &CompileOptions::default()).unwrap();
+    assert_eq!(counts(&m.rhs), SLIDING_RHS, "{}", m.rhs);
+    assert_eq!(counts(&m.jacobian), SLIDING_JACOBIAN);
+    assert_eq!(
+        counts(&m.variants[0].rhs),
+        SLIDING_PRUNED_RHS,
+        "{}",
+        m.variants[0].rhs
+    );
+}
+
+const SLIDING_RHS: [u32; 6] = [38, 94, 5, 0, 4, 0];
+const SLIDING_JACOBIAN: [u32; 6] = [165, 421, 19, 0, 4, 0];
+const SLIDING_PRUNED_RHS: [u32; 6] = [24, 42, 4, 0, 2, 0];
+
+/// A dense `n × n` mass matrix of unrelated entries: its symbolic inverse swells.
+fn dense_model(n: usize) -> String {
+    let mut text = String::from("params ");
+    let params: Vec<String> = (0..n * n)
+        .map(|k| format!("p{k} = {}", 1.0 + k as f64 / 7.0))
+        .collect();
+    text += &params.join(", ");
+    text += "\nstates ";
+    text += &(0..n)
+        .map(|i| format!("y{i}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    text += "\n";
+    for i in 0..n {
+        let lhs: Vec<String> = (0..n)
+            .map(|j| {
+                let diag = if i == j {
+                    format!("{} + ", 3 * n)
+                } else {
+                    String::new()
+                };
+                format!("({diag}p{}*sin(y{j}))*der(y{j})", i * n + j)
+            })
+            .collect();
+        text += &format!("eq e{i}: {} = cos(y{i})\n", lhs.join(" + "));
+    }
+    text
+}
+
+#[test]
+fn swelling_block_falls_back_to_a_numeric_solve() {
+    let spec = model(&dense_model(8));
+    let m = compile(&spec, &CompileOptions::default()).unwrap();
+    assert_eq!(
+        m.numeric_blocks,
+        vec!["der(y0), der(y1), der(y2), der(y3), der(y4), der(y5), der(y6), der(y7)"]
+    );
+    assert!(m.pivots.is_empty());
+    assert_eq!(counts(&m.rhs), DENSE8_RHS, "{}", m.rhs);
+    // The same block solved symbolically gives the same derivatives.
+    let symbolic = compile(
+        &spec,
+        &CompileOptions {
+            swell_bound: usize::MAX,
+        },
+    )
+    .unwrap();
+    assert!(symbolic.numeric_blocks.is_empty());
+    let p: Vec<f64> = (0..64).map(|k| 1.0 + k as f64 / 7.0).collect();
+    let y = [0.3, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 1.7];
+    let inputs = Inputs {
+        t: 0.0,
+        states: &y,
+        params: &p,
+        ders: &[],
+    };
+    let a = m.rhs.eval(&inputs).unwrap().ders(8);
+    let b = symbolic.rhs.eval(&inputs).unwrap().ders(8);
+    for k in 0..8 {
+        assert!(
+            (a[k] - b[k]).abs() <= 1e-12 * (1.0 + b[k].abs()),
+            "{a:?} vs {b:?}"
+        );
+    }
+    super::end_to_end::assert_jacobian_matches(&m, &y, &p);
+}
+
+const DENSE8_RHS: [u32; 6] = [204, 296, 8, 0, 8, 0];
+
+#[test]
+fn small_dense_block_stays_symbolic() {
+    let spec = model(&dense_model(2));
+    let m = compile(&spec, &CompileOptions::default()).unwrap();
+    assert!(m.numeric_blocks.is_empty());
+    assert_eq!(m.pivots.len(), 2);
+}

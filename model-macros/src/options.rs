@@ -1,0 +1,63 @@
+//! `options { .. }`: the compiler's knobs, settable per model.
+//!
+//! The defaults suit most models; `swell_bound` lets a model force (or forbid) the numeric
+//! solve of its coupled blocks, e.g. to compare both or to keep a huge symbolic pivot out.
+
+use crate::span::{Errors, Spans};
+use crate::validate::range;
+use model_algebra::spec::Named;
+use model_algebra::CompileOptions;
+
+/// The options a model may set, with what each means (for the "unknown option" message).
+const KNOWN: [(&str, &str); 1] = [(
+    "swell_bound",
+    "the most operations a block's symbolic solution may cost before it is solved numerically",
+)];
+
+/// The compiler options of a model: the defaults, overridden by its `options` section.
+pub fn compile_options(
+    options: &[Named<f64>],
+    spans: &Spans,
+    errors: &mut Errors,
+) -> CompileOptions {
+    let mut compile = CompileOptions::default();
+    let mut seen = Vec::new();
+    for option in options {
+        let at = range(spans, option.id);
+        if seen.contains(&option.name.as_str()) {
+            errors.at(at, format!("option `{}` is set twice", option.name));
+            continue;
+        }
+        seen.push(option.name.as_str());
+        match option.name.as_str() {
+            "swell_bound" => match whole_number(option.value) {
+                Some(bound) => compile.swell_bound = bound,
+                None => errors.at(
+                    at,
+                    format!(
+                        "`swell_bound` must be a whole number of operations, not {}",
+                        option.value
+                    ),
+                ),
+            },
+            other => {
+                let known: Vec<String> = KNOWN
+                    .iter()
+                    .map(|(name, what)| format!("`{name}` ({what})"))
+                    .collect();
+                errors.at(
+                    at,
+                    format!(
+                        "unknown option `{other}`; the options are {}",
+                        known.join(", ")
+                    ),
+                );
+            }
+        }
+    }
+    compile
+}
+
+fn whole_number(value: f64) -> Option<usize> {
+    (value >= 0.0 && value.fract() == 0.0 && value <= u32::MAX as f64).then_some(value as usize)
+}

@@ -1,0 +1,8 @@
+//! Every diagnostic of the macro, one file each, with the exact message and the token it points
+//! at (`TRYBUILD=overwrite` regenerates the `.stderr` files; read them before committing).
+
+#[test]
+fn diagnostics() {
+    let cases = trybuild::TestCases::new();
+    cases.compile_fail("tests/ui/*.rs");
+}

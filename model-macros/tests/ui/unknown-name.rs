@@ -1,0 +1,9 @@
+model_macros::model! {
+    mod m {
+        params { k }
+        states { x }
+        equations { der(x) = -k * z; }
+    }
+}
+
+fn main() {}

@@ -1,0 +1,10 @@
+model_macros::model! {
+    mod m {
+        params { k }
+        states { x }
+        equations { der(x) = k; }
+        variant small { keep { x } fix { q = 1 } }
+    }
+}
+
+fn main() {}

@@ -1,0 +1,5 @@
+//! Numbers read off a run: oscillation periods, envelopes, the summary.
+
+pub mod oscillation;
+pub mod summary;
+pub mod synthetic;

@@ -1,0 +1,258 @@
+//! The numbers of a run that the paper also gives, side by side.
+//!
+//! Each field is computed from the recorded samples alone (not from solver internals), so the
+//! same code summarises a synthetic run in the tests and the real one.
+
+use std::f64::consts::PI;
+
+use equations::params::DiskParams;
+use serde::Serialize;
+
+use super::oscillation::{mean_period, Series};
+use crate::record::{RunData, TriggerKind};
+use crate::sample::Sample;
+use crate::scene::schema::ModeName;
+
+/// Time after which the paper reports the settled amplitudes (s).
+pub const SETTLED_AFTER: f64 = 50.0;
+
+/// The summary of a run (`summary.json`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Summary {
+    /// The scene's name.
+    pub scene: String,
+    /// Mode at the start (after the initial decision).
+    pub start_mode: Option<ModeName>,
+    /// Why the run ended.
+    pub stop_reason: String,
+    /// Time the run ended (s).
+    pub t_end: f64,
+    /// Mode decisions during the run (the initial one not counted).
+    pub transitions: usize,
+    /// Accepted integrator steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Wall-clock time (s).
+    pub wall_s: f64,
+    /// Period of θ in the first simulated second (s).
+    pub theta_period_first_s: Option<f64>,
+    /// Period of θ in the last simulated second (s).
+    pub theta_period_last_s: Option<f64>,
+    /// 2π / first period (1/s).
+    pub theta_omega_first: Option<f64>,
+    /// 2π / last period (1/s).
+    pub theta_omega_last: Option<f64>,
+    /// Largest θ after 50 s (rad).
+    pub theta_max_after_50s: Option<f64>,
+    /// Largest slip speed after 50 s (m/s).
+    pub slip_speed_max_after_50s: Option<f64>,
+    /// Mean ν while sliding (equals μ_d).
+    pub nu_sliding: Option<f64>,
+    /// Largest ν.
+    pub nu_max: Option<f64>,
+    /// Rolling phases starting per second, in the last simulated second.
+    pub rolling_phases_per_s_last: Option<f64>,
+    /// Smallest N/(m g).
+    pub n_over_mg_min: Option<f64>,
+    /// Largest N/(m g).
+    pub n_over_mg_max: Option<f64>,
+    /// Largest N/(m g) in the last simulated second.
+    pub n_over_mg_max_last_s: Option<f64>,
+    /// Largest relative energy change within one rolling phase (energy is conserved in rolling
+    /// without air drag, so this measures the integration error).
+    pub energy_drift_rel: Option<f64>,
+    /// Largest constraint drift before projection (SI units).
+    pub constraint_drift_max: Option<f64>,
+}
+
+/// One line of the printed comparison.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ComparisonRow {
+    /// The summary key.
+    pub key: &'static str,
+    /// Our value, formatted.
+    pub ours: String,
+    /// The paper's value, if it gives one.
+    pub paper: Option<&'static str>,
+}
+
+fn fold<I: Iterator<Item = f64>>(it: I, f: fn(f64, f64) -> f64) -> Option<f64> {
+    it.filter(|v| v.is_finite()).reduce(f)
+}
+
+/// The θ period in `[t0, t1]`, from the fine window if it covers the interval, else from the
+/// regular samples.
+fn theta_period(fine: &[Sample], coarse: &[Sample], t0: f64, t1: f64) -> Option<f64> {
+    let period_of = |s: &[Sample]| {
+        let t: Vec<f64> = s.iter().map(|s| s.t).collect();
+        let v: Vec<f64> = s.iter().map(|s| s.state.omega_y).collect();
+        mean_period(Series { t: &t, v: &v }, t0, t1)
+    };
+    period_of(fine).or_else(|| period_of(coarse))
+}
+
+impl Summary {
+    /// Summarises `data` of scene `scene` for a disk with parameters `p`.
+    pub fn of(scene: &str, data: &RunData, p: &DiskParams) -> Summary {
+        let s = &data.samples;
+        let t_start = s.first().map_or(0.0, |x| x.t);
+        let t_stop = data
+            .stop
+            .as_ref()
+            .map(|x| x.t)
+            .or_else(|| s.last().map(|x| x.t))
+            .unwrap_or(0.0);
+        let mg = p.m * p.g;
+        let all = || s.iter().chain(&data.first_second).chain(&data.last_second);
+        let first = theta_period(&data.first_second, s, t_start, t_start + 1.0);
+        let last = if t_stop - 1.0 >= t_start {
+            theta_period(&data.last_second, s, t_stop - 1.0, t_stop)
+        } else {
+            None
+        };
+        let settled = || s.iter().filter(|x| x.t >= SETTLED_AFTER);
+        let has_settled = t_stop >= SETTLED_AFTER;
+        let sliding: Vec<f64> = s
+            .iter()
+            .filter(|x| x.mode == ModeName::Sliding)
+            .map(|x| x.forces.nu)
+            .filter(|v| v.is_finite())
+            .collect();
+        let last_window = t_stop - 1.0;
+        let rolling_last = (t_stop - t_start >= 1.0).then(|| {
+            data.events
+                .iter()
+                .filter(|e| e.to == ModeName::Rolling && e.t > last_window && e.t <= t_stop)
+                .count() as f64
+        });
+        Summary {
+            scene: scene.to_string(),
+            start_mode: start_mode(data),
+            stop_reason: data
+                .stop
+                .as_ref()
+                .map_or("unknown".to_string(), |x| x.reason.clone()),
+            t_end: t_stop,
+            transitions: data
+                .events
+                .iter()
+                .filter(|e| e.trigger != TriggerKind::InitialFriction)
+                .count(),
+            steps: data.work.steps,
+            rhs_evals: data.work.rhs_evals,
+            wall_s: data.work.wall_s,
+            theta_period_first_s: first,
+            theta_period_last_s: last,
+            theta_omega_first: first.map(|p| 2.0 * PI / p),
+            theta_omega_last: last.map(|p| 2.0 * PI / p),
+            theta_max_after_50s: has_settled
+                .then(|| fold(settled().map(|x| x.state.theta), f64::max))
+                .flatten(),
+            slip_speed_max_after_50s: has_settled
+                .then(|| fold(settled().map(|x| x.slip.v_c), f64::max))
+                .flatten(),
+            nu_sliding: (!sliding.is_empty())
+                .then(|| sliding.iter().sum::<f64>() / sliding.len() as f64),
+            nu_max: fold(all().map(|x| x.forces.nu), f64::max),
+            rolling_phases_per_s_last: rolling_last,
+            n_over_mg_min: fold(all().map(|x| x.forces.normal / mg), f64::min),
+            n_over_mg_max: fold(all().map(|x| x.forces.normal / mg), f64::max),
+            n_over_mg_max_last_s: fold(
+                data.last_second
+                    .iter()
+                    .chain(s.iter())
+                    .filter(|x| x.t >= last_window)
+                    .map(|x| x.forces.normal / mg),
+                f64::max,
+            ),
+            energy_drift_rel: rolling_energy_drift(s),
+            constraint_drift_max: data.constraint_drift_max,
+        }
+    }
+
+    /// Our values beside the paper's (Saje & Zupan, section 4), in summary order.
+    pub fn comparison(&self) -> Vec<ComparisonRow> {
+        let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4e}"));
+        let row = |key, ours: String, paper| ComparisonRow { key, ours, paper };
+        vec![
+            row(
+                "start_mode",
+                self.start_mode.map_or("-".into(), |m| m.to_string()),
+                Some("sliding"),
+            ),
+            row("stop_reason", self.stop_reason.clone(), None),
+            row("t_end", format!("{}", self.t_end), Some("100")),
+            row("transitions", self.transitions.to_string(), None),
+            row("steps", self.steps.to_string(), None),
+            row("rhs_evals", self.rhs_evals.to_string(), None),
+            row("wall_s", format!("{:.3}", self.wall_s), None),
+            row("theta_period_first_s", num(self.theta_period_first_s), Some("0.14")),
+            row("theta_period_last_s", num(self.theta_period_last_s), Some("0.042")),
+            row("theta_omega_first", num(self.theta_omega_first), Some("44")),
+            row("theta_omega_last", num(self.theta_omega_last), Some("149")),
+            row("theta_max_after_50s", num(self.theta_max_after_50s), Some("~0.05")),
+            row(
+                "slip_speed_max_after_50s",
+                num(self.slip_speed_max_after_50s),
+                Some("~8e-4"),
+            ),
+            row("nu_sliding", num(self.nu_sliding), Some("0.115")),
+            row("nu_max", num(self.nu_max), Some("0.2")),
+            row(
+                "rolling_phases_per_s_last",
+                num(self.rolling_phases_per_s_last),
+                Some("~24"),
+            ),
+            row("n_over_mg_min", num(self.n_over_mg_min), Some("> 0")),
+            row("n_over_mg_max", num(self.n_over_mg_max), None),
+            row("n_over_mg_max_last_s", num(self.n_over_mg_max_last_s), None),
+            row("energy_drift_rel", num(self.energy_drift_rel), None),
+            row("constraint_drift_max", num(self.constraint_drift_max), None),
+        ]
+    }
+
+    /// The comparison as an aligned text table.
+    pub fn table(&self) -> String {
+        let rows = self.comparison();
+        let w = rows.iter().map(|r| r.key.len()).max().unwrap_or(0);
+        let wo = rows.iter().map(|r| r.ours.len()).max().unwrap_or(0).max(4);
+        let mut out = format!("{:<w$}  {:>wo$}  {}\n", "quantity", "ours", "paper");
+        for r in rows {
+            out.push_str(&format!(
+                "{:<w$}  {:>wo$}  {}\n",
+                r.key,
+                r.ours,
+                r.paper.unwrap_or("")
+            ));
+        }
+        out
+    }
+}
+
+fn start_mode(data: &RunData) -> Option<ModeName> {
+    let t0 = data.samples.first().map(|s| s.t);
+    match data.events.first() {
+        Some(e) if e.trigger == TriggerKind::InitialFriction => Some(e.to),
+        Some(e) if Some(e.t) == t0 => Some(e.to),
+        _ => data.samples.first().map(|s| s.mode),
+    }
+}
+
+/// Largest `|E − E_phase_start| / |E_phase_start|` over the rolling phases of `samples`.
+pub fn rolling_energy_drift(samples: &[Sample]) -> Option<f64> {
+    let mut worst: Option<f64> = None;
+    let mut phase_start: Option<f64> = None;
+    for s in samples {
+        if s.mode != ModeName::Rolling {
+            phase_start = None;
+            continue;
+        }
+        let e0 = *phase_start.get_or_insert(s.energy);
+        if e0 != 0.0 && e0.is_finite() && s.energy.is_finite() {
+            let rel = ((s.energy - e0) / e0).abs();
+            worst = Some(worst.map_or(rel, |w: f64| w.max(rel)));
+        }
+    }
+    worst
+}

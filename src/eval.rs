@@ -1,0 +1,309 @@
+//! `eulerdisk eval`: one evaluation of a model at a state, printed as JSON.
+//!
+//! This is the shortest path from a state to the equations, for checking a model by hand or
+//! from another program: derivatives and outputs are keyed by the paper's names and printed
+//! so they parse back to the same bits. Which implementation answers (generated or the
+//! hand-written reference) is decided in [`evaluate`] only.
+
+use std::collections::BTreeMap;
+
+use equations::params::{DiskParams, ParamError};
+use equations::{models, reference};
+use model_runtime::{EvalError, WithOutputs};
+use serde::ser::{Serialize, SerializeMap, Serializer};
+
+use crate::named_numbers::{parse_named_numbers, NamedNumbersError};
+use crate::scene::schema::ModeName;
+
+/// Number of states of every disk model.
+const N: usize = 12;
+
+/// Which implementation of the equations answers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// The models generated from the DSL at compile time.
+    Generated,
+    /// The hand-written reference (independent road to the same physics).
+    Reference,
+}
+
+/// Why an evaluation failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EvalCommandError {
+    /// `--state` or `--params` is malformed.
+    #[error(transparent)]
+    Input(#[from] NamedNumbersError),
+    /// A parameter breaks a rule.
+    #[error("--params: key `{key}`: {source}")]
+    Param {
+        /// The parameter's name.
+        key: &'static str,
+        /// The rule it breaks.
+        source: ParamError,
+    },
+    /// The model is singular at the state.
+    #[error("--state: the {mode} equations are singular here (key `{key}` = {value}): {source}")]
+    Singular {
+        /// The mode evaluated.
+        mode: ModeName,
+        /// The state key the singular pivot depends on.
+        key: String,
+        /// Its value.
+        value: f64,
+        /// The model's error.
+        source: EvalError,
+    },
+    /// A derivative or output is not finite at the state.
+    #[error("--state: {mode}: `{quantity}` is not finite ({value}) at this state")]
+    NonFinite {
+        /// The mode evaluated.
+        mode: ModeName,
+        /// The quantity.
+        quantity: String,
+        /// Its value.
+        value: f64,
+    },
+}
+
+impl EvalCommandError {
+    /// The key the error is about, if any.
+    pub fn key(&self) -> Option<&str> {
+        match self {
+            EvalCommandError::Input(e) => e.key(),
+            EvalCommandError::Param { key, .. } => Some(key),
+            EvalCommandError::Singular { key, .. } => Some(key),
+            EvalCommandError::NonFinite { quantity, .. } => Some(quantity),
+        }
+    }
+}
+
+/// Names and values in a fixed order, serialised as a JSON object in that order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedValues(pub Vec<(&'static str, f64)>);
+
+impl Serialize for NamedValues {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for (k, v) in &self.0 {
+            map.serialize_entry(k, v)?;
+        }
+        map.end()
+    }
+}
+
+/// The result of one evaluation.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Evaluation {
+    /// The mode evaluated.
+    pub mode: ModeName,
+    /// The model that answered (its name in the DSL or the reference).
+    pub model: &'static str,
+    /// `d(name)/dt` for every state, keyed by the state's name.
+    pub derivatives: NamedValues,
+    /// Every output of the model, keyed by name.
+    pub outputs: NamedValues,
+}
+
+/// The state names of a mode, in the models' index order.
+pub fn state_names(mode: ModeName) -> &'static [&'static str; N] {
+    match mode {
+        ModeName::Rolling => &models::rolling::STATE_NAMES,
+        ModeName::Sliding => &models::sliding::STATE_NAMES,
+    }
+}
+
+/// Parses `--params` (missing entries take the paper's values) and validates the result.
+pub fn parse_params(text: Option<&str>) -> Result<DiskParams, EvalCommandError> {
+    let mut p = DiskParams::paper();
+    if let Some(text) = text {
+        for (k, v) in parse_named_numbers("--params", text, &DiskParams::NAMES)? {
+            match k.as_str() {
+                "m" => p.m = v,
+                "a" => p.a = v,
+                "g" => p.g = v,
+                "mu_d" => p.mu_d = v,
+                "mu_st" => p.mu_st = v,
+                "mu_a" => p.mu_a = v,
+                "w_z" => p.w_z = v,
+                _ => unreachable!("parse_named_numbers admits only DiskParams::NAMES"),
+            }
+        }
+    }
+    p.validate().map_err(|source| EvalCommandError::Param {
+        key: match source {
+            ParamError::NotPositive { name, .. }
+            | ParamError::NotFinite { name, .. }
+            | ParamError::Negative { name, .. } => name,
+            ParamError::DynamicAboveStatic { .. } => "mu_d",
+        },
+        source,
+    })?;
+    Ok(p)
+}
+
+/// Parses `--state` for `mode` (missing entries are 0) into the model's state array.
+pub fn parse_state(mode: ModeName, text: Option<&str>) -> Result<[f64; N], EvalCommandError> {
+    let names = state_names(mode);
+    let given: BTreeMap<String, f64> = match text {
+        Some(text) => parse_named_numbers("--state", text, names)?,
+        None => BTreeMap::new(),
+    };
+    Ok(std::array::from_fn(|i| {
+        given.get(names[i]).copied().unwrap_or(0.0)
+    }))
+}
+
+/// Evaluates the `mode` equations of `backend` at `y`. Switching the CLI's default backend
+/// is the one line in [`crate::cli`] that names it.
+pub fn evaluate(
+    backend: Backend,
+    mode: ModeName,
+    params: &DiskParams,
+    y: &[f64; N],
+) -> Result<Evaluation, EvalCommandError> {
+    let p = *params;
+    let bad_params = |source| EvalCommandError::Param { key: "m", source };
+    match (backend, mode) {
+        (Backend::Generated, ModeName::Rolling) => {
+            run(mode, &models::rolling::Model::new(p.to_array()), y)
+        }
+        (Backend::Generated, ModeName::Sliding) => {
+            run(mode, &models::sliding::Model::new(p.to_array()), y)
+        }
+        (Backend::Reference, ModeName::Rolling) => run(
+            mode,
+            &reference::RollingReference::new(p).map_err(bad_params)?,
+            y,
+        ),
+        (Backend::Reference, ModeName::Sliding) => run(
+            mode,
+            &reference::SlidingPolarReference::new(p).map_err(bad_params)?,
+            y,
+        ),
+    }
+}
+
+fn run<M: WithOutputs<N, K>, const K: usize>(
+    mode: ModeName,
+    model: &M,
+    y: &[f64; N],
+) -> Result<Evaluation, EvalCommandError> {
+    let info = model.info();
+    let fail = |e: EvalError| to_command_error(mode, info.state_names, y, e);
+    let mut dy = [0.0; N];
+    model.rhs(0.0, y, &mut dy).map_err(fail)?;
+    let mut out = [0.0; K];
+    model.outputs(0.0, y, &dy, &mut out).map_err(fail)?;
+    let derivatives: Vec<_> = info.state_names.iter().copied().zip(dy).collect();
+    let outputs: Vec<_> = info.output_names.iter().copied().zip(out).collect();
+    if let Some((name, value)) = derivatives
+        .iter()
+        .map(|(n, v)| (format!("der({n})"), *v))
+        .chain(outputs.iter().map(|(n, v)| (n.to_string(), *v)))
+        .find(|(_, v)| !v.is_finite())
+    {
+        return Err(EvalCommandError::NonFinite {
+            mode,
+            quantity: name,
+            value,
+        });
+    }
+    Ok(Evaluation {
+        mode,
+        model: info.name,
+        derivatives: NamedValues(derivatives),
+        outputs: NamedValues(outputs),
+    })
+}
+
+/// Names the state key behind a model error: the state named in the pivot (`sin(theta)` ->
+/// `theta`), else the one whose value is not finite, else the quantity itself.
+fn to_command_error(
+    mode: ModeName,
+    names: &[&'static str],
+    y: &[f64; N],
+    e: EvalError,
+) -> EvalCommandError {
+    match &e {
+        EvalError::SingularPivot { pivot, .. } => {
+            let named = names
+                .iter()
+                .enumerate()
+                .filter(|(_, n)| mentions(pivot, n))
+                .max_by_key(|(_, n)| n.len());
+            let (i, key) = match named {
+                Some((i, n)) => (i, n.to_string()),
+                None => {
+                    let i = (0..N).find(|&i| !y[i].is_finite()).unwrap_or(0);
+                    (i, format!("{} (pivot `{pivot}`)", names[i]))
+                }
+            };
+            EvalCommandError::Singular {
+                mode,
+                key,
+                value: y[i],
+                source: e,
+            }
+        }
+        EvalError::NonFinite {
+            quantity, value, ..
+        } => EvalCommandError::NonFinite {
+            mode,
+            quantity: quantity.to_string(),
+            value: *value,
+        },
+    }
+}
+
+/// Whether `text` mentions the identifier `name` as a whole word.
+fn mentions(text: &str, name: &str) -> bool {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    text.match_indices(name).any(|(i, _)| {
+        let before = text[..i].chars().next_back();
+        let after = text[i + name.len()..].chars().next();
+        !before.is_some_and(ident) && !after.is_some_and(ident)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn generated_and_reference_agree_at_the_papers_start() {
+        let theta0 = std::f64::consts::FRAC_PI_2 - 1.0;
+        let text = format!(r#"{{"theta": {theta0}, "Omega_x": 1.0, "Z": {}}}"#, 0.03755 * theta0.sin());
+        let y = parse_state(ModeName::Rolling, Some(&text)).unwrap();
+        let p = parse_params(None).unwrap();
+        let g = evaluate(Backend::Generated, ModeName::Rolling, &p, &y).unwrap();
+        let r = evaluate(Backend::Reference, ModeName::Rolling, &p, &y).unwrap();
+        for (a, b) in g.derivatives.0.iter().zip(&r.derivatives.0) {
+            assert_eq!(a.0, b.0);
+            assert!((a.1 - b.1).abs() <= 1e-9 * (1.0 + b.1.abs()), "{a:?} {b:?}");
+        }
+        let nu = g.outputs.0.iter().find(|(n, _)| *n == "nu").unwrap().1;
+        // EQUATIONS.md §9: rolling would need nu = 0.8355 at t = 0.
+        assert!((nu - 0.8355).abs() < 5e-4, "{nu}");
+    }
+
+    #[test]
+    fn flat_disk_is_singular_and_names_theta() {
+        let p = parse_params(None).unwrap();
+        for backend in [Backend::Generated, Backend::Reference] {
+            for mode in [ModeName::Rolling, ModeName::Sliding] {
+                let y = parse_state(mode, Some(r#"{"v_C": 0.1}"#).filter(|_| mode == ModeName::Sliding))
+                    .unwrap();
+                let err = evaluate(backend, mode, &p, &y).unwrap_err();
+                assert_eq!(err.key(), Some("theta"), "{backend:?} {mode}: {err}");
+            }
+        }
+    }
+
+    #[test]
+    fn mentions_whole_words_only() {
+        assert!(mentions("sin(theta)", "theta"));
+        assert!(!mentions("sin(theta_2)", "theta"));
+        assert!(mentions("v_C", "v_C"));
+        assert!(!mentions("v_Cx", "v_C"));
+    }
+}

@@ -1,0 +1,255 @@
+//! The paper's Figures 1–10, recomputed from a run.
+//!
+//! Each figure is built as a [`Chart`] from the recorded samples: two time windows (the first
+//! and the last simulated second, sampled finely) and the whole run (per-oscillation
+//! envelopes, so 100 s of a 150 s⁻¹ oscillation stay readable).
+
+use std::path::Path;
+
+use equations::params::DiskParams;
+
+use super::chart::{colors, render, Chart, Line};
+use crate::analysis::oscillation::{cycle_extremes, upward_crossings, CycleExtremes, Series};
+use crate::output::atomic::WriteError;
+use crate::record::RunData;
+use crate::sample::Sample;
+
+/// A time window of the run with its samples.
+struct Window<'a> {
+    /// `a` (first second) or `b` (last second), as in the paper's panels.
+    panel: &'static str,
+    /// Human description for titles.
+    label: String,
+    samples: &'a [Sample],
+}
+
+fn windows(data: &RunData) -> [Window<'_>; 2] {
+    let span = |s: &[Sample]| match (s.first(), s.last()) {
+        (Some(a), Some(b)) => format!("[{:.4}, {:.4}] s", a.t, b.t),
+        _ => "(empty)".to_string(),
+    };
+    let first: &[Sample] = if data.first_second.is_empty() {
+        let t0 = data.samples.first().map_or(0.0, |s| s.t);
+        let n = data.samples.partition_point(|s| s.t <= t0 + 1.0);
+        &data.samples[..n]
+    } else {
+        &data.first_second
+    };
+    let last: &[Sample] = if data.last_second.is_empty() {
+        let t1 = data.samples.last().map_or(0.0, |s| s.t);
+        let n = data.samples.partition_point(|s| s.t < t1 - 1.0);
+        &data.samples[n..]
+    } else {
+        &data.last_second
+    };
+    [
+        Window {
+            panel: "a",
+            label: format!("first second {}", span(first)),
+            samples: first,
+        },
+        Window {
+            panel: "b",
+            label: format!("last second {}", span(last)),
+            samples: last,
+        },
+    ]
+}
+
+fn points(samples: &[Sample], f: impl Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
+    samples.iter().map(|s| (s.t, f(s))).collect()
+}
+
+/// Per-oscillation extremes of `f` over the whole run: cycles bounded by the minima of θ
+/// (upward zero crossings of θ̇).
+fn per_cycle(samples: &[Sample], f: impl Fn(&Sample) -> f64) -> Vec<CycleExtremes> {
+    let t: Vec<f64> = samples.iter().map(|s| s.t).collect();
+    let theta_dot: Vec<f64> = samples.iter().map(|s| s.state.omega_y).collect();
+    let peak = theta_dot.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let bounds = upward_crossings(
+        Series {
+            t: &t,
+            v: &theta_dot,
+        },
+        1e-3 * peak,
+    );
+    let values: Vec<f64> = samples.iter().map(f).collect();
+    cycle_extremes(&t, &values, &bounds)
+}
+
+/// Every figure of the paper for `data`, as chart descriptions.
+pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
+    let mg = p.m * p.g;
+    let all = &data.samples;
+    let t_end = all.last().map_or(0.0, |s| s.t);
+    let chart = |stem: &str, title: String, y_label: &str, lines: Vec<Line>| Chart {
+        stem: stem.to_string(),
+        title,
+        x_label: "time t (s)".to_string(),
+        y_label: y_label.to_string(),
+        y2_label: None,
+        log_y: false,
+        lines,
+    };
+    let mut charts = Vec::new();
+    for w in windows(data) {
+        let s = w.samples;
+        charts.push(chart(
+            &format!("fig01{}_theta", w.panel),
+            format!("Fig. 1{}: inclination θ, {}", w.panel, w.label),
+            "θ (rad)",
+            vec![Line::new("θ", points(s, |x| x.state.theta), colors::BLUE)],
+        ));
+        charts.push(chart(
+            &format!("fig03{}_theta_dot", w.panel),
+            format!("Fig. 3{}: nutation rate dθ/dt, {}", w.panel, w.label),
+            "dθ/dt (rad/s)",
+            vec![Line::new("dθ/dt", points(s, |x| x.state.omega_y), colors::BLUE)],
+        ));
+        charts.push(chart(
+            &format!("fig05{}_nu", w.panel),
+            format!("Fig. 5{}: friction ratio ν = T/N, {}", w.panel, w.label),
+            "ν = T/N (1)",
+            vec![
+                Line::new("μ_d", points(s, |_| p.mu_d), colors::GREEN).thin(),
+                Line::new("μ_st", points(s, |_| p.mu_st), colors::RED).thin(),
+                Line::new("ν", points(s, |x| x.forces.nu), colors::BLUE),
+            ],
+        ));
+        charts.push(chart(
+            &format!("fig06{}_slip_speed", w.panel),
+            format!("Fig. 6{}: slip speed v_C, {}", w.panel, w.label),
+            "v_C (m/s)",
+            vec![Line::new("v_C", points(s, |x| x.slip.v_c), colors::BLUE)],
+        ));
+        let mut fig8 = chart(
+            &format!("fig08{}_normal_force", w.panel),
+            format!("Fig. 8{}: N/mg and θ, {}", w.panel, w.label),
+            "N/mg (1)",
+            vec![
+                Line::new("N/mg", points(s, |x| x.forces.normal / mg), colors::RED),
+                Line::new("θ", points(s, |x| x.state.theta), colors::BLUE).right(),
+            ],
+        );
+        fig8.y2_label = Some("θ (rad)".to_string());
+        charts.push(fig8);
+    }
+
+    let theta_cycles = per_cycle(all, |x| x.state.theta);
+    charts.push(chart(
+        "fig02_theta_envelope",
+        format!("Fig. 2: envelopes of θ per oscillation, [0, {t_end:.1}] s"),
+        "θ (rad)",
+        vec![
+            Line::new(
+                "max θ",
+                theta_cycles.iter().map(|c| (c.t_max, c.max)).collect(),
+                colors::RED,
+            ),
+            Line::new(
+                "min θ",
+                theta_cycles.iter().map(|c| (c.t_min, c.min)).collect(),
+                colors::BLUE,
+            ),
+        ],
+    ));
+
+    let after_1s: Vec<Sample> = all.iter().filter(|s| s.t >= 1.0).copied().collect();
+    let mut fig4 = chart(
+        "fig04_theta_dot_over_psi_dot",
+        format!("Fig. 4: |dθ/dt ÷ dψ/dt|, [1, {t_end:.1}] s"),
+        "|dθ/dt ÷ dψ/dt| (1)",
+        vec![Line::new(
+            "|dθ/dt ÷ dψ/dt|",
+            points(&after_1s, |x| (x.state.omega_y / x.state.psi_dot()).abs()),
+            colors::BLUE,
+        )],
+    );
+    fig4.log_y = true;
+    charts.push(fig4);
+
+    let slip_cycles = per_cycle(all, |x| x.slip.v_c);
+    let mut fig7 = chart(
+        "fig07_slip_speed_envelope",
+        format!("Fig. 7: largest slip speed per oscillation, [0, {t_end:.1}] s"),
+        "max v_C (m/s)",
+        vec![Line::new(
+            "max v_C per oscillation",
+            slip_cycles
+                .iter()
+                .filter(|c| c.max > 0.0)
+                .map(|c| (c.t_max, c.max))
+                .collect(),
+            colors::BLUE,
+        )],
+    );
+    fig7.log_y = true;
+    charts.push(fig7);
+
+    let normal_cycles = per_cycle(&after_1s, |x| x.forces.normal / mg);
+    let theta_at = |t: f64| {
+        let i = after_1s.partition_point(|s| s.t < t).min(after_1s.len().saturating_sub(1));
+        after_1s.get(i).map_or(f64::NAN, |s| s.state.theta)
+    };
+    let mut fig9 = chart(
+        "fig09_normal_force_vs_theta",
+        format!("Fig. 9: N/mg against θ and its envelope, [1, {t_end:.1}] s"),
+        "N/mg (1)",
+        vec![
+            Line::new(
+                "N/mg against θ",
+                after_1s.iter().map(|x| (x.state.theta, x.forces.normal / mg)).collect(),
+                colors::BLUE,
+            )
+            .thin(),
+            Line::new(
+                "envelope: largest N/mg per oscillation",
+                normal_cycles.iter().map(|c| (theta_at(c.t_max), c.max)).collect(),
+                colors::RED,
+            )
+            .dots(),
+        ],
+    );
+    fig9.log_y = true;
+    fig9.x_label = "θ (rad)".to_string();
+    charts.push(fig9);
+
+    let [_, last] = windows(data);
+    let period = {
+        let t: Vec<f64> = last.samples.iter().map(|s| s.t).collect();
+        let v: Vec<f64> = last.samples.iter().map(|s| s.state.omega_y).collect();
+        let (t0, t1) = (t.first().copied().unwrap_or(0.0), t.last().copied().unwrap_or(0.0));
+        crate::analysis::oscillation::mean_period(Series { t: &t, v: &v }, t0, t1)
+    };
+    let rate = period.map_or("no full oscillation".to_string(), |p| {
+        format!(
+            "peaks every {p:.4} s, 2π/T = {:.1} s⁻¹ (paper: 149 s⁻¹, sound 154 s⁻¹)",
+            2.0 * std::f64::consts::PI / p
+        )
+    });
+    charts.push(chart(
+        "fig10_normal_force_last_second",
+        format!("Fig. 10: N/mg in the last second; {rate}"),
+        "N/mg (1)",
+        vec![Line::new(
+            "N/mg",
+            points(last.samples, |x| x.forces.normal / mg),
+            colors::RED,
+        )],
+    ));
+    charts
+}
+
+/// Renders every figure into `dir` (PNG and SVG); returns the stems written.
+pub fn write_paper_figures(
+    data: &RunData,
+    p: &DiskParams,
+    dir: &Path,
+) -> Result<Vec<String>, WriteError> {
+    let mut stems = Vec::new();
+    for chart in paper_charts(data, p) {
+        render(&chart, dir)?;
+        stems.push(chart.stem);
+    }
+    Ok(stems)
+}

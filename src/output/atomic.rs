@@ -1,0 +1,102 @@
+//! Files that appear only when complete.
+//!
+//! Every output is written under a temporary name in its final directory and renamed when it
+//! is complete and flushed, so a reader (or an interrupted run) never sees half a file: a
+//! file is either the previous complete version, the new complete version, or absent.
+
+use std::fs::{self, File};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// Why an output could not be written.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write {}: {source}", path.display())]
+pub struct WriteError {
+    /// The file.
+    pub path: PathBuf,
+    /// The I/O error.
+    pub source: io::Error,
+}
+
+/// The temporary name used while `path` is being written: hidden, marked partial, and with
+/// the same extension (encoders choose the format by it).
+pub fn temporary_name(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".partial-{}-{name}", std::process::id()))
+}
+
+/// Lets `produce` write a file at a temporary path (for encoders that only write to a path),
+/// then renames it to `path`; on failure the temporary file is removed.
+pub fn produce_atomic<E, F>(path: &Path, produce: F) -> Result<(), WriteError>
+where
+    F: FnOnce(&Path) -> Result<(), E>,
+    E: std::fmt::Display,
+{
+    let tmp = temporary_name(path);
+    let result = produce(&tmp)
+        .map_err(|e| io::Error::other(e.to_string()))
+        .and_then(|()| fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.map_err(|source| WriteError {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Writes `path` through `fill`, atomically: the content goes to a temporary file that is
+/// renamed to `path` only when `fill` succeeded and the data is flushed. On failure the
+/// temporary file is removed and `path` is untouched.
+pub fn write_atomic<F>(path: &Path, fill: F) -> Result<(), WriteError>
+where
+    F: FnOnce(&mut BufWriter<File>) -> io::Result<()>,
+{
+    let tmp = temporary_name(path);
+    let wrap = |source| WriteError {
+        path: path.to_path_buf(),
+        source,
+    };
+    let result = (|| {
+        let mut w = BufWriter::new(File::create(&tmp)?);
+        fill(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.map_err(wrap)
+}
+
+/// Writes `path` from a complete byte buffer, atomically.
+pub fn write_bytes_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    write_atomic(path, |w| w.write_all(bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn success_renames_and_failure_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.csv");
+        write_atomic(&path, |w| w.write_all(b"x,y\n1,2\n")).unwrap();
+        assert_eq!(fs::read_to_string(&path).unwrap(), "x,y\n1,2\n");
+        let err = write_atomic(&path, |w| {
+            w.write_all(b"half")?;
+            Err(io::Error::other("interrupted"))
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("a.csv"));
+        // The previous complete version survives, and no temporary file is left behind.
+        assert_eq!(fs::read_to_string(&path).unwrap(), "x,y\n1,2\n");
+        let names: Vec<_> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(names.len(), 1, "{names:?}");
+    }
+}

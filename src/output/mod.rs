@@ -1,0 +1,4 @@
+//! Output files: written atomically, in plain formats.
+
+pub mod atomic;
+pub mod tables;

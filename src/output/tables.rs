@@ -1,0 +1,127 @@
+//! `trajectory.csv` and `events.csv`.
+//!
+//! Plain CSV with a header whose every column carries its unit, numbers printed so they
+//! parse back to the same bits, so the files can be read by anything and compared exactly.
+
+use std::io::{self, Write};
+
+use equations::params::DiskParams;
+
+use crate::quantity::Quantity;
+use crate::record::{EventRow, StopRecord};
+use crate::sample::Sample;
+
+/// Formats a number so that it parses back to the same `f64`, compactly: plain notation for
+/// moderate magnitudes, exponent notation otherwise (Rust prints the shortest round-trip
+/// digits in both).
+pub fn number(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 || (1e-4..1e15).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// The header of `trajectory.csv` for `quantities`.
+pub fn trajectory_header(quantities: &[Quantity]) -> String {
+    let mut h = String::from("t_s,mode");
+    for q in quantities {
+        h.push(',');
+        h.push_str(&q.column());
+    }
+    h
+}
+
+/// Writes `trajectory.csv`.
+pub fn write_trajectory<W: Write>(
+    w: &mut W,
+    quantities: &[Quantity],
+    samples: &[Sample],
+    p: &DiskParams,
+) -> io::Result<()> {
+    writeln!(w, "{}", trajectory_header(quantities))?;
+    for s in samples {
+        write!(w, "{},{}", number(s.t), s.mode)?;
+        for q in quantities {
+            write!(w, ",{}", number(q.value(s, p)))?;
+        }
+        writeln!(w)?;
+    }
+    Ok(())
+}
+
+/// The header of `events.csv`.
+pub const EVENTS_HEADER: &str = "t_s,from,to,trigger,value,value_meaning,slip_direction_rad";
+
+/// Writes `events.csv`: one row per mode decision, then one row with the stop reason
+/// (`to` = `stop`, `trigger` = the reason, `value_meaning` = its details).
+pub fn write_events<W: Write>(w: &mut W, events: &[EventRow], stop: &StopRecord) -> io::Result<()> {
+    writeln!(w, "{EVENTS_HEADER}")?;
+    for e in events {
+        writeln!(
+            w,
+            "{},{},{},{},{},{},{}",
+            number(e.t),
+            e.from,
+            e.to,
+            e.trigger.name(),
+            number(e.value),
+            quoted(e.trigger.value_meaning()),
+            e.slip_direction.map(number).unwrap_or_default()
+        )?;
+    }
+    writeln!(
+        w,
+        "{},{},stop,{},,{},",
+        number(stop.t),
+        stop.mode,
+        stop.reason,
+        quoted(&stop.detail)
+    )
+}
+
+/// Quotes a CSV field when it needs it.
+fn quoted(text: &str) -> String {
+    if text.contains([',', '"', '\n']) {
+        format!("\"{}\"", text.replace('"', "\"\"").replace('\n', " "))
+    } else {
+        text.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn numbers_round_trip(v in any::<f64>().prop_filter("finite", |v| v.is_finite())) {
+            let text = number(v);
+            prop_assert_eq!(text.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{}", text);
+        }
+    }
+
+    #[test]
+    fn compact_forms() {
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(0.115), "0.115");
+        assert_eq!(number(1e-10), "1e-10");
+        assert_eq!(number(-2.5e20), "-2.5e20");
+    }
+
+    #[test]
+    fn stop_detail_with_commas_is_quoted() {
+        let stop = StopRecord {
+            t: 1.0,
+            mode: crate::scene::schema::ModeName::Rolling,
+            reason: "error".into(),
+            detail: "a, b".into(),
+        };
+        let mut out = Vec::new();
+        write_events(&mut out, &[], &stop).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert_eq!(text.lines().nth(1).unwrap(), "1,rolling,stop,error,,\"a, b\",");
+    }
+}

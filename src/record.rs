@@ -1,0 +1,99 @@
+//! What a run leaves behind, in the CLI's own named types.
+//!
+//! The writers, the figures and the summary read only these, so they can be built and tested
+//! on synthetic runs, and the simulation's own types reach them through one conversion
+//! (`run::convert`).
+
+use crate::sample::Sample;
+use crate::scene::schema::ModeName;
+
+/// The quantity whose crossing caused a mode decision.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TriggerKind {
+    /// At the start, rolling would need more friction than `mu_st N`.
+    InitialFriction,
+    /// While rolling, `T/N` reached `mu_st`.
+    FrictionLimit,
+    /// While sliding, the slip speed reached zero.
+    SlipStopped,
+}
+
+impl TriggerKind {
+    /// The trigger's name in `events.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            TriggerKind::InitialFriction => "initial_friction",
+            TriggerKind::FrictionLimit => "friction_limit",
+            TriggerKind::SlipStopped => "slip_stopped",
+        }
+    }
+
+    /// What `EventRow::value` holds for this trigger.
+    pub fn value_meaning(self) -> &'static str {
+        match self {
+            TriggerKind::InitialFriction | TriggerKind::FrictionLimit => "T/N",
+            TriggerKind::SlipStopped => "T_r/N_r rolling would need",
+        }
+    }
+}
+
+/// One mode decision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EventRow {
+    /// Time (s).
+    pub t: f64,
+    /// Mode before.
+    pub from: ModeName,
+    /// Mode after (sliding -> sliding: a restart from zero slip).
+    pub to: ModeName,
+    /// What fired it.
+    pub trigger: TriggerKind,
+    /// The triggering quantity's value (a friction ratio, see [`TriggerKind::value_meaning`]).
+    pub value: f64,
+    /// When sliding starts: the friction direction α0 (rad).
+    pub slip_direction: Option<f64>,
+}
+
+/// Why a run ended.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StopRecord {
+    /// Time (s).
+    pub t: f64,
+    /// The mode in force.
+    pub mode: ModeName,
+    /// Short name (`end_time`, `contact_lost`, `inclination_reached_0`, `chattering`,
+    /// `interrupted`, `error`).
+    pub reason: String,
+    /// Details (numbers, the error's message), may be empty.
+    pub detail: String,
+}
+
+/// Integrator work.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Work {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Wall-clock time (s).
+    pub wall_s: f64,
+}
+
+/// Everything a run produced.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunData {
+    /// Samples at the scene's rate.
+    pub samples: Vec<Sample>,
+    /// Finely sampled first second (for the figures).
+    pub first_second: Vec<Sample>,
+    /// Finely sampled last second (for the figures).
+    pub last_second: Vec<Sample>,
+    /// Mode decisions in order.
+    pub events: Vec<EventRow>,
+    /// Why it ended (`None` while running).
+    pub stop: Option<StopRecord>,
+    /// Integrator work.
+    pub work: Work,
+    /// Largest constraint drift seen (SI units, before projection).
+    pub constraint_drift_max: Option<f64>,
+}

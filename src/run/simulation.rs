@@ -1,0 +1,259 @@
+//! The bridge to `equations::hybrid`: scene -> configuration, and the simulation's records ->
+//! the CLI's named records.
+//!
+//! The simulation runs on a worker thread and streams what it observes through a bounded
+//! channel; the caller's thread collects, shows progress and watches for an interrupt. The
+//! hybrid solver has no cancellation hook, so a run that is abandoned (Ctrl-C, a mode the
+//! scene forbids) leaves the worker to finish on its own: the binary exits right after
+//! writing, which ends it.
+
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::thread;
+
+use equations::hybrid::{
+    self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
+    IntegratorChoice, RunOutcome, SimError, SlidingModel, SlipSign, StopReason, TransitionRecord,
+    Trigger,
+};
+use equations::modes::{Mode, SlipChart};
+use equations::models;
+
+use crate::eval::Backend;
+use crate::record::{EventRow, StopRecord, TriggerKind};
+use crate::sample::{ContactForces, DiskState, Sample, Slip};
+use crate::scene::schema::{IntegratorName, ModeName, SlipSignRule};
+use crate::scene::Scene;
+
+/// What the worker sends.
+#[derive(Debug)]
+pub enum Message {
+    /// A sample (at the fine rate).
+    Sample(Sample),
+    /// A mode decision.
+    Event(EventRow),
+    /// The run ended.
+    Done(Result<Outcome, String>),
+}
+
+/// The end of a run, in the CLI's terms.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// Why it ended.
+    pub stop: StopRecord,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Largest constraint drift (SI units).
+    pub constraint_drift_max: f64,
+}
+
+/// The mode's name in the CLI.
+pub fn mode_name(m: Mode) -> ModeName {
+    match m {
+        Mode::Rolling => ModeName::Rolling,
+        Mode::Sliding => ModeName::Sliding,
+    }
+}
+
+/// Converts one simulation sample.
+pub fn convert_sample(s: &DiskSample) -> Sample {
+    let f = &s.force;
+    let friction = f.r_x.hypot(f.r_y);
+    Sample {
+        t: s.t,
+        mode: mode_name(s.mode),
+        state: DiskState::from_array(&s.state.y),
+        slip: Slip {
+            v_c: s.state.slip.speed,
+            alpha: s.state.slip.direction,
+        },
+        forces: ContactForces {
+            normal: f.normal,
+            friction,
+            nu: friction / f.normal,
+            r_x: f.r_x,
+            r_y: f.r_y,
+        },
+        energy: s.energy,
+    }
+}
+
+/// Converts one mode decision.
+pub fn convert_event(r: &TransitionRecord) -> EventRow {
+    let (trigger, value) = match r.trigger {
+        Trigger::InitialFriction { ratio } => (TriggerKind::InitialFriction, ratio),
+        Trigger::FrictionLimit { ratio } => (TriggerKind::FrictionLimit, ratio),
+        Trigger::SlipStopped { rolling_ratio, .. } => (TriggerKind::SlipStopped, rolling_ratio),
+    };
+    EventRow {
+        t: r.t,
+        from: mode_name(r.from),
+        to: mode_name(r.to),
+        trigger,
+        value,
+        slip_direction: r.slip_direction,
+    }
+}
+
+/// Converts the simulation's stop reason.
+pub fn convert_outcome(o: &RunOutcome) -> Outcome {
+    let (reason, detail) = match o.stop {
+        StopReason::EndTime => ("end_time", String::new()),
+        StopReason::ContactLost { t, mode } => {
+            ("contact_lost", format!("N fell through 0 at t = {t} s while {mode}"))
+        }
+        StopReason::InclinationReachedFloor { t, theta } => (
+            "inclination_reached_0",
+            format!("theta = {theta} rad at t = {t} s"),
+        ),
+        StopReason::Chattering {
+            t,
+            transitions,
+            window,
+        } => (
+            "chattering",
+            format!("{transitions} transitions within {window} s at t = {t} s"),
+        ),
+    };
+    Outcome {
+        stop: StopRecord {
+            t: o.last.t,
+            mode: mode_name(o.last.mode),
+            reason: reason.to_string(),
+            detail,
+        },
+        steps: o.stats.steps,
+        rhs_evals: o.stats.rhs_evals,
+        constraint_drift_max: o.max_drift.max_abs(),
+    }
+}
+
+/// The simulation settings for a scene; samples are delivered at `fine_rate`.
+pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
+    let f = &scene.file;
+    let mut c = DiskConfig::paper();
+    c.integrator = match f.solver.integrator {
+        IntegratorName::Dopri5 => IntegratorChoice::Dopri5,
+        IntegratorName::Dop853 => IntegratorChoice::Dop853,
+    };
+    c.rtol = f.solver.rtol;
+    c.atol = f.solver.atol;
+    c.t_end = f.run.t_end;
+    c.slip_sign = match f.run.slip_sign {
+        SlipSignRule::Physical => SlipSign::Physical,
+        SlipSignRule::Paper => SlipSign::Paper,
+    };
+    c.sample_rate = Some(fine_rate);
+    c.chatter = ChatterLimit {
+        max_transitions: 50,
+        window: 1e-6,
+    };
+    c
+}
+
+/// The slip chart a scene needs: the paper's signed slip only exists in the polar chart.
+pub fn chart_of(scene: &Scene) -> SlipChart {
+    match scene.file.run.slip_sign {
+        SlipSignRule::Physical => SlipChart::Cartesian,
+        SlipSignRule::Paper => SlipChart::Polar,
+    }
+}
+
+struct ChannelObserver {
+    tx: SyncSender<Message>,
+    open: bool,
+}
+
+impl ChannelObserver {
+    fn send(&mut self, m: Message) {
+        if self.open && self.tx.send(m).is_err() {
+            self.open = false;
+        }
+    }
+}
+
+impl DiskObserver for ChannelObserver {
+    fn on_sample(&mut self, sample: &DiskSample) {
+        self.send(Message::Sample(convert_sample(sample)));
+    }
+    fn on_transition(&mut self, record: &TransitionRecord) {
+        self.send(Message::Event(convert_event(record)));
+    }
+}
+
+fn simulate_with<R, S>(
+    models: Result<DiskModels<R, S>, SimError>,
+    config: &DiskConfig,
+    initial: &InitialState,
+    observer: &mut ChannelObserver,
+) -> Result<Outcome, String>
+where
+    R: model_runtime::Model<12>,
+    S: model_runtime::Model<12>,
+{
+    let models = models.map_err(|e| e.to_string())?;
+    hybrid::simulate(&models, config, initial, observer)
+        .map(|o| convert_outcome(&o))
+        .map_err(|e| e.to_string())
+}
+
+/// Starts the simulation of `scene` on a worker thread; returns the receiving end.
+pub fn start(scene: &Scene, backend: Backend, fine_rate: f64) -> Receiver<Message> {
+    let (tx, rx) = sync_channel(8192);
+    let config = config_of(scene, fine_rate);
+    let chart = chart_of(scene);
+    let params = scene.params;
+    let initial = InitialState {
+        t: 0.0,
+        y: scene.initial.state.to_array(),
+    };
+    thread::spawn(move || {
+        let mut observer = ChannelObserver {
+            tx: tx.clone(),
+            open: true,
+        };
+        let result = match backend {
+            Backend::Reference => simulate_with(
+                reference_models(params, chart),
+                &config,
+                &initial,
+                &mut observer,
+            ),
+            Backend::Generated => simulate_with(
+                Ok(generated_models(params, chart)),
+                &config,
+                &initial,
+                &mut observer,
+            ),
+        };
+        let _ = tx.send(Message::Done(result));
+    });
+    rx
+}
+
+fn reference_models(
+    params: equations::DiskParams,
+    chart: SlipChart,
+) -> Result<hybrid::ReferenceModels, SimError> {
+    hybrid::ReferenceModels::reference(params, chart).map_err(SimError::Params)
+}
+
+/// The models generated from the DSL, sliding in `chart`.
+pub fn generated_models(
+    params: equations::DiskParams,
+    chart: SlipChart,
+) -> DiskModels<models::rolling::Model, SlidingModel<models::sliding_cartesian::Model, models::sliding::Model>>
+{
+    let p = params.to_array();
+    let sliding = match chart {
+        SlipChart::Cartesian => SlidingModel::Cartesian(models::sliding_cartesian::Model::new(p)),
+        SlipChart::Polar => SlidingModel::Polar(models::sliding::Model::new(p)),
+    };
+    DiskModels {
+        params,
+        rolling: models::rolling::Model::new(p),
+        sliding,
+        chart,
+    }
+}

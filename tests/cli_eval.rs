@@ -1,0 +1,194 @@
+//! `eulerdisk eval` as a user runs it: valid states print every derivative and output under
+//! the paper's names, numbers that parse back to the same bits, and every bad input is a
+//! non-zero exit with a message naming the key.
+
+use std::process::{Command, Output};
+
+use eulerdisk::eval::{evaluate, parse_params, parse_state, Backend};
+use eulerdisk::named_numbers::parse_named_numbers;
+use eulerdisk::scene::schema::ModeName;
+use proptest::prelude::*;
+use serde_json::Value;
+
+fn eval(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .arg("eval")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn ok_json(args: &[&str]) -> Value {
+    let out = eval(args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn rejected(args: &[&str], key: &str) -> String {
+    let out = eval(args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(out.stdout.is_empty(), "printed despite the error");
+    assert!(err.contains(&format!("`{key}`")), "{key} not named: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+const PAPER_STATE: &str = r#"{"theta": 0.5707963267948966, "Omega_x": 1, "Z": 0.020409}"#;
+
+#[test]
+fn rolling_prints_every_name() {
+    let v = ok_json(&["--mode", "rolling", "--state", PAPER_STATE]);
+    assert_eq!(v["mode"], "rolling");
+    let names = [
+        "X", "Y", "Z", "V_X", "V_Y", "V_Z", "psi", "theta", "phi", "Omega_x", "Omega_y",
+        "Omega_z",
+    ];
+    let d = v["derivatives"].as_object().unwrap();
+    assert_eq!(d.keys().collect::<Vec<_>>(), names.iter().collect::<Vec<_>>());
+    for key in ["N", "T", "nu", "energy"] {
+        assert!(v["outputs"][key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    // EQUATIONS.md §9: rolling would need nu = 0.8355, N/mg = 0.4345 at the paper's start.
+    let nu = v["outputs"]["nu"].as_f64().unwrap();
+    assert!((nu - 0.8355).abs() < 5e-4, "{nu}");
+    let n = v["outputs"]["N"].as_f64().unwrap() / (0.4387 * 9.81);
+    assert!((n - 0.4345).abs() < 5e-4, "{n}");
+    assert_eq!(d["theta"].as_f64(), Some(0.0), "der(theta) = Omega_y = 0");
+}
+
+#[test]
+fn sliding_uses_slip_speed_and_direction() {
+    let v = ok_json(&[
+        "--mode",
+        "sliding",
+        "--state",
+        r#"{"theta": 0.57, "Omega_x": 1, "v_C": 0.01, "alpha": 3.14159}"#,
+    ]);
+    let d = v["derivatives"].as_object().unwrap();
+    assert!(d.contains_key("v_C") && d.contains_key("alpha"));
+    assert!(!d.contains_key("V_X"));
+    let nu = v["outputs"]["nu"].as_f64().unwrap();
+    assert!((nu - 0.115).abs() < 1e-12, "{nu}");
+}
+
+#[test]
+fn printed_numbers_round_trip_to_the_same_bits() {
+    let p = parse_params(None).unwrap();
+    for (mode, state) in [
+        (ModeName::Rolling, PAPER_STATE),
+        (ModeName::Sliding, r#"{"theta": 1.1, "Omega_z": 30, "v_C": 0.3, "alpha": 1}"#),
+    ] {
+        for (backend, flag) in [(Backend::Generated, None), (Backend::Reference, Some("--reference"))] {
+            let mut args = vec!["--mode", mode.as_str(), "--state", state];
+            args.extend(flag);
+            let printed = ok_json(&args);
+            let y = parse_state(mode, Some(state)).unwrap();
+            let direct = evaluate(backend, mode, &p, &y).unwrap();
+            for (name, value) in direct.derivatives.0.iter().chain(&direct.outputs.0) {
+                let section = if direct.derivatives.0.iter().any(|(n, _)| n == name) {
+                    "derivatives"
+                } else {
+                    "outputs"
+                };
+                let got = printed[section][*name].as_f64().unwrap();
+                assert_eq!(got.to_bits(), value.to_bits(), "{mode} {backend:?} {name}");
+            }
+        }
+    }
+}
+
+#[test]
+fn reference_and_generated_agree() {
+    let g = ok_json(&["--mode", "rolling", "--state", PAPER_STATE]);
+    let r = ok_json(&["--mode", "rolling", "--reference", "--state", PAPER_STATE]);
+    for (k, v) in g["derivatives"].as_object().unwrap() {
+        let (a, b) = (v.as_f64().unwrap(), r["derivatives"][k].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{k}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn every_error_class_names_its_key() {
+    rejected(&["--mode", "rolling", "--state", r#"{"tehta": 1}"#], "tehta");
+    rejected(&["--mode", "rolling", "--state", r#"{"theta": "1"}"#], "theta");
+    rejected(&["--mode", "rolling", "--state", r#"{"theta": 1e999}"#], "theta");
+    rejected(&["--mode", "rolling", "--state", r#"{"theta": 1, "theta": 2}"#], "theta");
+    rejected(&["--mode", "rolling", "--state", r#"{"theta": 0}"#], "theta");
+    rejected(&["--mode", "rolling", "--reference", "--state", "{}"], "theta");
+    rejected(&["--mode", "sliding", "--state", r#"{"theta": 1}"#], "v_C");
+    rejected(&["--mode", "sliding", "--state", r#"{"V_X": 1}"#], "V_X");
+    rejected(&["--mode", "rolling", "--params", r#"{"m": -1}"#], "m");
+    rejected(&["--mode", "rolling", "--params", r#"{"mu_st": 0.01}"#], "mu_d");
+    rejected(&["--mode", "rolling", "--params", r#"{"mass": 1}"#], "mass");
+    let out = eval(&["--mode", "rolling", "--state", "{theta: 1}"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--state"));
+}
+
+fn json_value() -> impl Strategy<Value = String> {
+    prop_oneof![
+        any::<f64>().prop_filter("finite", |v| v.is_finite()).prop_map(|v| format!("{v:e}")),
+        Just("1e400".to_string()),
+        Just("-1e400".to_string()),
+        Just("null".to_string()),
+        Just("true".to_string()),
+        Just("\"NaN\"".to_string()),
+        Just("[1.0]".to_string()),
+        Just("{\"x\": 1}".to_string()),
+        any::<i64>().prop_map(|v| v.to_string()),
+    ]
+}
+
+const KEYS: &[&str] = &[
+    "X", "Z", "V_X", "theta", "Omega_x", "Omega_z", "v_C", "alpha", "psi", "nope", "", "θ",
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// Random objects: either every value is a finite number under a known name, or the
+    /// rejection names an offending key.
+    #[test]
+    fn state_parsing_names_every_rejection(
+        entries in prop::collection::vec((prop::sample::select(KEYS), json_value()), 0..5),
+        mode in prop::sample::select(&[ModeName::Rolling, ModeName::Sliding][..]),
+    ) {
+        let body: Vec<String> = entries.iter().map(|(k, v)| format!("\"{k}\": {v}")).collect();
+        let text = format!("{{{}}}", body.join(", "));
+        match parse_state(mode, Some(&text)) {
+            Ok(y) => prop_assert!(y.iter().all(|v| v.is_finite())),
+            Err(e) => {
+                let key = e.key().expect("a rejection of an object names a key");
+                prop_assert!(entries.iter().any(|(k, _)| *k == key), "{key} {text}");
+                prop_assert!(e.to_string().contains(key));
+            }
+        }
+    }
+
+    /// Whatever the state, evaluation returns finite numbers or an error; never a panic.
+    #[test]
+    fn evaluation_never_panics_or_prints_nan(
+        values in prop::collection::vec(
+            prop_oneof![-1e3..1e3f64, Just(0.0), Just(1e300), Just(-1e300), Just(3.141592653589793)],
+            12,
+        ),
+        sliding in any::<bool>(),
+        reference in any::<bool>(),
+    ) {
+        let mode = if sliding { ModeName::Sliding } else { ModeName::Rolling };
+        let backend = if reference { Backend::Reference } else { Backend::Generated };
+        let y: [f64; 12] = std::array::from_fn(|i| values[i]);
+        let p = parse_params(None).unwrap();
+        if let Ok(e) = evaluate(backend, mode, &p, &y) {
+            for (_, v) in e.derivatives.0.iter().chain(&e.outputs.0) {
+                prop_assert!(v.is_finite());
+            }
+        }
+    }
+
+    #[test]
+    fn any_text_is_parsed_or_rejected(text in ".{0,60}") {
+        let _ = parse_named_numbers("--state", &text, &["theta"]);
+    }
+}
