@@ -16,6 +16,9 @@ use std::time::Instant;
 #[derive(Default)]
 struct Counter {
     within: [u64; 3],
+    /// Onsets of sliding within the last second before the end time.
+    last_second_onsets: u64,
+    t_end: f64,
     to_rolling: u64,
     restarts: u64,
     shortest_sliding: f64,
@@ -31,6 +34,9 @@ impl DiskObserver for Counter {
             if r.t <= limit {
                 *n += 1;
             }
+        }
+        if r.t > self.t_end - 1.0 && r.to == Mode::Sliding {
+            self.last_second_onsets += 1;
         }
         match (r.from, r.to) {
             (Mode::Sliding, Mode::Rolling) => {
@@ -73,7 +79,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         config.atol = a.parse()?;
     }
     let which = arg(6).unwrap_or("generated");
-    let mut counter = Counter::default();
+    let mut counter = Counter {
+        t_end: config.t_end,
+        ..Counter::default()
+    };
     let start = Instant::now();
     let initial = InitialState::paper(&params);
     let out: RunOutcome = if which == "reference" {
@@ -107,8 +116,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         counter.restarts
     );
     println!(
-        "shortest sliding phase ending in rolling: {:e} s",
-        counter.shortest_sliding
+        "shortest sliding phase ending in rolling: {:e} s; sliding onsets in the last second: {}",
+        counter.shortest_sliding, counter.last_second_onsets
     );
     println!(
         "max drift: |Z - a sin th| {:e} m, |V_Z - a Om_y cos th| {:e} m/s, no-slip {:e} m/s",

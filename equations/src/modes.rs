@@ -9,7 +9,9 @@
 //! state derivative the integrator already holds (the secondary outputs of Box 1 and Box 3), so a
 //! guard costs no extra model evaluation.
 
+use crate::formulas::{self, BodyRates};
 use crate::params::DiskParams;
+use nalgebra::Vector3;
 
 /// Number of states of every disk model.
 pub const DIM: usize = 12;
@@ -114,13 +116,20 @@ impl Slip {
     }
 }
 
+/// The angular velocity components of a state vector (every layout).
+fn body_rates(y: &[f64; DIM]) -> BodyRates {
+    BodyRates {
+        omega_x: y[OMEGA_X],
+        omega_y: y[OMEGA_Y],
+        omega_z: y[OMEGA_Z],
+    }
+}
+
 /// The horizontal velocity of the centre when the contact particle is at rest (Box 2):
 /// `a (Ω_y cos ψ sin θ + Ω_z sin ψ, Ω_y sin ψ sin θ − Ω_z cos ψ)`.
-pub fn no_slip_velocity(a: f64, y: &[f64; DIM]) -> [f64; 2] {
-    let (sp, cp) = y[PSI].sin_cos();
-    let st = y[THETA].sin();
-    let (oy, oz) = (y[OMEGA_Y], y[OMEGA_Z]);
-    [a * (oy * cp * st + oz * sp), a * (oy * sp * st - oz * cp)]
+pub fn no_slip_velocity(p: &DiskParams, y: &[f64; DIM]) -> [f64; 2] {
+    let v = formulas::rolling_consistent(p, y[PSI], y[THETA], &body_rates(y)).velocity;
+    [v.x, v.y]
 }
 
 /// A disk state in the rolling variables `(X, Y, Z, V_X, V_Y, V_Z, ψ, θ, φ, Ω_x, Ω_y, Ω_z)`
@@ -146,7 +155,7 @@ impl PhysicalState {
     }
 
     /// Reads a sliding state vector of the given chart (the centre's velocity from S1/S2).
-    pub fn from_sliding(chart: SlipChart, a: f64, y: &[f64; DIM]) -> Self {
+    pub fn from_sliding(chart: SlipChart, p: &DiskParams, y: &[f64; DIM]) -> Self {
         let slip = match chart {
             SlipChart::Cartesian => Slip::from_vector([y[U_X], y[U_Y]]),
             SlipChart::Polar => Slip {
@@ -154,7 +163,7 @@ impl PhysicalState {
                 direction: y[ALPHA],
             },
         };
-        let roll = no_slip_velocity(a, y);
+        let roll = no_slip_velocity(p, y);
         let u = slip.vector();
         let mut phys = *y;
         phys[V_X] = roll[0] + u[0];
@@ -163,8 +172,8 @@ impl PhysicalState {
     }
 
     /// The slip velocity `V_hor − V_no-slip` computed from the centre's velocity.
-    pub fn velocity_slip(&self, a: f64) -> [f64; 2] {
-        let roll = no_slip_velocity(a, &self.y);
+    pub fn velocity_slip(&self, p: &DiskParams) -> [f64; 2] {
+        let roll = no_slip_velocity(p, &self.y);
         [self.y[V_X] - roll[0], self.y[V_Y] - roll[1]]
     }
 
@@ -191,31 +200,28 @@ impl PhysicalState {
         y
     }
 
+    /// The centre's velocity `(V_X, V_Y, V_Z)`.
+    pub fn centre_velocity(&self) -> Vector3<f64> {
+        Vector3::new(self.y[V_X], self.y[V_Y], self.y[V_Z])
+    }
+
     /// Total mechanical energy (EQUATIONS.md §7).
     pub fn energy(&self, p: &DiskParams) -> f64 {
-        let y = &self.y;
-        let v2 = y[V_X] * y[V_X] + y[V_Y] * y[V_Y] + y[V_Z] * y[V_Z];
-        0.5 * p.m * v2
-            + 0.5 * p.A() * (y[OMEGA_X] * y[OMEGA_X] + y[OMEGA_Y] * y[OMEGA_Y])
-            + 0.5 * p.C() * y[OMEGA_Z] * y[OMEGA_Z]
-            + p.m * p.g * y[Z]
+        formulas::total_energy(p, &self.centre_velocity(), &body_rates(&self.y), self.y[Z])
     }
 
     /// Normal velocity of the centre `v_z = V · e_z` (the air-drag argument).
     pub fn normal_velocity(&self) -> f64 {
-        let y = &self.y;
-        let (sp, cp) = y[PSI].sin_cos();
-        let (st, ct) = y[THETA].sin_cos();
-        (y[V_X] * cp + y[V_Y] * sp) * st + y[V_Z] * ct
+        formulas::normal_velocity(self.y[PSI], self.y[THETA], &self.centre_velocity())
     }
 
     /// The drift of the constraints imposed only in differential form.
-    pub fn residuals(&self, a: f64, mode: Mode) -> ConstraintResiduals {
-        let y = &self.y;
+    pub fn residuals(&self, p: &DiskParams, mode: Mode) -> ConstraintResiduals {
+        let (a, y) = (p.a, &self.y);
         let (st, ct) = y[THETA].sin_cos();
         let no_slip = match mode {
             Mode::Rolling => {
-                let s = self.velocity_slip(a);
+                let s = self.velocity_slip(p);
                 s[0].hypot(s[1])
             }
             Mode::Sliding => 0.0,
@@ -229,12 +235,13 @@ impl PhysicalState {
 
     /// Puts the state back onto the contact constraints: `Z = a sin θ`, `V_Z = a Ω_y cos θ`,
     /// and in rolling the no-slip velocity. Only the redundant coordinates move.
-    pub fn project(&mut self, a: f64, mode: Mode) {
+    pub fn project(&mut self, p: &DiskParams, mode: Mode) {
+        let a = p.a;
         let (st, ct) = self.y[THETA].sin_cos();
         self.y[Z] = a * st;
         self.y[V_Z] = a * self.y[OMEGA_Y] * ct;
         if mode == Mode::Rolling {
-            let roll = no_slip_velocity(a, &self.y);
+            let roll = no_slip_velocity(p, &self.y);
             self.y[V_X] = roll[0];
             self.y[V_Y] = roll[1];
         }
@@ -332,7 +339,7 @@ mod tests {
 
     #[test]
     fn charts_round_trip_through_the_physical_state() {
-        let a = 0.03755;
+        let p = DiskParams::paper();
         let slip = Slip {
             speed: 0.25,
             direction: 2.0,
@@ -340,10 +347,10 @@ mod tests {
         let base = PhysicalState::from_rolling(&sample_state(), 0.0);
         for chart in [SlipChart::Cartesian, SlipChart::Polar] {
             let y = base.sliding_vector(chart, slip);
-            let back = PhysicalState::from_sliding(chart, a, &y);
+            let back = PhysicalState::from_sliding(chart, &p, &y);
             assert!((back.slip.speed - 0.25).abs() < 1e-15);
             assert!((back.slip.direction - 2.0).abs() < 1e-15);
-            let u = back.velocity_slip(a);
+            let u = back.velocity_slip(&p);
             let expected = slip.vector();
             assert!((u[0] - expected[0]).abs() < 1e-15 && (u[1] - expected[1]).abs() < 1e-15);
             let again = back.sliding_vector(chart, back.slip);
@@ -355,11 +362,11 @@ mod tests {
 
     #[test]
     fn projection_zeroes_the_residuals() {
-        let a = 0.03755;
+        let p = DiskParams::paper();
         let mut s = PhysicalState::from_rolling(&sample_state(), 0.0);
-        assert!(s.residuals(a, Mode::Rolling).max_abs() > 1e-3);
-        s.project(a, Mode::Rolling);
-        let r = s.residuals(a, Mode::Rolling);
+        assert!(s.residuals(&p, Mode::Rolling).max_abs() > 1e-3);
+        s.project(&p, Mode::Rolling);
+        let r = s.residuals(&p, Mode::Rolling);
         assert!(r.max_abs() < 1e-16, "{r:?}");
     }
 

@@ -27,7 +27,7 @@ fn rolling_state(p: &DiskParams, psi: f64, theta: f64, omega: [f64; 3]) -> [f64;
     y[OMEGA_Y] = omega[1];
     y[OMEGA_Z] = omega[2];
     let mut s = PhysicalState::from_rolling(&y, 0.0);
-    s.project(p.a, Mode::Rolling);
+    s.project(p, Mode::Rolling);
     s.y
 }
 

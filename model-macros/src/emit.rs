@@ -5,7 +5,7 @@
 //! the expansion, and the lints that generated straight-line code trips are allowed on the module.
 
 use crate::ast::ModelAst;
-use crate::emit_program::{constant, statements, stored_targets, target_place};
+use crate::emit_program::{constant, statements, zero_unstored};
 use model_algebra::program::{CompiledModel, Program, Target};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -213,17 +213,6 @@ fn default_impl(model: &CompiledModel) -> TokenStream {
     }
 }
 
-/// `dst[k] = 0.0;` for every place of `all` the program does not store to.
-fn zero_unstored(program: &Program, all: impl Iterator<Item = Target>) -> TokenStream {
-    let stored = stored_targets(program);
-    all.filter(|target| !stored.contains(target))
-        .map(|target| {
-            let place = target_place(target);
-            quote! { #place = 0.0; }
-        })
-        .collect()
-}
-
 fn model_impl(model: &CompiledModel) -> TokenStream {
     let n = model.states.len();
     let der_names = model.states.iter().map(|state| format!("der({state})"));
@@ -250,7 +239,6 @@ fn model_impl(model: &CompiledModel) -> TokenStream {
                 &INFO
             }
 
-            #[inline]
             fn rhs(
                 &self,
                 t: f64,
@@ -272,7 +260,6 @@ fn model_impl(model: &CompiledModel) -> TokenStream {
                 ::core::result::Result::Ok(())
             }
 
-            #[inline]
             fn jacobian(
                 &self,
                 t: f64,
@@ -305,7 +292,6 @@ fn outputs_impl(model: &CompiledModel) -> TokenStream {
     let zero = zero_unstored(program, (0..model.outputs.len()).map(Target::Output));
     quote! {
         impl ::model_runtime::WithOutputs<N_STATES, N_OUTPUTS> for Model {
-            #[inline]
             fn outputs(
                 &self,
                 t: f64,

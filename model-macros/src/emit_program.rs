@@ -4,15 +4,24 @@
 //! subexpression and decided which pivots to check, so each statement becomes one line of Rust.
 //! The emitted bodies read `t`, `y`, `p` (the parameters) and, for outputs, `dy`; they write `dy`,
 //! `out` or `jac`, and refer to the model's name through a `MODEL_NAME` constant.
+//!
+//! The body is written as text and handed to the compiler's lexer once: inside rustc every token
+//! built one by one is a round trip through the proc-macro bridge, and a large model's programs
+//! have thousands of statements.
 
 use model_algebra::program::{Node, Operand, Program, Stmt, Target};
 use model_algebra::spec::Func;
-use proc_macro2::{Ident, Literal, Span, TokenStream};
-use quote::quote;
+use proc_macro2::TokenStream;
+use std::fmt::Write;
 
 /// The statements of `program`, as Rust.
 pub fn statements(program: &Program) -> TokenStream {
-    program.stmts.iter().map(statement).collect()
+    let mut text = String::new();
+    for stmt in &program.stmts {
+        statement(&mut text, stmt);
+        text.push('\n');
+    }
+    lex(&text)
 }
 
 /// Every target `program` stores to.
@@ -27,28 +36,45 @@ pub fn stored_targets(program: &Program) -> Vec<Target> {
         .collect()
 }
 
-fn statement(stmt: &Stmt) -> TokenStream {
-    match stmt {
-        Stmt::Let { tmp, node: value } => {
-            let name = tmp_ident(*tmp);
-            let value = node(value);
-            quote! { let #name: f64 = #value; }
-        }
+/// `dst = 0.0;` for every place of `all` the program does not store to.
+pub fn zero_unstored(program: &Program, all: impl Iterator<Item = Target>) -> TokenStream {
+    let stored = stored_targets(program);
+    let mut text = String::new();
+    for target in all.filter(|target| !stored.contains(target)) {
+        let _ = writeln!(text, "{} = 0.0;", place(target));
+    }
+    lex(&text)
+}
+
+/// An `f64` constant as a token that survives any surrounding operator (negatives in parens).
+pub fn constant(value: f64) -> TokenStream {
+    lex(&constant_text(value))
+}
+
+/// Text the generator wrote is Rust by construction; should the lexer still refuse it, the user
+/// gets a compile error rather than a panic.
+fn lex(text: &str) -> TokenStream {
+    text.parse().unwrap_or_else(|error| {
+        let message = format!("the model's generated code does not lex ({error}): this is a bug");
+        quote::quote! { ::core::compile_error!(#message); }
+    })
+}
+
+fn statement(out: &mut String, stmt: &Stmt) {
+    // Writing into a String cannot fail.
+    let _ = match stmt {
+        Stmt::Let { tmp, node: value } => writeln!(out, "let t{tmp}: f64 = {};", node(value)),
         Stmt::SinCos { sin, cos, arg } => {
-            let (sin, cos, arg) = (tmp_ident(*sin), tmp_ident(*cos), operand(arg));
-            quote! { let (#sin, #cos) = #arg.sin_cos(); }
+            writeln!(out, "let (t{sin}, t{cos}) = {}.sin_cos();", operand(arg))
         }
         Stmt::CheckPivot { value, text } => {
             let value = operand(value);
-            quote! {
-                if !(#value != 0.0 && #value.is_finite()) {
-                    return ::core::result::Result::Err(::model_runtime::EvalError::SingularPivot {
-                        model: MODEL_NAME,
-                        pivot: #text,
-                        value: #value,
-                    });
-                }
-            }
+            writeln!(
+                out,
+                "if !({value} != 0.0 && {value}.is_finite()) {{ \
+                 return ::core::result::Result::Err(::model_runtime::EvalError::SingularPivot {{ \
+                 model: MODEL_NAME, pivot: {text:?}, value: {value} }}); }}"
+            )
         }
         Stmt::SolveBlock {
             n,
@@ -57,59 +83,42 @@ fn statement(stmt: &Stmt) -> TokenStream {
             result,
             text,
         } => {
-            let rows = matrix.chunks(*n).map(|row| {
-                let row = row.iter().map(operand);
-                quote! { [#(#row),*] }
-            });
-            let rhs = rhs.iter().map(operand);
-            let result = result.iter().map(|tmp| tmp_ident(*tmp));
-            quote! {
-                let [#(#result),*] = ::model_runtime::linalg::solve_block::<#n>(
-                    [#(#rows),*],
-                    [#(#rhs),*],
-                    MODEL_NAME,
-                    #text,
-                )?;
-            }
+            let rows: Vec<String> = matrix
+                .chunks((*n).max(1))
+                .map(|row| format!("[{}]", list(row.iter().map(operand))))
+                .collect();
+            let result = list(result.iter().map(|tmp| format!("t{tmp}")));
+            writeln!(
+                out,
+                "let [{result}] = ::model_runtime::linalg::solve_block::<{n}>([{}], [{}], MODEL_NAME, {text:?})?;",
+                rows.join(", "),
+                list(rhs.iter().map(operand)),
+            )
         }
-        Stmt::Store { target, value } => {
-            let target = target_place(*target);
-            let value = operand(value);
-            quote! { #target = #value; }
-        }
-    }
+        Stmt::Store { target, value } => writeln!(out, "{} = {};", place(*target), operand(value)),
+    };
 }
 
 /// Where a [`Target`] lives in the emitted function.
-pub fn target_place(target: Target) -> TokenStream {
+fn place(target: Target) -> String {
     match target {
-        Target::Der(i) => quote! { dy[#i] },
-        Target::Output(k) => quote! { out[#k] },
-        Target::Jac(i, j) => quote! { jac[#i][#j] },
+        Target::Der(i) => format!("dy[{i}]"),
+        Target::Output(k) => format!("out[{k}]"),
+        Target::Jac(i, j) => format!("jac[{i}][{j}]"),
     }
 }
 
-fn node(node: &Node) -> TokenStream {
+fn node(node: &Node) -> String {
     match node {
         Node::Copy(a) => operand(a),
-        Node::Neg(a) => {
-            let a = operand(a);
-            quote! { -#a }
-        }
-        Node::Add(a, b) => binary(a, quote! { + }, b),
-        Node::Sub(a, b) => binary(a, quote! { - }, b),
-        Node::Mul(a, b) => binary(a, quote! { * }, b),
-        Node::Div(a, b) => binary(a, quote! { / }, b),
-        Node::Powi(a, n) => {
-            let a = operand(a);
-            quote! { #a.powi(#n) }
-        }
-        Node::Powf(a, b) => {
-            let (a, b) = (operand(a), operand(b));
-            quote! { #a.powf(#b) }
-        }
+        Node::Neg(a) => format!("-{}", operand(a)),
+        Node::Add(a, b) => format!("{} + {}", operand(a), operand(b)),
+        Node::Sub(a, b) => format!("{} - {}", operand(a), operand(b)),
+        Node::Mul(a, b) => format!("{} * {}", operand(a), operand(b)),
+        Node::Div(a, b) => format!("{} / {}", operand(a), operand(b)),
+        Node::Powi(a, n) => format!("{}.powi({n})", operand(a)),
+        Node::Powf(a, b) => format!("{}.powf({})", operand(a), operand(b)),
         Node::Call(func, a) => {
-            let a = operand(a);
             let method = match func {
                 Func::Sin => "sin",
                 Func::Cos => "cos",
@@ -119,57 +128,46 @@ fn node(node: &Node) -> TokenStream {
                 Func::Ln => "ln",
                 Func::Abs => "abs",
                 Func::Atan2 => {
-                    return quote! {
-                        ::core::compile_error!("the equation compiler emitted a one-argument `atan2`")
-                    }
+                    return "::core::compile_error!(\"the equation compiler emitted a one-argument `atan2`\")"
+                        .to_string()
                 }
             };
-            let method = Ident::new(method, Span::call_site());
-            quote! { #a.#method() }
+            format!("{}.{method}()", operand(a))
         }
-        Node::Atan2(a, b) => {
-            let (a, b) = (operand(a), operand(b));
-            quote! { #a.atan2(#b) }
-        }
+        Node::Atan2(a, b) => format!("{}.atan2({})", operand(a), operand(b)),
     }
 }
 
-fn binary(a: &Operand, op: TokenStream, b: &Operand) -> TokenStream {
-    let (a, b) = (operand(a), operand(b));
-    quote! { #a #op #b }
-}
-
-fn operand(operand: &Operand) -> TokenStream {
+fn operand(operand: &Operand) -> String {
     match *operand {
-        Operand::Const(value) => constant(value),
-        Operand::State(i) => quote! { y[#i] },
-        Operand::Param(i) => quote! { p[#i] },
-        Operand::Der(i) => quote! { dy[#i] },
-        Operand::Time => quote! { t },
-        Operand::Tmp(tmp) => {
-            let tmp = tmp_ident(tmp);
-            quote! { #tmp }
-        }
+        Operand::Const(value) => constant_text(value),
+        Operand::State(i) => format!("y[{i}]"),
+        Operand::Param(i) => format!("p[{i}]"),
+        Operand::Der(i) => format!("dy[{i}]"),
+        Operand::Time => "t".to_string(),
+        Operand::Tmp(tmp) => format!("t{tmp}"),
     }
 }
 
-/// An `f64` constant as a token that survives any surrounding operator (negatives in parens).
-pub fn constant(value: f64) -> TokenStream {
+/// `value` as a Rust `f64` literal: `Debug` prints the shortest text that reads back exactly
+/// (with a `.` or an exponent, so it is a float literal); negatives go in parentheses.
+fn constant_text(value: f64) -> String {
     if value.is_nan() {
-        quote! { f64::NAN }
-    } else if value == f64::INFINITY {
-        quote! { f64::INFINITY }
-    } else if value == f64::NEG_INFINITY {
-        quote! { f64::NEG_INFINITY }
+        "f64::NAN".to_string()
+    } else if value.is_infinite() {
+        if value > 0.0 {
+            "f64::INFINITY"
+        } else {
+            "f64::NEG_INFINITY"
+        }
+        .to_string()
     } else if value.is_sign_negative() {
-        let magnitude = Literal::f64_suffixed(-value);
-        quote! { (-#magnitude) }
+        format!("(-{:?}_f64)", -value)
     } else {
-        let literal = Literal::f64_suffixed(value);
-        quote! { #literal }
+        format!("{value:?}_f64")
     }
 }
 
-fn tmp_ident(tmp: u32) -> Ident {
-    Ident::new(&format!("t{tmp}"), Span::call_site())
+fn list(items: impl Iterator<Item = String>) -> String {
+    items.collect::<Vec<_>>().join(", ")
 }

@@ -34,14 +34,21 @@ impl Default for StepOptions {
     }
 }
 
-/// A proportional-integral step-size controller (Gustafsson): the new step is
-/// `h * safety * err^(-alpha) * err_prev^(beta)`, clamped to `[fac_min, fac_max]` times `h`.
+/// Step-size control: a proportional-integral controller, `h * safety * err^(-alpha) *
+/// err_prev^(beta)`, limited by Gustafsson's predictive factor `safety * (h / h_prev) *
+/// (err_prev / err²)^(1/k)` (which sees an error that grows from step to step, as on the way
+/// into a near-singular region, and shrinks the step before it is rejected), clamped to
+/// `[fac_min, fac_max]` times `h`. A rejected step is retried with the full exponent `1/k`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Controller {
+    /// `1 / (q + 1)` for an error estimate of order `q`.
+    inv_k: f64,
     alpha: f64,
     beta: f64,
     /// `err_prev^beta` of the last accepted step (kept raised, to save a `powf` per step).
     err_prev_beta: f64,
+    /// Step size and error of the last accepted step, for the predictive factor.
+    last_accepted: Option<(f64, f64)>,
     rejected_last: bool,
 }
 
@@ -54,9 +61,11 @@ impl Controller {
     pub(crate) fn new(error_order: u32) -> Self {
         let k = (error_order + 1) as f64;
         Controller {
+            inv_k: 1.0 / k,
             alpha: 0.7 / k,
             beta: 0.4 / k,
             err_prev_beta: 1.0,
+            last_accepted: None,
             rejected_last: false,
         }
     }
@@ -64,6 +73,7 @@ impl Controller {
     /// Forgets the error history (after a restart).
     pub(crate) fn reset(&mut self) {
         self.err_prev_beta = 1.0;
+        self.last_accepted = None;
         self.rejected_last = false;
     }
 
@@ -71,11 +81,16 @@ impl Controller {
     pub(crate) fn accepted(&mut self, h: f64, err: f64) -> f64 {
         let err = err.max(1e-10);
         let mut fac = SAFETY * err.powf(-self.alpha) * self.err_prev_beta;
+        if let Some((h_prev, err_prev)) = self.last_accepted {
+            let predictive = SAFETY * (h / h_prev) * (err_prev / (err * err)).powf(self.inv_k);
+            fac = fac.min(predictive);
+        }
         fac = fac.clamp(FAC_MIN, FAC_MAX);
         if self.rejected_last {
             fac = fac.min(1.0);
         }
         self.err_prev_beta = err.max(1e-4).powf(self.beta);
+        self.last_accepted = Some((h, err.max(1e-2)));
         self.rejected_last = false;
         h * fac
     }
@@ -84,7 +99,7 @@ impl Controller {
     pub(crate) fn rejected(&mut self, h: f64, err: f64) -> f64 {
         self.rejected_last = true;
         let fac = if err.is_finite() {
-            (SAFETY * err.powf(-self.alpha)).clamp(FAC_MIN, 1.0)
+            (SAFETY * err.powf(-self.inv_k)).clamp(FAC_MIN, 1.0)
         } else {
             FAC_MIN
         };
@@ -149,4 +164,41 @@ pub(crate) fn min_step(t: f64, h_min: f64) -> f64 {
     h_min
         .max(8.0 * f64::EPSILON * t.abs())
         .max(f64::MIN_POSITIVE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rejection_shrinks_by_the_full_error_exponent() {
+        let mut c = Controller::new(4);
+        // err = 32 with k = 5: the step that would have met the tolerance is h / 2.
+        let h = c.rejected(1.0, 32.0);
+        assert!((h - 0.45).abs() < 1e-12, "{h}");
+        assert_eq!(c.rejected(1.0, f64::INFINITY), FAC_MIN);
+        assert_eq!(c.rejected(1.0, 1e30), FAC_MIN);
+    }
+
+    #[test]
+    fn steps_grow_on_small_errors_but_not_right_after_a_rejection() {
+        let mut c = Controller::new(4);
+        assert_eq!(c.accepted(1.0, 1e-12), FAC_MAX);
+        c.reset();
+        c.rejected(1.0, 2.0);
+        assert!(c.accepted(1.0, 1e-6) <= 1.0);
+    }
+
+    #[test]
+    fn a_growing_error_shrinks_the_step_before_it_is_rejected() {
+        // Errors tripling from step to step at a constant step size: the predictive factor
+        // proposes a smaller step than the proportional-integral one alone would.
+        let mut c = Controller::new(4);
+        c.accepted(1.0, 0.1);
+        let with_history = c.accepted(1.0, 0.3);
+        let mut fresh = Controller::new(4);
+        let without = fresh.accepted(1.0, 0.3);
+        assert!(with_history < without, "{with_history} vs {without}");
+        assert!(with_history < 1.0);
+    }
 }

@@ -231,7 +231,7 @@ impl GuardTracker {
                 }
             }
             if any {
-                return self.locate(lo, tk, &mut eval).map(Some);
+                return self.locate(lo, tk, &mut eval);
             }
             for i in 0..n {
                 let v = self.scratch[i];
@@ -252,7 +252,7 @@ impl GuardTracker {
         lo: f64,
         hi: f64,
         eval: &mut impl FnMut(f64, &mut [f64]) -> Result<(), E>,
-    ) -> Result<Found, E> {
+    ) -> Result<Option<Found>, E> {
         let n = self.len();
         let mut best: Option<Found> = None;
         for i in 0..n {
@@ -285,27 +285,24 @@ impl GuardTracker {
                 eval(t, scratch)?;
                 Ok(scratch[i])
             })?;
-            let earlier = match best {
-                None => true,
-                Some(b) => root.t < b.t,
-            };
-            if earlier {
-                best = Some(Found {
+            let b = match best {
+                Some(b) if b.t <= root.t => b,
+                _ => Found {
                     index: i,
                     t: root.t,
                     before: root.before,
                     direction: c,
-                });
-            }
+                },
+            };
+            best = Some(b);
             // Keep `at_best` consistent with the best time for the next guards.
-            let b = best.expect("set above");
             if b.t == hi {
                 self.at_best.copy_from_slice(&self.scratch);
             } else {
                 eval(b.t, &mut self.at_best)?;
             }
         }
-        Ok(best.expect("locate is called only when an admitted crossing exists"))
+        Ok(best)
     }
 }
 

@@ -109,6 +109,15 @@ pub trait HybridSystem<const N: usize> {
         hit: &EventHit<N, Self::Guard>,
     ) -> Result<Transition<N, Self::Mode, Self::Stop>, EvalError>;
 
+    /// A step size to try first in a segment of `mode` starting at `(t, y)` (the run's start
+    /// or a restart after a transition); `None` (the default) keeps the configured
+    /// [`StepOptions::h_initial`] or the automatic choice. Useful where a transition lands on a
+    /// state the automatic guess misjudges (e.g. the onset of a motion whose derivative is
+    /// nearly singular there): a good first step saves a cascade of rejections.
+    fn first_step(&self, _mode: Self::Mode, _t: f64, _y: &[f64; N]) -> Option<f64> {
+        None
+    }
+
     /// Optionally moves `y` back onto the constraints of `mode`; returns whether it changed
     /// `y`. Called after every accepted step and on the state a transition starts from.
     fn project(&self, _mode: Self::Mode, _t: f64, _y: &mut [f64; N]) -> bool {

@@ -72,6 +72,18 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
     /// Starts afresh at `(t, y)`: evaluates `f`, forgets the previous step (no first-same-as-last
     /// reuse across a restart, no error history) and chooses a new initial step size.
     pub fn restart<F: Rhs<N>>(&mut self, sys: &F, t: f64, y: &[f64; N]) -> Result<(), SolveError> {
+        self.restart_with_step(sys, t, y, None)
+    }
+
+    /// Like [`Integrator::restart`], trying `first_step` (if given, positive and finite) as the
+    /// first step of an adaptive method instead of the configured or automatic one.
+    pub fn restart_with_step<F: Rhs<N>>(
+        &mut self,
+        sys: &F,
+        t: f64,
+        y: &[f64; N],
+        first_step: Option<f64>,
+    ) -> Result<(), SolveError> {
         if !t.is_finite() {
             return Err(InputError::TimeSpan { t0: t, t_end: t }.into());
         }
@@ -88,7 +100,8 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         self.ctrl.reset();
         self.has_step = false;
         self.dense_ready = false;
-        self.h = match (self.stepper.fixed_step(), self.opts.h_initial) {
+        let hint = first_step.filter(|h| h.is_finite() && *h > 0.0);
+        self.h = match (self.stepper.fixed_step(), hint.or(self.opts.h_initial)) {
             (Some(h), _) | (None, Some(h)) => h,
             (None, None) => initial_step(
                 sys,

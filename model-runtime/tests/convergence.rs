@@ -243,3 +243,69 @@ fn dop853_dense_output_matches_the_exact_orbit_inside_every_step() {
         );
     }
 }
+
+/// Drives a stepper by hand: one step of size `h` from `t0`, then its interpolant at both ends
+/// and at interior points, checked against the step's own end points and the exact solution.
+fn interpolant_ends<S: Stepper<3>>(mut stepper: S, h: f64) {
+    use model_runtime::{Stats, StepEnd, StepStart};
+    let t0 = 0.7;
+    let y0 = Forced::exact(t0);
+    let mut f0 = [0.0; 3];
+    model_runtime::Model::rhs(&Forced, t0, &y0, &mut f0).unwrap();
+    let (mut y1, mut f1) = ([0.0; 3], [0.0; 3]);
+    let mut stats = Stats::default();
+    let tol = Tolerance::scalar(1e-6, 1e-6);
+    let start = StepStart {
+        t: t0,
+        y: &y0,
+        f: &f0,
+    };
+    let est = stepper
+        .attempt(
+            &Forced,
+            start,
+            h,
+            &tol,
+            StepEnd {
+                y: &mut y1,
+                f: &mut f1,
+            },
+            &mut stats,
+        )
+        .unwrap();
+    assert!(est.norm <= 1.0, "{}: {est:?}", S::NAME);
+    stepper
+        .prepare_dense(&Forced, start, &y1, &f1, h, &mut stats)
+        .unwrap();
+    let mut y = [0.0; 3];
+    stepper.interpolate(0.0, &mut y);
+    assert!(
+        dist(&y, &y0) <= 4.0 * f64::EPSILON * 3.0,
+        "{}: start {y:?} vs {y0:?}",
+        S::NAME
+    );
+    stepper.interpolate(1.0, &mut y);
+    assert!(
+        dist(&y, &y1) <= 4.0 * f64::EPSILON * 3.0,
+        "{}: end {y:?} vs {y1:?}",
+        S::NAME
+    );
+    // Just inside the end the interpolant is continuous with the end point.
+    stepper.interpolate(1.0 - 1e-9, &mut y);
+    assert!(dist(&y, &y1) < 1e-8, "{}", S::NAME);
+    // And inside, it is as accurate as the step (local error ~1e-7 at h = 0.05 for RK4).
+    for k in 1..10 {
+        let theta = k as f64 / 10.0;
+        stepper.interpolate(theta, &mut y);
+        let err = dist(&y, &Forced::exact(t0 + theta * h));
+        assert!(err < 1e-6, "{} at theta {theta}: {err:e}", S::NAME);
+    }
+}
+
+#[test]
+fn interpolants_meet_the_step_end_points() {
+    interpolant_ends(Dopri5::new(), 0.05);
+    interpolant_ends(Dop853::new(), 0.05);
+    interpolant_ends(Rodas4::new(), 0.05);
+    interpolant_ends(Rk4::new(0.05), 0.05);
+}

@@ -408,3 +408,77 @@ fn a_non_finite_state_from_the_transition_map_is_named() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The stick–slip toy with a first-step hint for sliding segments.
+struct Hinted(StickSlip);
+impl HybridSystem<2> for Hinted {
+    type Mode = Phase;
+    type Guard = Why;
+    type Stop = (Phase, f64);
+    fn rhs(&self, m: Phase, t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+        self.0.rhs(m, t, y, dy)
+    }
+    fn guards(&self, m: Phase) -> &[GuardSpec<Why>] {
+        self.0.guards(m)
+    }
+    fn guard_values(
+        &self,
+        m: Phase,
+        t: f64,
+        y: &[f64; 2],
+        dy: &[f64; 2],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        self.0.guard_values(m, t, y, dy, g)
+    }
+    fn on_event(
+        &mut self,
+        m: Phase,
+        hit: &EventHit<2, Why>,
+    ) -> Result<Transition<2, Phase, (Phase, f64)>, EvalError> {
+        self.0.on_event(m, hit)
+    }
+    fn first_step(&self, m: Phase, _t: f64, _y: &[f64; 2]) -> Option<f64> {
+        (m == Phase::Slide).then_some(1e-3)
+    }
+}
+
+/// Records the first step of every segment.
+#[derive(Default)]
+struct FirstSteps {
+    expect_first: bool,
+    first: Vec<(Phase, f64)>,
+}
+impl model_runtime::Observer<2, Phase, Why> for FirstSteps {
+    fn on_step(&mut self, s: &model_runtime::StepView<'_, 2, Phase>) {
+        if self.expect_first {
+            self.first.push((s.mode, s.t1 - s.t0));
+            self.expect_first = false;
+        }
+    }
+    fn on_transition(&mut self, _: &model_runtime::TransitionRecord<2, Phase, Why>) {
+        self.expect_first = true;
+    }
+}
+
+#[test]
+fn a_first_step_hint_starts_the_segment() {
+    let mut solver = HybridSolver::new(
+        Dopri5::new(),
+        Tolerance::scalar(1e-8, 1e-8),
+        HybridOptions::default(),
+    )
+    .unwrap();
+    let mut obs = FirstSteps::default();
+    let mut sys = Hinted(StickSlip {
+        a: 2.0,
+        fail_on_event: false,
+    });
+    solver
+        .run(&mut sys, Phase::Stick, 0.0, &[0.0, 0.0], 3.0, &mut obs)
+        .unwrap();
+    // t1 - t0 is the hinted step up to the rounding of t0 + h (t0 ≈ 1).
+    assert_eq!(obs.first.len(), 1);
+    assert_eq!(obs.first[0].0, Phase::Slide);
+    assert!((obs.first[0].1 - 1e-3).abs() < 1e-15, "{:?}", obs.first);
+}

@@ -225,3 +225,97 @@ proptest! {
         check_levels(Dopri5::new(), phase, level)?;
     }
 }
+
+/// `x' = 1` with guards `s_i (x - r_i)`: guard `i` crosses up (`s_i = 1`) or down (`s_i = -1`)
+/// at `t = r_i`.
+struct Ramps {
+    specs: Vec<GuardSpec<usize>>,
+    roots: Vec<f64>,
+    signs: Vec<f64>,
+}
+impl HybridSystem<1> for Ramps {
+    type Mode = ();
+    type Guard = usize;
+    type Stop = usize;
+    fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        dy[0] = 1.0;
+        Ok(())
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<usize>] {
+        &self.specs
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; 1],
+        _dy: &[f64; 1],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        for (i, v) in g.iter_mut().enumerate() {
+            *v = self.signs[i] * (y[0] - self.roots[i]);
+        }
+        Ok(())
+    }
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<1, usize>,
+    ) -> Result<Transition<1, (), usize>, EvalError> {
+        Ok(Transition::Stop(hit.guard))
+    }
+}
+
+fn direction(k: u8) -> Direction {
+    match k % 3 {
+        0 => Direction::Up,
+        1 => Direction::Down,
+        _ => Direction::Both,
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    #[test]
+    fn the_earliest_admitted_guard_fires(
+        guards in proptest::collection::vec((0.01f64..2.0, any::<bool>(), 0u8..3), 1..8),
+        h in 0.05f64..3.0,
+    ) {
+        let sys_guards: Vec<GuardSpec<usize>> = guards
+            .iter()
+            .enumerate()
+            .map(|(i, g)| GuardSpec { id: i, direction: direction(g.2) })
+            .collect();
+        let mut sys = Ramps {
+            specs: sys_guards,
+            roots: guards.iter().map(|g| g.0).collect(),
+            signs: guards.iter().map(|g| if g.1 { 1.0 } else { -1.0 }).collect(),
+        };
+        // The brute-force answer: the smallest admitted root, the first listed on ties.
+        let expected = guards
+            .iter()
+            .enumerate()
+            .filter(|(_, g)| {
+                let crossed = if g.1 { model_runtime::Crossed::Up } else { model_runtime::Crossed::Down };
+                direction(g.2).admits(crossed)
+            })
+            .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0).then(a.0.cmp(&b.0)))
+            .map(|(i, g)| (i, g.0));
+        let options = HybridOptions {
+            step: StepOptions { h_initial: Some(h), h_max: h, ..StepOptions::default() },
+            ..HybridOptions::default()
+        };
+        let mut solver = HybridSolver::new(Dopri5::new(), Tolerance::scalar(1e-9, 1e-9), options).unwrap();
+        let out = solver.run(&mut sys, (), 0.0, &[0.0], 2.5, &mut ()).unwrap();
+        match (out.stop, expected) {
+            (model_runtime::StopReason::User(i), Some((j, r))) => {
+                // Equal roots are the same event: the first listed must win.
+                prop_assert!(i == j || guards[i].0 == r, "fired {} at {}, expected {} at {}", i, out.t, j, r);
+                prop_assert!((out.t - r).abs() <= 8.0 * f64::EPSILON * r.max(1.0), "t {} vs {}", out.t, r);
+            }
+            (model_runtime::StopReason::EndTime, None) => {}
+            (stop, exp) => prop_assert!(false, "stop {:?}, expected {:?}", stop, exp),
+        }
+    }
+}

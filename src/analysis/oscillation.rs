@@ -160,13 +160,20 @@ mod tests {
 
     #[test]
     fn period_of_a_damped_oscillation_is_exact() {
-        // The zeros of exp(-λt) sin(ωt + φ) are exactly spaced by π/ω whatever λ is.
-        for (period, rate) in [(0.14, 1000.0), (0.042, 1000.0), (0.042, 5000.0), (0.5, 97.0)] {
+        // The zeros of exp(-λt) sin(ωt + φ) are exactly spaced by π/ω whatever λ is; what
+        // remains is the cubic interpolation error, O((ωh)^4): about 1e-10 relative at 40+
+        // samples per period of the run's sampling, 3e-8 at a coarse 97 Hz for 0.5 s.
+        for (period, rate, tol) in [
+            (0.14, 1000.0, 1e-9),
+            (0.042, 1000.0, 1e-9),
+            (0.042, 5000.0, 1e-11),
+            (0.5, 97.0, 1e-7),
+        ] {
             for phase in [0.0, 0.3, 2.0] {
                 let (t, v) = damped(period, rate, 3.0, phase);
                 let got = mean_period(Series { t: &t, v: &v }, 0.0, 3.0).unwrap();
                 let rel = (got - period).abs() / period;
-                assert!(rel < 1e-9, "period {period} rate {rate}: got {got} ({rel:e})");
+                assert!(rel < tol, "period {period} rate {rate}: got {got} ({rel:e})");
             }
         }
     }

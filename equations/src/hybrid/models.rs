@@ -135,7 +135,7 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskModels<R, S> {
 
     /// Reads a sliding state vector.
     pub fn sliding_state(&self, y: &[f64; DIM]) -> PhysicalState {
-        PhysicalState::from_sliding(self.chart, self.params.a, y)
+        PhysicalState::from_sliding(self.chart, &self.params, y)
     }
 
     /// Splits a sliding derivative into the slip's acceleration along and across `e_s`, at a

@@ -233,19 +233,18 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     config: &DiskConfig,
     initial: &InitialState,
 ) -> Result<(Phase, [f64; DIM]), SimError> {
-    let a = models.params.a;
     let t = initial.t;
     let given = PhysicalState::from_rolling(&initial.y, 0.0);
-    let slip = given.velocity_slip(a);
+    let slip = given.velocity_slip(&models.params);
     let mut state = given;
     if slip[0].hypot(slip[1]) > config.stick_threshold {
-        state.project(a, Mode::Sliding);
+        state.project(&models.params, Mode::Sliding);
         return Ok((
             Phase::Sliding,
             state.sliding_vector(models.chart, Slip::from_vector(slip)),
         ));
     }
-    state.project(a, Mode::Rolling);
+    state.project(&models.params, Mode::Rolling);
     let eval_error = |source| SimError::Transition {
         mode: Mode::Rolling,
         t,
@@ -255,7 +254,7 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     if force.admits_rolling(models.params.mu_st) {
         return Ok((Phase::Rolling, state.rolling_vector()));
     }
-    let drift = given.residuals(a, Mode::Rolling);
+    let drift = given.residuals(&models.params, Mode::Rolling);
     let trigger = Trigger::InitialFriction {
         ratio: force.ratio(),
     };
@@ -323,7 +322,7 @@ pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
         state,
         force,
         energy: state.energy(p),
-        residuals: state.residuals(p.a, mode),
+        residuals: state.residuals(p, mode),
     })
 }
 

@@ -166,10 +166,6 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         self.max_drift.get()
     }
 
-    fn a(&self) -> f64 {
-        self.models.params.a
-    }
-
     fn note_drift(&self, r: ConstraintResiduals) {
         let m = self.max_drift.get();
         self.max_drift.set(ConstraintResiduals {
@@ -344,13 +340,12 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         t: f64,
         y: &[f64; DIM],
     ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
-        let a = self.a();
         let before = self.models.sliding_state(y);
-        let drift = before.residuals(a, Mode::Sliding);
+        let drift = before.residuals(&self.models.params, Mode::Sliding);
         self.note_drift(drift);
         let mut state = before;
         // v_C = 0: the centre's velocity is the no-slip one (S1/S2 with v_C = 0).
-        state.project(a, Mode::Rolling);
+        state.project(&self.models.params, Mode::Rolling);
         state.slip.speed = 0.0;
         let force = self.rolling_force(t, &state)?;
         let trigger = Trigger::SlipStopped {
@@ -424,7 +419,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         self.speed_sign
             .set(if slip.speed < 0.0 { -1.0 } else { 1.0 });
         let mut state = self.models.sliding_state(y);
-        state.project(self.a(), Mode::Sliding);
+        state.project(&self.models.params, Mode::Sliding);
         state.sliding_vector(self.models.chart, slip)
     }
 }
@@ -505,12 +500,11 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                 },
             ))),
             DiskGuard::FrictionLimit => {
-                let a = self.a();
                 let mut state = PhysicalState::from_rolling(&hit.y, 0.0);
                 let force = ContactForce::rolling(&self.models.params, &state, &hit.dy);
-                let drift = state.residuals(a, Mode::Rolling);
+                let drift = state.residuals(&self.models.params, Mode::Rolling);
                 self.note_drift(drift);
-                state.project(a, Mode::Rolling);
+                state.project(&self.models.params, Mode::Rolling);
                 if self.chattering(hit.t) {
                     return Ok(self.chatter_stop(hit.t));
                 }
@@ -545,12 +539,12 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
         }
         let mode = phase.mode();
         let mut state = PhysicalState::from_rolling(y, 0.0);
-        self.note_drift(state.residuals(self.a(), mode));
+        self.note_drift(state.residuals(&self.models.params, mode));
         if !self.settings.project_each_step {
             return false;
         }
         // In sliding only Z and V_Z move, which sit at the same indices in every layout.
-        state.project(self.a(), mode);
+        state.project(&self.models.params, mode);
         let changed = state.y != *y;
         *y = state.y;
         changed

@@ -38,7 +38,6 @@ impl Affine {
     }
 
     /// The value once the derivatives are known.
-    #[cfg(test)]
     pub fn eval(&self, dy: &[f64; DIM]) -> f64 {
         self.cst + self.lin.dot(&SVector::from(*dy))
     }

@@ -145,17 +145,23 @@ impl Body {
     }
 
     /// Angular-momentum balance about the centre, `dH/dt = a e_x × R + M_a`, frame
-    /// components, for the spatial contact force `reaction`. `H = (A Ω_x, A Ω_y, C Ω_z)`, and
-    /// `dH/dt` adds `ω × H` to the rate of these components. The air moment of one face is
-    /// `-k_M (Ω_x e_x + Ω_y e_y)`.
-    pub fn euler_rows(&self, frame_rate: &AffineVec, reaction: &AffineVec) -> [Affine; 3] {
+    /// components, for the spatial contact force `reaction`.
+    ///
+    /// `H = (A Ω_x, A Ω_y, C Ω_z)` in the frame, so `dH/dt = (A Ω̇_x, A Ω̇_y, C Ω̇_z) + ω × H`.
+    /// The frame turns at `ω = Ω - φ̇ e_z`, hence `ω × H = Ω × H - φ̇ e_z × H`, and for the
+    /// axisymmetric disk `Ω × H = (C - A) Ω_z Ω × e_z` has no `e_z` part: the gyroscopic terms
+    /// of the spin row vanish identically instead of cancelling in rounding. The air moment of
+    /// one face is `-k_M (Ω_x e_x + Ω_y e_y)`.
+    pub fn euler_rows(&self, reaction: &AffineVec) -> [Affine; 3] {
         let (a_in, c_in) = (self.p.A(), self.p.C());
         let w = &self.spin;
         let h = Vector3::new(a_in * w.x, a_in * w.y, c_in * w.z);
+        let gyroscopic = (c_in - a_in) * w.z * w.cross(&Vector3::z());
         let h_rate = AffineVec::along(Vector3::x(), a_in * Affine::derivative(idx::OMEGA_X))
             + AffineVec::along(Vector3::y(), a_in * Affine::derivative(idx::OMEGA_Y))
             + AffineVec::along(Vector3::z(), c_in * Affine::derivative(idx::OMEGA_Z))
-            - frame_rate.crossed_by(&h);
+            + AffineVec::constant(gyroscopic)
+            - AffineVec::along(Vector3::z().cross(&h), Affine::derivative(idx::PHI));
         let air_moment = -self.p.k_M() * Vector3::new(w.x, w.y, 0.0);
         let moment = reaction
             .transformed(&self.to_frame)

@@ -162,7 +162,7 @@ impl RollingReference {
         let no_slip = accel + body.rim_acceleration(&frame_rate);
         let position = |i: usize, v: f64| Affine::derivative(i) - Affine::constant(v);
         let [k1, k2, k3] = body.kinematic_rows(&frame_rate);
-        let [e1, e2, e3] = body.euler_rows(&frame_rate, &reaction);
+        let [e1, e2, e3] = body.euler_rows(&reaction);
         let rows = [
             position(idx::X, velocity.x),
             position(idx::Y, velocity.y),

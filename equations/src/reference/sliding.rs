@@ -131,7 +131,7 @@ struct Assembled {
     body: Body,
     slip: Slip,
     rows: [Affine; DIM],
-    reaction: AffineVec,
+    normal: Affine,
     velocity: Vector3<f64>,
 }
 
@@ -182,7 +182,7 @@ impl<C: SlipChart> SlidingReference<C> {
         let stays_down = Affine::derivative(idx::V_Z) + rim_accel.component(2);
         let position = |i: usize, v: f64| Affine::derivative(i) - Affine::constant(v);
         let [k1, k2, k3] = body.kinematic_rows(&frame_rate);
-        let [e1, e2, e3] = body.euler_rows(&frame_rate, &reaction);
+        let [e1, e2, e3] = body.euler_rows(&reaction);
         let rows = [
             position(idx::X, velocity.x),
             position(idx::Y, velocity.y),
@@ -201,7 +201,7 @@ impl<C: SlipChart> SlidingReference<C> {
             body,
             slip,
             rows,
-            reaction,
+            normal,
             velocity,
         })
     }
@@ -239,10 +239,11 @@ impl<C: SlipChart> SlidingReference<C> {
         let sys = self.assemble(y)?;
         let mut x = *dy;
         C::derivatives_to_unknowns(&sys.slip, &mut x);
-        let r = sys.reaction.eval(&x);
-        // Signed, so that `T = μ_d N` holds also where `N < 0` (contact lost).
-        let e_s = sys.slip.direction();
-        let friction = -(r.x * e_s.x + r.y * e_s.y);
+        // Coulomb's law defines the friction from N: T = μ_d N against the slip, so T and R
+        // are built from the one evaluated N (signed, so T = μ_d N also where N < 0).
+        let normal = sys.normal.eval(&x);
+        let friction = self.params.mu_d * normal;
+        let r = -friction * sys.slip.direction() + normal * Vector3::z();
         let residuals = sys.body.contact_residuals(y);
         let friction_power = r.x * sys.slip.velocity().x + r.y * sys.slip.velocity().y;
         Ok(SlidingOutputs {

@@ -1,109 +1,191 @@
-//! The natural scale of each derivative: the size of the terms of the implicit row that
-//! defines it (EQUATIONS.md §3 rows R1–R12, §4 rows S1–S12), divided by the size of its own
-//! coefficient.
+//! The natural scale of each derivative: how far rounding can move it in any solve of the
+//! paper's implicit system (EQUATIONS.md §3 rows R1–R12, §4 rows S1–S12).
 //!
-//! Why this scale: any implementation that solves the implicit system (the reference by LU,
-//! the generated code by symbolic elimination) inherits its sensitivity. A derivative defined
-//! by a row whose terms cancel can only be known to ε times those terms. Example: rolling
+//! Why this scale: the reference (by LU) and the generated code (by symbolic elimination) both
+//! solve `M ẏ = f`. A solve that is exact for rows perturbed by ε relative to the size of
+//! their terms (componentwise backward stable) is off by at most, to first order,
+//! `ε · |M⁻¹| (|M|·|ẏ| + |f|)`, componentwise (Skeel's bound), where `|M|` and `|f|` hold the
+//! sums of the absolute values of the terms of each entry. Example: rolling
 //! `C Ω̇_z = -m a (sin ψ V̇_X - cos ψ V̇_Y)`, where near a flat disk `V̇_X, V̇_Y ~ a Ω_z Ω_x /
 //! sin θ` are huge and cancel to `O(Ω_x Ω_y)`: a rounding of `V̇_X` by ε moves `Ω̇_z` by
-//! `ε m a |V̇_X| / C`. The scale is evaluated at the explicit solution, so it does not depend
-//! on either implementation under test.
+//! `ε m a |V̇_X| / C`, and the bound says so. It is evaluated at the explicit solution with the
+//! row tables written out here, so it depends on neither implementation under test.
 
-/// Row scales of the rolling derivatives at `y` with derivatives `dy` (EQUATIONS.md §3).
+use equations::DiskParams;
+use nalgebra::{SMatrix, SVector};
+
+type Mat = SMatrix<f64, 12, 12>;
+type Vec12 = SVector<f64, 12>;
+
+/// One implicit system: coefficients, their term sizes, and the right-hand side's term sizes.
+struct Rows {
+    m: Mat,
+    m_abs: Mat,
+    f_abs: Vec12,
+}
+
+impl Rows {
+    fn new() -> Self {
+        Rows {
+            m: Mat::zeros(),
+            m_abs: Mat::zeros(),
+            f_abs: Vec12::zeros(),
+        }
+    }
+
+    /// Coefficient of derivative `j` in row `i`, and the size of its terms.
+    fn coef(&mut self, i: usize, j: usize, value: f64, size: f64) {
+        self.m[(i, j)] = value;
+        self.m_abs[(i, j)] = size;
+    }
+
+    /// A coefficient that is a single term.
+    fn term(&mut self, i: usize, j: usize, value: f64) {
+        self.coef(i, j, value, value.abs());
+    }
+
+    /// Skeel's bound `|M⁻¹| (|M| |ẏ| + |f|)`.
+    fn bound(&self, dy: &[f64; 12]) -> [f64; 12] {
+        let inverse = self.m.try_inverse().expect("the row table is regular here");
+        let residual = self.m_abs * Vec12::from(dy.map(f64::abs)) + self.f_abs;
+        let b = inverse.abs() * residual;
+        std::array::from_fn(|i| b[i])
+    }
+}
+
+/// Scales of the rolling derivatives at `y` with derivatives `dy` (rows R1–R12).
 #[allow(non_snake_case)]
-pub fn rolling(p: &equations::DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
+pub fn rolling(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
     let [_, _, _, V_X, V_Y, V_Z, psi, theta, _, Ox, Oy, Oz] = *y;
-    let [_, _, _, VX_d, VY_d, VZ_d, psi_d, th_d, _, _, Oy_d, Oz_d] = *dy;
     let (s, c) = theta.sin_cos();
     let (sp, cp) = psi.sin_cos();
     let (a, m, g) = (p.a, p.m, p.g);
     let (ai, ci, kf, km) = (p.A(), p.C(), p.k_F(), p.k_M());
+    let v_z_size = ((V_X * cp).abs() + (V_Y * sp).abs()) * s.abs() + (V_Z * c).abs();
     let v_z = (V_X * cp + V_Y * sp) * s + V_Z * c;
-    [
-        V_X.abs(),
-        V_Y.abs(),
-        V_Z.abs(),
-        a * ((s * cp * Oy_d).abs()
-            + (sp * Oz_d).abs()
-            + (c * cp * Oy * th_d).abs()
-            + ((Oz * cp).abs() + (Oy * s * sp).abs()) * psi_d.abs()),
-        a * ((s * sp * Oy_d).abs()
-            + (cp * Oz_d).abs()
-            + (c * sp * Oy * th_d).abs()
-            + ((Oy * s * cp).abs() + (Oz * sp).abs()) * psi_d.abs()),
-        a * ((c * Oy_d).abs() + (s * Oy * th_d).abs()),
-        Ox.abs() / s.abs(),
-        Oy.abs(),
-        (c * psi_d).abs() + Oz.abs(),
-        ((ai * Oy * c * psi_d).abs() + (ci * Oy * Oz).abs() + (km * Ox).abs()) / ai,
-        ((ai * Ox * c * psi_d).abs()
-            + m * a * ((s * cp * VX_d).abs() + (s * sp * VY_d).abs() + (c * VZ_d).abs())
-            + (ci * Ox * Oz).abs()
-            + (m * g * a * c).abs()
-            + (kf * a * (v_z - p.w_z)).abs()
-            + (km * Oy).abs())
-            / ai,
-        m * a * ((sp * VX_d).abs() + (cp * VY_d).abs()) / ci,
-    ]
+    let mut r = Rows::new();
+    // R1–R3: der(X) = V_X, ...
+    for (i, v) in [V_X, V_Y, V_Z].into_iter().enumerate() {
+        r.term(i, i, 1.0);
+        r.f_abs[i] = v.abs();
+    }
+    // R4
+    r.term(3, 3, 1.0);
+    r.term(3, 10, -a * s * cp);
+    r.term(3, 11, -a * sp);
+    r.term(3, 7, -a * c * cp * Oy);
+    r.coef(3, 6, -a * (Oz * cp - Oy * s * sp), a * ((Oz * cp).abs() + (Oy * s * sp).abs()));
+    // R5
+    r.term(4, 4, 1.0);
+    r.term(4, 10, -a * s * sp);
+    r.term(4, 11, a * cp);
+    r.term(4, 7, -a * c * sp * Oy);
+    r.coef(4, 6, -a * (Oy * s * cp + Oz * sp), a * ((Oy * s * cp).abs() + (Oz * sp).abs()));
+    // R6
+    r.term(5, 5, 1.0);
+    r.term(5, 10, -a * c);
+    r.term(5, 7, a * s * Oy);
+    // R7
+    r.term(6, 9, ai);
+    r.term(6, 6, -ai * Oy * c);
+    r.f_abs[6] = (ci * Oy * Oz).abs() + (km * Ox).abs();
+    // R8
+    r.term(7, 10, ai);
+    r.term(7, 6, ai * Ox * c);
+    r.term(7, 3, m * a * s * cp);
+    r.term(7, 4, m * a * s * sp);
+    r.term(7, 5, m * a * c);
+    r.f_abs[7] = (ci * Ox * Oz).abs()
+        + (m * g * a * c).abs()
+        + kf * a * (v_z_size + p.w_z.abs()).max((v_z - p.w_z).abs())
+        + (km * Oy).abs();
+    // R9
+    r.term(8, 11, ci);
+    r.term(8, 3, m * a * sp);
+    r.term(8, 4, -m * a * cp);
+    // R10–R12
+    r.term(9, 6, s);
+    r.f_abs[9] = Ox.abs();
+    r.term(10, 7, 1.0);
+    r.f_abs[10] = Oy.abs();
+    r.term(11, 6, c);
+    r.term(11, 8, 1.0);
+    r.f_abs[11] = Oz.abs();
+    r.bound(dy)
 }
 
-/// Row scales of the polar sliding derivatives (EQUATIONS.md §4; `dy` holds `α̇`).
+/// Scales of the polar sliding derivatives (rows S1–S12; `dy` holds `α̇`).
 #[allow(non_snake_case)]
-pub fn sliding_polar(p: &equations::DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
+pub fn sliding_polar(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
     let [_, _, _, v_C, alpha, V_Z, psi, theta, _, Ox, Oy, Oz] = *y;
-    let [_, _, _, _, _, VZ_d, psi_d, th_d, _, _, Oy_d, Oz_d] = *dy;
     let (s, c) = theta.sin_cos();
     let (sp, cp) = psi.sin_cos();
     let (S, K) = (alpha - psi).sin_cos();
-    let k = p.mu_d * K * s + c;
+    let (sa, ca) = alpha.sin_cos();
     let (a, m, g, mu) = (p.a, p.m, p.g, p.mu_d);
     let (ai, ci, kf, km) = (p.A(), p.C(), p.k_F(), p.k_M());
-    let v_z = -v_C * s * K + a * Oy * s * s + V_Z * c;
-    let air = (kf * (v_z - p.w_z)).abs();
-    // S4 divided by m v_C: the terms of w = v_C α̇, over |v_C|.
-    let w_terms = a
-        * (((Oy * K * s).abs() + (Oz * S).abs()) * psi_d.abs()
-            + (Oy * S * c * th_d).abs()
-            + (S * s * Oy_d).abs()
-            + (K * Oz_d).abs())
-        + air / m * (s * S).abs();
-    [
-        (v_C * alpha.cos()).abs() + a * ((Oy * cp * s).abs() + (Oz * sp).abs()),
-        (v_C * alpha.sin()).abs() + a * ((Oy * sp * s).abs() + (Oz * cp).abs()),
-        V_Z.abs(),
-        mu * VZ_d.abs()
-            + a * (((Oy * S * s).abs() + (Oz * K).abs()) * psi_d.abs()
-                + (Oy * K * c * th_d).abs()
-                + (K * s * Oy_d).abs()
-                + (S * Oz_d).abs())
-            + mu * g
-            + air / m * (mu * c.abs() + (K * s).abs()),
-        w_terms / v_C.abs(),
-        a * ((Oy * s * th_d).abs() + (c * Oy_d).abs()),
-        Ox.abs() / s.abs(),
-        Oy.abs(),
-        (c * psi_d).abs() + Oz.abs(),
-        ((ai * Oy * c * psi_d).abs() + (ci * Oy * Oz).abs() + (km * Ox).abs()) / ai,
-        ((m * a * k * VZ_d).abs()
-            + (ai * Ox * c * psi_d).abs()
-            + (ci * Ox * Oz).abs()
-            + (m * g * a * k).abs()
-            + a * air * (c * k).abs()
-            + (km * Oy).abs())
-            / ai,
-        mu * a * ((m * S * VZ_d).abs() + (m * g * S).abs() + air * (c * S).abs()) / ci,
-    ]
+    let k = mu * K * s + c;
+    let k_size = (mu * K * s).abs() + c.abs();
+    let v_z_size = (v_C * s * K).abs() + (a * Oy * s * s).abs() + (V_Z * c).abs();
+    let air = kf * (v_z_size + p.w_z.abs());
+    let mut r = Rows::new();
+    // S1–S3
+    r.term(0, 0, 1.0);
+    r.f_abs[0] = (v_C * ca).abs() + a * ((Oy * cp * s).abs() + (Oz * sp).abs());
+    r.term(1, 1, 1.0);
+    r.f_abs[1] = (v_C * sa).abs() + a * ((Oy * sp * s).abs() + (Oz * cp).abs());
+    r.term(2, 2, 1.0);
+    r.f_abs[2] = V_Z.abs();
+    // S4
+    r.term(3, 4, m * v_C);
+    r.coef(3, 6, m * a * (-Oy * K * s + Oz * S), m * a * ((Oy * K * s).abs() + (Oz * S).abs()));
+    r.term(3, 7, m * a * Oy * S * c);
+    r.term(3, 10, m * a * S * s);
+    r.term(3, 11, m * a * K);
+    r.f_abs[3] = air * (s * S).abs();
+    // S5
+    r.term(4, 3, -m);
+    r.term(4, 5, -mu * m);
+    r.coef(4, 6, m * a * (Oy * S * s + Oz * K), m * a * ((Oy * S * s).abs() + (Oz * K).abs()));
+    r.term(4, 7, m * a * Oy * K * c);
+    r.term(4, 10, m * a * K * s);
+    r.term(4, 11, -m * a * S);
+    r.f_abs[4] = mu * m * g.abs() + air * ((mu * c).abs() + (K * s).abs());
+    // S6 (table form, with der(psi))
+    r.term(5, 9, ai);
+    r.term(5, 6, -ai * Oy * c);
+    r.f_abs[5] = (ci * Oy * Oz).abs() + (km * Ox).abs();
+    // S7
+    r.coef(6, 5, m * a * k, m * a * k_size);
+    r.term(6, 10, ai);
+    r.term(6, 6, ai * Ox * c);
+    r.f_abs[6] = (ci * Ox * Oz).abs()
+        + m * g.abs() * a * k_size
+        + a * air * (c * k_size).abs()
+        + (km * Oy).abs();
+    // S8
+    r.term(7, 11, ci);
+    r.term(7, 5, -mu * m * a * S);
+    r.f_abs[7] = mu * a * (m * g.abs() + air * c.abs()) * S.abs();
+    // S9–S11
+    r.term(8, 6, s);
+    r.f_abs[8] = Ox.abs();
+    r.term(9, 7, 1.0);
+    r.f_abs[9] = Oy.abs();
+    r.term(10, 6, c);
+    r.term(10, 8, 1.0);
+    r.f_abs[10] = Oz.abs();
+    // S12
+    r.term(11, 5, 1.0);
+    r.term(11, 7, a * Oy * s);
+    r.term(11, 10, -a * c);
+    r.bound(dy)
 }
 
-/// Row scales of the Cartesian sliding derivatives at the Cartesian state `y`: the polar
-/// scales mapped through `u̇ = v̇_C e_s + v_C α̇ e_s⊥` (`polar_y`, `polar_dy` are the same
-/// state and derivatives in the polar chart).
-pub fn sliding_cartesian(
-    p: &equations::DiskParams,
-    polar_y: &[f64; 12],
-    polar_dy: &[f64; 12],
-) -> [f64; 12] {
+/// Scales of the Cartesian sliding derivatives: the polar scales mapped through
+/// `u̇ = v̇_C e_s + v_C α̇ e_s⊥` (`polar_y`, `polar_dy` are the same state and derivatives in
+/// the polar chart).
+pub fn sliding_cartesian(p: &DiskParams, polar_y: &[f64; 12], polar_dy: &[f64; 12]) -> [f64; 12] {
     let mut s = sliding_polar(p, polar_y, polar_dy);
     let pair = s[3] + polar_y[3].abs() * s[4];
     s[3] = pair;

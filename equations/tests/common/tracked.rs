@@ -16,8 +16,15 @@ pub trait Scalar:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
-    /// An exactly known input (a state or a parameter).
+    /// An exactly known number (a literal such as 1/4).
     fn exact(x: f64) -> Self;
+    /// An input (a state, a parameter): a rounded value, known to a relative ε. This is the
+    /// standard footing of conditioning: an implementation is accurate if its result is the
+    /// exact one for inputs perturbed by ε (e.g. `sin(α - ψ)` near `α = ψ` is only known to
+    /// `ε (|α| + |ψ|)`, and building it from `e_s` and the frame gives no better).
+    fn input(x: f64) -> Self {
+        Self::exact(x)
+    }
     /// Sine.
     fn sin(self) -> Self;
     /// Cosine.
@@ -60,6 +67,12 @@ impl Tracked {
 impl Scalar for Tracked {
     fn exact(x: f64) -> Self {
         Tracked { v: x, scale: 0.0 }
+    }
+    fn input(x: f64) -> Self {
+        Tracked {
+            v: x,
+            scale: x.abs(),
+        }
     }
     fn sin(self) -> Self {
         Tracked::rounded(self.v.sin(), self.v.cos().abs() * self.scale)

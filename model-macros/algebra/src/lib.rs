@@ -37,7 +37,7 @@
 //! assert_eq!(model.pivots, vec!["2*x"]);
 //! let inputs = Inputs { t: 0.0, states: &[3.0], params: &[0.5], ders: &[] };
 //! let dy = model.rhs.eval(&inputs).unwrap().ders(1);
-//! assert!((dy[0] - -1.5).abs() < 1e-15);
+//! assert!((dy[0] - -0.75).abs() < 1e-15); // -k x / 2
 //! ```
 #![warn(missing_docs)]
 

@@ -84,6 +84,40 @@ fn compiled() -> CompiledModel {
     }
 }
 
+#[test]
+fn constants_read_back_exactly() {
+    for value in [
+        0.1,
+        -0.0,
+        1e300,
+        -2.5e-300,
+        1.0 / 3.0,
+        f64::MIN_POSITIVE,
+        123456789.0,
+    ] {
+        let text = crate::emit_program::constant(value).to_string();
+        let expr: syn::Expr = syn::parse_str(&text).unwrap();
+        let (negative, literal) = match expr {
+            syn::Expr::Paren(paren) => match *paren.expr {
+                syn::Expr::Unary(unary) => (true, *unary.expr),
+                other => panic!("{other:?}"),
+            },
+            other => (false, other),
+        };
+        let syn::Expr::Lit(syn::ExprLit {
+            lit: syn::Lit::Float(float),
+            ..
+        }) = literal
+        else {
+            panic!("`{text}` is not a float literal");
+        };
+        assert_eq!(float.suffix(), "f64");
+        let magnitude: f64 = float.base10_parse().unwrap();
+        let read = if negative { -magnitude } else { magnitude };
+        assert_eq!(read.to_bits(), value.to_bits(), "{text}");
+    }
+}
+
 fn normalized(tokens: proc_macro2::TokenStream) -> String {
     tokens
         .to_string()
@@ -103,27 +137,27 @@ fn each_statement_kind_is_translated() {
     syn::parse2::<syn::File>(output.clone()).expect("the expansion parses as Rust");
     let text = normalized(output);
     for expected in [
-        "let (t0 , t1) = y [0usize] . sin_cos () ;",
-        "if ! (t0 != 0.0 && t0 . is_finite ()) { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"sin(a)\" , value : t0 , }) ; }",
+        "let (t0 , t1) = y [0] . sin_cos () ;",
+        "if ! (t0 != 0.0 && t0 . is_finite ()) { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"sin(a)\" , value : t0 }) ; }",
         "let t2 : f64 = t1 / t0 ;",
-        "let t3 : f64 = (- 2f64) . powi (3i32) ;",
-        "let t4 : f64 = p [0usize] . sqrt () ;",
-        "let [t5 , t6] = :: model_runtime :: linalg :: solve_block :: < 2usize > ([[t2 , 1f64] , [1f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\" ,) ? ;",
-        "dy [0usize] = t5 ;",
-        "let t0 : f64 = dy [0usize] . atan2 (y [1usize]) ;",
-        "jac [0usize] [0usize] = 0.0 ;",
-        "jac [1usize] [0usize] = 0.5f64 ;",
+        "let t3 : f64 = (- 2.0_f64) . powi (3) ;",
+        "let t4 : f64 = p [0] . sqrt () ;",
+        "let [t5 , t6] = :: model_runtime :: linalg :: solve_block ::< 2 > ([[t2 , 1.0_f64] , [1.0_f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\") ?;",
+        "dy [0] = t5 ;",
+        "let t0 : f64 = dy [0] . atan2 (y [1]) ;",
+        "jac [0] [0] = 0.0 ;",
+        "jac [1] [0] = 0.5_f64 ;",
         "pub const a : usize = 0usize ;",
-        "pub const PARAM_DEFAULTS : [:: core :: option :: Option < f64 > ; N_PARAMS] = [:: core :: option :: Option :: Some ((- 1.5f64))] ;",
-        "Model :: new ([(- 1.5f64)])",
+        "pub const PARAM_DEFAULTS : [:: core :: option :: Option < f64 > ; N_PARAMS] = [:: core :: option :: Option :: Some ((- 1.5_f64))] ;",
+        "Model :: new ([(- 1.5_f64)])",
         "pivots : & [\"sin(a)\"]",
         "const DER_NAMES : [& str ; N_STATES] = [\"der(a)\" , \"der(b)\"] ;",
     ] {
         assert!(text.contains(expected), "missing `{expected}` in\n{text}");
     }
     // Stored entries are not zeroed first.
-    assert!(!text.contains("jac [1usize] [0usize] = 0.0 ;"));
-    assert!(!text.contains("dy [0usize] = 0.0 ;"));
+    assert!(!text.contains("jac [1] [0] = 0.0 ;"));
+    assert!(!text.contains("dy [0] = 0.0 ;"));
 }
 
 #[test]

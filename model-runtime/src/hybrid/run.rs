@@ -236,7 +236,10 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             sys,
             mode: self.mode,
         };
-        self.it.restart(&m, t, y).map_err(|e| self.solve_err(e))?;
+        let first_step = sys.first_step(self.mode, t, y);
+        self.it
+            .restart_with_step(&m, t, y, first_step)
+            .map_err(|e| self.solve_err(e))?;
         let specs = sys.guards(self.mode);
         self.values.clear();
         self.values.resize(specs.len(), 0.0);

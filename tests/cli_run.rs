@@ -1,0 +1,187 @@
+//! `eulerdisk run` as a user runs it: a short run writes every file with the right columns
+//! and no NaN; a bad scene writes nothing and names the key; Ctrl-C keeps what was complete.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use eulerdisk::output::tables::EVENTS_HEADER;
+use eulerdisk::quantity::Quantity;
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .arg("run")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn short_run_writes_every_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = run(&["--t-end", "0.2", "--quiet", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+
+    let (header, rows) = csv(&out.join("trajectory.csv"));
+    let scene = eulerdisk::scene::load("tangent-toy", &[]).unwrap();
+    let mut expected = vec!["t_s".to_string(), "mode".to_string()];
+    expected.extend(scene.quantities.iter().map(|q| q.column()));
+    assert_eq!(header, expected);
+    assert_eq!(rows.len(), 201, "0.2 s at 1000 samples/s, both ends");
+    for row in &rows {
+        assert_eq!(row.len(), header.len());
+        assert!(row[1] == "rolling" || row[1] == "sliding", "{row:?}");
+        for v in row.iter().skip(2).chain([&row[0]]) {
+            let x: f64 = v.parse().unwrap();
+            assert!(x.is_finite(), "{row:?}");
+        }
+    }
+    let theta = header.iter().position(|h| *h == Quantity::Theta.column()).unwrap();
+    assert_eq!(rows[0][theta].parse::<f64>().unwrap(), std::f64::consts::FRAC_PI_2 - 1.0);
+
+    let (header, rows) = csv(&out.join("events.csv"));
+    assert_eq!(header.join(","), EVENTS_HEADER);
+    assert_eq!(rows[0][1..4], ["rolling", "sliding", "initial_friction"]);
+    assert!((rows[0][4].parse::<f64>().unwrap() - 0.8355).abs() < 5e-4);
+    let last = rows.last().unwrap();
+    assert_eq!(last[2..4], ["stop", "end_time"]);
+    assert_eq!(last[0], "0.2");
+    for w in rows.windows(2) {
+        let (a, b): (f64, f64) = (w[0][0].parse().unwrap(), w[1][0].parse().unwrap());
+        assert!(a <= b, "events out of order");
+        if w[1][2] != "stop" {
+            assert_eq!(w[0][2], w[1][1], "mode after one event is the mode before the next");
+        }
+    }
+
+    let summary: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["start_mode"], "sliding");
+    assert_eq!(summary["stop_reason"], "end_time");
+    assert_eq!(summary["t_end"], 0.2);
+    assert_eq!(summary["nu_sliding"].as_f64().map(|v| (v - 0.115).abs() < 1e-12), Some(true));
+    for stem in [
+        "fig01a_theta", "fig01b_theta", "fig02_theta_envelope", "fig03a_theta_dot",
+        "fig03b_theta_dot", "fig04_theta_dot_over_psi_dot", "fig05a_nu", "fig05b_nu",
+        "fig06a_slip_speed", "fig06b_slip_speed", "fig07_slip_speed_envelope",
+        "fig08a_normal_force", "fig08b_normal_force", "fig09_normal_force_vs_theta",
+        "fig10_normal_force_last_second",
+    ] {
+        let png = fs::read(out.join(format!("{stem}.png"))).unwrap();
+        assert_eq!(&png[1..4], b"PNG", "{stem}");
+        let svg = fs::read_to_string(out.join(format!("{stem}.svg"))).unwrap();
+        assert!(svg.contains("<svg") && svg.contains("Fig. "), "{stem}");
+    }
+    let leftovers: Vec<_> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".partial"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+fn rejected(args: &[&str], key: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut all = args.to_vec();
+    all.extend(["--quiet", "--out", out.to_str().unwrap()]);
+    let o = run(&all);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(key), "{key} not named: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.exists(), "a rejected scene must write nothing");
+}
+
+#[test]
+fn bad_scenes_write_nothing_and_name_the_key() {
+    rejected(&["--t-end", "-1"], "run.t_end");
+    rejected(&["--rtol", "1e-20"], "solver.rtol");
+    rejected(&["--atol", "0"], "solver.atol");
+    rejected(&["--integrator", "euler"], "solver.integrator");
+    rejected(&["--set", "disk.mass=1"], "disk.mass");
+    rejected(&["--set", "friction.mu_st=0.01"], "friction.mu_st");
+    rejected(&["--set", "initial.theta=0"], "initial.theta");
+    rejected(&["--set", "initial.Z=1"], "initial.Z");
+    rejected(&["--set", "disk.a=nan"], "disk.a");
+    rejected(&["--set", "nodot=1"], "nodot");
+    rejected(&["no-such-scene"], "no-such-scene");
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.toml");
+    let text = include_str!("../scenes/tangent-toy.toml").replace("mu_st = 0.2", "mu_st = 0.2\nmu_s = 1");
+    fs::write(&file, text).unwrap();
+    rejected(&[file.to_str().unwrap()], "friction.mu_s");
+}
+
+#[test]
+fn forbidden_mode_stops_the_run_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = run(&[
+        "--t-end", "0.3", "--quiet", "--no-figures", "--set", "modes.allowed=[\"sliding\"]",
+        "--out", out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let (_, rows) = csv(&out.join("events.csv"));
+    let last = rows.last().unwrap();
+    assert_eq!(last[1..4], ["rolling", "stop", "mode_not_allowed"], "{last:?}");
+}
+
+#[test]
+fn ctrl_c_keeps_what_was_complete() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--quiet", "--no-figures", "--rtol", "1e-13", "--atol", "1e-15"])
+        .args(["--out", out.to_str().unwrap()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let sent = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let start = Instant::now();
+    let o = child.wait_with_output().unwrap();
+    assert!(start.elapsed() < Duration::from_secs(60));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted"), "{err}");
+    let (_, rows) = csv(&out.join("events.csv"));
+    let last = rows.last().unwrap();
+    assert_eq!(last[2..4], ["stop", "interrupted"], "{last:?}");
+    let t_stop: f64 = last[0].parse().unwrap();
+    assert!(t_stop > 0.0 && t_stop < 100.0, "{t_stop}");
+    let (_, traj) = csv(&out.join("trajectory.csv"));
+    let t_last: f64 = traj.last().unwrap()[0].parse().unwrap();
+    assert!((t_last - t_stop).abs() < 1e-9, "trajectory ends where the run stopped");
+    let summary = fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"stop_reason\": \"interrupted\""), "{summary}");
+}
+
+#[test]
+fn every_builtin_scene_is_listed() {
+    let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .arg("scenes")
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    for (name, _) in eulerdisk::scene::BUILTIN {
+        assert!(text.contains(name), "{name}");
+    }
+}
