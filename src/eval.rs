@@ -129,16 +129,19 @@ pub fn parse_params(text: Option<&str>) -> Result<DiskParams, EvalCommandError> 
             }
         }
     }
-    p.validate().map_err(|source| EvalCommandError::Param {
-        key: match source {
-            ParamError::NotPositive { name, .. }
-            | ParamError::NotFinite { name, .. }
-            | ParamError::Negative { name, .. } => name,
-            ParamError::DynamicAboveStatic { .. } => "mu_d",
-        },
-        source,
-    })?;
+    p.validate().map_err(param_error)?;
     Ok(p)
+}
+
+/// A parameter error, named by the parameter it is about.
+fn param_error(source: ParamError) -> EvalCommandError {
+    let key = match source {
+        ParamError::NotPositive { name, .. }
+        | ParamError::NotFinite { name, .. }
+        | ParamError::Negative { name, .. } => name,
+        ParamError::DynamicAboveStatic { .. } => "mu_d",
+    };
+    EvalCommandError::Param { key, source }
 }
 
 /// Parses `--state` for `mode` (missing entries are 0) into the model's state array.
@@ -162,7 +165,6 @@ pub fn evaluate(
     y: &[f64; N],
 ) -> Result<Evaluation, EvalCommandError> {
     let p = *params;
-    let bad_params = |source| EvalCommandError::Param { key: "m", source };
     match (backend, mode) {
         (Backend::Generated, ModeName::Rolling) => {
             run(mode, &models::rolling::Model::new(p.to_array()), y)
@@ -172,12 +174,12 @@ pub fn evaluate(
         }
         (Backend::Reference, ModeName::Rolling) => run(
             mode,
-            &reference::RollingReference::new(p).map_err(bad_params)?,
+            &reference::RollingReference::new(p).map_err(param_error)?,
             y,
         ),
         (Backend::Reference, ModeName::Sliding) => run(
             mode,
-            &reference::SlidingPolarReference::new(p).map_err(bad_params)?,
+            &reference::SlidingPolarReference::new(p).map_err(param_error)?,
             y,
         ),
     }
@@ -272,7 +274,10 @@ mod tests {
     #[test]
     fn generated_and_reference_agree_at_the_papers_start() {
         let theta0 = std::f64::consts::FRAC_PI_2 - 1.0;
-        let text = format!(r#"{{"theta": {theta0}, "Omega_x": 1.0, "Z": {}}}"#, 0.03755 * theta0.sin());
+        let text = format!(
+            r#"{{"theta": {theta0}, "Omega_x": 1.0, "Z": {}}}"#,
+            0.03755 * theta0.sin()
+        );
         let y = parse_state(ModeName::Rolling, Some(&text)).unwrap();
         let p = parse_params(None).unwrap();
         let g = evaluate(Backend::Generated, ModeName::Rolling, &p, &y).unwrap();
@@ -291,8 +296,11 @@ mod tests {
         let p = parse_params(None).unwrap();
         for backend in [Backend::Generated, Backend::Reference] {
             for mode in [ModeName::Rolling, ModeName::Sliding] {
-                let y = parse_state(mode, Some(r#"{"v_C": 0.1}"#).filter(|_| mode == ModeName::Sliding))
-                    .unwrap();
+                let y = parse_state(
+                    mode,
+                    Some(r#"{"v_C": 0.1}"#).filter(|_| mode == ModeName::Sliding),
+                )
+                .unwrap();
                 let err = evaluate(backend, mode, &p, &y).unwrap_err();
                 assert_eq!(err.key(), Some("theta"), "{backend:?} {mode}: {err}");
             }

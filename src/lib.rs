@@ -16,3 +16,4 @@ pub mod record;
 pub mod run;
 pub mod sample;
 pub mod scene;
+pub mod sound;

@@ -116,7 +116,11 @@ fn run(args: RunArgs) -> ExitCode {
         Ok(report) => {
             if !args.quiet {
                 print!("{}", report.summary.table());
-                println!("wrote {} files into {}", report.files.len(), args.out.display());
+                println!(
+                    "wrote {} files into {}",
+                    report.files.len(),
+                    args.out.display()
+                );
             }
             match report.ending {
                 Ending::Completed => ExitCode::SUCCESS,

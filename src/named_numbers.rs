@@ -192,7 +192,10 @@ mod tests {
     #[test]
     fn parses_exactly() {
         let text = r#"{"theta": 0.57079632679489656}"#;
-        assert_eq!(parse(text).unwrap()["theta"], std::f64::consts::FRAC_PI_2 - 1.0);
+        assert_eq!(
+            parse(text).unwrap()["theta"],
+            std::f64::consts::FRAC_PI_2 - 1.0
+        );
     }
 
     #[test]

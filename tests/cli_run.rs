@@ -20,7 +20,12 @@ fn run(args: &[&str]) -> Output {
 fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let text = fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
     let rows = lines
         .map(|l| l.split(',').map(str::to_string).collect())
         .collect();
@@ -48,8 +53,14 @@ fn short_run_writes_every_file() {
             assert!(x.is_finite(), "{row:?}");
         }
     }
-    let theta = header.iter().position(|h| *h == Quantity::Theta.column()).unwrap();
-    assert_eq!(rows[0][theta].parse::<f64>().unwrap(), std::f64::consts::FRAC_PI_2 - 1.0);
+    let theta = header
+        .iter()
+        .position(|h| *h == Quantity::Theta.column())
+        .unwrap();
+    assert_eq!(
+        rows[0][theta].parse::<f64>().unwrap(),
+        std::f64::consts::FRAC_PI_2 - 1.0
+    );
 
     let (header, rows) = csv(&out.join("events.csv"));
     assert_eq!(header.join(","), EVENTS_HEADER);
@@ -62,7 +73,10 @@ fn short_run_writes_every_file() {
         let (a, b): (f64, f64) = (w[0][0].parse().unwrap(), w[1][0].parse().unwrap());
         assert!(a <= b, "events out of order");
         if w[1][2] != "stop" {
-            assert_eq!(w[0][2], w[1][1], "mode after one event is the mode before the next");
+            assert_eq!(
+                w[0][2], w[1][1],
+                "mode after one event is the mode before the next"
+            );
         }
     }
 
@@ -71,12 +85,27 @@ fn short_run_writes_every_file() {
     assert_eq!(summary["start_mode"], "sliding");
     assert_eq!(summary["stop_reason"], "end_time");
     assert_eq!(summary["t_end"], 0.2);
-    assert_eq!(summary["nu_sliding"].as_f64().map(|v| (v - 0.115).abs() < 1e-12), Some(true));
+    assert_eq!(
+        summary["nu_sliding"]
+            .as_f64()
+            .map(|v| (v - 0.115).abs() < 1e-12),
+        Some(true)
+    );
     for stem in [
-        "fig01a_theta", "fig01b_theta", "fig02_theta_envelope", "fig03a_theta_dot",
-        "fig03b_theta_dot", "fig04_theta_dot_over_psi_dot", "fig05a_nu", "fig05b_nu",
-        "fig06a_slip_speed", "fig06b_slip_speed", "fig07_slip_speed_envelope",
-        "fig08a_normal_force", "fig08b_normal_force", "fig09_normal_force_vs_theta",
+        "fig01a_theta",
+        "fig01b_theta",
+        "fig02_theta_envelope",
+        "fig03a_theta_dot",
+        "fig03b_theta_dot",
+        "fig04_theta_dot_over_psi_dot",
+        "fig05a_nu",
+        "fig05b_nu",
+        "fig06a_slip_speed",
+        "fig06b_slip_speed",
+        "fig07_slip_speed_envelope",
+        "fig08a_normal_force",
+        "fig08b_normal_force",
+        "fig09_normal_force_vs_theta",
         "fig10_normal_force_last_second",
     ] {
         let png = fs::read(out.join(format!("{stem}.png"))).unwrap();
@@ -120,7 +149,8 @@ fn bad_scenes_write_nothing_and_name_the_key() {
     rejected(&["no-such-scene"], "no-such-scene");
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("bad.toml");
-    let text = include_str!("../scenes/tangent-toy.toml").replace("mu_st = 0.2", "mu_st = 0.2\nmu_s = 1");
+    let text =
+        include_str!("../scenes/tangent-toy.toml").replace("mu_st = 0.2", "mu_st = 0.2\nmu_s = 1");
     fs::write(&file, text).unwrap();
     rejected(&[file.to_str().unwrap()], "friction.mu_s");
 }
@@ -130,27 +160,56 @@ fn forbidden_mode_stops_the_run_and_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let o = run(&[
-        "--t-end", "0.3", "--quiet", "--no-figures", "--set", "modes.allowed=[\"sliding\"]",
-        "--out", out.to_str().unwrap(),
+        "--t-end",
+        "0.3",
+        "--quiet",
+        "--no-figures",
+        "--set",
+        "modes.allowed=[\"sliding\"]",
+        "--out",
+        out.to_str().unwrap(),
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let (_, rows) = csv(&out.join("events.csv"));
     let last = rows.last().unwrap();
-    assert_eq!(last[1..4], ["rolling", "stop", "mode_not_allowed"], "{last:?}");
+    assert_eq!(
+        last[1..4],
+        ["rolling", "stop", "mode_not_allowed"],
+        "{last:?}"
+    );
 }
 
 #[test]
 fn ctrl_c_keeps_what_was_complete() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
-        .args(["run", "--quiet", "--no-figures", "--rtol", "1e-13", "--atol", "1e-15"])
+    let child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args([
+            "run",
+            "--quiet",
+            "--no-figures",
+            "--rtol",
+            "1e-13",
+            "--atol",
+            "1e-15",
+        ])
         .args(["--out", out.to_str().unwrap()])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(Duration::from_millis(1500));
+    // The output directory appears once the interrupt handler is installed and the run has
+    // started; interrupt a little later.
+    let waiting = Instant::now();
+    while !out.exists() && waiting.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(500));
     let sent = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
@@ -169,9 +228,15 @@ fn ctrl_c_keeps_what_was_complete() {
     assert!(t_stop > 0.0 && t_stop < 100.0, "{t_stop}");
     let (_, traj) = csv(&out.join("trajectory.csv"));
     let t_last: f64 = traj.last().unwrap()[0].parse().unwrap();
-    assert!((t_last - t_stop).abs() < 1e-9, "trajectory ends where the run stopped");
+    assert!(
+        (t_last - t_stop).abs() < 1e-9,
+        "trajectory ends where the run stopped"
+    );
     let summary = fs::read_to_string(out.join("summary.json")).unwrap();
-    assert!(summary.contains("\"stop_reason\": \"interrupted\""), "{summary}");
+    assert!(
+        summary.contains("\"stop_reason\": \"interrupted\""),
+        "{summary}"
+    );
 }
 
 #[test]

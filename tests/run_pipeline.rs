@@ -42,7 +42,10 @@ fn generated_and_reference_runs_agree() {
     let (_a, g) = short_run(0.5, Backend::Generated);
     let (_b, r) = short_run(0.5, Backend::Reference);
     assert_eq!(g.summary.transitions, r.summary.transitions);
-    let (pg, pr) = (g.summary.theta_period_first_s, r.summary.theta_period_first_s);
+    let (pg, pr) = (
+        g.summary.theta_period_first_s,
+        r.summary.theta_period_first_s,
+    );
     assert_eq!(pg.is_some(), pr.is_some());
     if let (Some(pg), Some(pr)) = (pg, pr) {
         assert!((pg - pr).abs() < 1e-6, "{pg} {pr}");

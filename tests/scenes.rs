@@ -41,14 +41,21 @@ fn the_paper_scene_is_the_papers() {
     assert_eq!(s.file.run.t_end, 100.0);
     assert_eq!(s.initial.state.theta, std::f64::consts::FRAC_PI_2 - 1.0);
     assert_eq!(s.initial.state.omega_x, 1.0);
-    assert_eq!(s.initial.state.z, 0.03755 * (std::f64::consts::FRAC_PI_2 - 1.0).sin());
+    assert_eq!(
+        s.initial.state.z,
+        0.03755 * (std::f64::consts::FRAC_PI_2 - 1.0).sin()
+    );
     assert_eq!(s.initial.slip.v_c, 0.0);
 }
 
 fn expect_key(result: Result<scene::Scene, SceneError>, key: &str, words: &str) {
     let err = result.expect_err("should be rejected");
     let text = err.to_string();
-    assert!(err.keys().contains(&key), "{key} not in {:?}: {text}", err.keys());
+    assert!(
+        err.keys().contains(&key),
+        "{key} not in {:?}: {text}",
+        err.keys()
+    );
     assert!(text.contains(key), "{text}");
     assert!(text.contains(words), "`{words}` not in: {text}");
 }
@@ -58,17 +65,49 @@ fn each_rule_names_its_key() {
     expect_key(with_override("disk.m=0"), "disk.m", "must be > 0");
     expect_key(with_override("disk.a=-1"), "disk.a", "must be > 0");
     expect_key(with_override("disk.g=nan"), "disk.g", "finite");
-    expect_key(with_override("friction.mu_st=0.1"), "friction.mu_st", "friction.mu_d");
-    expect_key(with_override("initial.theta=0"), "initial.theta", "(0e0, 3.14");
-    expect_key(with_override("initial.theta=3.2"), "initial.theta", "must lie in");
-    expect_key(with_override("initial.Omega_x=inf"), "initial.Omega_x", "finite");
-    expect_key(with_override("solver.rtol=1e-15"), "solver.rtol", "must lie in");
+    expect_key(
+        with_override("friction.mu_st=0.1"),
+        "friction.mu_st",
+        "friction.mu_d",
+    );
+    expect_key(
+        with_override("initial.theta=0"),
+        "initial.theta",
+        "(0e0, 3.14",
+    );
+    expect_key(
+        with_override("initial.theta=3.2"),
+        "initial.theta",
+        "must lie in",
+    );
+    expect_key(
+        with_override("initial.Omega_x=inf"),
+        "initial.Omega_x",
+        "finite",
+    );
+    expect_key(
+        with_override("solver.rtol=1e-15"),
+        "solver.rtol",
+        "must lie in",
+    );
     expect_key(with_override("solver.rtol=2"), "solver.rtol", "must lie in");
     expect_key(with_override("solver.atol=0"), "solver.atol", "must be > 0");
     expect_key(with_override("run.t_end=-1"), "run.t_end", "must be > 0");
-    expect_key(with_override("run.sample_rate=1e9"), "run.sample_rate", "samples");
-    expect_key(with_override("initial.Z=0.02"), "initial.Z", "Z = a sin(theta) by");
-    expect_key(with_override("initial.V_Z=1"), "initial.V_Z", "V_Z = a Omega_y cos(theta)");
+    expect_key(
+        with_override("run.sample_rate=1e9"),
+        "run.sample_rate",
+        "samples",
+    );
+    expect_key(
+        with_override("initial.Z=0.02"),
+        "initial.Z",
+        "Z = a sin(theta) by",
+    );
+    expect_key(
+        with_override("initial.V_Z=1"),
+        "initial.V_Z",
+        "V_Z = a Omega_y cos(theta)",
+    );
     expect_key(with_override("initial.v_C=1"), "initial.alpha", "required");
     expect_key(with_override("modes.allowed=[]"), "modes.allowed", "empty");
     expect_key(
@@ -87,21 +126,41 @@ fn each_rule_names_its_key() {
 
 #[test]
 fn shape_errors_name_the_key() {
-    expect_key(with_override("friction.mu=0.1"), "friction.mu", "unknown field");
+    expect_key(
+        with_override("friction.mu=0.1"),
+        "friction.mu",
+        "unknown field",
+    );
     expect_key(with_override("extra.x=1"), "extra", "unknown field");
     expect_key(with_override("disk.m=\"heavy\""), "disk.m", "invalid type");
-    expect_key(with_override("solver.integrator=euler"), "solver.integrator", "euler");
-    expect_key(with_override("run.slip_sign=sometimes"), "run.slip_sign", "sometimes");
+    expect_key(
+        with_override("solver.integrator=euler"),
+        "solver.integrator",
+        "euler",
+    );
+    expect_key(
+        with_override("run.slip_sign=sometimes"),
+        "run.slip_sign",
+        "sometimes",
+    );
     let without_mass = PAPER.replace("m = 0.4387", "");
-    expect_key(scene::parse("t", &without_mass, &[]), "disk.m", "missing field");
+    expect_key(
+        scene::parse("t", &without_mass, &[]),
+        "disk.m",
+        "missing field",
+    );
     let without_run = PAPER.replace("[run]", "[runs]");
-    expect_key(scene::parse("t", &without_run, &[]), "runs", "unknown field");
+    expect_key(
+        scene::parse("t", &without_run, &[]),
+        "runs",
+        "unknown field",
+    );
 }
 
 #[test]
 fn all_issues_are_reported_together() {
-    let overrides = ["disk.m=-1", "solver.rtol=0", "initial.theta=7"]
-        .map(|s| Override::parse(s).unwrap());
+    let overrides =
+        ["disk.m=-1", "solver.rtol=0", "initial.theta=7"].map(|s| Override::parse(s).unwrap());
     let err = scene::parse("t", PAPER, &overrides).unwrap_err();
     let keys = err.keys();
     for key in ["disk.m", "solver.rtol", "initial.theta"] {
@@ -118,7 +177,10 @@ fn overrides_replace_values_and_bad_overrides_are_named() {
     for bad in ["mu_d=0.1", "friction.mu_d", ".x=1", "a.b.c=1"] {
         let err = Override::parse(bad).and_then(|o| scene::parse("t", PAPER, &[o]));
         assert!(err.is_err(), "{bad}");
-        assert!(err.unwrap_err().to_string().contains(bad.split('=').next().unwrap()));
+        assert!(err
+            .unwrap_err()
+            .to_string()
+            .contains(bad.split('=').next().unwrap()));
     }
 }
 
@@ -147,9 +209,28 @@ const TABLES: &[&str] = &[
     "disk", "friction", "air", "initial", "modes", "solver", "run", "output", "other",
 ];
 const KEYS: &[&str] = &[
-    "m", "a", "g", "mu_d", "mu_st", "mu_a", "w_z", "theta", "Omega_x", "Z", "V_X", "v_C",
-    "alpha", "allowed", "integrator", "rtol", "atol", "t_end", "sample_rate", "slip_sign",
-    "quantities", "bogus",
+    "m",
+    "a",
+    "g",
+    "mu_d",
+    "mu_st",
+    "mu_a",
+    "w_z",
+    "theta",
+    "Omega_x",
+    "Z",
+    "V_X",
+    "v_C",
+    "alpha",
+    "allowed",
+    "integrator",
+    "rtol",
+    "atol",
+    "t_end",
+    "sample_rate",
+    "slip_sign",
+    "quantities",
+    "bogus",
 ];
 
 proptest! {

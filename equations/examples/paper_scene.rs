@@ -22,6 +22,8 @@ struct Counter {
     to_rolling: u64,
     restarts: u64,
     shortest_sliding: f64,
+    /// Largest |α0 − α_r| (wrapped to [0, π]) at the onsets of sliding from rolling.
+    largest_turn: f64,
     sliding_since: Option<f64>,
 }
 
@@ -49,7 +51,13 @@ impl DiskObserver for Counter {
                 }
             }
             (Mode::Sliding, Mode::Sliding) => self.restarts += 1,
-            (Mode::Rolling, Mode::Sliding) => self.sliding_since = Some(r.t),
+            (Mode::Rolling, Mode::Sliding) => {
+                self.sliding_since = Some(r.t);
+                if let (Some(a0), Some(ar)) = (r.slip_direction, r.rolling_direction) {
+                    let turn = (a0 - ar).sin().atan2((a0 - ar).cos()).abs();
+                    self.largest_turn = self.largest_turn.max(turn);
+                }
+            }
             _ => {}
         }
     }
@@ -120,6 +128,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         counter.shortest_sliding, counter.last_second_onsets
     );
     println!(
+        "largest |alpha0 - alpha_r| at an onset from rolling: {:.4} rad",
+        counter.largest_turn
+    );
+    println!(
         "max drift: |Z - a sin th| {:e} m, |V_Z - a Om_y cos th| {:e} m/s, no-slip {:e} m/s",
         out.max_drift.height, out.max_drift.vertical_speed, out.max_drift.no_slip
     );
@@ -129,5 +141,42 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out.last.energy,
         out.last.mode
     );
+    if which != "reference" {
+        let models: GeneratedModels = DiskModels::generated(params, chart)?;
+        print_costs(&models, &out, elapsed.as_secs_f64());
+    }
     Ok(())
+}
+
+/// Times the models alone, to split the run's time between the models and the driver.
+fn print_costs(models: &GeneratedModels, out: &RunOutcome, run_seconds: f64) {
+    use model_runtime::Model;
+    let rolling = out.last.state.rolling_vector();
+    let sliding = out.last.state.sliding_vector(
+        models.chart,
+        equations::modes::Slip {
+            speed: 1e-3,
+            direction: 0.7,
+        },
+    );
+    let mut dy = [0.0; 12];
+    let reps = 200_000;
+    let mut per_eval = |f: &dyn Fn(&mut [f64; 12])| {
+        let start = Instant::now();
+        for _ in 0..reps {
+            f(std::hint::black_box(&mut dy));
+        }
+        start.elapsed().as_secs_f64() / reps as f64
+    };
+    let roll = per_eval(&|dy| models.rolling.rhs(0.0, &rolling, dy).unwrap_or(()));
+    let slide = per_eval(&|dy| models.sliding.rhs(0.0, &sliding, dy).unwrap_or(()));
+    let mean = 0.5 * (roll + slide);
+    let model_seconds = mean * out.stats.rhs_evals as f64;
+    println!(
+        "model cost: rolling rhs {:.0} ns, sliding rhs {:.0} ns; ~{:.2} s of the run in the models ({:.0}%), the rest in the driver (steps, dense output, guards, root finding, samples)",
+        roll * 1e9,
+        slide * 1e9,
+        model_seconds,
+        100.0 * model_seconds / run_seconds
+    );
 }

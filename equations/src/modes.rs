@@ -280,10 +280,20 @@ pub struct ContactForce {
     pub normal: f64,
 }
 
+/// `k_F (v_z − w_z)`: the air force along the disk normal (zero without air, skipping the trig).
+fn air_drag(p: &DiskParams, state: &PhysicalState) -> f64 {
+    let k_f = p.k_F();
+    if k_f == 0.0 {
+        0.0
+    } else {
+        k_f * (state.normal_velocity() - p.w_z)
+    }
+}
+
 impl ContactForce {
     /// The secondary outputs of Box 1 (rolling) from the state and its derivative `dy`.
     pub fn rolling(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
-        let air = p.k_F() * (state.normal_velocity() - p.w_z);
+        let air = air_drag(p, state);
         let (sp, cp) = state.y[PSI].sin_cos();
         let (st, ct) = state.y[THETA].sin_cos();
         ContactForce {
@@ -295,7 +305,7 @@ impl ContactForce {
 
     /// The secondary outputs of Box 3 (sliding): `N` from `V̇_Z`, friction `mu_d N` along α.
     pub fn sliding(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
-        let air = p.k_F() * (state.normal_velocity() - p.w_z);
+        let air = air_drag(p, state);
         let normal = p.m * (dy[V_Z] + p.g) + air * state.y[THETA].cos();
         let (sa, ca) = state.slip.direction.sin_cos();
         let t = p.mu_d * normal;

@@ -268,3 +268,199 @@ fn chattering_is_reported_with_a_named_reason() {
     assert!((t - 0.0769).abs() < 1e-3, "{t}");
     assert_eq!(events(&rec).len(), 1);
 }
+
+#[test]
+fn projecting_every_step_keeps_the_constraints_and_the_events() {
+    let plain = DiskConfig {
+        t_end: 1.0,
+        ..DiskConfig::paper()
+    };
+    let projected = DiskConfig {
+        project_each_step: true,
+        ..plain
+    };
+    let (out_a, a) = run(&plain, SlipChart::Cartesian);
+    let (out_b, b) = run(&projected, SlipChart::Cartesian);
+    // Without projection the drift is at the level of the integration error, and measured.
+    assert!(
+        out_a.max_drift.vertical_speed > 1e-14,
+        "{:?}",
+        out_a.max_drift
+    );
+    assert!(out_a.max_drift.max_abs() < 1e-8, "{:?}", out_a.max_drift);
+    let r = out_b.last.residuals;
+    assert!(
+        r.height.abs() < 1e-15 && r.vertical_speed.abs() < 1e-14,
+        "{r:?}"
+    );
+    assert_eq!(a.transitions.len(), b.transitions.len());
+    for (x, y) in a.transitions.iter().zip(&b.transitions) {
+        assert!((x.t - y.t).abs() < 1e-7, "{} vs {}", x.t, y.t);
+    }
+}
+
+/// The first sample at which the energy has risen by more than `1e-8` of itself since the
+/// previous sample (rolling conserves it exactly; at `rtol = 1e-10` the integration error of
+/// the energy stays far below that over the sampling interval).
+fn energy_rises(rec: &DiskRecorder) -> Option<f64> {
+    rec.samples
+        .windows(2)
+        .find(|w| w[1].energy > w[0].energy + 1e-8 * w[0].energy)
+        .map(|w| w[1].t)
+}
+
+#[test]
+fn the_physical_reading_never_gains_energy_and_the_papers_reading_does() {
+    // Both readings agree until the first zero of the slip where static friction cannot hold:
+    // the physical one restarts the slip from zero in a consistent direction, the paper's
+    // signed slip speed goes on through zero with α fixed, so friction then pushes the slip
+    // (power −T v_C > 0) and the disk gains energy until it leaves the floor.
+    let physical = DiskConfig {
+        t_end: 20.0,
+        rtol: 1e-10,
+        atol: 1e-12,
+        sample_rate: Some(500.0),
+        ..DiskConfig::paper()
+    };
+    let paper = DiskConfig {
+        slip_sign: equations::hybrid::SlipSign::Paper,
+        ..physical
+    };
+    let (out_phys, phys) = run(&physical, SlipChart::Polar);
+    let (out_paper, signed) = run(&paper, SlipChart::Polar);
+    assert_eq!(out_phys.stop, StopReason::EndTime);
+    assert_eq!(energy_rises(&phys), None);
+    let restart = signed
+        .transitions
+        .iter()
+        .position(|r| (r.from, r.to) == (Mode::Sliding, Mode::Sliding))
+        .expect("the paper's reading restarts sliding at least once");
+    for (x, y) in phys
+        .transitions
+        .iter()
+        .zip(&signed.transitions)
+        .take(restart + 1)
+    {
+        assert_eq!((x.from, x.to), (y.from, y.to));
+        assert!((x.t - y.t).abs() < 1e-9, "{} vs {}", x.t, y.t);
+    }
+    let t_restart = signed.transitions[restart].t;
+    let rise = energy_rises(&signed).expect("energy rises under the signed reading");
+    assert!(
+        rise > t_restart,
+        "energy rose at {rise} before the restart at {t_restart}"
+    );
+    assert!(out_paper.last.energy > out_phys.last.energy);
+    assert!(
+        matches!(out_paper.stop, StopReason::ContactLost { .. }),
+        "{:?}",
+        out_paper.stop
+    );
+}
+
+#[test]
+fn sliding_restarts_keep_the_sequence_consistent() {
+    // At tight tolerances the slip of the paper's disk reaches zero where static friction cannot
+    // hold about 150 times between 10 s and 30 s (EQUATIONS.md §6.2, second case): sliding
+    // restarts from zero slip in a new consistent direction.
+    let mu_st = DiskParams::paper().mu_st;
+    let config = DiskConfig {
+        integrator: IntegratorChoice::Dop853,
+        rtol: 1e-10,
+        atol: 1e-12,
+        t_end: 30.0,
+        sample_rate: Some(2000.0),
+        ..DiskConfig::paper()
+    };
+    let (out, rec) = run(&config, SlipChart::Cartesian);
+    assert_eq!(out.stop, StopReason::EndTime);
+    check_sequence_and_guards(&rec, mu_st);
+    let restarts: Vec<&TransitionRecord> = rec
+        .transitions
+        .iter()
+        .filter(|r| (r.from, r.to) == (Mode::Sliding, Mode::Sliding))
+        .collect();
+    assert!(restarts.len() >= 50, "{} restarts", restarts.len());
+    for r in restarts {
+        let Trigger::SlipStopped {
+            rolling_ratio,
+            rolling_normal,
+        } = r.trigger
+        else {
+            panic!("{r:?}")
+        };
+        assert!(rolling_ratio >= mu_st || rolling_normal <= 0.0, "{r:?}");
+        assert!(r.slip_direction.is_some_and(f64::is_finite), "{r:?}");
+    }
+}
+
+#[test]
+fn every_accepted_step_can_be_streamed() {
+    #[derive(Default)]
+    struct Steps {
+        times: Vec<f64>,
+        worst_ratio_rolling: f64,
+    }
+    impl equations::hybrid::DiskObserver for Steps {
+        fn wants_steps(&self) -> bool {
+            true
+        }
+        fn on_step(&mut self, s: &equations::hybrid::DiskSample) {
+            self.times.push(s.t);
+            if s.mode == Mode::Rolling {
+                self.worst_ratio_rolling = self.worst_ratio_rolling.max(s.force.ratio());
+            }
+        }
+    }
+    let params = DiskParams::paper();
+    let models = GeneratedModels::generated(params, SlipChart::Cartesian).unwrap();
+    let config = DiskConfig {
+        t_end: 0.5,
+        ..DiskConfig::paper()
+    };
+    let mut steps = Steps::default();
+    let out = simulate(&models, &config, &InitialState::paper(&params), &mut steps).unwrap();
+    assert_eq!(steps.times.len() as u64, out.stats.steps);
+    assert!(steps.times.windows(2).all(|w| w[1] >= w[0]));
+    assert_eq!(*steps.times.last().unwrap(), 0.5);
+    // Step ends in rolling never exceed the static limit (event ends sit on it).
+    assert!(
+        steps.worst_ratio_rolling <= params.mu_st + 1e-9,
+        "{}",
+        steps.worst_ratio_rolling
+    );
+}
+
+#[test]
+fn slides_that_end_at_once_are_resolved_alike_by_both_integrators() {
+    // Near 19 s the slip of the paper's disk reaches zero where rolling would need T/N just
+    // above mu_st: sliding restarts, and ~60 µs later the slip is back at zero and the disk
+    // rolls. Every one of these switch-backs must be found, at the same times, by DP5 and
+    // DOP853 (409 decisions up to 19.5 s).
+    let (_, a) = run(&tight(IntegratorChoice::Dopri5, 19.5), SlipChart::Cartesian);
+    let (_, b) = run(&tight(IntegratorChoice::Dop853, 19.5), SlipChart::Cartesian);
+    assert_eq!(a.transitions.len(), b.transitions.len());
+    for (k, (x, y)) in a.transitions.iter().zip(&b.transitions).enumerate() {
+        assert_eq!((x.from, x.to), (y.from, y.to), "transition {k}");
+        assert!(
+            (x.t - y.t).abs() < 1e-8,
+            "transition {k}: {} vs {}",
+            x.t,
+            y.t
+        );
+    }
+    let short: Vec<(f64, f64)> = a
+        .transitions
+        .windows(2)
+        .filter(|w| w[0].to == Mode::Sliding && w[1].t - w[0].t < 1e-4)
+        .map(|w| {
+            assert_eq!(
+                (w[0].from, w[1].to),
+                (Mode::Sliding, Mode::Rolling),
+                "{w:?}"
+            );
+            (w[0].t, w[1].t - w[0].t)
+        })
+        .collect();
+    assert!(short.len() >= 5, "{short:?}");
+}

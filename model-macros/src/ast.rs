@@ -6,6 +6,7 @@
 
 use crate::span::{SpanRange, Spans};
 use model_algebra::spec::{BinOp, Named, NodeId};
+use std::collections::BTreeMap;
 
 /// An expression before name resolution.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,6 +120,9 @@ pub struct ModelAst {
     pub variants: Vec<Variant>,
     /// Compiler options (`options { name = value }`).
     pub options: Vec<Named<f64>>,
+    /// Doc comments written on parameters, states and outputs, by name (they document the
+    /// emitted index constants).
+    pub docs: BTreeMap<String, Vec<syn::Attribute>>,
     /// Source ranges of every node.
     pub spans: Spans,
 }

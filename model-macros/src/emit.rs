@@ -9,6 +9,7 @@ use crate::emit_program::{constant, statements, zero_unstored};
 use model_algebra::program::{CompiledModel, Program, Target};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
+use std::collections::BTreeMap;
 
 /// Emits the whole expansion of a compiled model.
 pub fn emit(ast: &ModelAst, compiled: &CompiledModel) -> TokenStream {
@@ -29,20 +30,37 @@ pub fn emit(ast: &ModelAst, compiled: &CompiledModel) -> TokenStream {
         .zip(&compiled.variants)
         .map(|(variant, model)| {
             let default_doc = format!(" A reduced variant of `{name}`.");
-            let docs = docs_or(&variant.attrs, &default_doc);
-            let vis = syn::parse_quote!(pub);
-            let info_name = format!("{name}::{}", variant.name);
-            module(
-                &vis,
-                &variant.name,
-                &docs,
-                &info_name,
-                model,
-                TokenStream::new(),
-            )
+            let header = Header {
+                vis: syn::parse_quote!(pub),
+                ident: &variant.name,
+                docs: docs_or(&variant.attrs, &default_doc),
+                info_name: format!("{name}::{}", variant.name),
+                item_docs: &ast.docs,
+            };
+            module(&header, model, TokenStream::new())
         });
     let variants: TokenStream = variants.collect();
-    module(&ast.vis, &ast.name, &docs, &name, compiled, variants)
+    let header = Header {
+        vis: ast.vis.clone(),
+        ident: &ast.name,
+        docs,
+        info_name: name.clone(),
+        item_docs: &ast.docs,
+    };
+    module(&header, compiled, variants)
+}
+
+/// Doc comments written on parameters, states and outputs, by name.
+type ItemDocs = BTreeMap<String, Vec<syn::Attribute>>;
+
+/// What names and documents an emitted module, beside the compiled model itself.
+struct Header<'a> {
+    vis: syn::Visibility,
+    ident: &'a Ident,
+    docs: TokenStream,
+    /// `INFO.name` and the `model` of every runtime error.
+    info_name: String,
+    item_docs: &'a ItemDocs,
 }
 
 /// The doc attributes written by the user, or one default line.
@@ -54,29 +72,24 @@ fn docs_or(attrs: &[syn::Attribute], default: &str) -> TokenStream {
     }
 }
 
-fn module(
-    vis: &syn::Visibility,
-    ident: &Ident,
-    docs: &TokenStream,
-    info_name: &str,
-    model: &CompiledModel,
-    nested: TokenStream,
-) -> TokenStream {
+fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenStream {
+    let Header {
+        vis,
+        ident,
+        docs,
+        info_name,
+        item_docs,
+    } = header;
+    let info_name = info_name.as_str();
     let n_states = model.states.len();
     let n_params = model.params.len();
     let n_outputs = model.outputs.len();
     let param_names: Vec<&str> = model.params.iter().map(|(name, _)| name.as_str()).collect();
-    let states = index_module(
-        "state",
-        "state",
-        &model.states.iter().map(String::as_str).collect::<Vec<_>>(),
-    );
-    let params = index_module("param", "parameter", &param_names);
-    let outputs = index_module(
-        "output",
-        "output",
-        &model.outputs.iter().map(String::as_str).collect::<Vec<_>>(),
-    );
+    let state_refs: Vec<&str> = model.states.iter().map(String::as_str).collect();
+    let output_refs: Vec<&str> = model.outputs.iter().map(String::as_str).collect();
+    let states = index_module("state", "state", &state_refs, item_docs);
+    let params = index_module("param", "parameter", &param_names, item_docs);
+    let outputs = index_module("output", "output", &output_refs, item_docs);
     let state_names = &model.states;
     let output_names = &model.outputs;
     let defaults = model.params.iter().map(|(_, default)| match default {
@@ -141,15 +154,17 @@ fn module(
     }
 }
 
-/// `pub mod NAME { pub const x: usize = 0; ... }`
-fn index_module(module: &str, what: &str, names: &[&str]) -> TokenStream {
+/// `pub mod NAME { pub const x: usize = 0; ... }`, each constant documented by the user's doc
+/// comment on the name, or by a default line.
+fn index_module(module: &str, what: &str, names: &[&str], item_docs: &ItemDocs) -> TokenStream {
     let module = Ident::new(module, Span::call_site());
     let module_doc = format!(" Index of each {what} in the {what} array.");
     let consts = names.iter().enumerate().map(|(index, name)| {
         let ident = format_ident!("{}", name);
-        let doc = format!(" Index of {what} `{name}`.");
+        let default = format!(" Index of {what} `{name}`.");
+        let docs = docs_or(item_docs.get(*name).map_or(&[], Vec::as_slice), &default);
         quote! {
-            #[doc = #doc]
+            #docs
             pub const #ident: usize = #index;
         }
     });

@@ -128,6 +128,37 @@ impl Names {
         parts.join("; ")
     }
 
+    /// The declared or built-in name closest to a misspelt `name`, if one is close enough to be
+    /// a likely typo; only names usable in the same place are proposed (the first
+    /// `outputs_before` outputs; functions when `function` is set).
+    pub fn suggest(&self, name: &str, outputs_before: usize, function: bool) -> Option<&str> {
+        let outputs = &self.outputs[..outputs_before.min(self.outputs.len())];
+        let values = (self
+            .params
+            .iter()
+            .chain(&self.states)
+            .chain(&self.lets)
+            .chain(outputs))
+        .map(String::as_str)
+        .chain(["t", "pi"]);
+        let functions = ALL_FUNCS.iter().map(|func| func.name()).chain([DER]);
+        let candidates: Vec<&str> = if function {
+            functions.collect()
+        } else {
+            values.collect()
+        };
+        // Roughly one edit per three characters, and never a whole replacement (`z` is not a
+        // typo of `x`).
+        let length = name.chars().count();
+        let limit = ((length + 1) / 3).max(1);
+        candidates
+            .into_iter()
+            .map(|candidate| (edit_distance(name, candidate), candidate))
+            .filter(|&(distance, _)| distance <= limit && distance < length)
+            .min_by_key(|&(distance, _)| distance)
+            .map(|(_, candidate)| candidate)
+    }
+
     /// The states and outputs, for a variant's `keep`.
     pub fn describe_keepable(&self) -> String {
         let mut parts = Vec::new();
@@ -185,6 +216,21 @@ fn push_list(parts: &mut Vec<String>, label: &str, names: &[String]) {
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
         parts.push(format!("{label} {}", quoted(&names)));
     }
+}
+
+/// Levenshtein distance between two names, in characters.
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut previous: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut current = vec![i + 1; b.len() + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            let substitution = previous[j] + usize::from(ca != cb);
+            current[j + 1] = substitution.min(previous[j + 1] + 1).min(current[j] + 1);
+        }
+        previous = current;
+    }
+    previous[b.len()]
 }
 
 /// `` `a`, `b`, `c` ``

@@ -8,6 +8,7 @@ use crate::expr::{parse_expr, parse_signed_number};
 use crate::span::{Errors, SpanRange, Spans};
 use model_algebra::spec::Named;
 use proc_macro2::{TokenStream, TokenTree};
+use std::collections::BTreeMap;
 use syn::parse::{ParseStream, Parser};
 use syn::{token, Token};
 
@@ -61,6 +62,7 @@ fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst
         outputs: Vec::new(),
         variants: Vec::new(),
         options: Vec::new(),
+        docs: BTreeMap::new(),
         spans: Spans::default(),
     };
     let mut seen = Seen::default();
@@ -106,7 +108,7 @@ fn parse_item(
             let content = braced(input)?;
             recover_section(&content, errors, |input| {
                 model.params = parse_list(input, |input| {
-                    let name = parse_name(input, &mut model.spans)?;
+                    let name = parse_documented_name(input, &mut model.spans, &mut model.docs)?;
                     let default = if input.peek(Token![=]) {
                         input.parse::<Token![=]>()?;
                         Some(parse_signed_number(input)?)
@@ -123,7 +125,9 @@ fn parse_item(
             once(&mut seen.states, range, "states", errors);
             let content = braced(input)?;
             recover_section(&content, errors, |input| {
-                model.states = parse_list(input, |input| parse_name(input, &mut model.spans))?;
+                model.states = parse_list(input, |input| {
+                    parse_documented_name(input, &mut model.spans, &mut model.docs)
+                })?;
                 Ok(())
             });
         }
@@ -152,8 +156,12 @@ fn parse_item(
             let content = braced(input)?;
             while !content.is_empty() {
                 recover_statement(&content, errors, |input| {
+                    let attrs = input.call(syn::Attribute::parse_outer)?;
                     let binding = parse_binding(input, &mut model.spans)?;
                     input.parse::<Token![;]>()?;
+                    if !attrs.is_empty() {
+                        model.docs.insert(binding.name.clone(), attrs);
+                    }
                     model.outputs.push(binding);
                     Ok(())
                 });
@@ -301,6 +309,20 @@ fn parse_name(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<()>> {
     })
 }
 
+/// A name with the doc comments written before it (kept in `docs` under the name).
+fn parse_documented_name(
+    input: ParseStream,
+    spans: &mut Spans,
+    docs: &mut BTreeMap<String, Vec<syn::Attribute>>,
+) -> syn::Result<Named<()>> {
+    let attrs = input.call(syn::Attribute::parse_outer)?;
+    let name = parse_name(input, spans)?;
+    if !attrs.is_empty() {
+        docs.insert(name.name.clone(), attrs);
+    }
+    Ok(name)
+}
+
 fn with_value<T>(name: Named<()>, value: T) -> Named<T> {
     Named {
         name: name.name,
@@ -407,7 +429,9 @@ fn no_docs_here(attrs: &[syn::Attribute], what: &str, errors: &mut Errors) {
     if let Some(attr) = attrs.iter().find(|attr| attr.path().is_ident("doc")) {
         errors.push(syn::Error::new_spanned(
             attr,
-            format!("doc comments go on the module or a variant, not on {what}; use `//` here"),
+            format!(
+                "doc comments go on the module, a variant, a parameter, a state or an output, not on {what}; use `//` here"
+            ),
         ));
     }
 }

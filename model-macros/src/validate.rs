@@ -32,6 +32,7 @@ pub fn validate(ast: &ModelAst) -> syn::Result<Validated> {
         let_props: BTreeMap::new(),
         output_props: Vec::new(),
     };
+    validator.check_item_docs();
     validator.declare_all();
     validator.check_let_cycles();
     validator.compute_let_props();
@@ -93,6 +94,16 @@ struct Validator<'a> {
 impl<'a> Validator<'a> {
     fn range(&self, id: NodeId) -> SpanRange {
         range(&self.ast.spans, id)
+    }
+
+    fn check_item_docs(&mut self) {
+        let attrs = self.ast.docs.values().flatten();
+        for attr in attrs.filter(|attr| !attr.path().is_ident("doc")) {
+            self.errors.push(syn::Error::new_spanned(
+                attr,
+                "only doc comments (`/// ..`) are allowed in a model",
+            ));
+        }
     }
 
     fn declare_all(&mut self) {
@@ -342,8 +353,12 @@ impl<'a> Validator<'a> {
             Scope::Let | Scope::Equation => 0,
         };
         let Some(Decl { kind, .. }) = self.names.get(name) else {
+            let hint = match self.names.suggest(name, outputs_before, false) {
+                Some(close) => format!(" (did you mean `{close}`?)"),
+                None => String::new(),
+            };
             return Some(format!(
-                "unknown name `{name}`; usable here: {}",
+                "unknown name `{name}`{hint}; usable here: {}",
                 self.names.describe_usable(outputs_before)
             ));
         };
@@ -373,10 +388,16 @@ impl<'a> Validator<'a> {
         } else {
             let message = match self.names.get(name) {
                 Some(decl) => format!("`{name}` is {}, not a function", decl.kind),
-                None => format!(
-                    "unknown function `{name}`; the functions are {}",
-                    function_list()
-                ),
+                None => {
+                    let hint = match self.names.suggest(name, 0, true) {
+                        Some(close) => format!(" (did you mean `{close}`?)"),
+                        None => String::new(),
+                    };
+                    format!(
+                        "unknown function `{name}`{hint}; the functions are {}",
+                        function_list()
+                    )
+                }
             };
             self.errors.at(self.range(call.func_id), message);
             return None;

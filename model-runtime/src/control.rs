@@ -1,4 +1,5 @@
-//! Step-size selection: the PI controller and Hairer's automatic initial step.
+//! Step-size selection: a PI controller with Gustafsson's predictive limit, and Hairer's
+//! automatic initial step.
 //!
 //! The controller is shared by all adaptive methods (only the error order differs), so two
 //! methods compared on the same problem differ only in their formulas.

@@ -91,7 +91,10 @@ pub trait HybridSystem<const N: usize> {
     fn guards(&self, mode: Self::Mode) -> &[GuardSpec<Self::Guard>];
 
     /// Evaluates all guards of `mode` at `(t, y)`, where `dy = f(t, y)` is already computed;
-    /// `values` has one slot per entry of [`HybridSystem::guards`].
+    /// `values` has one slot per entry of [`HybridSystem::guards`]. Called after every accepted
+    /// step (with the step's last stage as `dy`, so it costs no extra evaluation) and at the
+    /// interior points of a crossing search. A value that is not finite ends the run with
+    /// [`SolveError::GuardNotFinite`].
     fn guard_values(
         &self,
         mode: Self::Mode,
@@ -119,7 +122,10 @@ pub trait HybridSystem<const N: usize> {
     }
 
     /// Optionally moves `y` back onto the constraints of `mode`; returns whether it changed
-    /// `y`. Called after every accepted step and on the state a transition starts from.
+    /// `y`. Called after every accepted step (a change costs one evaluation of `f` and resets
+    /// the guards' reference signs to the projected state) and on the state a transition
+    /// starts from. It should move the state by no more than the integration error: a
+    /// projection that pushes a guard across zero is not an event.
     fn project(&self, _mode: Self::Mode, _t: f64, _y: &mut [f64; N]) -> bool {
         false
     }

@@ -118,21 +118,7 @@ pub trait Model<const N: usize> {
     /// The Jacobian `jac[i][j] = ∂f_i/∂y_j`. The default uses central finite differences;
     /// emitted models override it with the symbolic derivative of the solved system.
     fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
-        let mut yp = *y;
-        let mut fp = [0.0; N];
-        let mut fm = [0.0; N];
-        for j in 0..N {
-            let h = f64::EPSILON.cbrt() * y[j].abs().max(1.0);
-            yp[j] = y[j] + h;
-            self.rhs(t, &yp, &mut fp)?;
-            yp[j] = y[j] - h;
-            self.rhs(t, &yp, &mut fm)?;
-            yp[j] = y[j];
-            for i in 0..N {
-                jac[i][j] = (fp[i] - fm[i]) / (2.0 * h);
-            }
-        }
-        Ok(())
+        crate::hybrid::finite_difference_jacobian(|y, dy| self.rhs(t, y, dy), y, jac)
     }
 }
 

@@ -150,7 +150,9 @@ mod tests {
 
     fn damped(period: f64, rate: f64, t_end: f64, phase: f64) -> (Vec<f64>, Vec<f64>) {
         let omega = 2.0 * PI / period;
-        let t: Vec<f64> = (0..=(t_end * rate) as usize).map(|k| k as f64 / rate).collect();
+        let t: Vec<f64> = (0..=(t_end * rate) as usize)
+            .map(|k| k as f64 / rate)
+            .collect();
         let v = t
             .iter()
             .map(|&t| (-0.7 * t).exp() * (omega * t + phase).sin())
@@ -173,7 +175,10 @@ mod tests {
                 let (t, v) = damped(period, rate, 3.0, phase);
                 let got = mean_period(Series { t: &t, v: &v }, 0.0, 3.0).unwrap();
                 let rel = (got - period).abs() / period;
-                assert!(rel < tol, "period {period} rate {rate}: got {got} ({rel:e})");
+                assert!(
+                    rel < tol,
+                    "period {period} rate {rate}: got {got} ({rel:e})"
+                );
             }
         }
     }

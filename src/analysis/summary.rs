@@ -187,11 +187,23 @@ impl Summary {
             row("steps", self.steps.to_string(), None),
             row("rhs_evals", self.rhs_evals.to_string(), None),
             row("wall_s", format!("{:.3}", self.wall_s), None),
-            row("theta_period_first_s", num(self.theta_period_first_s), Some("0.14")),
-            row("theta_period_last_s", num(self.theta_period_last_s), Some("0.042")),
+            row(
+                "theta_period_first_s",
+                num(self.theta_period_first_s),
+                Some("0.14"),
+            ),
+            row(
+                "theta_period_last_s",
+                num(self.theta_period_last_s),
+                Some("0.042"),
+            ),
             row("theta_omega_first", num(self.theta_omega_first), Some("44")),
             row("theta_omega_last", num(self.theta_omega_last), Some("149")),
-            row("theta_max_after_50s", num(self.theta_max_after_50s), Some("~0.05")),
+            row(
+                "theta_max_after_50s",
+                num(self.theta_max_after_50s),
+                Some("~0.05"),
+            ),
             row(
                 "slip_speed_max_after_50s",
                 num(self.slip_speed_max_after_50s),

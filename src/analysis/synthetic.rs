@@ -42,7 +42,11 @@ impl SyntheticRun {
             ModeName::Rolling
         };
         let normal = p.m * p.g * (1.0 + 0.5 * (0.4 - theta));
-        let nu = if mode == ModeName::Sliding { p.mu_d } else { 0.5 * (p.mu_d + p.mu_st) };
+        let nu = if mode == ModeName::Sliding {
+            p.mu_d
+        } else {
+            0.5 * (p.mu_d + p.mu_st)
+        };
         Sample {
             t,
             mode,
@@ -54,7 +58,11 @@ impl SyntheticRun {
                 ..Default::default()
             },
             slip: Slip {
-                v_c: if mode == ModeName::Sliding { -1e-2 * theta_dot } else { 0.0 },
+                v_c: if mode == ModeName::Sliding {
+                    -1e-2 * theta_dot
+                } else {
+                    0.0
+                },
                 alpha: 0.0,
             },
             forces: ContactForces {
@@ -71,7 +79,9 @@ impl SyntheticRun {
     fn fine(&self, t0: f64, t1: f64, p: &DiskParams) -> Vec<Sample> {
         let rate = 10.0 * self.rate;
         let n = ((t1 - t0) * rate).round() as usize;
-        (0..=n).map(|k| self.sample(t0 + k as f64 / rate, p)).collect()
+        (0..=n)
+            .map(|k| self.sample(t0 + k as f64 / rate, p))
+            .collect()
     }
 
     /// The run's data.

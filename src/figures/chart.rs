@@ -43,6 +43,8 @@ pub enum Stroke {
     Line,
     /// A thin continuous line (reference values).
     Thin,
+    /// Small unconnected dots (a cloud of many points).
+    Cloud,
     /// Unconnected dots.
     Dots,
 }
@@ -86,6 +88,12 @@ impl Line {
     /// The same line drawn as dots.
     pub fn dots(mut self) -> Line {
         self.stroke = Stroke::Dots;
+        self
+    }
+
+    /// The same line drawn as a cloud of small dots.
+    pub fn cloud(mut self) -> Line {
+        self.stroke = Stroke::Cloud;
         self
     }
 
@@ -170,26 +178,50 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
 fn padded_range(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && (!log || *v > 0.0))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
     if !lo.is_finite() {
         return if log { 1e-6..1.0 } else { 0.0..1.0 };
     }
     if log {
         return lo / 1.5..hi * 1.5;
     }
-    let pad = if hi > lo { 0.05 * (hi - lo) } else { 1.0f64.max(hi.abs() * 0.1) };
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        1.0f64.max(hi.abs() * 0.1)
+    };
     lo - pad..hi + pad
+}
+
+/// A tick label: exponent notation on a logarithmic axis and for extreme magnitudes, the
+/// shortest plain form otherwise (no `0.30000000000000004`).
+pub fn tick_label(v: f64, log: bool) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".to_string()
+    } else if log || !(1e-3..1e5).contains(&a) {
+        let text = format!("{v:.1e}");
+        text.replace(".0e", "e")
+    } else {
+        let text = format!("{v:.6}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
 }
 
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
-fn series_of<'a>(chart: &'a Chart, axis: Axis) -> impl Iterator<Item = &'a Line> {
+fn series_of(chart: &Chart, axis: Axis) -> impl Iterator<Item = &Line> {
     chart.lines.iter().filter(move |l| l.axis == axis)
 }
 
 fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> DrawResult<DB> {
     root.fill(&WHITE)?;
-    let xs = chart.lines.iter().flat_map(|l| l.points.iter().map(|p| p.0));
+    let xs = chart
+        .lines
+        .iter()
+        .flat_map(|l| l.points.iter().map(|p| p.0));
     let x_range = {
         let r = padded_range(xs, false);
         let span = r.end - r.start;
@@ -207,7 +239,10 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
     let has_right = series_of(chart, Axis::Right).next().is_some();
     let mut builder = ChartBuilder::on(root);
     builder
-        .caption(&chart.title, (FAMILY, 30).into_font().style(FontStyle::Bold))
+        .caption(
+            &chart.title,
+            (FAMILY, 30).into_font().style(FontStyle::Bold),
+        )
         .margin(20)
         .x_label_area_size(60)
         .y_label_area_size(100)
@@ -223,7 +258,12 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
                 .copied()
                 .filter(|p| p.0.is_finite() && p.1.is_finite() && (!chart.log_y || p.1 > 0.0))
                 .collect();
-            let points = decimate(&finite, MAX_POINTS);
+            let max = if line.stroke == Stroke::Cloud {
+                4 * MAX_POINTS
+            } else {
+                MAX_POINTS
+            };
+            let points = decimate(&finite, max);
             let color = line.color;
             let anno = match line.stroke {
                 // Width 1: wider polylines are drawn with mitred joins, which spike far out of
@@ -235,6 +275,11 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
                         .into_iter()
                         .map(move |p| Circle::new(p, 3, color.filled())),
                 )?,
+                Stroke::Cloud => $ctx.$method(
+                    points
+                        .into_iter()
+                        .map(move |p| Circle::new(p, 1, color.mix(0.5).filled())),
+                )?,
             };
             anno.label(line.label.as_str()).legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
@@ -244,6 +289,7 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
     macro_rules! mesh {
         ($ctx:expr) => {
             $ctx.configure_mesh()
+                .y_label_formatter(&|v: &f64| tick_label(*v, chart.log_y))
                 .x_desc(chart.x_label.as_str())
                 .y_desc(chart.y_label.as_str())
                 .axis_desc_style(label_font.clone())
@@ -325,9 +371,28 @@ mod tests {
     use super::*;
 
     #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(tick_label(9.999999999e-6, true), "1e-5");
+        assert_eq!(tick_label(3e-5, true), "3e-5");
+        assert_eq!(tick_label(0.30000000000000004, false), "0.3");
+        assert_eq!(tick_label(1400.0, false), "1400");
+        assert_eq!(tick_label(2.5e6, false), "2.5e6");
+        assert_eq!(tick_label(0.0, false), "0");
+    }
+
+    #[test]
     fn decimation_keeps_peaks_and_order() {
         let points: Vec<(f64, f64)> = (0..100_000)
-            .map(|i| (i as f64, if i == 54_321 { 10.0 } else { (i as f64 * 0.01).sin() }))
+            .map(|i| {
+                (
+                    i as f64,
+                    if i == 54_321 {
+                        10.0
+                    } else {
+                        (i as f64 * 0.01).sin()
+                    },
+                )
+            })
             .collect();
         let d = decimate(&points, 3000);
         assert!(d.len() <= 3100, "{}", d.len());

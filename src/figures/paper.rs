@@ -104,7 +104,11 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             &format!("fig03{}_theta_dot", w.panel),
             format!("Fig. 3{}: nutation rate dθ/dt, {}", w.panel, w.label),
             "dθ/dt (rad/s)",
-            vec![Line::new("dθ/dt", points(s, |x| x.state.omega_y), colors::BLUE)],
+            vec![Line::new(
+                "dθ/dt",
+                points(s, |x| x.state.omega_y),
+                colors::BLUE,
+            )],
         ));
         charts.push(chart(
             &format!("fig05{}_nu", w.panel),
@@ -188,7 +192,9 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
 
     let normal_cycles = per_cycle(&after_1s, |x| x.forces.normal / mg);
     let theta_at = |t: f64| {
-        let i = after_1s.partition_point(|s| s.t < t).min(after_1s.len().saturating_sub(1));
+        let i = after_1s
+            .partition_point(|s| s.t < t)
+            .min(after_1s.len().saturating_sub(1));
         after_1s.get(i).map_or(f64::NAN, |s| s.state.theta)
     };
     let mut fig9 = chart(
@@ -198,13 +204,19 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
         vec![
             Line::new(
                 "N/mg against θ",
-                after_1s.iter().map(|x| (x.state.theta, x.forces.normal / mg)).collect(),
+                after_1s
+                    .iter()
+                    .map(|x| (x.state.theta, x.forces.normal / mg))
+                    .collect(),
                 colors::BLUE,
             )
-            .thin(),
+            .cloud(),
             Line::new(
                 "envelope: largest N/mg per oscillation",
-                normal_cycles.iter().map(|c| (theta_at(c.t_max), c.max)).collect(),
+                normal_cycles
+                    .iter()
+                    .map(|c| (theta_at(c.t_max), c.max))
+                    .collect(),
                 colors::RED,
             )
             .dots(),
@@ -218,7 +230,10 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     let period = {
         let t: Vec<f64> = last.samples.iter().map(|s| s.t).collect();
         let v: Vec<f64> = last.samples.iter().map(|s| s.state.omega_y).collect();
-        let (t0, t1) = (t.first().copied().unwrap_or(0.0), t.last().copied().unwrap_or(0.0));
+        let (t0, t1) = (
+            t.first().copied().unwrap_or(0.0),
+            t.last().copied().unwrap_or(0.0),
+        );
         crate::analysis::oscillation::mean_period(Series { t: &t, v: &v }, t0, t1)
     };
     let rate = period.map_or("no full oscillation".to_string(), |p| {

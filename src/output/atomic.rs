@@ -96,7 +96,10 @@ mod tests {
         assert!(err.to_string().contains("a.csv"));
         // The previous complete version survives, and no temporary file is left behind.
         assert_eq!(fs::read_to_string(&path).unwrap(), "x,y\n1,2\n");
-        let names: Vec<_> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names.len(), 1, "{names:?}");
     }
 }

@@ -122,6 +122,9 @@ mod tests {
         let mut out = Vec::new();
         write_events(&mut out, &[], &stop).unwrap();
         let text = String::from_utf8(out).unwrap();
-        assert_eq!(text.lines().nth(1).unwrap(), "1,rolling,stop,error,,\"a, b\",");
+        assert_eq!(
+            text.lines().nth(1).unwrap(),
+            "1,rolling,stop,error,,\"a, b\","
+        );
     }
 }

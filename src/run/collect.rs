@@ -73,7 +73,7 @@ impl Collector {
     /// Takes one fine sample.
     pub fn sample(&mut self, s: Sample) {
         let t0 = *self.t0.get_or_insert(s.t);
-        if self.received % self.sampling.every == 0 {
+        if self.received.is_multiple_of(self.sampling.every) {
             self.data.samples.push(s);
         }
         self.received += 1;
@@ -137,7 +137,10 @@ mod tests {
         .samples;
         let sampling = Sampling::for_rate(100.0);
         assert_eq!(sampling.every, 200);
-        let sampling = Sampling { rate: 100.0, every: 20 };
+        let sampling = Sampling {
+            rate: 100.0,
+            every: 20,
+        };
         let mut c = Collector::new(sampling);
         for s in &fine {
             c.sample(*s);

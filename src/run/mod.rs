@@ -110,7 +110,11 @@ pub fn run_scene(
     loop {
         if interrupt.load(Ordering::SeqCst) {
             ending = Ending::Interrupted;
-            stop = Some(abandoned(&collector, "interrupted", "stopped by the user (Ctrl-C)".into()));
+            stop = Some(abandoned(
+                &collector,
+                "interrupted",
+                "stopped by the user (Ctrl-C)".into(),
+            ));
             break;
         }
         match rx.recv_timeout(Duration::from_millis(100)) {
@@ -148,7 +152,11 @@ pub fn run_scene(
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => {
                 ending = Ending::Failed;
-                stop = Some(abandoned(&collector, "error", "the simulation thread died".into()));
+                stop = Some(abandoned(
+                    &collector,
+                    "error",
+                    "the simulation thread died".into(),
+                ));
                 break;
             }
         }
@@ -163,9 +171,9 @@ pub fn run_scene(
         wall_s,
     };
     data.constraint_drift_max = outcome.as_ref().map(|o| o.constraint_drift_max);
-    let files = write_outputs(scene, &data, opts)?;
+    let (summary, files) = write_outputs(scene, &data, opts)?;
     Ok(RunReport {
-        summary: Summary::of(&scene.name, &data, &scene.params),
+        summary,
         ending,
         files,
     })
@@ -180,12 +188,13 @@ fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
     }
 }
 
-/// Writes every output of `data` into `opts.out_dir`; returns the paths written.
+/// Writes every output of `data` into `opts.out_dir`; returns the summary and the paths
+/// written.
 pub fn write_outputs(
     scene: &Scene,
     data: &RunData,
     opts: &RunOptions,
-) -> Result<Vec<PathBuf>, WriteError> {
+) -> Result<(Summary, Vec<PathBuf>), WriteError> {
     let dir: &Path = &opts.out_dir;
     let mut files = Vec::new();
     let path = dir.join("trajectory.csv");
@@ -216,5 +225,5 @@ pub fn write_outputs(
     })?;
     write_bytes_atomic(&path, format!("{json}\n").as_bytes())?;
     files.push(path);
-    Ok(files)
+    Ok((summary, files))
 }

@@ -49,7 +49,11 @@ impl Progress {
             }
             ProgressStyle::Lines => {
                 while self.next_line <= 10 && fraction >= f64::from(self.next_line) / 10.0 {
-                    eprintln!("t = {t:.3} s of {} s ({}%)", self.t_end, self.next_line * 10);
+                    eprintln!(
+                        "t = {t:.3} s of {} s ({}%)",
+                        self.t_end,
+                        self.next_line * 10
+                    );
                     self.next_line += 1;
                 }
             }

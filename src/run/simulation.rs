@@ -15,8 +15,8 @@ use equations::hybrid::{
     IntegratorChoice, RunOutcome, SimError, SlidingModel, SlipSign, StopReason, TransitionRecord,
     Trigger,
 };
-use equations::modes::{Mode, SlipChart};
 use equations::models;
+use equations::modes::{Mode, SlipChart};
 
 use crate::eval::Backend;
 use crate::record::{EventRow, StopRecord, TriggerKind};
@@ -100,9 +100,10 @@ pub fn convert_event(r: &TransitionRecord) -> EventRow {
 pub fn convert_outcome(o: &RunOutcome) -> Outcome {
     let (reason, detail) = match o.stop {
         StopReason::EndTime => ("end_time", String::new()),
-        StopReason::ContactLost { t, mode } => {
-            ("contact_lost", format!("N fell through 0 at t = {t} s while {mode}"))
-        }
+        StopReason::ContactLost { t, mode } => (
+            "contact_lost",
+            format!("N fell through 0 at t = {t} s while {mode}"),
+        ),
         StopReason::InclinationReachedFloor { t, theta } => (
             "inclination_reached_0",
             format!("theta = {theta} rad at t = {t} s"),
@@ -129,6 +130,9 @@ pub fn convert_outcome(o: &RunOutcome) -> Outcome {
     }
 }
 
+/// Interior points per step where the guards are checked besides the step ends.
+pub const GUARD_CHECKS: u32 = 4;
+
 /// The simulation settings for a scene; samples are delivered at `fine_rate`.
 pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
     let f = &scene.file;
@@ -145,6 +149,9 @@ pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
         SlipSignRule::Paper => SlipSign::Paper,
     };
     c.sample_rate = Some(fine_rate);
+    // Guards are also checked at interior points of each step: a friction ratio that rises
+    // through mu_st and falls back within one step would otherwise go unnoticed.
+    c.guard_checks = GUARD_CHECKS;
     c.chatter = ChatterLimit {
         max_transitions: 50,
         window: 1e-6,
@@ -243,8 +250,10 @@ fn reference_models(
 pub fn generated_models(
     params: equations::DiskParams,
     chart: SlipChart,
-) -> DiskModels<models::rolling::Model, SlidingModel<models::sliding_cartesian::Model, models::sliding::Model>>
-{
+) -> DiskModels<
+    models::rolling::Model,
+    SlidingModel<models::sliding_cartesian::Model, models::sliding::Model>,
+> {
     let p = params.to_array();
     let sliding = match chart {
         SlipChart::Cartesian => SlidingModel::Cartesian(models::sliding_cartesian::Model::new(p)),

@@ -97,9 +97,23 @@ pub fn complete(init: &InitialTable, a: f64, issues: &mut Vec<Issue>) -> Option<
     let gives_slip = init.v_C.is_some() || init.alpha.is_some();
     if gives_velocity && gives_slip {
         let (mine, other) = if init.V_X.is_some() {
-            ("V_X", if init.v_C.is_some() { "initial.v_C" } else { "initial.alpha" })
+            (
+                "V_X",
+                if init.v_C.is_some() {
+                    "initial.v_C"
+                } else {
+                    "initial.alpha"
+                },
+            )
         } else {
-            ("V_Y", if init.v_C.is_some() { "initial.v_C" } else { "initial.alpha" })
+            (
+                "V_Y",
+                if init.v_C.is_some() {
+                    "initial.v_C"
+                } else {
+                    "initial.alpha"
+                },
+            )
         };
         issues.push(Issue {
             key: key(mine),
@@ -152,7 +166,10 @@ pub fn complete(init: &InitialTable, a: f64, issues: &mut Vec<Issue>) -> Option<
 
     let no_slip = no_slip_velocity(a, psi, theta, omega_y, omega_z);
     let (velocity, slip) = if gives_velocity {
-        let v = [init.V_X.unwrap_or(no_slip[0]), init.V_Y.unwrap_or(no_slip[1])];
+        let v = [
+            init.V_X.unwrap_or(no_slip[0]),
+            init.V_Y.unwrap_or(no_slip[1]),
+        ];
         let u = [v[0] - no_slip[0], v[1] - no_slip[1]];
         let speed = u[0].hypot(u[1]);
         let scale = 1.0 + no_slip[0].hypot(no_slip[1]);
@@ -248,7 +265,10 @@ mod tests {
         assert_eq!(issues[0].key, "initial.Z");
         let text = issues[0].to_string();
         assert!(text.contains("Z = a sin(theta)"), "{text}");
-        assert!(text.contains(&format!("{:.3e}", 0.02 - A * 0.5f64.sin())), "{text}");
+        assert!(
+            text.contains(&format!("{:.3e}", 0.02 - A * 0.5f64.sin())),
+            "{text}"
+        );
     }
 
     #[test]
@@ -265,7 +285,12 @@ mod tests {
         let keys: Vec<_> = issues.iter().map(|i| i.key.as_str()).collect();
         assert_eq!(
             keys,
-            ["initial.Omega_x", "initial.theta", "initial.v_C", "initial.V_X"]
+            [
+                "initial.Omega_x",
+                "initial.theta",
+                "initial.v_C",
+                "initial.V_X"
+            ]
         );
     }
 }

@@ -146,8 +146,7 @@ impl Override {
             .ok_or_else(|| bad("the key must be `table.key`, e.g. `friction.mu_d`"))?;
         let is_name = |s: &str| {
             !s.is_empty()
-                && s
-                    .chars()
+                && s.chars()
                     .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
         };
         if !is_name(table) || !is_name(key) {
@@ -198,7 +197,11 @@ pub fn resolve(name_or_path: &str) -> Result<(String, String), SceneError> {
         .map(|(n, text)| (n.to_string(), text.to_string()))
         .ok_or_else(|| SceneError::NotFound {
             name: name_or_path.to_string(),
-            builtin: BUILTIN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+            builtin: BUILTIN
+                .iter()
+                .map(|(n, _)| *n)
+                .collect::<Vec<_>>()
+                .join(", "),
         })
 }
 

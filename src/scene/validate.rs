@@ -102,7 +102,13 @@ pub fn validate(name: &str, file: SceneFile) -> Result<Scene, Vec<Issue>> {
     }
     non_negative(&mut issues, "air.mu_a", f.air.mu_a);
     finite(&mut issues, "air.w_z", f.air.w_z);
-    in_range(&mut issues, "solver.rtol", f.solver.rtol, RTOL_MIN, RTOL_MAX);
+    in_range(
+        &mut issues,
+        "solver.rtol",
+        f.solver.rtol,
+        RTOL_MIN,
+        RTOL_MAX,
+    );
     positive(&mut issues, "solver.atol", f.solver.atol);
     if f.solver.atol > ATOL_MAX && f.solver.atol.is_finite() {
         issues.push(Issue {

@@ -12,7 +12,7 @@ use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use model_runtime::hybrid::ChatterLimit as DriverChatter;
 use model_runtime::{
     Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, Model, Observer, Rk4,
-    Rodas4, Sample, StepOptions, Stepper, Tolerance, TransitionRecord,
+    Rodas4, Sample, StepOptions, StepView, Stepper, Tolerance, TransitionRecord,
 };
 
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
@@ -124,7 +124,7 @@ where
 {
     let shared = Shared::default();
     let mut system = DiskSystem::new(models, config, &shared);
-    let (phase, y0) = initial_phase(&mut system, models, config, initial)?;
+    let (phase, y0) = initial_phase(&mut system, &shared, models, config, initial)?;
     drain(&shared, observer);
     let first = sample_at(models, &shared, initial.t, phase, &y0).map_err(|source| {
         SimError::Transition {
@@ -229,6 +229,7 @@ where
 /// The phase and state the driver starts from (see [`simulate`]).
 fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     system: &mut DiskSystem<'_, R, S>,
+    shared: &Shared,
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
@@ -271,7 +272,20 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
         .map_err(eval_error)?;
     match start {
         Ok(start) => Ok(start),
-        Err(source) => Err(SimError::Onset { t, source }),
+        Err(Halt::Onset { t, source }) => Err(SimError::Onset { t, source }),
+        // Sliding would need the floor to pull: start on the bridge at zero slip, where
+        // `run_with` sees N <= 0 in the first sample and stops at once.
+        Err(Halt::Stop(_)) => {
+            let direction = shared
+                .bridge_slip
+                .get()
+                .map_or(force.direction(), |s| s.direction);
+            let zero = Slip {
+                speed: 0.0,
+                direction,
+            };
+            Ok((Phase::Bridge, state.sliding_vector(models.chart, zero)))
+        }
     }
 }
 
@@ -344,6 +358,20 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
             Err(e) => {
                 if self.failure.is_none() {
                     self.failure = Some((s.t, s.mode, e));
+                }
+            }
+        }
+    }
+
+    fn on_step(&mut self, step: &StepView<'_, DIM, Phase>) {
+        if !self.user.wants_steps() {
+            return;
+        }
+        match sample_at(self.models, self.shared, step.t1, step.mode, step.y1) {
+            Ok(sample) => self.user.on_step(&sample),
+            Err(e) => {
+                if self.failure.is_none() {
+                    self.failure = Some((step.t1, step.mode, e));
                 }
             }
         }

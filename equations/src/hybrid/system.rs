@@ -82,14 +82,15 @@ struct BridgePlan {
 }
 
 /// Where sliding starts — the bridge's first state, or sliding proper when the bridge would
-/// be shorter than an ulp of `t` — or why sliding cannot start.
-pub(crate) type BridgeStart = Result<(Phase, [f64; DIM]), OnsetError>;
+/// be shorter than an ulp of `t` — or why the run must stop instead (no consistent direction,
+/// or a sliding disk that the floor would have to pull).
+pub(crate) type BridgeStart = Result<(Phase, [f64; DIM]), Halt>;
 
 /// The transition into a planned start (or the stop when there is none).
-fn into_bridge(t: f64, start: BridgeStart) -> Transition<DIM, Phase, Halt> {
+fn into_bridge(start: BridgeStart) -> Transition<DIM, Phase, Halt> {
     match start {
         Ok((to, y)) => Transition::Switch { to, y },
-        Err(source) => Transition::Stop(Halt::Onset { t, source }),
+        Err(halt) => Transition::Stop(halt),
     }
 }
 
@@ -234,7 +235,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         let onset = match consistent_slip_direction(guess, probe) {
             Ok(onset) => onset,
             Err(OnsetError::Model { source, .. }) => return Err(source),
-            Err(source) => return Ok(Err(source)),
+            Err(source) => return Ok(Err(Halt::Onset { t, source })),
         };
         self.record(
             TransitionRecord {
@@ -243,6 +244,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                 to: Mode::Sliding,
                 trigger,
                 slip_direction: Some(onset.direction),
+                rolling_direction: Some(guess),
                 drift,
             },
             counted,
@@ -260,9 +262,29 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         along: f64,
     ) -> Result<BridgeStart, EvalError> {
         if !(along != 0.0 && along.is_finite()) {
-            return Ok(Err(OnsetError::NoConsistentDirection { guess: direction }));
+            return Ok(Err(Halt::Onset {
+                t,
+                source: OnsetError::NoConsistentDirection { guess: direction },
+            }));
         }
         let (_, dy) = self.models.probe_onset(t, state, direction)?;
+        self.shared.bridge_slip.set(Some(Slip {
+            speed: 0.0,
+            direction,
+        }));
+        let mut start_state = *state;
+        start_state.slip = Slip {
+            speed: 0.0,
+            direction,
+        };
+        let normal = ContactForce::sliding(&self.models.params, &start_state, &dy).normal;
+        if normal <= 0.0 || normal.is_nan() {
+            // Rolling was not admissible and sliding would need the floor to pull.
+            return Ok(Err(Halt::Stop(StopReason::ContactLost {
+                t,
+                mode: Mode::Sliding,
+            })));
+        }
         let target = Slip {
             speed: 2.0 * self.settings.stick * along.signum(),
             direction,
@@ -291,10 +313,6 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             slope,
             then: AfterBridge::StartSliding { slip: target },
         };
-        self.shared.bridge_slip.set(Some(Slip {
-            speed: 0.0,
-            direction,
-        }));
         Ok(Ok((Phase::Bridge, start)))
     }
 
@@ -364,6 +382,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                     to: Mode::Rolling,
                     trigger,
                     slip_direction: None,
+                    rolling_direction: None,
                     drift,
                 },
                 true,
@@ -384,7 +403,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                     drift,
                     true,
                 )?;
-                Ok(into_bridge(t, start))
+                Ok(into_bridge(start))
             }
             SlipSign::Paper => {
                 let direction = before.slip.direction;
@@ -396,12 +415,13 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                         to: Mode::Sliding,
                         trigger,
                         slip_direction: Some(direction),
+                        rolling_direction: Some(direction),
                         drift,
                     },
                     true,
                 );
                 let start = self.bridge_into_sliding(t, &state, direction, acc.along)?;
-                Ok(into_bridge(t, start))
+                Ok(into_bridge(start))
             }
         }
     }
@@ -520,7 +540,7 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                     drift,
                     true,
                 )?;
-                Ok(into_bridge(hit.t, start))
+                Ok(into_bridge(start))
             }
             DiskGuard::SlipStops => self.bridge_to_stop(hit),
             DiskGuard::BridgeEnd => match self.bridge.then {

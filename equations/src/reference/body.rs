@@ -126,16 +126,15 @@ impl Body {
         self.to_space * self.spin.cross(&self.contact_arm())
     }
 
-    /// Acceleration of the contact particle relative to the centre, spatial components:
-    /// the frame components of `Ω × a e_x` change at `Ω̇ × a e_x`, and the frame turns at `ω`.
+    /// Acceleration of the contact particle relative to the centre, frame components: the
+    /// frame components of `Ω × a e_x` change at `Ω̇ × a e_x`, and the frame turns at `ω`.
     pub fn rim_acceleration(&self, frame_rate: &AffineVec) -> AffineVec {
         let arm = self.contact_arm();
         let spin_rate = AffineVec::along(Vector3::x(), Affine::derivative(idx::OMEGA_X))
             + AffineVec::along(Vector3::y(), Affine::derivative(idx::OMEGA_Y))
             + AffineVec::along(Vector3::z(), Affine::derivative(idx::OMEGA_Z));
         let rim = self.spin.cross(&arm);
-        let in_frame = -1.0 * spin_rate.crossed_by(&arm) - frame_rate.crossed_by(&rim);
-        in_frame.transformed(&self.to_space)
+        -1.0 * spin_rate.crossed_by(&arm) - frame_rate.crossed_by(&rim)
     }
 
     /// Air force on one face for spatial centre velocity `v`: `-k_F (v·e_z - w_z) e_z`, spatial.
@@ -145,7 +144,7 @@ impl Body {
     }
 
     /// Angular-momentum balance about the centre, `dH/dt = a e_x × R + M_a`, frame
-    /// components, for the spatial contact force `reaction`.
+    /// components, for the contact force `reaction` in frame components.
     ///
     /// `H = (A Ω_x, A Ω_y, C Ω_z)` in the frame, so `dH/dt = (A Ω̇_x, A Ω̇_y, C Ω̇_z) + ω × H`.
     /// The frame turns at `ω = Ω - φ̇ e_z`, hence `ω × H = Ω × H - φ̇ e_z × H`, and for the
@@ -163,9 +162,7 @@ impl Body {
             + AffineVec::constant(gyroscopic)
             - AffineVec::along(Vector3::z().cross(&h), Affine::derivative(idx::PHI));
         let air_moment = -self.p.k_M() * Vector3::new(w.x, w.y, 0.0);
-        let moment = reaction
-            .transformed(&self.to_frame)
-            .crossed_by(&self.contact_arm())
+        let moment = reaction.crossed_by(&self.contact_arm())
             + AffineVec::constant(air_moment);
         let balance = h_rate - moment;
         [

@@ -166,7 +166,7 @@ impl<C: SlipChart> SlidingReference<C> {
         let u = slip.velocity();
         let velocity = Vector3::new(u.x - rim.x, u.y - rim.y, y[idx::V_Z]);
         let frame_rate = body.frame_rate();
-        let rim_accel = body.rim_acceleration(&frame_rate);
+        let rim_accel = body.rim_acceleration(&frame_rate).transformed(&body.to_space);
         // Horizontal centre acceleration: slip rate minus the rim's acceleration.
         let horizontal = C::slip_rate(&slip).affine() - rim_accel;
         let accel = AffineVec::along(Vector3::x(), horizontal.component(0))
@@ -182,7 +182,7 @@ impl<C: SlipChart> SlidingReference<C> {
         let stays_down = Affine::derivative(idx::V_Z) + rim_accel.component(2);
         let position = |i: usize, v: f64| Affine::derivative(i) - Affine::constant(v);
         let [k1, k2, k3] = body.kinematic_rows(&frame_rate);
-        let [e1, e2, e3] = body.euler_rows(&reaction);
+        let [e1, e2, e3] = body.euler_rows(&reaction.transformed(&body.to_frame));
         let rows = [
             position(idx::X, velocity.x),
             position(idx::Y, velocity.y),

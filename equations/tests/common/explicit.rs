@@ -22,21 +22,30 @@ struct P<T> {
 
 #[allow(non_snake_case)]
 fn lift<T: Scalar>(p: &DiskParams) -> P<T> {
-    let (m, a) = (T::input(p.m), T::input(p.a));
-    let mu_a = T::input(p.mu_a);
-    let pi = T::input(std::f64::consts::PI);
+    let (m, a) = (T::exact(p.m), T::exact(p.a));
+    let mu_a = T::exact(p.mu_a);
+    let pi = T::exact(std::f64::consts::PI);
     P {
         m,
         a,
-        g: T::input(p.g),
-        mu_d: T::input(p.mu_d),
-        w_z: T::input(p.w_z),
+        g: T::exact(p.g),
+        mu_d: T::exact(p.mu_d),
+        w_z: T::exact(p.w_z),
         A: T::exact(0.25) * m * a * a,
         C: T::exact(0.5) * m * a * a,
         k_F: mu_a * pi * a * a,
         k_M: T::exact(0.25) * mu_a * pi * a * a * a * a,
         ma2: m * a * a,
     }
+}
+
+/// The state in the arithmetic `T`: `ψ`, `φ` and (polar sliding) `α` as angles, the rest exact.
+fn lift_state<T: Scalar>(y: &[f64; 12], polar_slip: bool) -> [T; 12] {
+    std::array::from_fn(|i| match i {
+        6 | 8 => T::angle(y[i]),
+        4 if polar_slip => T::angle(y[i]),
+        _ => T::exact(y[i]),
+    })
 }
 
 /// Derivatives and contact forces of one mode, by name.
@@ -53,7 +62,7 @@ pub struct Explicit<T> {
 #[allow(non_snake_case)]
 pub fn rolling<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> Explicit<T> {
     let q = lift::<T>(p);
-    let y = y.map(T::input);
+    let y = lift_state::<T>(y, false);
     let [_X, _Y, _Z, V_X, V_Y, V_Z, psi, theta, _phi, Ox, Oy, Oz] = y;
     let (s, c) = (theta.sin(), theta.cos());
     let (sp, cp) = (psi.sin(), psi.cos());
@@ -98,7 +107,7 @@ pub struct SlidingExplicit<T> {
 #[allow(non_snake_case)]
 pub fn sliding<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> SlidingExplicit<T> {
     let q = lift::<T>(p);
-    let y = y.map(T::input);
+    let y = lift_state::<T>(y, true);
     let [_X, _Y, _Z, v_C, alpha, V_Z, psi, theta, _phi, Ox, Oy, Oz] = y;
     let (s, c) = (theta.sin(), theta.cos());
     let (sp, cp) = (psi.sin(), psi.cos());
@@ -155,7 +164,7 @@ pub fn sliding<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> SlidingExplicit<T> {
 /// The polar sliding derivatives (`α̇ = w / v_C`).
 pub fn sliding_polar<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> Explicit<T> {
     let SlidingExplicit { mut with_w, w } = sliding::<T>(p, y);
-    with_w.dy[4] = w / T::input(y[3]);
+    with_w.dy[4] = w / T::exact(y[3]);
     with_w
 }
 
@@ -166,7 +175,7 @@ pub fn sliding_cartesian<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> Explicit<T
     let mut polar = *y;
     polar[3] = ux.hypot(uy);
     polar[4] = (-uy).atan2(-ux);
-    let alpha = T::input(polar[4]);
+    let alpha = T::angle(polar[4]);
     let SlidingExplicit { mut with_w, w } = sliding::<T>(p, &polar);
     let vc_d = with_w.dy[3];
     let (sa, ca) = (alpha.sin(), alpha.cos());

@@ -54,6 +54,12 @@ impl Rows {
 }
 
 /// Scales of the rolling derivatives at `y` with derivatives `dy` (rows R1–R12).
+///
+/// R4–R6 are taken along the frame (`V̇·e_x, V̇·e_y, V̇·e_z` as unknowns, the projections the
+/// paper's R8 and R9 are written in): an orthogonal change of unknowns that leaves the physics
+/// alone but keeps `Ω̇_z` (set by `V̇·e_y`) from inheriting the size of `V̇_X` and `V̇_Y`, which
+/// near a flat disk are huge and cancel in that projection. The spatial `V̇` is then the frame
+/// one rotated, and its scale follows through the rotation.
 #[allow(non_snake_case)]
 pub fn rolling(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
     let [_, _, _, V_X, V_Y, V_Z, psi, theta, _, Ox, Oy, Oz] = *y;
@@ -62,47 +68,42 @@ pub fn rolling(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
     let (a, m, g) = (p.a, p.m, p.g);
     let (ai, ci, kf, km) = (p.A(), p.C(), p.k_F(), p.k_M());
     let v_z_size = ((V_X * cp).abs() + (V_Y * sp).abs()) * s.abs() + (V_Z * c).abs();
-    let v_z = (V_X * cp + V_Y * sp) * s + V_Z * c;
+    // Frame vectors (columns) in spatial components, EQUATIONS.md §1.
+    let frame = nalgebra::Matrix3::new(cp * c, -sp, cp * s, sp * c, cp, sp * s, -s, 0.0, c);
+    let accel = frame.transpose() * nalgebra::Vector3::new(dy[3], dy[4], dy[5]);
+    let mut frame_dy = *dy;
+    frame_dy[3..6].copy_from_slice(accel.as_slice());
     let mut r = Rows::new();
     // R1–R3: der(X) = V_X, ...
     for (i, v) in [V_X, V_Y, V_Z].into_iter().enumerate() {
         r.term(i, i, 1.0);
         r.f_abs[i] = v.abs();
     }
-    // R4
+    // R4–R6 along e_x, e_y, e_z: V̇ + Ω̇ × a e_x + ω × (Ω × a e_x) = 0.
     r.term(3, 3, 1.0);
-    r.term(3, 10, -a * s * cp);
-    r.term(3, 11, -a * sp);
-    r.term(3, 7, -a * c * cp * Oy);
-    r.coef(3, 6, -a * (Oz * cp - Oy * s * sp), a * ((Oz * cp).abs() + (Oy * s * sp).abs()));
-    // R5
+    r.term(3, 7, -a * Oy);
+    r.term(3, 6, -a * c * Oz);
     r.term(4, 4, 1.0);
-    r.term(4, 10, -a * s * sp);
-    r.term(4, 11, a * cp);
-    r.term(4, 7, -a * c * sp * Oy);
-    r.coef(4, 6, -a * (Oy * s * cp + Oz * sp), a * ((Oy * s * cp).abs() + (Oz * sp).abs()));
-    // R6
+    r.term(4, 11, a);
+    r.term(4, 6, -a * s * Oy);
     r.term(5, 5, 1.0);
-    r.term(5, 10, -a * c);
-    r.term(5, 7, a * s * Oy);
+    r.term(5, 10, -a);
+    r.term(5, 6, -a * s * Oz);
     // R7
     r.term(6, 9, ai);
     r.term(6, 6, -ai * Oy * c);
     r.f_abs[6] = (ci * Oy * Oz).abs() + (km * Ox).abs();
-    // R8
+    // R8: m a (V̇·e_z) is its bracket.
     r.term(7, 10, ai);
     r.term(7, 6, ai * Ox * c);
-    r.term(7, 3, m * a * s * cp);
-    r.term(7, 4, m * a * s * sp);
-    r.term(7, 5, m * a * c);
+    r.term(7, 5, m * a);
     r.f_abs[7] = (ci * Ox * Oz).abs()
         + (m * g * a * c).abs()
-        + kf * a * (v_z_size + p.w_z.abs()).max((v_z - p.w_z).abs())
+        + kf * a * (v_z_size + p.w_z.abs())
         + (km * Oy).abs();
-    // R9
+    // R9: its bracket is -(V̇·e_y).
     r.term(8, 11, ci);
-    r.term(8, 3, m * a * sp);
-    r.term(8, 4, -m * a * cp);
+    r.term(8, 4, -m * a);
     // R10–R12
     r.term(9, 6, s);
     r.f_abs[9] = Ox.abs();
@@ -111,7 +112,17 @@ pub fn rolling(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
     r.term(11, 6, c);
     r.term(11, 8, 1.0);
     r.f_abs[11] = Oz.abs();
-    r.bound(dy)
+    let mut b = r.bound(&frame_dy);
+    // Rotate the frame accelerations' scales back to V̇_X, V̇_Y, V̇_Z (plus the rotation's own
+    // rounding, the size of its terms).
+    let sizes = nalgebra::Vector3::new(
+        b[3] + accel.x.abs(),
+        b[4] + accel.y.abs(),
+        b[5] + accel.z.abs(),
+    );
+    let spatial = frame.abs() * sizes;
+    b[3..6].copy_from_slice(spatial.as_slice());
+    b
 }
 
 /// Scales of the polar sliding derivatives (rows S1–S12; `dy` holds `α̇`).
@@ -138,7 +149,12 @@ pub fn sliding_polar(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12]
     r.f_abs[2] = V_Z.abs();
     // S4
     r.term(3, 4, m * v_C);
-    r.coef(3, 6, m * a * (-Oy * K * s + Oz * S), m * a * ((Oy * K * s).abs() + (Oz * S).abs()));
+    r.coef(
+        3,
+        6,
+        m * a * (-Oy * K * s + Oz * S),
+        m * a * ((Oy * K * s).abs() + (Oz * S).abs()),
+    );
     r.term(3, 7, m * a * Oy * S * c);
     r.term(3, 10, m * a * S * s);
     r.term(3, 11, m * a * K);
@@ -146,7 +162,12 @@ pub fn sliding_polar(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12]
     // S5
     r.term(4, 3, -m);
     r.term(4, 5, -mu * m);
-    r.coef(4, 6, m * a * (Oy * S * s + Oz * K), m * a * ((Oy * S * s).abs() + (Oz * K).abs()));
+    r.coef(
+        4,
+        6,
+        m * a * (Oy * S * s + Oz * K),
+        m * a * ((Oy * S * s).abs() + (Oz * K).abs()),
+    );
     r.term(4, 7, m * a * Oy * K * c);
     r.term(4, 10, m * a * K * s);
     r.term(4, 11, -m * a * S);

@@ -16,13 +16,14 @@ pub trait Scalar:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
-    /// An exactly known number (a literal such as 1/4).
+    /// An exactly known number: a literal, a parameter, a state other than an angle.
     fn exact(x: f64) -> Self;
-    /// An input (a state, a parameter): a rounded value, known to a relative ε. This is the
-    /// standard footing of conditioning: an implementation is accurate if its result is the
-    /// exact one for inputs perturbed by ε (e.g. `sin(α - ψ)` near `α = ψ` is only known to
-    /// `ε (|α| + |ψ|)`, and building it from `e_s` and the frame gives no better).
-    fn input(x: f64) -> Self {
+    /// An angle that enters through sines and cosines of sums and differences (`ψ`, `φ`,
+    /// `α`): known to an absolute ε. An implementation that builds `sin(α - ψ)` from the
+    /// frame and the slip direction (products of sines and cosines) gets it to ε, not to
+    /// ε |sin(α - ψ)|; the explicit form, which subtracts the angles first, would otherwise
+    /// claim a precision no vector formulation has near `α = ψ`.
+    fn angle(x: f64) -> Self {
         Self::exact(x)
     }
     /// Sine.
@@ -68,11 +69,8 @@ impl Scalar for Tracked {
     fn exact(x: f64) -> Self {
         Tracked { v: x, scale: 0.0 }
     }
-    fn input(x: f64) -> Self {
-        Tracked {
-            v: x,
-            scale: x.abs(),
-        }
+    fn angle(x: f64) -> Self {
+        Tracked { v: x, scale: 1.0 }
     }
     fn sin(self) -> Self {
         Tracked::rounded(self.v.sin(), self.v.cos().abs() * self.scale)

@@ -13,7 +13,7 @@ use crate::linear::{split, LinearForm};
 use crate::lower::Lowerer;
 use crate::print::to_dsl;
 use crate::program::{CompiledModel, Operand, Program, Target};
-use crate::solve::{default_sample, solve_block, BlockSystem, SolveContext};
+use crate::solve::{solve_block, BlockSystem, Sampler, SolveContext};
 use crate::spec::{Diagnostic, ModelSpec, NodeId};
 use crate::structure::{blocks, StructureError};
 use crate::system::{Pivot, System};
@@ -368,10 +368,13 @@ fn solve_all(
     };
     let text = |pool: &Pool, e: ExprId| to_dsl(pool, e, &|s| symbol_name(spec, s));
     let param = |i: usize| spec.params.get(i).and_then(|p| p.value).unwrap_or(1.0);
-    let sample = |s: Sym, k: usize| default_sample(s, k, &param);
+    let sampler = Sampler {
+        param: &param,
+        n_states: n,
+    };
     let ctx = SolveContext {
         text: &text,
-        sample: &sample,
+        sampler: &sampler,
         swell_bound: options.swell_bound,
     };
     let mut system = System::default();

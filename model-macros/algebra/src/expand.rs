@@ -20,15 +20,66 @@ pub fn expand(pool: &mut Pool, e: ExprId) -> Option<ExprId> {
     expand_memo(pool, &mut memo, e)
 }
 
-/// The expansion of `e` if it costs no more operations than `e`, else `e`.
+/// The cheapest of `e`, its expansion, and either with the factors common to all terms
+/// pulled out (which lets `S^-1 * (a + b)` cancel when `S = a + b`). A tie goes to the
+/// expansion (more canonical, so later cancellations are found), not to a factored form.
 pub fn expand_if_smaller(pool: &mut Pool, e: ExprId) -> ExprId {
     if !matches!(pool.node(e), Node::Add(_) | Node::Mul(_)) {
         return e;
     }
-    match expand(pool, e) {
-        Some(x) if x != e && pool.dag_ops(&[x]) <= pool.dag_ops(&[e]) => x,
-        _ => e,
+    let mut best = e;
+    let mut best_ops = pool.dag_ops(&[e]);
+    let mut consider = |pool: &mut Pool, x: ExprId, tie_wins: bool| {
+        let ops = pool.dag_ops(&[x]);
+        if ops < best_ops || (tie_wins && ops == best_ops) {
+            best = x;
+            best_ops = ops;
+        }
+    };
+    let common = factor_common(pool, e);
+    consider(pool, common, false);
+    if let Some(x) = expand(pool, e) {
+        consider(pool, x, true);
+        let common = factor_common(pool, x);
+        consider(pool, common, false);
     }
+    best
+}
+
+/// A sum with the factors shared by all its terms pulled out: `a*x*S^-1 + b*y*S^-1` becomes
+/// `S^-1 * (a*x + b*y)`, whose product the constructors may then simplify. Anything else is
+/// returned as is.
+pub fn factor_common(pool: &mut Pool, e: ExprId) -> ExprId {
+    let Node::Add(terms) = pool.node(e).clone() else {
+        return e;
+    };
+    let factors_of = |pool: &mut Pool, t: ExprId| -> (f64, Vec<ExprId>) {
+        let (c, rest) = pool.split_coefficient(t);
+        match pool.node(rest) {
+            Node::Mul(fs) => (c, fs.to_vec()),
+            Node::Const(_) => (c, Vec::new()),
+            _ => (c, vec![rest]),
+        }
+    };
+    let split: Vec<(f64, Vec<ExprId>)> = terms.iter().map(|&t| factors_of(pool, t)).collect();
+    let mut common: Vec<ExprId> = split[0].1.clone();
+    for (_, fs) in &split[1..] {
+        common.retain(|f| fs.contains(f));
+    }
+    if common.is_empty() {
+        return e;
+    }
+    let inner: Vec<ExprId> = split
+        .into_iter()
+        .map(|(c, fs)| {
+            let mut rest: Vec<ExprId> = fs.into_iter().filter(|f| !common.contains(f)).collect();
+            rest.push(pool.num(c));
+            pool.mul(&rest)
+        })
+        .collect();
+    let inner = pool.add(&inner);
+    common.push(inner);
+    pool.mul(&common)
 }
 
 /// The terms of `e` as a sum (one term if it is not a sum).
@@ -145,6 +196,23 @@ mod tests {
         let expanded_ycms = expand(&mut p, ycms).unwrap();
         let expected = p.add2(x, expanded_ycms);
         assert_eq!(got, expected);
+    }
+
+    #[test]
+    fn common_factors_cancel_against_a_reciprocal_sum() {
+        // m^2*x^2/(x^2 + y^2) + m^2*y^2/(x^2 + y^2) = m^2
+        let mut p = Pool::new();
+        let m = p.sym(Sym::Param(0));
+        let x = p.sym(Sym::State(0));
+        let y = p.sym(Sym::State(1));
+        let (m2, x2, y2) = (p.powf(m, 2.0), p.powf(x, 2.0), p.powf(y, 2.0));
+        let s = p.add2(x2, y2);
+        let a = p.mul(&[m2, x2]);
+        let b = p.mul(&[m2, y2]);
+        let a = p.div(a, s);
+        let b = p.div(b, s);
+        let e = p.add2(a, b);
+        assert_eq!(expand_if_smaller(&mut p, e), m2);
     }
 
     #[test]

@@ -5,10 +5,12 @@
 //! right-hand side, its Jacobian and the outputs. In between, one stage per module:
 //! [`lower`] (syntax tree to interned expressions, with diagnostics at the user's nodes),
 //! [`linear`] (each equation as coefficients of the derivatives), [`structure`] (matching and
-//! block triangular form), [`solve`] (symbolic elimination per block, or a numeric block when
-//! that would swell), [`jacobian`] (chain rule through the solution), [`cse`] (the DAG as a
-//! program) and [`variant`] (reduced models). [`expr`], [`simplify`] and [`diff`] are the
-//! algebra underneath; [`eval`] interprets a program, for tests.
+//! block triangular form), [`solve`] (symbolic elimination per block into the definitions of
+//! [`system`], or a numeric block when that would swell or no safe pivot exists), [`jacobian`]
+//! (chain rule through the solution), [`cse`] (the DAG as a program, counted by [`ops`]) and
+//! [`variant`] (reduced models), chained by [`compile()`]. [`expr`], [`simplify`], [`expand`],
+//! [`diff`] and [`print`](mod@print) are the algebra underneath; [`eval`] interprets a program, so the
+//! emitted code can be tested without compiling it.
 //!
 //! ```
 //! use model_algebra::spec::{Ast, BinOp, EquationSpec, ModelSpec, Named, NodeId};

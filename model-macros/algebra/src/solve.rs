@@ -1,17 +1,23 @@
-//! Solving one block `A x = b` for its derivatives, symbolically when that stays small.
+//! Solving one block `A x = b` for its derivatives, symbolically when that stays small and safe.
 //!
-//! Gaussian elimination on expressions. There are no values at compile time, so the pivot is
-//! chosen by structure, guarded by magnitude at a few sample points (typical parameter values,
-//! states spread over `[0.2, 1.2]`): among the candidates that are not small compared with
-//! their column at every sample (threshold pivoting, as sparse LU codes do), a constant pivot
-//! first, then the one with the fewest operations, ties broken by position. Without the guard,
-//! the cheapest entry of a column may be a tiny coupling term, and the solution would lose
-//! digits. Every non-constant pivot is recorded, to be
-//! checked at run time with its text in the user's terms. The reciprocal of each pivot is one
-//! shared node, so the emitted code divides once per pivot and multiplies elsewhere. Back
-//! substitution reads the derivatives solved before it as symbols, which keeps the solution a
-//! short chain instead of a nest. If the symbolic solution would cost more than the caller's
-//! bound, the block is left to a numeric elimination at run time instead.
+//! Gaussian elimination on expressions. There are no values at compile time, so pivots are
+//! chosen by structure, guarded by magnitude at sample points: a few typical ones (parameters
+//! at their defaults, states spread over `[0.2, 1.2]`) and, for each state, one where it is `0`
+//! and one where it is `π/2` (where sines, cosines and the state itself vanish). A candidate is
+//! safe when, at every sample, it is not small compared with the largest entry of its column
+//! (threshold pivoting, as sparse LU codes do). Among safe candidates: a constant first, then
+//! the one with the fewest operations, ties broken by position. A pivot that vanishes where the
+//! matrix does not (`u_X/|u|` of a slip velocity crossing an axis) would report a singularity
+//! that is not there; when no safe pivot exists, a 2×2 block is solved by Cramer's rule (its
+//! only pivot is the determinant, which vanishes only where the block is singular) and a larger
+//! one numerically at run time, with partial pivoting.
+//!
+//! Every non-constant pivot is recorded, to be checked at run time with its text in the user's
+//! terms. The reciprocal of each pivot is one shared node, so the emitted code divides once per
+//! pivot and multiplies elsewhere. Back substitution reads the derivatives solved before it as
+//! symbols, which keeps the solution a short chain instead of a nest. If the symbolic solution
+//! would cost more than the caller's bound, the block is left to a numeric elimination at run
+//! time as well.
 
 use crate::expand::expand_if_smaller;
 use crate::expr::{ExprId, Pool, Sym};
@@ -40,86 +46,164 @@ pub struct SingularBlock {
 pub struct Solution {
     /// The definitions of the block's derivatives.
     pub group: Group,
-    /// Operations of the symbolic solution beyond computing the entries (measured even when
-    /// the numeric fallback was taken).
-    pub symbolic_ops: u32,
+    /// Operations of the symbolic solution beyond computing the entries (`None` when no
+    /// symbolic solution with safe pivots exists).
+    pub symbolic_ops: Option<u32>,
 }
-
-/// How many sample points guard the pivot choice.
-pub const SAMPLES: usize = 3;
 
 /// A pivot is acceptable when it is at least this fraction of its column's largest entry at
 /// every sample point.
 pub const PIVOT_THRESHOLD: f64 = 0.1;
 
+/// Typical samples (before the ones with a state at `0` or `π/2`).
+pub const TYPICAL_SAMPLES: usize = 3;
+
+/// Where symbols are sampled to judge pivots.
+pub struct Sampler<'a> {
+    /// The sample value of parameter `i` (its default, say).
+    pub param: &'a dyn Fn(usize) -> f64,
+    /// How many states the model has.
+    pub n_states: usize,
+}
+
+impl Sampler<'_> {
+    /// The number of sample points.
+    pub fn count(&self) -> usize {
+        TYPICAL_SAMPLES + 2 * self.n_states
+    }
+
+    /// The value of `s` at sample `k`.
+    pub fn value(&self, s: Sym, k: usize) -> f64 {
+        let typical = k.min(TYPICAL_SAMPLES - 1);
+        let spread = |i: usize| 0.2 + ((i * 7 + typical * 3 + 1) as f64 * 0.618_033_988_75).fract();
+        let special = k.checked_sub(TYPICAL_SAMPLES).map(|j| {
+            let value = if j < self.n_states {
+                0.0
+            } else {
+                std::f64::consts::FRAC_PI_2
+            };
+            (j % self.n_states.max(1), value)
+        });
+        match s {
+            Sym::State(i) => match special {
+                Some((state, value)) if state == i => value,
+                _ => spread(i),
+            },
+            Sym::Param(i) => (self.param)(i),
+            Sym::Time => 0.5 + typical as f64,
+            Sym::Der(i) => spread(i + 101),
+            Sym::Aux(i) => spread(i as usize + 211),
+        }
+    }
+}
+
 /// What the solve needs besides the block.
 pub struct SolveContext<'a> {
     /// Prints a pivot in the user's terms.
     pub text: &'a dyn Fn(&Pool, ExprId) -> String,
-    /// The value of a symbol at sample point `k < SAMPLES`.
-    pub sample: &'a dyn Fn(Sym, usize) -> f64,
+    /// Where pivots are judged.
+    pub sampler: &'a Sampler<'a>,
     /// The most operations a symbolic solution may cost.
     pub swell_bound: usize,
 }
 
-/// Sample values for a model: states spread over `[0.2, 1.2]`, parameters at `param(i)`.
-pub fn default_sample(s: Sym, k: usize, param: &dyn Fn(usize) -> f64) -> f64 {
-    let spread = |i: usize| 0.2 + ((i * 7 + k * 3 + 1) as f64 * 0.618_033_988_75).fract();
-    match s {
-        Sym::State(i) => spread(i),
-        Sym::Param(i) => param(i),
-        Sym::Time => 0.5 + k as f64,
-        Sym::Der(i) => spread(i + 101),
-        Sym::Aux(i) => spread(i as usize + 211),
-    }
-}
-
-/// Solves `block` symbolically, or numerically if the symbolic solution would cost more than
-/// `ctx.swell_bound` operations.
+/// Solves `block` symbolically, or numerically if no safe symbolic solution exists or it would
+/// cost more than `ctx.swell_bound` operations.
 pub fn solve_block(
     pool: &mut Pool,
     block: &BlockSystem,
     ctx: &SolveContext,
 ) -> Result<Solution, SingularBlock> {
-    let (text, swell_bound) = (ctx.text, ctx.swell_bound);
+    let text = ctx.text;
     let n = block.vars.len();
-    let Elimination { pivots, defs } = eliminate(pool, block, ctx.sample)?;
-    let mut roots: Vec<ExprId> = defs.iter().map(|(_, e)| *e).collect();
-    roots.extend(pivots.iter());
+    let symbolic = match eliminate(pool, block, ctx.sampler)? {
+        Some(e) => Some(e),
+        None if n == 2 => cramer(pool, block),
+        None => None,
+    };
     let mut entries = block.matrix.clone();
     entries.extend(&block.rhs);
-    let symbolic_ops = pool.dag_ops(&roots).saturating_sub(pool.dag_ops(&entries));
-    let group = if n > 1 && symbolic_ops as usize > swell_bound {
-        let ders: Vec<ExprId> = block.vars.iter().map(|&v| pool.sym(Sym::Der(v))).collect();
-        Group {
-            pivots: Vec::new(),
-            body: Body::Numeric {
-                matrix: block.matrix.clone(),
-                rhs: block.rhs.clone(),
-                results: block.vars.iter().map(|&v| Sym::Der(v)).collect(),
-                text: ders
-                    .iter()
-                    .map(|&d| text(pool, d))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            },
+    let symbolic_ops = symbolic.as_ref().map(|e| {
+        let mut roots: Vec<ExprId> = e.defs.iter().map(|(_, x)| *x).collect();
+        roots.extend(e.pivots.iter());
+        pool.dag_ops(&roots).saturating_sub(pool.dag_ops(&entries))
+    });
+    let group = match symbolic {
+        Some(Elimination { pivots, defs })
+            if n == 1 || symbolic_ops.is_some_and(|ops| ops as usize <= ctx.swell_bound) =>
+        {
+            Group {
+                pivots: pivots
+                    .into_iter()
+                    .map(|p| {
+                        // `-m` and `m` vanish together: check the one without a sign.
+                        let value = if pool.split_coefficient(p).0 < 0.0 {
+                            pool.neg(p)
+                        } else {
+                            p
+                        };
+                        Pivot {
+                            value,
+                            text: text(pool, value),
+                        }
+                    })
+                    .collect(),
+                body: Body::Symbolic(defs),
+            }
         }
-    } else {
-        Group {
-            pivots: pivots
-                .into_iter()
-                .map(|p| Pivot {
-                    value: p,
-                    text: text(pool, p),
-                })
-                .collect(),
-            body: Body::Symbolic(defs),
+        _ => {
+            let ders: Vec<ExprId> = block.vars.iter().map(|&v| pool.sym(Sym::Der(v))).collect();
+            Group {
+                pivots: Vec::new(),
+                body: Body::Numeric {
+                    matrix: block.matrix.clone(),
+                    rhs: block.rhs.clone(),
+                    results: block.vars.iter().map(|&v| Sym::Der(v)).collect(),
+                    text: ders
+                        .iter()
+                        .map(|&d| text(pool, d))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                },
+            }
         }
     };
     Ok(Solution {
         group,
         symbolic_ops,
     })
+}
+
+/// Cramer's rule for a 2×2 block: the determinant is the only pivot. `None` if the
+/// determinant is identically zero.
+fn cramer(pool: &mut Pool, block: &BlockSystem) -> Option<Elimination> {
+    let [a, b, c, d] = [0, 1, 2, 3].map(|k| block.matrix[k]);
+    let [e, f] = [block.rhs[0], block.rhs[1]];
+    let cross = |pool: &mut Pool, p: ExprId, q: ExprId, r: ExprId, s: ExprId| {
+        let pq = pool.mul2(p, q);
+        let rs = pool.mul2(r, s);
+        let diff = pool.sub(pq, rs);
+        expand_if_smaller(pool, diff)
+    };
+    let det = cross(pool, a, d, b, c);
+    if det == ExprId::ZERO {
+        return None;
+    }
+    let inv = pool.pow(det, ExprId::MINUS_ONE);
+    let x0 = cross(pool, e, d, b, f);
+    let x1 = cross(pool, a, f, e, c);
+    let x0 = pool.mul2(x0, inv);
+    let x1 = pool.mul2(x1, inv);
+    let defs = vec![
+        (Sym::Der(block.vars[0]), expand_if_smaller(pool, x0)),
+        (Sym::Der(block.vars[1]), expand_if_smaller(pool, x1)),
+    ];
+    let pivots = if pool.as_const(det).is_some() {
+        Vec::new()
+    } else {
+        vec![det]
+    };
+    Some(Elimination { pivots, defs })
 }
 
 /// The result of a symbolic elimination.
@@ -142,11 +226,12 @@ struct PivotRank {
 }
 
 /// Symbolic elimination with structurally chosen pivots, then back substitution.
+/// `Ok(None)` when some step has no safe pivot.
 fn eliminate(
     pool: &mut Pool,
     block: &BlockSystem,
-    sample: &dyn Fn(Sym, usize) -> f64,
-) -> Result<Elimination, SingularBlock> {
+    sampler: &Sampler,
+) -> Result<Option<Elimination>, SingularBlock> {
     let n = block.vars.len();
     let mut a = block.matrix.clone();
     let mut b = block.rhs.clone();
@@ -155,9 +240,9 @@ fn eliminate(
     let mut steps: Vec<(usize, usize, ExprId)> = Vec::with_capacity(n);
     let mut pivots = Vec::new();
     for _ in 0..n {
-        let magnitudes: Vec<Vec<f64>> = (0..SAMPLES)
+        let magnitudes: Vec<Vec<f64>> = (0..sampler.count())
             .map(|k| {
-                pool.eval_many(&a, &|s| sample(s, k))
+                pool.eval_many(&a, &|s| sampler.value(s, k))
                     .into_iter()
                     .map(f64::abs)
                     .collect()
@@ -191,6 +276,9 @@ fn eliminate(
                     best = Some(rank);
                 }
             }
+        }
+        if n > 1 && best.is_some_and(|b| b.small) {
+            return Ok(None);
         }
         let Some(PivotRank { row: r, col: c, .. }) = best else {
             return Err(SingularBlock {
@@ -248,5 +336,5 @@ fn eliminate(
         defs.push((Sym::Der(block.vars[c]), x));
         solved.push(c);
     }
-    Ok(Elimination { pivots, defs })
+    Ok(Some(Elimination { pivots, defs }))
 }

@@ -40,14 +40,17 @@ fn sections_and_defaults_are_read() {
     let model = parse_model(quote! {
         /// The docs.
         pub mod pend {
-            params { m = 1.0, l, g = -9.81, }
-            states { phi, omega }
+            params { m = 1.0, /// The rod's length.
+                l, g = -9.81, }
+            states { /// The angle from the vertical.
+                phi, omega }
             let x = l * sin(phi);
             equations {
                 kin: der(phi) = omega;
                 der(omega) = -g / l * sin(phi);
             }
-            outputs { e = m * x; }
+            outputs { /// The energy.
+                e = m * x; }
             /// A variant.
             variant small { keep { omega } fix { m = 2 } }
         }
@@ -66,6 +69,8 @@ fn sections_and_defaults_are_read() {
     assert_eq!(model.equations[0].label.as_ref().unwrap().name, "kin");
     assert!(model.equations[1].label.is_none());
     assert_eq!(model.outputs[0].name, "e");
+    let documented: Vec<&str> = model.docs.keys().map(String::as_str).collect();
+    assert_eq!(documented, ["e", "l", "phi"]);
     let variant = &model.variants[0];
     assert_eq!(
         (variant.name.to_string(), variant.attrs.len()),

@@ -76,7 +76,10 @@ rejects! {
     } => ["`atan2` takes 2 arguments, found 1", "`sin` takes 1 argument, found 2"];
     unknown_function: {
         states { x } equations { der(x) = sine(x); }
-    } => ["unknown function `sine`; the functions are `sin`, `cos`, `tan`, `sqrt`, `exp`, `ln`, `abs`, `atan2` and `der`"];
+    } => ["unknown function `sine` (did you mean `sin`?); the functions are `sin`, `cos`, `tan`, `sqrt`, `exp`, `ln`, `abs`, `atan2` and `der`"];
+    a_misspelt_name_gets_a_suggestion: {
+        states { theta, omega } equations { der(theta) = omgea; der(omega) = -sin(theta); }
+    } => ["unknown name `omgea` (did you mean `omega`?); usable here: states `theta`, `omega`"];
     a_state_is_not_a_function: {
         states { x } equations { der(x) = x(1); }
     } => ["`x` is a state, not a function"];
@@ -100,12 +103,31 @@ rejects! {
     swell_bound_is_a_whole_number: {
         states { x } equations { der(x) = 1; } options { swell_bound = 1.5 }
     } => ["`swell_bound` must be a whole number of operations, not 1.5"];
+    only_doc_comments_on_names: {
+        params { #[inline] k } states { x } equations { der(x) = k; }
+    } => ["only doc comments (`/// ..`) are allowed in a model"];
     duplicate_labels: {
         states { x, y } equations { a: der(x) = 1; a: der(y) = 1; }
     } => ["equation label `a` is used twice"];
     every_error_is_reported_at_once: {
         params { k } states { x, y } equations { der(x) = q; der(y) = foo(x) + der(k); }
     } => ["unknown name `q`", "unknown function `foo`", "`der(k)`"];
+}
+
+#[test]
+fn edit_distances() {
+    use crate::names::edit_distance;
+    for (a, b, distance) in [
+        ("", "", 0),
+        ("x", "", 1),
+        ("sine", "sin", 1),
+        ("omgea", "omega", 2),
+        ("theta", "theta", 0),
+        ("kitten", "sitting", 3),
+    ] {
+        assert_eq!(edit_distance(a, b), distance, "{a} -> {b}");
+        assert_eq!(edit_distance(b, a), distance, "{b} -> {a}");
+    }
 }
 
 #[test]

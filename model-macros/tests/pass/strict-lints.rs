@@ -14,14 +14,25 @@ model_macros::model! {
 model_macros::model! {
     /// A documented model with everything.
     pub(crate) mod full {
-        params { k = 2.0, c }
-        states { x, v }
+        params {
+            /// The spring's stiffness.
+            k = 2.0,
+            c,
+        }
+        states {
+            /// The position.
+            x,
+            v,
+        }
         let spring = k * x;
         equations {
             der(x) = v;
             der(v) = -spring - c * v + sin(t);
         }
-        outputs { energy = v^2 / 2 + k * x^2 / 2; }
+        outputs {
+            /// The mechanical energy.
+            energy = v^2 / 2 + k * x^2 / 2;
+        }
         variant undamped { keep { v } fix { c = 0 } }
     }
 }
@@ -32,7 +43,9 @@ fn main() {
     assert_eq!(dy, [-2.0]);
     assert_eq!(decay::N_PARAMS + decay::N_OUTPUTS, 0);
     let mut out = [0.0; 0];
-    decay::Model::new([]).outputs(0.0, &[2.0], &dy, &mut out).unwrap();
+    decay::Model::new([])
+        .outputs(0.0, &[2.0], &dy, &mut out)
+        .unwrap();
 
     let model = full::Model::new([2.0, 0.5]);
     let mut dy = [0.0; 2];

@@ -138,3 +138,41 @@ fn numeric_fallback_has_a_correct_jacobian() {
     }
     assert_jacobian_matches(&m, &y, &p);
 }
+
+/// A slip velocity written in polar form through its Cartesian components: every entry of the
+/// 2×2 block vanishes on an axis, the block itself only at `u = 0`.
+const POLAR_SLIP: &str = "
+    params m = 2
+    states ux, uy
+    let v = sqrt(ux^2 + uy^2)
+    let alpha = atan2(-uy, -ux)
+    eq turn: m*v*der(alpha) = 1
+    eq push: -m*der(v) = 3
+";
+
+#[test]
+fn block_whose_entries_vanish_on_axes_is_regular_there() {
+    let spec = model(POLAR_SLIP);
+    let m = compile(&spec, &CompileOptions::default()).expect("compiles");
+    // Cramer's rule: the only pivot is the determinant, which is the constant m^2 here.
+    assert_eq!(m.pivots, vec!["m^2"]);
+    for (ux, uy) in [
+        (0.0, 0.7),
+        (0.7, 0.0),
+        (-0.3, 0.0),
+        (0.4, -0.5),
+        (1e-9, 2.0),
+    ] {
+        let got = rhs(&m, 0.0, &[ux, uy], &[2.0]);
+        let v = f64::hypot(ux, uy);
+        let (dv, dalpha) = (-3.0 / 2.0, 1.0 / (2.0 * v));
+        let want = [dv * ux / v - dalpha * uy, dv * uy / v + dalpha * ux];
+        for k in 0..2 {
+            assert!(
+                (got[k] - want[k]).abs() <= 1e-12 * (1.0 + want[k].abs()),
+                "at ({ux}, {uy}): {got:?} vs {want:?}"
+            );
+        }
+    }
+    assert_jacobian_matches(&m, &[0.0, 0.7], &[2.0]);
+}

@@ -12,7 +12,7 @@ use crate::cse::Emitter;
 use crate::eval::Inputs;
 use crate::expr::{ExprId, Pool, Sym};
 use crate::program::{Operand, Target};
-use crate::solve::{default_sample, solve_block, BlockSystem, SolveContext};
+use crate::solve::{solve_block, BlockSystem, Sampler, SolveContext};
 use crate::spec::Func;
 use crate::system::{Body, System};
 
@@ -104,15 +104,25 @@ fn check(sys: &RandomSystem, point: [f64; 3], swell_bound: usize) -> Result<(), 
         rhs: rhs.clone(),
         vars: (0..sys.n).collect(),
     };
+    let sampler = Sampler {
+        param: &|_| 1.0,
+        n_states: 3,
+    };
     let ctx = SolveContext {
         text: &|_, _| "pivot".into(),
-        sample: &|s, k| default_sample(s, k, &|_| 1.0),
+        sampler: &sampler,
         swell_bound,
     };
     let solution =
         solve_block(&mut pool, &block, &ctx).map_err(|e| TestCaseError::fail(format!("{e:?}")))?;
     let numeric = matches!(solution.group.body, Body::Numeric { .. });
-    prop_assert_eq!(numeric, sys.n > 1 && swell_bound == 0);
+    let over_bound = solution
+        .symbolic_ops
+        .is_none_or(|ops| ops as usize > swell_bound);
+    prop_assert_eq!(numeric, sys.n > 1 && over_bound);
+    if swell_bound == usize::MAX {
+        prop_assert!(!numeric, "diagonally dominant blocks have safe pivots");
+    }
     let mut system = System::default();
     system.push(solution.group);
     let ders: Vec<ExprId> = (0..sys.n).map(|i| pool.sym(Sym::Der(i))).collect();

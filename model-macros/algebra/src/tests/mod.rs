@@ -5,5 +5,6 @@ mod end_to_end;
 mod linear_systems;
 mod op_counts;
 mod props;
+mod random_models;
 mod rolling_disk;
 mod sliding_disk;

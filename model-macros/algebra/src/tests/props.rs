@@ -12,7 +12,7 @@ use crate::diff::partial;
 use crate::eval::Inputs;
 use crate::expr::{call_value, ExprId, Sym};
 use crate::lower::Lowerer;
-use crate::spec::{Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId};
+use crate::spec::{Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 
 /// `x`, `y` are states 0, 1; `z` is parameter 0.
 const NAMES: [&str; 3] = ["x", "y", "z"];
@@ -47,7 +47,7 @@ fn binop() -> impl Strategy<Value = BinOp> {
 
 /// Random expressions over `x, y, z`; with `der`, also time derivatives; with `weird`, also
 /// non-finite and huge literals.
-fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
+pub fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
     leaf(weird)
         .prop_recursive(4, 32, 2, move |inner| {
             let b = |a: Ast, b: Ast, op| Ast::Bin(NodeId(3), op, Box::new(a), Box::new(b));
@@ -90,7 +90,7 @@ fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
 
 /// Direct evaluation of the user's tree (no `der`). Zero is unsigned, as in the compiler's
 /// constants (it only matters on the branch cut of `atan2`).
-fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
+pub fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
     let r = eval_signed(a, v);
     if r == 0.0 {
         0.0
@@ -259,10 +259,24 @@ proptest! {
         eqs in prop::collection::vec(ast(true, true), 0..4),
         outs in prop::collection::vec(ast(true, true), 0..3),
         n_states in 0usize..3,
+        keep in prop::collection::vec(prop::sample::select(vec!["x", "y", "o0", "o1", "zz"]), 0..3),
+        fix in prop::collection::vec(
+            (prop::sample::select(vec!["z", "x", "q"]), prop::sample::select(vec![0.0, 1.0, f64::NAN])),
+            0..2,
+        ),
         v in point(),
     ) {
         let mut spec = spec_with_outputs(&outs);
         spec.states.truncate(n_states);
+        spec.variants = vec![VariantSpec {
+            name: "v".into(),
+            id: NodeId(50),
+            keep: keep.iter().map(|k| Named { name: (*k).into(), id: NodeId(51), value: () }).collect(),
+            fix: fix
+                .iter()
+                .map(|(k, x)| Named { name: (*k).into(), id: NodeId(52), value: *x })
+                .collect(),
+        }];
         spec.equations = eqs
             .into_iter()
             .enumerate()
@@ -275,10 +289,14 @@ proptest! {
             .collect();
         match compile(&spec, &CompileOptions::default()) {
             Ok(m) => {
-                let inputs = Inputs { t: 0.0, states: &v[..n_states], params: &v[2..], ders: &v[..n_states] };
-                let _ = m.rhs.eval(&inputs);
-                let _ = m.jacobian.eval(&inputs);
-                let _ = m.outputs_program.eval(&inputs);
+                for model in std::iter::once(&m).chain(&m.variants) {
+                    let k = model.states.len();
+                    let p = &v[..model.params.len()];
+                    let inputs = Inputs { t: 0.0, states: &v[..k], params: p, ders: &v[..k] };
+                    let _ = model.rhs.eval(&inputs);
+                    let _ = model.jacobian.eval(&inputs);
+                    let _ = model.outputs_program.eval(&inputs);
+                }
             }
             Err(diags) => prop_assert!(!diags.is_empty()),
         }

@@ -1,0 +1,135 @@
+//! The `sound` subcommand's arguments and its entry point.
+//!
+//! The scene flags are `run`'s own (flattened), so a scene is chosen, overridden and
+//! validated exactly as for `eulerdisk run`.
+
+use std::process::ExitCode;
+
+use clap::Args;
+
+use super::peaks::PeakRule;
+use super::render::{Compression, RenderOptions, Ring};
+use super::{sound_scene, SoundOptions};
+use crate::cli::{backend, RunArgs};
+use crate::scene;
+
+/// Exit code of a rejected input (bad scene or setting).
+const EXIT_INPUT: u8 = 2;
+/// Exit code of a failed run.
+const EXIT_FAILED: u8 = 1;
+
+/// `eulerdisk sound`.
+#[derive(Debug, Args)]
+pub struct SoundArgs {
+    /// The scene, the output directory and the solver, as for `run`.
+    #[command(flatten)]
+    pub run: RunArgs,
+    /// Samples per second of N(t) searched for peaks.
+    #[arg(long, default_value_t = 20_000.0)]
+    pub force_rate: f64,
+    /// Frequency of the resonance each force peak excites (Hz).
+    #[arg(long, default_value_t = 2500.0)]
+    pub ring_hz: f64,
+    /// Decay time constant of that resonance (ms).
+    #[arg(long, default_value_t = 8.0)]
+    pub ring_decay_ms: f64,
+    /// Play the run K times faster (the name of the WAV says so).
+    #[arg(long, default_value_t = 1.0, value_name = "K")]
+    pub speed: f64,
+    /// Amplitude law of a knock, from the peak's rise p above its baseline (N/mg).
+    #[arg(long, value_enum, default_value_t = Compression::Sqrt)]
+    pub compression: Compression,
+    /// A major peak rises at least this much above its baseline (N/mg)...
+    #[arg(long, default_value_t = PeakRule::default().min_prominence)]
+    pub min_prominence: f64,
+    /// ...and at least this fraction of the baseline's magnitude.
+    #[arg(long, default_value_t = PeakRule::default().min_relative_prominence)]
+    pub min_relative_prominence: f64,
+    /// Shortest time between two major peaks (ms).
+    #[arg(long, default_value_t = PeakRule::default().refractory * 1e3)]
+    pub refractory_ms: f64,
+    /// Width of the windows of the peak rate (s).
+    #[arg(long, default_value_t = 1.0)]
+    pub rate_window: f64,
+}
+
+impl SoundArgs {
+    /// The options these arguments ask for.
+    pub fn options(&self) -> SoundOptions {
+        let defaults = SoundOptions::default();
+        SoundOptions {
+            force_rate: self.force_rate,
+            rule: PeakRule {
+                min_prominence: self.min_prominence,
+                min_relative_prominence: self.min_relative_prominence,
+                refractory: self.refractory_ms * 1e-3,
+                ..PeakRule::default()
+            },
+            render: RenderOptions {
+                ring: Ring {
+                    hz: self.ring_hz,
+                    decay_s: self.ring_decay_ms * 1e-3,
+                },
+                compression: self.compression,
+                speed: self.speed,
+                ..RenderOptions::default()
+            },
+            rate_window: self.rate_window,
+            rate_step: (self.rate_window / 4.0).min(defaults.rate_step),
+            figures: !self.run.no_figures,
+            ..defaults
+        }
+    }
+}
+
+/// Runs `eulerdisk sound`: prints the summary, returns the exit code.
+pub fn command(args: &SoundArgs) -> ExitCode {
+    let scene = match args
+        .run
+        .overrides()
+        .and_then(|o| scene::load(&args.run.scene, &o))
+    {
+        Ok(s) => s,
+        Err(err) => {
+            eprintln!("error: {err}");
+            return ExitCode::from(EXIT_INPUT);
+        }
+    };
+    if !args.run.quiet {
+        eprintln!(
+            "scene `{}`: simulating {} s for its sound, output in {}",
+            scene.name,
+            scene.file.run.t_end,
+            args.run.out.display()
+        );
+    }
+    match sound_scene(
+        &scene,
+        backend(args.run.reference),
+        &args.options(),
+        &args.run.out,
+    ) {
+        Ok(report) => {
+            if !args.run.quiet {
+                print!("{}", report.summary.table());
+                println!(
+                    "wrote {} files into {}",
+                    report.files.len(),
+                    args.run.out.display()
+                );
+            }
+            ExitCode::SUCCESS
+        }
+        Err(err) => {
+            eprintln!("error: {err}");
+            let input = matches!(
+                err,
+                super::SoundError::Setting { .. }
+                    | super::SoundError::TraceTooLong { .. }
+                    | super::SoundError::Peaks(_)
+                    | super::SoundError::Render(_)
+            );
+            ExitCode::from(if input { EXIT_INPUT } else { EXIT_FAILED })
+        }
+    }
+}

@@ -1,0 +1,252 @@
+//! The normal force over time, sampled finely enough that no peak is missed.
+//!
+//! The trajectory's sampling (1 kHz for the paper's scene) is too coarse for the ends of the
+//! run, where a force peak lasts a few milliseconds; and the full samples of a 100 s run at
+//! 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and keeps
+//! only what it needs: the time and `N/mg`.
+
+use equations::hybrid::{self, DiskModels, DiskObserver, DiskSample, InitialState, SimError};
+
+use super::SoundError;
+use crate::eval::Backend;
+use crate::run::simulation::{chart_of, config_of, convert_outcome, generated_models};
+use crate::scene::Scene;
+
+/// Most force samples one run may keep (about 0.8 GB of memory).
+pub const MAX_TRACE_SAMPLES: f64 = 5e7;
+
+/// `N/mg` at increasing times.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ForceTrace {
+    t: Vec<f64>,
+    n_over_mg: Vec<f64>,
+}
+
+/// Why a sequence of samples is not a force trace.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum TraceError {
+    /// The two columns differ in length.
+    #[error("{times} times but {values} values")]
+    LengthMismatch {
+        /// Number of times.
+        times: usize,
+        /// Number of values.
+        values: usize,
+    },
+    /// A time or a value is NaN or infinite.
+    #[error("sample {index} is not finite: t = {t}, N/mg = {value}")]
+    NotFinite {
+        /// Index of the sample.
+        index: usize,
+        /// Its time.
+        t: f64,
+        /// Its value.
+        value: f64,
+    },
+    /// The times do not increase strictly.
+    #[error("time does not increase at sample {index}: {previous} then {t}")]
+    TimeNotIncreasing {
+        /// Index of the sample.
+        index: usize,
+        /// The time before it.
+        previous: f64,
+        /// Its time.
+        t: f64,
+    },
+}
+
+impl ForceTrace {
+    /// A trace from its two columns, checked: same length, finite, strictly increasing times.
+    pub fn new(t: Vec<f64>, n_over_mg: Vec<f64>) -> Result<ForceTrace, TraceError> {
+        if t.len() != n_over_mg.len() {
+            return Err(TraceError::LengthMismatch {
+                times: t.len(),
+                values: n_over_mg.len(),
+            });
+        }
+        for (index, (&ti, &v)) in t.iter().zip(&n_over_mg).enumerate() {
+            if !ti.is_finite() || !v.is_finite() {
+                return Err(TraceError::NotFinite {
+                    index,
+                    t: ti,
+                    value: v,
+                });
+            }
+            if index > 0 && ti <= t[index - 1] {
+                return Err(TraceError::TimeNotIncreasing {
+                    index,
+                    previous: t[index - 1],
+                    t: ti,
+                });
+            }
+        }
+        Ok(ForceTrace { t, n_over_mg })
+    }
+
+    /// The times (s).
+    pub fn t(&self) -> &[f64] {
+        &self.t
+    }
+
+    /// `N/mg` at those times.
+    pub fn n_over_mg(&self) -> &[f64] {
+        &self.n_over_mg
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether there are no samples.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// First and last time, if any.
+    pub fn span(&self) -> Option<TimeSpan> {
+        Some(TimeSpan {
+            start: *self.t.first()?,
+            end: *self.t.last()?,
+        })
+    }
+}
+
+/// A closed interval of simulated time (s).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeSpan {
+    /// Start (s).
+    pub start: f64,
+    /// End (s).
+    pub end: f64,
+}
+
+impl TimeSpan {
+    /// `end − start`.
+    pub fn length(&self) -> f64 {
+        self.end - self.start
+    }
+}
+
+/// A finished run seen from the sound's side.
+#[derive(Clone, Debug)]
+pub struct ForceRun {
+    /// `N/mg` over the run.
+    pub trace: ForceTrace,
+    /// Why the run ended (the CLI's stop reason name, e.g. `end_time`).
+    pub stop_reason: String,
+    /// Details of the stop.
+    pub stop_detail: String,
+}
+
+/// Keeps `(t, N/mg)` of every sample.
+struct ForceObserver {
+    mg: f64,
+    t: Vec<f64>,
+    n_over_mg: Vec<f64>,
+}
+
+impl DiskObserver for ForceObserver {
+    fn on_sample(&mut self, s: &DiskSample) {
+        // The driver may deliver a sample at a switch time twice (before and after); the
+        // force trace keeps the first.
+        if self.t.last().is_some_and(|&last| s.t <= last) {
+            return;
+        }
+        self.t.push(s.t);
+        self.n_over_mg.push(s.force.normal / self.mg);
+    }
+}
+
+fn simulate_with<R, S>(
+    models: &DiskModels<R, S>,
+    scene: &Scene,
+    rate: f64,
+    observer: &mut ForceObserver,
+) -> Result<(String, String), SimError>
+where
+    R: model_runtime::Model<12>,
+    S: model_runtime::Model<12>,
+{
+    let config = config_of(scene, rate);
+    let initial = InitialState {
+        t: 0.0,
+        y: scene.initial.state.to_array(),
+    };
+    let outcome = hybrid::simulate(models, &config, &initial, observer)?;
+    let stop = convert_outcome(&outcome).stop;
+    Ok((stop.reason, stop.detail))
+}
+
+/// Simulates `scene` and keeps `N/mg` at `rate` samples per second.
+pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceRun, SoundError> {
+    let t_end = scene.file.run.t_end;
+    if !(rate.is_finite() && rate > 0.0) {
+        return Err(SoundError::Setting {
+            name: "force-rate",
+            value: rate,
+            reason: "must be a positive number of samples per second",
+        });
+    }
+    if t_end * rate > MAX_TRACE_SAMPLES {
+        return Err(SoundError::TraceTooLong {
+            t_end,
+            rate,
+            max_samples: MAX_TRACE_SAMPLES,
+        });
+    }
+    let params = scene.params;
+    let mut observer = ForceObserver {
+        mg: params.m * params.g,
+        t: Vec::with_capacity((t_end * rate) as usize + 2),
+        n_over_mg: Vec::with_capacity((t_end * rate) as usize + 2),
+    };
+    let chart = chart_of(scene);
+    let stop = match backend {
+        Backend::Generated => {
+            simulate_with(&generated_models(params, chart), scene, rate, &mut observer)
+        }
+        Backend::Reference => hybrid::ReferenceModels::reference(params, chart)
+            .map_err(SimError::Params)
+            .and_then(|models| simulate_with(&models, scene, rate, &mut observer)),
+    };
+    let (stop_reason, stop_detail) = stop.map_err(|e| SoundError::Simulation {
+        message: e.to_string(),
+    })?;
+    let trace = ForceTrace::new(observer.t, observer.n_over_mg)?;
+    Ok(ForceRun {
+        trace,
+        stop_reason,
+        stop_detail,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_columns_are_named() {
+        assert_eq!(
+            ForceTrace::new(vec![0.0, 1.0], vec![1.0]),
+            Err(TraceError::LengthMismatch {
+                times: 2,
+                values: 1
+            })
+        );
+        assert!(matches!(
+            ForceTrace::new(vec![0.0, 1.0], vec![1.0, f64::NAN]),
+            Err(TraceError::NotFinite { index: 1, .. })
+        ));
+        assert_eq!(
+            ForceTrace::new(vec![0.0, 1.0, 1.0], vec![1.0; 3]),
+            Err(TraceError::TimeNotIncreasing {
+                index: 2,
+                previous: 1.0,
+                t: 1.0
+            })
+        );
+        let ok = ForceTrace::new(vec![0.0, 0.5], vec![1.0, 2.0]).unwrap();
+        assert_eq!(ok.span().unwrap().length(), 0.5);
+    }
+}
