@@ -38,13 +38,13 @@ pub struct RunArgs {
     #[arg(default_value = DEFAULT_SCENE)]
     pub scene: String,
     /// Override `run.t_end` (s).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub t_end: Option<f64>,
     /// Override `solver.rtol`.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rtol: Option<f64>,
     /// Override `solver.atol`.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub atol: Option<f64>,
     /// Override `solver.integrator` (dopri5, dop853).
     #[arg(long)]

@@ -49,13 +49,7 @@ fn rolling_energy_balance<F: Family<ROLLING_OUTPUTS>>(air: bool) {
             let p = params_with_air(&mut rng, air);
             let y = common::rolling_consistent_state(&mut rng, &p, reach);
             let e = eval(&F::build(&p), &y).unwrap();
-            let rate = energy_rate(
-                &p,
-                Chart::Rolling,
-                &y,
-                &e.dy,
-                &scales::rolling(&p, &y, &e.dy),
-            );
+            let rate = energy_rate(&p, Chart::Rolling, &y, &e.dy, &scales::rolling_full(&p, &y));
             let v = Vector3::new(y[3], y[4], y[5]);
             let energy = formulas::total_energy(&p, &v, &rates(&y), y[2]);
             let energy_scale = energy.abs() + 2.0 * (p.m * p.g * y[2]).abs();
@@ -80,7 +74,7 @@ fn sliding_energy_balance<F: Family<SLIDING_OUTPUTS>>(air: bool) {
             let p = params_with_air(&mut rng, air);
             let y = common::sliding_consistent_state(&mut rng, &p, reach);
             let e = eval(&F::build(&p), &y).unwrap();
-            let row = scales::sliding_polar(&p, &y, &e.dy);
+            let row = scales::sliding_polar_full(&p, &y);
             let rate = energy_rate(&p, Chart::SlidingPolar, &y, &e.dy, &row);
             let o = &e.out;
             let v = Vector3::new(
@@ -90,8 +84,10 @@ fn sliding_energy_balance<F: Family<SLIDING_OUTPUTS>>(air: bool) {
             );
             let friction = formulas::friction_power(o[sliding_polar::output::T], y[3]);
             let expected = friction + air_power(&p, &y, v);
-            // The friction power's own scale: T is known to the scale of N.
-            let scale = rate.scale + (friction * row[5] / (row[5] + p.g)).abs();
+            // The friction power's own scale: T = μ_d m (V̇_Z + g), known to the size of its
+            // terms, with V̇_Z known to its row scale.
+            let t_scale = p.mu_d * p.m * (row[5].max(e.dy[5].abs()) + p.g.abs());
+            let scale = rate.scale + t_scale * y[3].abs();
             agreement.check(rate.rate, expected, scale, || {
                 format!("{}: dE/dt at {y:?}", F::NAME)
             });
@@ -118,15 +114,15 @@ fn cartesian_energy_balance<F: Family<CARTESIAN_OUTPUTS>>(air: bool) {
             let polar = common::sliding_consistent_state(&mut rng, &p, reach);
             let y = common::polar_to_cartesian(&polar);
             let e = eval(&F::build(&p), &y).unwrap();
-            let polar_dy = common::explicit::sliding_polar::<f64>(&p, &polar).dy;
-            let row = scales::sliding_cartesian(&p, &polar, &polar_dy);
+            let row = scales::sliding_cartesian_full(&p, &y);
             let rate = energy_rate(&p, Chart::SlidingCartesian, &y, &e.dy, &row);
             let o = &e.out;
             let out = sliding_cartesian::output::V_X;
             let v = Vector3::new(o[out], o[sliding_cartesian::output::V_Y], y[5]);
             let friction = formulas::friction_power(o[sliding_cartesian::output::T], polar[3]);
             let expected = friction + air_power(&p, &y, v);
-            let scale = rate.scale + (friction * row[5] / (row[5] + p.g)).abs();
+            let t_scale = p.mu_d * p.m * (row[5].max(e.dy[5].abs()) + p.g.abs());
+            let scale = rate.scale + t_scale * polar[3].abs();
             agreement.check(rate.rate, expected, scale, || {
                 format!("{}: dE/dt at {y:?}", F::NAME)
             });

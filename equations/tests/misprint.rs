@@ -79,7 +79,7 @@ fn energy_balance<F: Family<SLIDING_OUTPUTS>>() -> Agreement {
         };
         let y = common::sliding_consistent_state(&mut rng, &p, Reach::Typical);
         let e = eval(&F::build(&p), &y).unwrap();
-        let row = scales::sliding_polar(&p, &y, &e.dy);
+        let row = scales::sliding_polar_full(&p, &y);
         let rate = energy_rate(&p, Chart::SlidingPolar, &y, &e.dy, &row);
         let expected = -e.out[sliding_polar::output::T] * y[3];
         agreement.check(rate.rate, expected, rate.scale, || {

@@ -51,7 +51,7 @@ fn rolling_normal_force<F: Family<ROLLING_OUTPUTS>>(mu_a: f64) -> common::Agreem
             let e = eval(&F::build(&p), &y).unwrap();
             let model = e.out[rolling::output::N] / (p.m * p.g);
             let closed = formulas::rolling_normal_force_ratio(&p, y[7], &rates(&y)).unwrap();
-            let scale = ratio_scale(&p, &y, scales::rolling(&p, &y, &e.dy)[5]);
+            let scale = ratio_scale(&p, &y, scales::rolling_full(&p, &y)[5]);
             agreement.check(model, closed, scale, || {
                 format!("{}: N/mg at {y:?}", F::NAME)
             });
@@ -75,7 +75,7 @@ fn sliding_normal_force<F: Family<SLIDING_OUTPUTS>>(mu_a: f64) -> common::Agreem
             let closed =
                 formulas::sliding_normal_force_ratio(&p, y[7], y[4] - y[6], &rates(&y)).unwrap();
             let beta = formulas::beta0(&p, y[7], y[4] - y[6]);
-            let scale = ratio_scale(&p, &y, scales::sliding_polar(&p, &y, &e.dy)[5])
+            let scale = ratio_scale(&p, &y, scales::sliding_polar_full(&p, &y)[5])
                 * (p.A() + p.m * p.a * p.a)
                 / beta;
             agreement.check(model, closed, scale, || {

@@ -81,8 +81,7 @@ fn pruned_rolling_agrees_with_rolling() {
         for _ in 0..2000 {
             let p = still_air(&mut rng);
             let y = common::rolling_state(&mut rng, &p, reach);
-            let ex = common::explicit::rolling::<f64>(&p, &y).dy;
-            let row = scales::rolling(&p, &y, &ex);
+            let row = scales::rolling_full(&p, &y);
             let full = models::rolling::Model::new(p.to_array());
             let variant = models::rolling::pruned::Model::new(variant_params(&p));
             variant_matches(
@@ -106,8 +105,7 @@ fn pruned_sliding_agrees_with_sliding() {
         for _ in 0..2000 {
             let p = still_air(&mut rng);
             let y = common::sliding_state(&mut rng, &p, reach);
-            let ex = common::explicit::sliding_polar::<f64>(&p, &y).dy;
-            let row = scales::sliding_polar(&p, &y, &ex);
+            let row = scales::sliding_polar_full(&p, &y);
             let full = models::sliding::Model::new(p.to_array());
             let variant = models::sliding::pruned::Model::new(variant_params(&p));
             variant_matches(
@@ -132,8 +130,7 @@ fn pruned_cartesian_sliding_agrees_with_cartesian_sliding() {
             let p = still_air(&mut rng);
             let polar = common::sliding_state(&mut rng, &p, reach);
             let y = common::polar_to_cartesian(&polar);
-            let ex = common::explicit::sliding_polar::<f64>(&p, &polar).dy;
-            let row = scales::sliding_cartesian(&p, &polar, &ex);
+            let row = scales::sliding_cartesian_full(&p, &y);
             let full = models::sliding_cartesian::Model::new(p.to_array());
             let variant = models::sliding_cartesian::pruned::Model::new(variant_params(&p));
             variant_matches(

@@ -5,6 +5,8 @@
 
 use std::fmt;
 
+use crate::output::tables::number;
+
 /// One broken rule, about one key (`table.key`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Issue {
@@ -106,8 +108,8 @@ impl fmt::Display for Issue {
         match &self.rule {
             Rule::Missing => write!(f, "is required"),
             Rule::NotFinite { value } => write!(f, "must be a finite number, got {value}"),
-            Rule::NotPositive { value } => write!(f, "must be > 0, got {value}"),
-            Rule::Negative { value } => write!(f, "must be >= 0, got {value}"),
+            Rule::NotPositive { value } => write!(f, "must be > 0, got {}", number(*value)),
+            Rule::Negative { value } => write!(f, "must be >= 0, got {}", number(*value)),
             Rule::OutOfRange {
                 value,
                 min,
@@ -123,7 +125,9 @@ impl fmt::Display for Issue {
                 other_value,
             } => write!(
                 f,
-                "must not be below `{other}` = {other_value}, got {value}"
+                "must not be below `{other}` = {}, got {}",
+                number(*other_value),
+                number(*value)
             ),
             Rule::ConstraintViolated {
                 constraint,

@@ -45,6 +45,9 @@ pub struct SoundArgs {
     /// ...and at least this fraction of the baseline's magnitude.
     #[arg(long, default_value_t = PeakRule::default().min_relative_prominence)]
     pub min_relative_prominence: f64,
+    /// ...and at least this share of the largest rise within ±0.25 s.
+    #[arg(long, default_value_t = PeakRule::default().min_share_of_strongest)]
+    pub min_share_of_strongest: f64,
     /// Shortest time between two major peaks (ms).
     #[arg(long, default_value_t = PeakRule::default().refractory * 1e3)]
     pub refractory_ms: f64,
@@ -62,6 +65,7 @@ impl SoundArgs {
             rule: PeakRule {
                 min_prominence: self.min_prominence,
                 min_relative_prominence: self.min_relative_prominence,
+                min_share_of_strongest: self.min_share_of_strongest,
                 refractory: self.refractory_ms * 1e-3,
                 ..PeakRule::default()
             },

@@ -218,7 +218,10 @@ pub fn sound_scene(
     if opts.figures {
         let spec = spectrogram(&sound.as_f64(), f64::from(sound.sample_rate), opts.stft)?;
         let view = figures::SpectrogramView {
-            title: format!("Spectrogram of {}", wav_name(opts.render.speed)),
+            title: format!(
+                "Spectrogram of {}: the whole run",
+                wav_name(opts.render.speed)
+            ),
             max_hz: opts.spectrogram_max_hz,
             t_start: analysis.span.start,
             speed: opts.render.speed,
@@ -226,15 +229,13 @@ pub fn sound_scene(
         let path = out_dir.join("sound_spectrogram.png");
         figures::write_spectrogram(&spec, &view, &path)?;
         files.push(path);
-        let chart = figures::rate_chart(
+        files.push(figures::write_rate_figure(
             &analysis.rates,
             &analysis.peaks,
             analysis.span,
             opts.rate_window,
-        );
-        figures::write_rate_chart(&chart, out_dir)?;
-        files.push(out_dir.join(format!("{}.png", chart.stem)));
-        files.push(out_dir.join(format!("{}.svg", chart.stem)));
+            out_dir,
+        )?);
     }
     let summary = SoundSummary::new(scene, &run, &analysis, &sound, opts, &wav);
     files.push(summary::write_summary(&summary, out_dir)?);

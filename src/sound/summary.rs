@@ -108,6 +108,10 @@ pub struct RuleSettings {
     pub min_prominence: f64,
     /// Smallest rise relative to the baseline.
     pub min_relative_prominence: f64,
+    /// Half-width of the neighbourhood of rule 3 (s).
+    pub neighbourhood_s: f64,
+    /// Smallest rise as a share of the strongest in the neighbourhood.
+    pub min_share_of_strongest: f64,
     /// Shortest time between peaks (s).
     pub refractory_s: f64,
 }
@@ -118,6 +122,8 @@ impl From<PeakRule> for RuleSettings {
             window_s: r.window,
             min_prominence: r.min_prominence,
             min_relative_prominence: r.min_relative_prominence,
+            neighbourhood_s: r.neighbourhood,
+            min_share_of_strongest: r.min_share_of_strongest,
             refractory_s: r.refractory,
         }
     }
@@ -192,11 +198,13 @@ impl SoundSummary {
             self.force_samples
         );
         s += &format!(
-            "{} major peaks: local maxima rising ≥ max({} , {}·|baseline|) above the higher flanking minimum within ±{} s, ≥ {} s apart\n",
+            "{} major peaks: local maxima of N/mg rising >= max({}, {}·|baseline|) above the higher flanking minimum within ±{} s,\n  >= {} of the largest rise within ±{} s, >= {} s apart\n",
             self.peaks,
             self.rule.min_prominence,
             self.rule.min_relative_prominence,
             self.rule.window_s,
+            self.rule.min_share_of_strongest,
+            self.rule.neighbourhood_s,
             self.rule.refractory_s
         );
         s += &reading(

@@ -65,6 +65,12 @@ const SLIDING_GUARDS: [GuardSpec<DiskGuard>; 3] = [
 ];
 const BRIDGE_GUARDS: [GuardSpec<DiskGuard>; 1] = [guard(DiskGuard::BridgeEnd, Direction::Up)];
 
+/// Sliding segments starting with a slip below this many stick thresholds get a first step
+/// from the slip's time scale (the ones after a bridge start at two).
+const FIRST_STEP_SLIP_LIMIT: f64 = 4.0;
+/// The first step after a bridge, as a fraction of the slip's doubling time `|u| / |u̇|`.
+const FIRST_STEP_FRACTION: f64 = 3.0;
+
 /// What happens when a bridge ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum AfterBridge {
@@ -550,6 +556,32 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                     y: self.start_sliding(&hit.y, slip),
                 }),
             },
+        }
+    }
+
+    /// Sliding that starts from the stick threshold is stiff in the slip direction (∝ 1/|u|),
+    /// and the generic first-step guess, which sees only the size of `f`, overshoots and costs
+    /// a cascade of rejections. The slip's own time scale `|u| / |u̇|` (the time it takes to
+    /// double, for a slip that grows linearly from zero) is the step that an error-controlled
+    /// method accepts there. A bridge is integrated in one step that covers its end.
+    fn first_step(&self, phase: Phase, t: f64, y: &[f64; DIM]) -> Option<f64> {
+        match phase {
+            Phase::Rolling => None,
+            Phase::Bridge => Some(2.0 * (self.bridge.t_end - t)),
+            Phase::Sliding => {
+                let speed = self.slip_speed(y).abs();
+                if speed > FIRST_STEP_SLIP_LIMIT * self.settings.stick {
+                    return None;
+                }
+                let mut dy = [0.0; DIM];
+                self.models.sliding.rhs(t, y, &mut dy).ok()?;
+                let rate = match self.models.chart {
+                    SlipChart::Cartesian => dy[U_X].hypot(dy[U_Y]),
+                    SlipChart::Polar => dy[V_C].abs(),
+                };
+                let h = FIRST_STEP_FRACTION * speed / rate;
+                (h.is_finite() && h > 0.0).then_some(h)
+            }
         }
     }
 

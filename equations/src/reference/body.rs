@@ -3,8 +3,9 @@
 //! Rolling and sliding differ only in how the centre's velocity and the contact force are
 //! tied to the states; the Euler-angle kinematics, the angular-momentum balance, the motion
 //! of the contact particle relative to the centre and the air loads are the same physics and
-//! live here once. Everything is built from the frame vectors `e_x, e_y, e_z` in spatial
-//! components, never from the row forms of the models.
+//! live here once. Everything is built from the frame `e_x, e_y, e_z` and vector products
+//! (frame components where the disk is concerned, spatial ones for the floor), never from
+//! the row forms of the models.
 
 use super::affine::{Affine, AffineVec, DIM};
 use crate::DiskParams;
@@ -200,6 +201,9 @@ pub(crate) struct ContactResiduals {
     pub vertical_speed: f64,
 }
 
+/// Refinement steps after the LU solve.
+const REFINEMENT_STEPS: usize = 3;
+
 /// Solves the rows `lin·ẏ + cst = 0` by LU with partial pivoting, after scaling each row to
 /// unit maximum coefficient (the rows mix forces, moments and velocities).
 pub(crate) fn solve_rows(
@@ -227,10 +231,13 @@ pub(crate) fn solve_rows(
         pivot: "M(y)",
         value: 0.0,
     })?;
-    // One step of iterative refinement makes the small components accurate relative to
-    // themselves, not only to the largest one.
-    if let Some(dx) = lu.solve(&(f - m * x)) {
-        x += dx;
+    // Iterative refinement makes the small components accurate relative to themselves, not
+    // only to the largest one (componentwise backward stability, Skeel 1980).
+    for _ in 0..REFINEMENT_STEPS {
+        match lu.solve(&(f - m * x)) {
+            Some(dx) => x += dx,
+            None => break,
+        }
     }
     let mut dy = [0.0; DIM];
     for (j, (out, v)) in dy.iter_mut().zip(x.iter()).enumerate() {

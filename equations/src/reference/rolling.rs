@@ -3,6 +3,8 @@
 //! Rolling means the contact particle is at rest: `V + Ω × a e_x = 0`, imposed (as in the
 //! paper) in differential form. The contact force is whatever linear momentum requires,
 //! `R = m V̇ + m g E_Z - F_a`, and enters the angular-momentum balance through its moment.
+//! The solve carries `V̇` in frame components (rotated to `V̇_X, V̇_Y, V̇_Z` afterwards), so
+//! the spin rate, which only sees `V̇ · e_y`, does not inherit the size of `V̇_X, V̇_Y`.
 
 use super::affine::{Affine, AffineVec, DIM};
 use super::body::{idx, solve_rows, Body};

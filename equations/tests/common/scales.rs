@@ -213,3 +213,28 @@ pub fn sliding_cartesian(p: &DiskParams, polar_y: &[f64; 12], polar_dy: &[f64; 1
     s[4] = pair;
     s
 }
+
+/// The scale each comparison uses: the larger of the row bound above and the running rounding
+/// bound of the explicit form (which carries the rounding of the inputs, e.g. of
+/// `cos(α - ψ)` when it multiplies a large rate).
+pub fn rolling_full(p: &DiskParams, y: &[f64; 12]) -> [f64; 12] {
+    let e = super::explicit::rolling::<super::tracked::Tracked>(p, y);
+    let rows = rolling(p, y, &e.dy.map(|x| x.v));
+    std::array::from_fn(|i| rows[i].max(e.dy[i].scale))
+}
+
+/// As [`rolling_full`], polar sliding.
+pub fn sliding_polar_full(p: &DiskParams, y: &[f64; 12]) -> [f64; 12] {
+    let e = super::explicit::sliding_polar::<super::tracked::Tracked>(p, y);
+    let rows = sliding_polar(p, y, &e.dy.map(|x| x.v));
+    std::array::from_fn(|i| rows[i].max(e.dy[i].scale))
+}
+
+/// As [`rolling_full`], Cartesian sliding, at the Cartesian state `y`.
+pub fn sliding_cartesian_full(p: &DiskParams, y: &[f64; 12]) -> [f64; 12] {
+    let e = super::explicit::sliding_cartesian::<super::tracked::Tracked>(p, y);
+    let polar_y = super::cartesian_to_polar(y);
+    let polar_dy = super::explicit::sliding_polar::<f64>(p, &polar_y).dy;
+    let rows = sliding_cartesian(p, &polar_y, &polar_dy);
+    std::array::from_fn(|i| rows[i].max(e.dy[i].scale))
+}

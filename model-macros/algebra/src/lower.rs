@@ -315,3 +315,54 @@ fn nonlinear_at(id: NodeId, what: &str) -> Diagnostic {
         message: format!("the equation must be linear in the derivatives, but this is {what}"),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::model;
+
+    #[test]
+    fn lets_are_substituted_once_and_shared() {
+        let spec = model("params k\nstates x\nlet a = sin(x)*k\nlet b = a + a\neq e: der(x) = b*a");
+        let mut l = Lowerer::new(&spec, vec![None]);
+        let r = l.equation(0).unwrap();
+        let p = &mut l.pool;
+        let (x, k) = (p.sym(Sym::State(0)), p.sym(Sym::Param(0)));
+        let s = p.call(crate::spec::Func::Sin, x);
+        let a = p.mul2(s, k);
+        let two = p.num(2.0);
+        let b = p.mul2(two, a);
+        let ba = p.mul2(b, a);
+        let d = p.sym(Sym::Der(0));
+        let expected = p.sub(d, ba);
+        assert_eq!(r, expected);
+        assert!(l.diags.is_empty());
+    }
+
+    #[test]
+    fn fixed_parameters_pi_and_time_become_what_they_are() {
+        let spec = model("params k, c\nstates x\neq e: der(x) = k*x + c*t + pi");
+        let mut l = Lowerer::new(&spec, vec![Some(0.0), None]);
+        let r = l.equation(0).unwrap();
+        let p = &mut l.pool;
+        let (c, t, d) = (p.sym(Sym::Param(1)), p.sym(Sym::Time), p.sym(Sym::Der(0)));
+        let ct = p.mul2(c, t);
+        let pi = p.num(std::f64::consts::PI);
+        let rhs = p.add2(ct, pi);
+        // k = 0 removed the k*x term before any algebra.
+        assert_eq!(r, p.sub(d, rhs));
+    }
+
+    #[test]
+    fn der_applies_the_chain_rule() {
+        let spec = model("states x, y\neq e: der(x*y) = 0\neq f: der(y) = 1");
+        let mut l = Lowerer::new(&spec, vec![]);
+        let r = l.equation(0).unwrap();
+        let p = &mut l.pool;
+        let (x, y) = (p.sym(Sym::State(0)), p.sym(Sym::State(1)));
+        let (dx, dy) = (p.sym(Sym::Der(0)), p.sym(Sym::Der(1)));
+        let a = p.mul2(dx, y);
+        let b = p.mul2(x, dy);
+        assert_eq!(r, p.add2(a, b));
+    }
+}

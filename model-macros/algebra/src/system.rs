@@ -139,3 +139,36 @@ impl System {
         inputs
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inputs_are_followed_through_definitions() {
+        // der(y0) := y1 * p0 ; der(y2) := der(y0) + t (reads y1, p0 through der(y0)).
+        let mut pool = Pool::new();
+        let (y1, p0, t) = (
+            pool.sym(Sym::State(1)),
+            pool.sym(Sym::Param(0)),
+            pool.sym(Sym::Time),
+        );
+        let d0 = pool.mul2(y1, p0);
+        let d0s = pool.sym(Sym::Der(0));
+        let d2 = pool.add2(d0s, t);
+        let mut system = System::default();
+        system.push(Group {
+            pivots: vec![],
+            body: Body::Symbolic(vec![(Sym::Der(0), d0)]),
+        });
+        system.push(Group {
+            pivots: vec![],
+            body: Body::Symbolic(vec![(Sym::Der(2), d2)]),
+        });
+        let d2s = pool.sym(Sym::Der(2));
+        let inputs: Vec<Sym> = system.inputs_read(&pool, &[d2s]).into_iter().collect();
+        assert_eq!(inputs, vec![Sym::Time, Sym::State(1), Sym::Param(0)]);
+        assert_eq!(system.owner(Sym::Der(2)), Some(1));
+        assert_eq!(system.expression_of(Sym::Der(0)), Some(d0));
+    }
+}

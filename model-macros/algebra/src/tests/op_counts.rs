@@ -155,10 +155,17 @@ fn small_dense_block_stays_symbolic() {
 #[test]
 fn a_long_chain_of_blocks_compiles_quickly() {
     let mut text = String::from("params k = 2\nstates ");
-    text += &(0..40).map(|i| format!("s{i}")).collect::<Vec<_>>().join(", ");
+    text += &(0..40)
+        .map(|i| format!("s{i}"))
+        .collect::<Vec<_>>()
+        .join(", ");
     text += "\n";
     for i in (0..40).step_by(2) {
-        let prev = if i == 0 { "k".to_string() } else { format!("der(s{})", i - 1) };
+        let prev = if i == 0 {
+            "k".to_string()
+        } else {
+            format!("der(s{})", i - 1)
+        };
         let (a, b) = (format!("s{i}"), format!("s{}", i + 1));
         text += &format!(
             "eq e{i}: cos({a})*der({a}) + sin({b})*der({b}) = {prev}*{b}\n\

@@ -55,11 +55,11 @@ fn spec(model: &RandomModel) -> ModelSpec {
     let equations = (0..model.n)
         .map(|i| {
             let mut lhs = Ast::Num(NodeId(43), 0.0);
-            for j in 0..model.n {
+            for (j, state) in STATES.iter().enumerate().take(model.n) {
                 if let Some(c) = coefficient(model, i, j) {
                     let der = Ast::Der(
                         NodeId(44),
-                        Box::new(Ast::Name(NodeId(45), STATES[j].into())),
+                        Box::new(Ast::Name(NodeId(45), (*state).into())),
                     );
                     lhs = bin(BinOp::Add, lhs, bin(BinOp::Mul, c, der));
                 }
@@ -122,7 +122,7 @@ proptest! {
         }
         let sv = m.clone().singular_values();
         let cond = sv.max() / sv.min();
-        if !(cond < 1e4) {
+        if cond.is_nan() || cond >= 1e4 {
             return Ok(());
         }
         let want = m.lu().solve(&f).expect("regular");
@@ -146,6 +146,9 @@ proptest! {
             .map_err(|e| TestCaseError::fail(format!("{e:?}")))?
             .jacobian(n);
         let fd = finite_difference_jacobian(&compiled, &states, &[v[2]]);
+        // Differences lose about eps·|f|/h to rounding (h ≈ 1e-6): a huge value with a
+        // moderate derivative is beyond them.
+        let rounding = 1e-9 * got.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         let jscale = fd.iter().flatten().fold(1.0f64, |a, b| a.max(b.abs()));
         for i in 0..n {
             for j in 0..n {
@@ -154,7 +157,7 @@ proptest! {
                 // come out non-finite, never wrong; finite ones must match.
                 if fd[i][j].is_finite() && jac[i][j].is_finite() {
                     prop_assert!(
-                        (jac[i][j] - fd[i][j]).abs() <= 1e-5 * jscale,
+                        (jac[i][j] - fd[i][j]).abs() <= 1e-5 * jscale + rounding,
                         "jac[{i}][{j}] = {} vs differences {}", jac[i][j], fd[i][j]
                     );
                 }

@@ -1,0 +1,102 @@
+//! The shipped scenes do what their descriptions say, checked against EQUATIONS.md §7.
+
+use eulerdisk::eval::Backend;
+use eulerdisk::record::RunData;
+use eulerdisk::run::collect::{Collector, Sampling};
+use eulerdisk::run::simulation::{self, Message};
+use eulerdisk::scene::{self, Override};
+
+/// Runs a built-in scene for `t_end` seconds and returns what it recorded.
+fn simulate(name: &str, t_end: f64) -> RunData {
+    let scene = scene::load(name, &[Override::new("run", "t_end", t_end)]).unwrap();
+    let sampling = Sampling {
+        rate: scene.file.run.sample_rate,
+        every: 1,
+    };
+    let rx = simulation::start(&scene, Backend::Generated, sampling.fine_rate());
+    let mut c = Collector::new(sampling);
+    loop {
+        match rx.recv().unwrap() {
+            Message::Sample(s) => c.sample(s),
+            Message::Event(e) => {
+                c.event(e, &scene.file.modes.allowed);
+            }
+            Message::Done(result) => {
+                let outcome = result.unwrap();
+                assert_eq!(
+                    outcome.stop.reason, "end_time",
+                    "{name}: {:?}",
+                    outcome.stop
+                );
+                break;
+            }
+        }
+    }
+    c.finish()
+}
+
+fn theta_range(d: &RunData) -> (f64, f64) {
+    d.samples
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+            (lo.min(s.state.theta), hi.max(s.state.theta))
+        })
+}
+
+#[test]
+fn spinning_in_place_holds_still() {
+    let d = simulate("spinning-in-place", 2.0);
+    let (lo, hi) = theta_range(&d);
+    assert!(
+        (lo - 0.57).abs() < 1e-9 && (hi - 0.57).abs() < 1e-9,
+        "{lo} {hi}"
+    );
+    for s in &d.samples {
+        assert!(
+            s.state.x.abs() < 1e-9 && s.state.y.abs() < 1e-9,
+            "centre moved"
+        );
+        assert!((s.forces.normal / (0.4387 * 9.81) - 1.0).abs() < 1e-9);
+    }
+    assert!(d.events.is_empty());
+}
+
+#[test]
+fn steady_circle_has_the_predicted_radius_and_friction() {
+    let d = simulate("steady-circle", 2.0);
+    let (lo, hi) = theta_range(&d);
+    assert!(hi - lo < 1e-8, "{lo} {hi}");
+    // Radius a Omega_z / p with p = -5 rad/s; nu = a |Omega_z p| / g.
+    let (a, oz, p): (f64, f64, f64) = (0.03755, 13.240609818014546, -5.0);
+    let radius: f64 = (a * oz / p).abs();
+    let (xs, ys): (Vec<f64>, Vec<f64>) = d.samples.iter().map(|s| (s.state.x, s.state.y)).unzip();
+    let cx = (xs.iter().cloned().fold(f64::INFINITY, f64::min)
+        + xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max))
+        / 2.0;
+    let cy = (ys.iter().cloned().fold(f64::INFINITY, f64::min)
+        + ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max))
+        / 2.0;
+    for s in &d.samples {
+        let r = (s.state.x - cx).hypot(s.state.y - cy);
+        assert!((r - radius).abs() < 1e-6, "{r} vs {radius}");
+        assert!((s.forces.nu - a * (oz * p).abs() / 9.81).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn upright_rolling_is_stable_above_the_threshold_and_falls_below() {
+    let (lo, _) = theta_range(&simulate("upright-stable", 3.0));
+    assert!(
+        lo > std::f64::consts::FRAC_PI_2 - 0.06,
+        "stable disk tilted to {lo}"
+    );
+    let (lo, _) = theta_range(&simulate("upright-unstable", 3.0));
+    assert!(lo < 1.0, "unstable disk only tilted to {lo}");
+}
+
+#[test]
+fn the_rough_floor_never_lets_the_disk_slide() {
+    let d = simulate("high-friction", 3.0);
+    assert!(d.events.is_empty(), "{:?}", d.events.first());
+    assert!(d.samples.iter().all(|s| s.forces.nu < 1.5));
+}
