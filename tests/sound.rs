@@ -205,3 +205,24 @@ fn paper_scene_full_run_sound() {
     println!("{}", report.summary.table());
     assert!(report.summary.peaks > 0);
 }
+
+#[test]
+fn time_compression_is_named_in_the_file_and_the_summary() {
+    let scene = scene::load(scene::DEFAULT_SCENE, &[Override::new("run", "t_end", 1.5)]).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let mut opts = SoundOptions {
+        figures: false,
+        ..SoundOptions::default()
+    };
+    opts.render.speed = 2.0;
+    let report = sound_scene(&scene, Backend::Generated, &opts, dir.path()).unwrap();
+    assert_eq!(report.summary.wav, "rattle_speed2x.wav");
+    assert!(report.summary.table().contains("time compressed 2x"));
+    let wav = hound::WavReader::open(dir.path().join("rattle_speed2x.wav")).unwrap();
+    let span = TimeSpan {
+        start: 0.0,
+        end: 1.5,
+    };
+    assert_eq!(wav.duration() as usize, opts.render.samples_for(span));
+    assert!(!dir.path().join("rattle.wav").exists());
+}

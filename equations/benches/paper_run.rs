@@ -56,10 +56,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("steps", st.steps.to_string()),
         ("rejected", st.rejected.to_string()),
         ("RHS evaluations", st.rhs_evals.to_string()),
-        ("RHS evaluations per simulated second", format!("{:.0}", st.rhs_evals as f64 / t_end)),
+        (
+            "RHS evaluations per simulated second",
+            format!("{:.0}", st.rhs_evals as f64 / t_end),
+        ),
         ("guard evaluations", st.guard_evals.to_string()),
         ("transitions", out.transitions.to_string()),
-        ("ns per RHS evaluation, all included", format!("{:.0}", median / st.rhs_evals as f64 * 1e9)),
+        (
+            "ns per RHS evaluation, all included",
+            format!("{:.0}", median / st.rhs_evals as f64 * 1e9),
+        ),
         (
             "speed-up over Python (time, scaled to this span)",
             format!("{:.0}x", PYTHON_SECONDS * scale / median),

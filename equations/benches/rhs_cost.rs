@@ -12,12 +12,12 @@
 //!
 //! Prints a table and writes `rhs_cost.csv` to `target/bench/` (or `--out`).
 
+use common::{Args, Clock};
 use equations::hybrid::{DiskModels, GeneratedModels, ReferenceModels};
 use equations::models::{rolling, sliding, sliding_cartesian};
 use equations::modes::{layout, PhysicalState, Slip, SlipChart, DIM};
 use equations::DiskParams;
 use model_runtime::{Model, ModelInfo, OpCounts};
-use common::{Args, Clock};
 use std::hint::black_box;
 use std::path::PathBuf;
 
@@ -83,7 +83,12 @@ fn restrict<const N: usize>(full: &ModelInfo, variant: &ModelInfo, y: &[f64; DIM
             .state_names
             .iter()
             .position(|n| *n == variant.state_names[i])
-            .unwrap_or_else(|| panic!("variant state {} not in the full model", variant.state_names[i]));
+            .unwrap_or_else(|| {
+                panic!(
+                    "variant state {} not in the full model",
+                    variant.state_names[i]
+                )
+            });
         y[j]
     })
 }
@@ -174,7 +179,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rows.push(Row {
             mode: "rolling",
             implementation: format!("generated, pruned ({} states)", rolling::pruned::N_STATES),
-            ns_per_eval: time_per_eval(&inputs, s.repeats, s.evals, |y, dy| m.rhs(0.0, y, dy).is_ok()),
+            ns_per_eval: time_per_eval(&inputs, s.repeats, s.evals, |y, dy| {
+                m.rhs(0.0, y, dy).is_ok()
+            }),
             ops: Some(rolling::pruned::INFO.rhs_ops),
         });
     }
@@ -186,7 +193,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .collect();
         let inputs: Vec<[f64; sliding_cartesian::pruned::N_STATES]> = full
             .iter()
-            .map(|y| restrict(&sliding_cartesian::INFO, &sliding_cartesian::pruned::INFO, y))
+            .map(|y| {
+                restrict(
+                    &sliding_cartesian::INFO,
+                    &sliding_cartesian::pruned::INFO,
+                    y,
+                )
+            })
             .collect();
         rows.push(Row {
             mode: "sliding (Cartesian)",
@@ -194,7 +207,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 "generated, pruned ({} states)",
                 sliding_cartesian::pruned::N_STATES
             ),
-            ns_per_eval: time_per_eval(&inputs, s.repeats, s.evals, |y, dy| m.rhs(0.0, y, dy).is_ok()),
+            ns_per_eval: time_per_eval(&inputs, s.repeats, s.evals, |y, dy| {
+                m.rhs(0.0, y, dy).is_ok()
+            }),
             ops: Some(sliding_cartesian::pruned::INFO.rhs_ops),
         });
     }
@@ -211,7 +226,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rows.push(Row {
             mode: "sliding (polar)",
             implementation: format!("generated, pruned ({} states)", sliding::pruned::N_STATES),
-            ns_per_eval: time_per_eval(&inputs, s.repeats, s.evals, |y, dy| m.rhs(0.0, y, dy).is_ok()),
+            ns_per_eval: time_per_eval(&inputs, s.repeats, s.evals, |y, dy| {
+                m.rhs(0.0, y, dy).is_ok()
+            }),
             ops: Some(sliding::pruned::INFO.rhs_ops),
         });
     }
@@ -226,9 +243,7 @@ fn print_and_save(rows: &[Row], s: &Settings) -> Result<(), Box<dyn std::error::
         s.evals,
         Clock::kind()
     );
-    println!(
-        "| mode | implementation | ns/eval | add | mul | div | sqrt | trig | total ops |"
-    );
+    println!("| mode | implementation | ns/eval | add | mul | div | sqrt | trig | total ops |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
     let mut csv = String::from("mode,implementation,ns_per_eval,add,mul,div,sqrt,trig,total_ops\n");
     for r in rows {
@@ -244,9 +259,20 @@ fn print_and_save(rows: &[Row], s: &Settings) -> Result<(), Box<dyn std::error::
             ),
             None => "– | – | – | – | – | –".into(),
         };
-        println!("| {} | {} | {:.0} | {ops} |", r.mode, r.implementation, r.ns_per_eval);
+        println!(
+            "| {} | {} | {:.0} | {ops} |",
+            r.mode, r.implementation, r.ns_per_eval
+        );
         let ops_csv = match r.ops {
-            Some(o) => format!("{},{},{},{},{},{}", o.add, o.mul, o.div, o.sqrt, o.trig, o.total()),
+            Some(o) => format!(
+                "{},{},{},{},{},{}",
+                o.add,
+                o.mul,
+                o.div,
+                o.sqrt,
+                o.trig,
+                o.total()
+            ),
             None => ",,,,,".into(),
         };
         csv.push_str(&format!(

@@ -15,13 +15,13 @@
 //! `max(1e-9, 2 μ_d g h)`, the slip's change over one step. Writes `work_precision.csv` and `work_precision_<scene>.svg` to
 //! `target/bench/` (or `--out`).
 
+use common::{Args, Clock};
 use equations::hybrid::{
     simulate, DiskConfig, DiskModels, DiskRecorder, GeneratedModels, InitialState,
     IntegratorChoice, RunOutcome, SimError,
 };
 use equations::modes::{layout, SlipChart, DIM};
 use equations::DiskParams;
-use common::{Args, Clock};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -187,10 +187,18 @@ fn score(run: &Run, reference: &Run) -> Score {
             break;
         }
         let d = (a.t - b.t).abs();
-        transition_times = if transition_times.is_nan() { d } else { transition_times.max(d) };
+        transition_times = if transition_times.is_nan() {
+            d
+        } else {
+            transition_times.max(d)
+        };
     }
     Score {
-        state: if run.outcome.last.t == reference.outcome.last.t { state } else { f64::INFINITY },
+        state: if run.outcome.last.t == reference.outcome.last.t {
+            state
+        } else {
+            f64::INFINITY
+        },
         theta: (y[layout::THETA] - r[layout::THETA]).abs(),
         transition_times,
         kind_mismatch,
@@ -239,7 +247,11 @@ fn methods(quick: bool) -> Vec<Method> {
             .filter(|&&r| r >= 1e-9)
             .map(|&r| Method::adaptive(IntegratorChoice::Rodas4, r)),
     );
-    let steps: &[f64] = if quick { &[1e-3, 1e-4] } else { &[1e-3, 3e-4, 1e-4, 3e-5, 1e-5] };
+    let steps: &[f64] = if quick {
+        &[1e-3, 1e-4]
+    } else {
+        &[1e-3, 3e-4, 1e-4, 3e-5, 1e-5]
+    };
     all.extend(steps.iter().map(|&h| Method::rk4(h)));
     all
 }
@@ -264,8 +276,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut rows = Vec::new();
     for scene in &scenes {
         let models: GeneratedModels = DiskModels::generated(scene.params, SlipChart::Cartesian)?;
-        let reference = run_once(&models, scene, &sweep_config(IntegratorChoice::Dop853, 1e-13, scene.t_end))?;
-        let check = run_once(&models, scene, &sweep_config(IntegratorChoice::Dopri5, 1e-12, scene.t_end))?;
+        let reference = run_once(
+            &models,
+            scene,
+            &sweep_config(IntegratorChoice::Dop853, 1e-13, scene.t_end),
+        )?;
+        let check = run_once(
+            &models,
+            scene,
+            &sweep_config(IntegratorChoice::Dopri5, 1e-12, scene.t_end),
+        )?;
         let agreement = score(&check, &reference);
         println!(
             "\n## {} (t_end = {} s): reference DOP853 rtol 1e-13 ({} transitions, stop: {}); DP5 rtol 1e-12 agrees to state {:.1e}, transition times {:.1e} s{}",
@@ -422,7 +442,9 @@ fn figure(out: &Path, scene: &str, rows: &[Row]) -> Result<(), Box<dyn std::erro
         return Ok(());
     }
     let span = |v: &mut dyn Iterator<Item = f64>| {
-        let (lo, hi) = v.fold((f64::INFINITY, 0.0_f64), |(lo, hi), x| (lo.min(x), hi.max(x)));
+        let (lo, hi) = v.fold((f64::INFINITY, 0.0_f64), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
         (lo / 2.0)..(hi * 2.0)
     };
     let x = span(&mut all.iter().map(|p| p.0));
@@ -448,7 +470,9 @@ fn figure(out: &Path, scene: &str, rows: &[Row]) -> Result<(), Box<dyn std::erro
         chart
             .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
             .label(*m)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            });
         chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?;
     }
     chart

@@ -244,6 +244,7 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
             (FAMILY, 30).into_font().style(FontStyle::Bold),
         )
         .margin(20)
+        .margin_right(if has_right { 20 } else { 45 })
         .x_label_area_size(60)
         .y_label_area_size(100)
         .right_y_label_area_size(if has_right { 100 } else { 0 });

@@ -236,18 +236,24 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
         );
         crate::analysis::oscillation::mean_period(Series { t: &t, v: &v }, t0, t1)
     };
-    let rate = period.map_or("no full oscillation".to_string(), |p| {
-        format!(
-            "peaks every {p:.4} s, 2π/T = {:.1} s⁻¹ (paper: 149 s⁻¹, sound 154 s⁻¹)",
-            2.0 * std::f64::consts::PI / p
-        )
-    });
+    let (every, rate) = period.map_or(
+        ("no full oscillation".to_string(), "N/mg".to_string()),
+        |p| {
+            (
+                format!("peaks every {p:.4} s"),
+                format!(
+                    "N/mg; 2π/T = {:.1} s⁻¹ (paper 149 s⁻¹, recorded sound 154 s⁻¹)",
+                    2.0 * std::f64::consts::PI / p
+                ),
+            )
+        },
+    );
     charts.push(chart(
         "fig10_normal_force_last_second",
-        format!("Fig. 10: N/mg in the last second; {rate}"),
+        format!("Fig. 10: N/mg in the last second, {every}"),
         "N/mg (1)",
         vec![Line::new(
-            "N/mg",
+            rate,
             points(last.samples, |x| x.forces.normal / mg),
             colors::RED,
         )],

@@ -123,7 +123,9 @@ pub fn complete(init: &InitialTable, a: f64, issues: &mut Vec<Issue>) -> Option<
     if init.v_C.is_some_and(|v| v > 0.0) && init.alpha.is_none() {
         issues.push(Issue {
             key: key("alpha"),
-            rule: Rule::Missing,
+            rule: Rule::RequiredWith {
+                other: "initial.v_C",
+            },
         });
     }
     if issues.len() > before {

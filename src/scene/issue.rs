@@ -21,6 +21,11 @@ pub struct Issue {
 pub enum Rule {
     /// The key is required here.
     Missing,
+    /// The key is required because another key is given.
+    RequiredWith {
+        /// The other key.
+        other: &'static str,
+    },
     /// NaN or infinite.
     NotFinite {
         /// The value.
@@ -107,6 +112,7 @@ impl fmt::Display for Issue {
         write!(f, "`{}`: ", self.key)?;
         match &self.rule {
             Rule::Missing => write!(f, "is required"),
+            Rule::RequiredWith { other } => write!(f, "is required when `{other}` is given"),
             Rule::NotFinite { value } => write!(f, "must be a finite number, got {value}"),
             Rule::NotPositive { value } => write!(f, "must be > 0, got {}", number(*value)),
             Rule::Negative { value } => write!(f, "must be >= 0, got {}", number(*value)),
@@ -153,7 +159,7 @@ impl fmt::Display for Issue {
             ),
             Rule::TooManySamples { samples, limit } => write!(
                 f,
-                "would record {samples:.3e} samples (run.t_end × run.sample_rate), more than {limit:.0e}"
+                "would record {samples:.3e} samples (`run.t_end` × `run.sample_rate`), more than {limit:.0e}"
             ),
         }
     }

@@ -66,13 +66,13 @@ impl SoundArgs {
                 min_prominence: self.min_prominence,
                 min_relative_prominence: self.min_relative_prominence,
                 min_share_of_strongest: self.min_share_of_strongest,
-                refractory: self.refractory_ms * 1e-3,
+                refractory: self.refractory_ms / 1e3,
                 ..PeakRule::default()
             },
             render: RenderOptions {
                 ring: Ring {
                     hz: self.ring_hz,
-                    decay_s: self.ring_decay_ms * 1e-3,
+                    decay_s: self.ring_decay_ms / 1e3,
                 },
                 compression: self.compression,
                 speed: self.speed,
@@ -135,5 +135,53 @@ pub fn command(args: &SoundArgs) -> ExitCode {
             );
             ExitCode::from(if input { EXIT_INPUT } else { EXIT_FAILED })
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Wrapper {
+        #[command(flatten)]
+        sound: SoundArgs,
+    }
+
+    #[test]
+    fn defaults_are_the_library_defaults() {
+        let w = Wrapper::try_parse_from(["sound"]).unwrap();
+        assert_eq!(w.sound.options(), SoundOptions::default());
+        assert_eq!(w.sound.run.scene, scene::DEFAULT_SCENE);
+        assert_eq!(w.sound.run.out, std::path::PathBuf::from("out"));
+    }
+
+    #[test]
+    fn flags_reach_the_options_and_the_scene() {
+        let w = Wrapper::try_parse_from([
+            "sound",
+            "my-scene.toml",
+            "--speed",
+            "4",
+            "--ring-hz",
+            "3000",
+            "--ring-decay-ms",
+            "5",
+            "--compression",
+            "log",
+            "--t-end",
+            "5",
+            "--no-figures",
+        ])
+        .unwrap();
+        let o = w.sound.options();
+        assert_eq!(o.render.speed, 4.0);
+        assert_eq!(o.render.ring.hz, 3000.0);
+        assert_eq!(o.render.ring.decay_s, 0.005);
+        assert_eq!(o.render.compression, Compression::Log);
+        assert!(!o.figures);
+        assert_eq!(w.sound.run.scene, "my-scene.toml");
+        assert_eq!(w.sound.run.t_end, Some(5.0));
     }
 }

@@ -177,7 +177,7 @@ fn refine(t: [f64; 3], x: [f64; 3]) -> (f64, f64) {
     let d1 = (x[1] - x[0]) / h1;
     let d2 = (x[2] - x[1]) / h2;
     let curvature = (d2 - d1) / (h1 + h2);
-    if !(curvature < 0.0) {
+    if curvature.is_nan() || curvature >= 0.0 {
         return (t[1], x[1]);
     }
     // p(s) = x1 + b (s − t1) + c (s − t1)², with b the slope at t1.

@@ -148,8 +148,8 @@ struct ForceObserver {
 
 impl DiskObserver for ForceObserver {
     fn on_sample(&mut self, s: &DiskSample) {
-        // The driver may deliver a sample at a switch time twice (before and after); the
-        // force trace keeps the first.
+        // A trace's times increase strictly; a repeated time (a sample falling on a switch
+        // can be delivered from both sides) keeps the first.
         if self.t.last().is_some_and(|&last| s.t <= last) {
             return;
         }

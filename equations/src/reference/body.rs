@@ -163,8 +163,7 @@ impl Body {
             + AffineVec::constant(gyroscopic)
             - AffineVec::along(Vector3::z().cross(&h), Affine::derivative(idx::PHI));
         let air_moment = -self.p.k_M() * Vector3::new(w.x, w.y, 0.0);
-        let moment = reaction.crossed_by(&self.contact_arm())
-            + AffineVec::constant(air_moment);
+        let moment = reaction.crossed_by(&self.contact_arm()) + AffineVec::constant(air_moment);
         let balance = h_rate - moment;
         [
             balance.component(0),

@@ -166,7 +166,9 @@ impl<C: SlipChart> SlidingReference<C> {
         let u = slip.velocity();
         let velocity = Vector3::new(u.x - rim.x, u.y - rim.y, y[idx::V_Z]);
         let frame_rate = body.frame_rate();
-        let rim_accel = body.rim_acceleration(&frame_rate).transformed(&body.to_space);
+        let rim_accel = body
+            .rim_acceleration(&frame_rate)
+            .transformed(&body.to_space);
         // Horizontal centre acceleration: slip rate minus the rim's acceleration.
         let horizontal = C::slip_rate(&slip).affine() - rim_accel;
         let accel = AffineVec::along(Vector3::x(), horizontal.component(0))

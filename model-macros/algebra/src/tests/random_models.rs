@@ -57,10 +57,8 @@ fn spec(model: &RandomModel) -> ModelSpec {
             let mut lhs = Ast::Num(NodeId(43), 0.0);
             for (j, state) in STATES.iter().enumerate().take(model.n) {
                 if let Some(c) = coefficient(model, i, j) {
-                    let der = Ast::Der(
-                        NodeId(44),
-                        Box::new(Ast::Name(NodeId(45), (*state).into())),
-                    );
+                    let der =
+                        Ast::Der(NodeId(44), Box::new(Ast::Name(NodeId(45), (*state).into())));
                     lhs = bin(BinOp::Add, lhs, bin(BinOp::Mul, c, der));
                 }
             }
