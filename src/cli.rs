@@ -29,6 +29,9 @@ pub enum Command {
     Eval(EvalArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Simulate a scene and hear its rattle: a WAV of the normal-force peaks, their rate
+    /// against the paper's, and a spectrogram.
+    Sound(crate::sound::args::SoundArgs),
 }
 
 /// `eulerdisk run`.

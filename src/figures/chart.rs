@@ -16,14 +16,15 @@ use crate::output::atomic::{produce_atomic, write_bytes_atomic, WriteError};
 /// The shipped font (DejaVu Sans, Bitstream Vera licence, see `assets/`).
 const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 /// The family name the charts ask for.
-const FAMILY: &str = "sans-serif";
+pub const FAMILY: &str = "sans-serif";
 /// Pixel size of every figure.
 pub const SIZE: (u32, u32) = (1200, 720);
 /// Most points drawn per line: longer series are reduced to their min/max per bucket, which
 /// looks the same at this size.
 pub const MAX_POINTS: usize = 4000;
 
-fn register_font() {
+/// Registers the shipped font with plotters (once per process); every figure calls it first.
+pub fn register_font() {
     static DONE: OnceLock<()> = OnceLock::new();
     DONE.get_or_init(|| {
         for style in [FontStyle::Normal, FontStyle::Bold] {

@@ -7,7 +7,6 @@
 
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
 use plotters::prelude::*;
 
@@ -15,13 +14,9 @@ use super::peaks::Peak;
 use super::rate::PeakRate;
 use super::spectrogram::Spectrogram;
 use super::trace::TimeSpan;
-use crate::figures::chart::{colors, SIZE};
+use crate::figures::chart::{colors, register_font, FAMILY, SIZE};
 use crate::output::atomic::{produce_atomic, WriteError};
 
-/// The font of all figures (DejaVu Sans, see `assets/`).
-const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-/// The family name the figures ask for.
-const FAMILY: &str = "sans-serif";
 /// The paper's knock "frequency" in the first second (angular, s⁻¹; period 0.14 s).
 pub const PAPER_FIRST_SECOND: f64 = 44.0;
 /// The paper's knock "frequency" in the last second of its 100 s run (angular, s⁻¹).
@@ -30,17 +25,6 @@ pub const PAPER_LAST_SECOND: f64 = 149.0;
 pub const RECORDED: f64 = 154.0;
 /// The quietest level shown (dB below the loudest cell).
 pub const SHOWN_DB: f64 = 80.0;
-
-fn register_font() {
-    static DONE: OnceLock<()> = OnceLock::new();
-    DONE.get_or_init(|| {
-        for style in [FontStyle::Normal, FontStyle::Bold] {
-            if plotters::style::register_font(FAMILY, style, FONT).is_err() {
-                eprintln!("warning: the embedded font could not be loaded; figures lack text");
-            }
-        }
-    });
-}
 
 /// A labelled series of the rate figure.
 struct Series {

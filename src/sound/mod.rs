@@ -204,6 +204,9 @@ pub fn sound_scene(
         path: out_dir.to_path_buf(),
         source,
     })?;
+    // Settings are checked before the simulation, which may take a while.
+    opts.render.validate()?;
+    opts.rule.validate()?;
     let run = record_force(scene, backend, opts.force_rate)?;
     let analysis = analyse(&run.trace, opts)?;
     let sound = render(&analysis.peaks, analysis.span, &opts.render)?;

@@ -168,7 +168,8 @@ impl Sound {
 }
 
 impl RenderOptions {
-    fn validate(&self) -> Result<(), RenderError> {
+    /// Checks every setting.
+    pub fn validate(&self) -> Result<(), RenderError> {
         let setting = |name, value: f64, reason| RenderError::Setting {
             name,
             value,
