@@ -2,11 +2,11 @@
 
 mod common;
 
-use common::{dist, Kepler};
+use common::{dist, Kepler, UpCrossings};
 use model_runtime::{
     ChatterLimit, Crossed, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError,
-    HybridOptions, HybridSolver, HybridSystem, Model, Observer, Recorder, Rk4, Rodas4, Sample,
-    Stepper, StopReason, Tolerance, Transition, TransitionKind,
+    HybridOptions, HybridSolver, HybridSystem, Observer, Recorder, Rk4, Rodas4, Sample, Stepper,
+    StopReason, Tolerance, Transition, TransitionKind,
 };
 
 const G: f64 = 9.81;
@@ -140,42 +140,6 @@ fn bouncing_ball_impacts_match_the_closed_form_with_every_method() {
     bounce(Rk4::new(0.01));
 }
 
-/// The Kepler orbit with a guard on y crossing upwards (at every periapsis passage).
-struct Orbit;
-const ORBIT_GUARDS: [GuardSpec<()>; 1] = [GuardSpec {
-    id: (),
-    direction: Direction::Up,
-}];
-impl HybridSystem<4> for Orbit {
-    type Mode = ();
-    type Guard = ();
-    type Stop = ();
-    fn rhs(&self, _: (), t: f64, y: &[f64; 4], dy: &mut [f64; 4]) -> Result<(), EvalError> {
-        Kepler.rhs(t, y, dy)
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
-        &ORBIT_GUARDS
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 4],
-        _dy: &[f64; 4],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[1];
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<4, ()>,
-    ) -> Result<Transition<4, (), ()>, EvalError> {
-        Ok(Transition::Continue { y: hit.y })
-    }
-}
-
 #[test]
 fn kepler_orbit_crosses_upwards_once_per_period() {
     let e = 0.5;
@@ -190,7 +154,11 @@ fn kepler_orbit_crosses_upwards_once_per_period() {
     // Starts exactly on the guard (y = 0): that start does not fire; the next passages do.
     solver
         .run(
-            &mut Orbit,
+            // The Kepler orbit, watched for y crossing upwards (every periapsis passage).
+            &mut UpCrossings {
+                model: Kepler,
+                component: 1,
+            },
             (),
             0.0,
             &Kepler::periapsis(e),

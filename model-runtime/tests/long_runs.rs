@@ -3,48 +3,8 @@
 
 mod common;
 
-use common::Harmonic;
-use model_runtime::{
-    Direction, Dop853, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver, HybridSystem,
-    Model, Tolerance, Transition,
-};
-
-/// The oscillator with one guard (x crosses zero upwards) that restarts in place: events
-/// without changing the solution.
-struct Clocked;
-const X_UP: [GuardSpec<()>; 1] = [GuardSpec {
-    id: (),
-    direction: Direction::Up,
-}];
-impl HybridSystem<2> for Clocked {
-    type Mode = ();
-    type Guard = ();
-    type Stop = ();
-    fn rhs(&self, _: (), t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
-        Harmonic.rhs(t, y, dy)
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
-        &X_UP
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 2],
-        _dy: &[f64; 2],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[0];
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<2, ()>,
-    ) -> Result<Transition<2, (), ()>, EvalError> {
-        Ok(Transition::Continue { y: hit.y })
-    }
-}
+use common::{Harmonic, UpCrossings};
+use model_runtime::{Dop853, HybridOptions, HybridSolver, Tolerance};
 
 #[test]
 fn harmonic_energy_drift_over_1000_periods_is_below_1e_10() {
@@ -88,7 +48,11 @@ fn events_every_period_do_not_change_the_solution() {
     let start = std::time::Instant::now();
     let out = solver
         .run(
-            &mut Clocked,
+            // The oscillator, watched for x crossing upwards: events that restart in place.
+            &mut UpCrossings {
+                model: Harmonic,
+                component: 0,
+            },
             (),
             0.0,
             &[1.0, 0.0],

@@ -1,7 +1,19 @@
 //! Test problems with known solutions, shared by the integration tests.
 #![allow(dead_code)]
 
-use model_runtime::{EvalError, Model, ModelInfo, OpCounts};
+use model_runtime::{
+    Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, ModelInfo, OpCounts, Transition,
+};
+
+/// Hand-written test models report no generated operations.
+const NO_OPS: OpCounts = OpCounts {
+    add: 0,
+    mul: 0,
+    div: 0,
+    sqrt: 0,
+    trig: 0,
+    transcendental: 0,
+};
 
 /// A `ModelInfo` for a hand-written test model.
 pub const fn info(name: &'static str, states: &'static [&'static str]) -> ModelInfo {
@@ -10,30 +22,9 @@ pub const fn info(name: &'static str, states: &'static [&'static str]) -> ModelI
         state_names: states,
         param_names: &[],
         output_names: &[],
-        rhs_ops: OpCounts {
-            add: 0,
-            mul: 0,
-            div: 0,
-            sqrt: 0,
-            trig: 0,
-            transcendental: 0,
-        },
-        jacobian_ops: OpCounts {
-            add: 0,
-            mul: 0,
-            div: 0,
-            sqrt: 0,
-            trig: 0,
-            transcendental: 0,
-        },
-        outputs_ops: OpCounts {
-            add: 0,
-            mul: 0,
-            div: 0,
-            sqrt: 0,
-            trig: 0,
-            transcendental: 0,
-        },
+        rhs_ops: NO_OPS,
+        jacobian_ops: NO_OPS,
+        outputs_ops: NO_OPS,
         pivots: &[],
         numeric_blocks: &[],
     }
@@ -181,4 +172,49 @@ pub fn dist<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// A one-mode hybrid system around `model` whose one guard is `y[component]` crossing upwards,
+/// restarting in place: events that leave the solution unchanged (periapsis passages of an
+/// orbit, zero crossings of an oscillator).
+pub struct UpCrossings<M> {
+    /// The model integrated.
+    pub model: M,
+    /// The state component watched.
+    pub component: usize,
+}
+
+const UP: [GuardSpec<()>; 1] = [GuardSpec {
+    id: (),
+    direction: Direction::Up,
+}];
+
+impl<M: Model<N>, const N: usize> HybridSystem<N> for UpCrossings<M> {
+    type Mode = ();
+    type Guard = ();
+    type Stop = ();
+    fn rhs(&self, _: (), t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+        self.model.rhs(t, y, dy)
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
+        &UP
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; N],
+        _dy: &[f64; N],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        g[0] = y[self.component];
+        Ok(())
+    }
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<N, ()>,
+    ) -> Result<Transition<N, (), ()>, EvalError> {
+        Ok(Transition::Continue { y: hit.y })
+    }
 }
