@@ -112,6 +112,8 @@ fn run(args: RunArgs) -> ExitCode {
             scene.file.solver.atol,
             args.out.display()
         );
+        let choice = eulerdisk::run::model::choose(&scene, opts.backend, opts.figures);
+        eprintln!("model: {}: {}", choice.model.label(), choice.reason);
     }
     match run_scene(&scene, &opts, &interrupt) {
         Ok(report) => {

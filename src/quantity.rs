@@ -146,6 +146,55 @@ impl Quantity {
         }
     }
 
+    /// The states (by their names in the rolling layout, `X` … `Omega_z`) whose values or
+    /// derivatives the quantity is computed from. A run that does not integrate one of them
+    /// (a pruned model leaves `X`, `Y`, `Z` and `phi` frozen) cannot report the quantity.
+    ///
+    /// The slip and the contact forces are listed by the velocities they come from; a sliding
+    /// model carries the slip itself and computes the centre's velocity from it.
+    pub fn reads(self) -> &'static [&'static str] {
+        const SLIP: &[&str] = &[
+            "V_X", "V_Y", "psi", "theta", "Omega_x", "Omega_y", "Omega_z",
+        ];
+        const FORCE: &[&str] = &["V_X", "V_Y", "V_Z", "psi", "theta"];
+        match self {
+            Quantity::X => &["X"],
+            Quantity::Y => &["Y"],
+            Quantity::Z => &["Z"],
+            Quantity::V_X => &["V_X"],
+            Quantity::V_Y => &["V_Y"],
+            Quantity::V_Z => &["V_Z"],
+            Quantity::Psi => &["psi"],
+            Quantity::Theta => &["theta"],
+            Quantity::Phi => &["phi"],
+            Quantity::Omega_x => &["Omega_x"],
+            Quantity::Omega_y | Quantity::ThetaDot => &["Omega_y"],
+            Quantity::Omega_z => &["Omega_z"],
+            Quantity::V_C | Quantity::Alpha => SLIP,
+            Quantity::PsiDot => &["Omega_x", "theta"],
+            Quantity::PhiDot => &["Omega_x", "Omega_z", "theta"],
+            Quantity::N | Quantity::T | Quantity::Nu | Quantity::NOverMg => FORCE,
+            Quantity::R_X | Quantity::R_Y => FORCE,
+            Quantity::Energy => &["Z", "V_X", "V_Y", "V_Z", "Omega_x", "Omega_y", "Omega_z"],
+            Quantity::ResidualZ => &["Z", "theta"],
+            Quantity::ResidualV_Z => &["V_Z", "Omega_y", "theta"],
+        }
+    }
+
+    /// The states among `frozen` (states a run does not integrate) that this quantity reads.
+    pub fn reads_among(self, frozen: &[&str]) -> Vec<&'static str> {
+        self.reads()
+            .iter()
+            .copied()
+            .filter(|s| frozen.contains(s))
+            .collect()
+    }
+
+    /// Whether a run that leaves the states `frozen` unintegrated computes this quantity.
+    pub fn computed_without(self, frozen: &[&str]) -> bool {
+        !self.reads().iter().any(|s| frozen.contains(s))
+    }
+
     /// The quantity's value in a sample of a disk with parameters `p`.
     pub fn value(self, s: &Sample, p: &DiskParams) -> f64 {
         let st = &s.state;
@@ -196,5 +245,27 @@ mod tests {
         }
         assert_eq!(Quantity::Theta.column(), "theta_rad");
         assert_eq!(Quantity::from_name("Theta"), None);
+    }
+
+    #[test]
+    fn reads_name_states_of_the_rolling_layout() {
+        let states = equations::models::rolling::STATE_NAMES;
+        for q in Quantity::ALL {
+            assert!(!q.reads().is_empty(), "{}", q.name());
+            for s in q.reads() {
+                assert!(states.contains(s), "{}: `{s}`", q.name());
+            }
+        }
+    }
+
+    #[test]
+    fn a_frozen_position_takes_exactly_what_reads_it() {
+        let frozen = ["X", "Y", "Z", "phi"];
+        let lost: Vec<_> = Quantity::ALL
+            .into_iter()
+            .filter(|q| !q.computed_without(&frozen))
+            .map(|q| q.name())
+            .collect();
+        assert_eq!(lost, ["X", "Y", "Z", "phi", "energy", "residual_Z"]);
     }
 }

@@ -4,6 +4,7 @@
 //! on synthetic runs, and the simulation's own types reach them through one conversion
 //! (`run::convert`).
 
+use crate::run::model::ModelChoice;
 use crate::sample::Sample;
 use crate::scene::schema::ModeName;
 
@@ -94,6 +95,9 @@ pub struct RunData {
     pub stop: Option<StopRecord>,
     /// Integrator work.
     pub work: Work,
-    /// Largest constraint drift seen (SI units, before projection).
+    /// Largest constraint drift seen (SI units, before projection); `None` when the models
+    /// do not integrate every constrained state.
     pub constraint_drift_max: Option<f64>,
+    /// The models that ran, and the states they left frozen.
+    pub model: ModelChoice,
 }

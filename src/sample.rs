@@ -73,6 +73,25 @@ impl DiskState {
         }
     }
 
+    /// The state named `name` (rolling-layout names, `X` … `Omega_z`).
+    pub fn get_mut(&mut self, name: &str) -> Option<&mut f64> {
+        Some(match name {
+            "X" => &mut self.x,
+            "Y" => &mut self.y,
+            "Z" => &mut self.z,
+            "V_X" => &mut self.v_x,
+            "V_Y" => &mut self.v_y,
+            "V_Z" => &mut self.v_z,
+            "psi" => &mut self.psi,
+            "theta" => &mut self.theta,
+            "phi" => &mut self.phi,
+            "Omega_x" => &mut self.omega_x,
+            "Omega_y" => &mut self.omega_y,
+            "Omega_z" => &mut self.omega_z,
+            _ => return None,
+        })
+    }
+
     /// Precession rate ψ̇ = −Ω_x / sin θ (kinematics, both modes).
     pub fn psi_dot(&self) -> f64 {
         -self.omega_x / self.theta.sin()
@@ -126,6 +145,21 @@ pub struct Sample {
     pub energy: f64,
 }
 
+impl Sample {
+    /// Replaces every value that depends on a state in `frozen` (a state the models did not
+    /// integrate) by NaN, so a frozen value can never pass for a result.
+    pub fn forget(&mut self, frozen: &[&str]) {
+        for name in frozen {
+            if let Some(v) = self.state.get_mut(name) {
+                *v = f64::NAN;
+            }
+        }
+        if !crate::quantity::Quantity::Energy.computed_without(frozen) {
+            self.energy = f64::NAN;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -137,6 +171,11 @@ mod tests {
         assert_eq!(s.theta, 7.5);
         assert_eq!(s.omega_z, 11.5);
         assert_eq!(s.to_array(), y);
+        let mut named = s;
+        for (i, name) in equations::models::rolling::STATE_NAMES.iter().enumerate() {
+            assert_eq!(*named.get_mut(name).unwrap(), y[i], "{name}");
+        }
+        assert!(named.get_mut("v_C").is_none());
     }
 
     #[test]

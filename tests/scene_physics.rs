@@ -1,19 +1,20 @@
 //! The shipped scenes do what their descriptions say, checked against EQUATIONS.md §7.
 
-use eulerdisk::eval::Backend;
 use eulerdisk::record::RunData;
 use eulerdisk::run::collect::{Collector, Sampling};
+use eulerdisk::run::model::ModelChoice;
 use eulerdisk::run::simulation::{self, Message};
 use eulerdisk::scene::{self, Override};
 
-/// Runs a built-in scene for `t_end` seconds and returns what it recorded.
+/// Runs a built-in scene for `t_end` seconds with the full models (the checks read `X`, `Y`
+/// and the energy) and returns what it recorded.
 fn simulate(name: &str, t_end: f64) -> RunData {
     let scene = scene::load(name, &[Override::new("run", "t_end", t_end)]).unwrap();
     let sampling = Sampling {
         rate: scene.file.run.sample_rate,
         every: 1,
     };
-    let rx = simulation::start(&scene, Backend::Generated, sampling.fine_rate());
+    let rx = simulation::start(&scene, &ModelChoice::default(), sampling.fine_rate());
     let mut c = Collector::new(sampling);
     loop {
         match rx.recv().unwrap() {

@@ -1,7 +1,7 @@
 //! Runs the paper's scene (EQUATIONS.md §9) on the hybrid driver and prints what it cost.
 //!
 //! ```text
-//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference]
+//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N]
 //! ```
 
 use equations::hybrid::{
@@ -87,6 +87,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         config.atol = a.parse()?;
     }
     let which = arg(6).unwrap_or("generated");
+    if let Some(c) = arg(7) {
+        config.guard_checks = c.parse()?;
+    }
     let mut counter = Counter {
         t_end: config.t_end,
         ..Counter::default()
@@ -102,17 +105,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let elapsed = start.elapsed();
     println!(
-        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}",
-        config.integrator, config.slip_sign, config.rtol, config.atol
+        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}, guard checks {}",
+        config.integrator, config.slip_sign, config.rtol, config.atol, config.guard_checks
     );
     println!("stop: {} at t = {}", out.stop.name(), out.last.t);
     println!(
-        "time {:.3} s; steps {} (rejected {}); rhs evals {}; guard evals {}",
+        "time {:.3} s; steps {} (rejected {}); rhs evals {}; guard evals {}; guard estimates {}",
         elapsed.as_secs_f64(),
         out.stats.steps,
         out.stats.rejected,
         out.stats.rhs_evals,
-        out.stats.guard_evals
+        out.stats.guard_evals,
+        out.stats.guard_estimates
     );
     println!(
         "transitions {} (t<=1 s: {}, t<=10 s: {}, t<=100 s: {}); to rolling {}, sliding restarts {}",

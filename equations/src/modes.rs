@@ -294,12 +294,35 @@ impl ContactForce {
     /// The secondary outputs of Box 1 (rolling) from the state and its derivative `dy`.
     pub fn rolling(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
         let air = air_drag(p, state);
+        if air == 0.0 {
+            // Still air: no angle is needed (guards evaluate this millions of times).
+            return ContactForce {
+                r_x: p.m * dy[V_X],
+                r_y: p.m * dy[V_Y],
+                normal: p.m * (dy[V_Z] + p.g),
+            };
+        }
         let (sp, cp) = state.y[PSI].sin_cos();
         let (st, ct) = state.y[THETA].sin_cos();
         ContactForce {
             r_x: p.m * dy[V_X] + air * st * cp,
             r_y: p.m * dy[V_Y] + air * st * sp,
             normal: p.m * (dy[V_Z] + p.g) + air * ct,
+        }
+    }
+
+    /// The normal force of Box 3 (sliding) from a state vector of `chart`; the physical state
+    /// (an `atan2` and the no-slip velocity) is read only when air drag needs it.
+    pub fn sliding_normal(
+        p: &DiskParams,
+        chart: SlipChart,
+        y: &[f64; DIM],
+        dy: &[f64; DIM],
+    ) -> f64 {
+        if p.k_F() == 0.0 {
+            p.m * (dy[V_Z] + p.g)
+        } else {
+            Self::sliding(p, &PhysicalState::from_sliding(chart, p, y), dy).normal
         }
     }
 
@@ -318,7 +341,8 @@ impl ContactForce {
 
     /// Friction magnitude `T = |(R_X, R_Y)|`.
     pub fn friction(&self) -> f64 {
-        self.r_x.hypot(self.r_y)
+        // Not `hypot`: forces are far from overflow, and guards call this millions of times.
+        (self.r_x * self.r_x + self.r_y * self.r_y).sqrt()
     }
 
     /// Friction ratio `nu = T / N`.

@@ -67,11 +67,27 @@ fn statement(out: &mut String, stmt: &Stmt) {
         Stmt::SinCos { sin, cos, arg } => {
             writeln!(out, "let (t{sin}, t{cos}) = {}.sin_cos();", operand(arg))
         }
-        Stmt::CheckPivot { value, text } => {
+        Stmt::CheckPivot {
+            value,
+            text,
+            sums,
+            tolerance,
+        } => {
             let value = operand(value);
+            let tolerance = constant_text(*tolerance);
+            let cancelled: String = sums
+                .iter()
+                .map(|c| {
+                    format!(
+                        " || {}.abs() <= {tolerance} * {}",
+                        operand(&c.sum),
+                        operand(&c.magnitude)
+                    )
+                })
+                .collect();
             writeln!(
                 out,
-                "if !({value} != 0.0 && {value}.is_finite()) {{ \
+                "if !({value} != 0.0 && {value}.is_finite()){cancelled} {{ \
                  return ::core::result::Result::Err(::model_runtime::EvalError::SingularPivot {{ \
                  model: MODEL_NAME, pivot: {text:?}, value: {value} }}); }}"
             )

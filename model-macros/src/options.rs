@@ -1,7 +1,9 @@
 //! `options { .. }`: the compiler's knobs, settable per model.
 //!
 //! The defaults suit most models; `swell_bound` lets a model force (or forbid) the numeric
-//! solve of its coupled blocks, e.g. to compare both or to keep a huge symbolic pivot out.
+//! solve of its coupled blocks, e.g. to compare both or to keep a huge symbolic pivot out, and
+//! `pivot_tolerance` sets how much cancellation a pivot may suffer before it counts as zero
+//! (`0` restores the exact-zero test, e.g. for a model whose pivots cancel by design).
 
 use crate::span::{Errors, Spans};
 use crate::validate::range;
@@ -9,10 +11,16 @@ use model_algebra::spec::Named;
 use model_algebra::CompileOptions;
 
 /// The options a model may set, with what each means (for the "unknown option" message).
-const KNOWN: [(&str, &str); 1] = [(
-    "swell_bound",
-    "the most operations a block's symbolic solution may cost before it is solved numerically",
-)];
+const KNOWN: [(&str, &str); 2] = [
+    (
+        "swell_bound",
+        "the most operations a block's symbolic solution may cost before it is solved numerically",
+    ),
+    (
+        "pivot_tolerance",
+        "the fraction of its terms' magnitudes below which a pivot's sum counts as zero",
+    ),
+];
 
 /// The compiler options of a model: the defaults, overridden by its `options` section.
 pub fn compile_options(
@@ -40,6 +48,19 @@ pub fn compile_options(
                     ),
                 ),
             },
+            "pivot_tolerance" => {
+                if (0.0..1.0).contains(&option.value) {
+                    compile.pivot_tolerance = option.value;
+                } else {
+                    errors.at(
+                        at,
+                        format!(
+                            "`pivot_tolerance` must be at least 0 and below 1, not {}",
+                            option.value
+                        ),
+                    );
+                }
+            }
             other => {
                 let known: Vec<String> = KNOWN
                     .iter()

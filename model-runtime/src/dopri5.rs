@@ -144,4 +144,18 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
             out[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
         }
     }
+
+    /// The exact derivative of the quartic interpolant, by the product rule on its nested form.
+    fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
+        let s1 = 1.0 - s;
+        let c = &self.cont;
+        for i in 0..N {
+            let q = c[3][i] + s1 * c[4][i];
+            let r = c[2][i] + s * q;
+            let dr = q - s * c[4][i];
+            let outer = c[1][i] + s1 * r;
+            let d_outer = s1 * dr - r;
+            out[i] = (outer + s * d_outer) / h;
+        }
+    }
 }

@@ -37,11 +37,90 @@
 //! * **Several guards in one step.** The earliest crossing wins; equal times go to the guard
 //!   listed first. The others are not reported (the segment ends at the event).
 //! * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
-//!   [`crate::hybrid::HybridOptions::guard_checks`] to sample the guards at that many interior
-//!   points of each step on the dense output; a double crossing between two samples still
-//!   goes unseen. The same holds for an excursion shorter than a step right after a
+//!   [`crate::hybrid::HybridOptions::guard_checks`] to sample the guards at interior points of
+//!   each step on the dense output ([`InteriorChecks`]); a double crossing between two samples
+//!   still goes unseen. [`InteriorChecks::Screened`] samples cost no model evaluation: the
+//!   guards see the interpolant and its derivative, and only a sample that shows an admitted
+//!   crossing (or a non-finite value) is evaluated exactly, so estimates can trigger a check
+//!   but never decide an event or move a reference sign. Most steps need only two estimates:
+//!   with the exact end values they fit a cubic per guard, and when every cubic keeps its sign
+//!   with a margin, the other sample points are skipped. The same holds for an excursion shorter than a step right after a
 //!   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
 //!   point): the quiet guard's first nonzero value is already back on the near side.
+
+/// Where, besides the step ends, a step is searched for guard crossings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum InteriorChecks {
+    /// Only at step ends.
+    #[default]
+    None,
+    /// At this many evenly spaced interior points, each with an exact model evaluation.
+    Exact(u32),
+    /// At this many evenly spaced interior points, estimated from the dense output and its
+    /// derivative without a model evaluation; a point whose estimate shows an admitted
+    /// crossing or departure (or a non-finite value) is then evaluated exactly.
+    Screened(u32),
+}
+
+impl InteriorChecks {
+    /// Number of interior points.
+    pub fn points(self) -> u32 {
+        match self {
+            InteriorChecks::None => 0,
+            InteriorChecks::Exact(n) | InteriorChecks::Screened(n) => n,
+        }
+    }
+}
+
+/// Spelled `none`, `exact:N` or `screened:N`, as in scene files and command lines.
+impl std::fmt::Display for InteriorChecks {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            InteriorChecks::None => f.write_str("none"),
+            InteriorChecks::Exact(n) => write!(f, "exact:{n}"),
+            InteriorChecks::Screened(n) => write!(f, "screened:{n}"),
+        }
+    }
+}
+
+/// A spelling of [`InteriorChecks`] that is not `none`, `exact:N` or `screened:N`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseInteriorChecksError(pub String);
+
+impl std::fmt::Display for ParseInteriorChecksError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "guard checks {:?}: expected none, exact:N or screened:N with N a whole number",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for ParseInteriorChecksError {}
+
+impl std::str::FromStr for InteriorChecks {
+    type Err = ParseInteriorChecksError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = || ParseInteriorChecksError(s.to_owned());
+        match s.split_once(':') {
+            None if s == "none" => Ok(InteriorChecks::None),
+            Some(("exact", n)) => n.parse().map(InteriorChecks::Exact).map_err(|_| bad()),
+            Some(("screened", n)) => n.parse().map(InteriorChecks::Screened).map_err(|_| bad()),
+            _ => Err(bad()),
+        }
+    }
+}
+
+/// How guard values at a time are obtained.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Probe {
+    /// From the state on the dense output and an exact model evaluation there.
+    Exact,
+    /// From the dense output and its derivative: an estimate, used only to screen.
+    Estimate,
+}
 
 /// Which crossings of zero fire a guard.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -148,6 +227,8 @@ pub(crate) struct GuardTracker {
     lo_values: Vec<f64>,
     scratch: Vec<f64>,
     at_best: Vec<f64>,
+    /// Screening estimates at a third of the step.
+    at_third: Vec<f64>,
 }
 
 impl GuardTracker {
@@ -176,6 +257,8 @@ impl GuardTracker {
         self.scratch.resize(values.len(), 0.0);
         self.at_best.clear();
         self.at_best.resize(values.len(), 0.0);
+        self.at_third.clear();
+        self.at_third.resize(values.len(), 0.0);
     }
 
     /// Number of guards.
@@ -184,29 +267,42 @@ impl GuardTracker {
     }
 
     /// Looks for the earliest admitted crossing in the step `[t0, t1]` with guard values
-    /// `end_values` at `t1`, checking `checks` interior points first. `eval(t, out)` evaluates
-    /// all guards at an interior time on the dense output. When nothing fires, the reference
-    /// signs advance to the end of the step.
+    /// `end_values` at `t1`, checking the interior points of `checks` first.
+    /// `eval(t, probe, out)` evaluates all guards at an interior time on the dense output,
+    /// exactly or as an estimate. When nothing fires, the reference signs advance to the end
+    /// of the step.
     pub(crate) fn scan<E>(
         &mut self,
         t0: f64,
         t1: f64,
         end_values: &[f64],
-        checks: u32,
-        mut eval: impl FnMut(f64, &mut [f64]) -> Result<(), E>,
+        checks: InteriorChecks,
+        mut eval: impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
     ) -> Result<Option<Found>, E> {
         let n = self.len();
         if n == 0 {
             return Ok(None);
         }
+        let screened = matches!(checks, InteriorChecks::Screened(_));
+        let points = if screened && self.cubic_clear(t0, t1, end_values, &mut eval)? {
+            0
+        } else {
+            checks.points()
+        };
         let mut lo = t0;
-        for k in 1..=checks + 1 {
-            let tk = if k == checks + 1 {
+        for k in 1..=points + 1 {
+            let tk = if k == points + 1 {
                 self.scratch.copy_from_slice(end_values);
                 t1
             } else {
-                let tk = t0 + (t1 - t0) * (k as f64 / (checks + 1) as f64);
-                eval(tk, &mut self.scratch)?;
+                let tk = t0 + (t1 - t0) * (k as f64 / (points + 1) as f64);
+                if screened {
+                    eval(tk, Probe::Estimate, &mut self.scratch)?;
+                    if !self.may_fire() {
+                        continue;
+                    }
+                }
+                eval(tk, Probe::Exact, &mut self.scratch)?;
                 tk
             };
             // A departure from zero happened at `lo` at the latest: earlier than any crossing.
@@ -245,13 +341,61 @@ impl GuardTracker {
         Ok(None)
     }
 
+    /// Screening's first look at a step: estimates at 1/3 and 2/3 of it and the exact values
+    /// at its ends define a cubic per guard; when every cubic keeps its sign with a margin of
+    /// half its range, the guards are taken to stay clear of zero and the step's other
+    /// interior points are skipped. A step is short against the guards' time scales (the
+    /// error control keeps the state polynomial-like across it), so a guard that does change
+    /// sign inside it shows it in its cubic; the margin covers the part that is not cubic.
+    fn cubic_clear<E>(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        end_values: &[f64],
+        eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        let h = t1 - t0;
+        eval(t0 + h / 3.0, Probe::Estimate, &mut self.scratch)?;
+        if self.may_fire() {
+            return Ok(false);
+        }
+        self.at_third.copy_from_slice(&self.scratch);
+        eval(t0 + 2.0 * h / 3.0, Probe::Estimate, &mut self.scratch)?;
+        if self.may_fire() {
+            return Ok(false);
+        }
+        Ok((0..self.len()).all(|i| {
+            cubic_keeps_sign(
+                self.lo_values[i],
+                self.at_third[i],
+                self.scratch[i],
+                end_values[i],
+            )
+        }))
+    }
+
+    /// Whether the values in `self.scratch` would fire a guard (or are not finite), judged
+    /// against the reference signs.
+    fn may_fire(&self) -> bool {
+        (0..self.len()).any(|i| {
+            let v = self.scratch[i];
+            let departs = self.reference[i] == 0.0 && v != 0.0 && self.departure_fires[i];
+            let moved = if departs {
+                Some(if v > 0.0 { Crossed::Up } else { Crossed::Down })
+            } else {
+                crossing(self.reference[i], v)
+            };
+            !v.is_finite() || moved.is_some_and(|c| self.directions[i].admits(c))
+        })
+    }
+
     /// Locates the earliest admitted crossing in `[lo, hi]`; `self.scratch` holds the values
     /// at `hi` and `self.lo_values` those at `lo`.
     fn locate<E>(
         &mut self,
         lo: f64,
         hi: f64,
-        eval: &mut impl FnMut(f64, &mut [f64]) -> Result<(), E>,
+        eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
     ) -> Result<Option<Found>, E> {
         let n = self.len();
         let mut best: Option<Found> = None;
@@ -282,7 +426,7 @@ impl GuardTracker {
             };
             let scratch = &mut self.at_best;
             let root = crate::root::find_crossing(lo, f_lo, upper, f_upper, r, |t| {
-                eval(t, scratch)?;
+                eval(t, Probe::Exact, scratch)?;
                 Ok(scratch[i])
             })?;
             let b = match best {
@@ -299,11 +443,43 @@ impl GuardTracker {
             if b.t == hi {
                 self.at_best.copy_from_slice(&self.scratch);
             } else {
-                eval(b.t, &mut self.at_best)?;
+                eval(b.t, Probe::Exact, &mut self.at_best)?;
             }
         }
         Ok(best)
     }
+}
+
+/// Whether the cubic through `(0, a)`, `(1/3, b)`, `(2/3, c)`, `(1, d)` keeps one sign on
+/// `[0, 1]` with a margin of half its range (false for any non-finite value).
+fn cubic_keeps_sign(a: f64, b: f64, c: f64, d: f64) -> bool {
+    // Newton's forward differences in u = 3s ∈ [0, 3], expanded to a + c1 u + c2 u² + c3 u³.
+    let (d1, d2, d3) = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
+    let (c1, c2, c3) = (d1 - d2 / 2.0 + d3 / 3.0, (d2 - d3) / 2.0, d3 / 6.0);
+    let p = |u: f64| a + u * (c1 + u * (c2 + u * c3));
+    let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
+    let mut visit = |u: f64| {
+        if u > 0.0 && u < 3.0 {
+            let v = p(u);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    };
+    // The extrema: roots of c1 + 2 c2 u + 3 c3 u².
+    if c3 == 0.0 {
+        if c2 != 0.0 {
+            visit(-c1 / (2.0 * c2));
+        }
+    } else {
+        let disc = c2 * c2 - 3.0 * c3 * c1;
+        if disc >= 0.0 {
+            let r = disc.sqrt();
+            visit((-c2 + r) / (3.0 * c3));
+            visit((-c2 - r) / (3.0 * c3));
+        }
+    }
+    let margin = 0.5 * (hi - lo);
+    lo > margin || hi < -margin
 }
 
 #[inline]
@@ -343,11 +519,47 @@ mod tests {
         tr.start(dirs.iter().copied(), start, quiet);
         let mut end = vec![0.0; dirs.len()];
         g(t1, &mut end);
-        tr.scan::<()>(0.0, t1, &end, checks, |t, out| {
+        let checks = match checks {
+            0 => InteriorChecks::None,
+            n => InteriorChecks::Exact(n),
+        };
+        tr.scan::<()>(0.0, t1, &end, checks, |t, _, out| {
             g(t, out);
             Ok(())
         })
         .unwrap()
+    }
+
+    /// A screened scan of `[0, 1]` with exact guard `g` and estimate `estimate`: what it found
+    /// and how many exact evaluations it made.
+    fn screened(
+        dir: Direction,
+        g: impl Fn(f64) -> f64,
+        estimate: impl Fn(f64) -> f64,
+        points: u32,
+    ) -> (Option<Found>, usize) {
+        let mut tr = GuardTracker::default();
+        tr.start([dir].into_iter(), &[g(0.0)], Quiet::None);
+        let mut exact = 0;
+        let found = tr
+            .scan::<()>(
+                0.0,
+                1.0,
+                &[g(1.0)],
+                InteriorChecks::Screened(points),
+                |t, probe, out| {
+                    out[0] = match probe {
+                        Probe::Exact => {
+                            exact += 1;
+                            g(t)
+                        }
+                        Probe::Estimate => estimate(t),
+                    };
+                    Ok(())
+                },
+            )
+            .unwrap();
+        (found, exact)
     }
 
     #[test]
@@ -417,6 +629,74 @@ mod tests {
         assert!(run(&[Direction::Up], &[g0(g)], g, 1.0, 0).is_none());
         let f = run(&[Direction::Up], &[g0(g)], g, 1.0, 3).unwrap();
         assert!((f.t - 0.4).abs() < 1e-14, "{f:?}");
+    }
+
+    #[test]
+    fn the_cubic_test_sees_a_crossing_between_its_points() {
+        let at = |g: &dyn Fn(f64) -> f64| (g(0.0), g(1.0 / 3.0), g(2.0 / 3.0), g(1.0));
+        let clear = |g: &dyn Fn(f64) -> f64| {
+            let (a, b, c, d) = at(g);
+            cubic_keeps_sign(a, b, c, d)
+        };
+        // Far from zero against its variation, either sign: clear.
+        assert!(clear(&|s| -1.0 + 0.3 * s));
+        assert!(clear(&|s| 2.0 - 0.5 * s * s));
+        // All four values negative, but the cubic's bump at s ≈ 0.79 reaches +0.2.
+        let bump = |s: f64| -1.0 + 25.0 * s * (1.0 - s) * (s - 0.5);
+        let (a, b, c, d) = at(&bump);
+        assert!(a < 0.0 && b < 0.0 && c < 0.0 && d < 0.0);
+        assert!(!clear(&bump));
+        // Approaching zero fast, touching it, or not a number: not clear.
+        assert!(!clear(&|s| -1.0 + 0.9 * s));
+        assert!(!clear(&|s| -s * s));
+        assert!(!clear(&|_| f64::NAN));
+    }
+
+    #[test]
+    fn interior_checks_are_spelled_and_read_back() {
+        for c in [
+            InteriorChecks::None,
+            InteriorChecks::Exact(4),
+            InteriorChecks::Screened(16),
+        ] {
+            assert_eq!(c.to_string().parse::<InteriorChecks>(), Ok(c));
+        }
+        for bad in [
+            "",
+            "some",
+            "exact",
+            "exact:",
+            "exact:-1",
+            "screened:2.5",
+            "fast:3",
+        ] {
+            let e = bad.parse::<InteriorChecks>().unwrap_err();
+            assert!(e.to_string().contains(&format!("{bad:?}")), "{e}");
+        }
+    }
+
+    #[test]
+    fn screened_checks_evaluate_only_where_an_estimate_fires() {
+        // Negative, positive on (0.4, 0.6), negative again at the end.
+        let g = |t: f64| 0.01 - (t - 0.5) * (t - 0.5);
+        let close = |t: f64| g(t) + 1e-4;
+        // Nothing near a crossing: no exact evaluation at all.
+        let (f, exact) = screened(Direction::Up, |t| g(t) - 1.0, |t| close(t) - 1.0, 4);
+        assert_eq!((f, exact), (None, 0));
+        // A good estimate triggers the exact check at t = 0.5; the event is located exactly.
+        let (f, exact) = screened(Direction::Up, g, close, 4);
+        let f = f.unwrap();
+        assert!((f.t - 0.4).abs() < 1e-14, "{f:?}");
+        assert!(exact > 1);
+        // An estimate that wrongly shows a crossing cannot fire: the exact value decides.
+        let (f, exact) = screened(Direction::Up, |t| g(t) - 1.0, |_| 1.0, 4);
+        assert_eq!((f, exact), (None, 4));
+        // A non-finite estimate is checked exactly rather than trusted or ignored.
+        let (f, exact) = screened(Direction::Up, |t| g(t) - 1.0, |_| f64::NAN, 2);
+        assert_eq!((f, exact), (None, 2));
+        // An estimate that misses the excursion misses it (the documented limitation).
+        let (f, _) = screened(Direction::Up, g, |t| g(t) - 1.0, 4);
+        assert!(f.is_none());
     }
 
     fn g0(g: impl Fn(f64, &mut [f64])) -> f64 {

@@ -46,7 +46,7 @@ mod run;
 
 use crate::control::StepOptions;
 use crate::error::{InputError, SolveError};
-use crate::events::{EventHit, GuardSpec, GuardTracker};
+use crate::events::{EventHit, GuardSpec, GuardTracker, InteriorChecks};
 use crate::integrator::Integrator;
 use crate::model::EvalError;
 use crate::observer::Observer;
@@ -204,8 +204,8 @@ pub struct HybridOptions {
     /// `None` for no samples.
     pub sample_rate: Option<f64>,
     /// Interior points of each step at which guards are also checked on the dense output
-    /// (0: only at step ends). Catches a sign change and back within one step.
-    pub guard_checks: u32,
+    /// (default: only at step ends). Catches a sign change and back within one step.
+    pub guard_checks: InteriorChecks,
 }
 
 /// Why a run ended normally.

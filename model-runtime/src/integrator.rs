@@ -255,6 +255,32 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         Ok(())
     }
 
+    /// The interpolated state at `t` inside the last accepted step and the time derivative of
+    /// the interpolant there ([`Stepper::interpolate_derivative`]: an estimate of `f`, not a
+    /// model evaluation). At the step's end points both are exact.
+    pub fn interpolate_with_derivative<F: Rhs<N>>(
+        &mut self,
+        sys: &F,
+        t: f64,
+        y: &mut [f64; N],
+        dy: &mut [f64; N],
+    ) -> Result<(), SolveError> {
+        if !self.has_step || t >= self.t {
+            (*y, *dy) = (self.y, self.f);
+            return Ok(());
+        }
+        if t <= self.t_prev {
+            (*y, *dy) = (self.y_prev, self.f_prev);
+            return Ok(());
+        }
+        self.ensure_dense(sys)?;
+        let h = self.t - self.t_prev;
+        let theta = (t - self.t_prev) / h;
+        self.stepper.interpolate(theta, y);
+        self.stepper.interpolate_derivative(theta, h, dy);
+        Ok(())
+    }
+
     /// The interpolant of the last step, if it has been built (see [`Integrator::ensure_dense`]).
     pub fn dense(&self) -> Option<DenseStep<'_, S, N>> {
         (self.has_step && self.dense_ready).then_some(DenseStep {

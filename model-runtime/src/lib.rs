@@ -59,7 +59,9 @@ pub use control::StepOptions;
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use error::{InputError, SolveError};
-pub use events::{Crossed, Direction, EventHit, GuardSpec};
+pub use events::{
+    Crossed, Direction, EventHit, GuardSpec, InteriorChecks, ParseInteriorChecksError,
+};
 pub use hybrid::{
     ChatterLimit, HybridError, HybridOptions, HybridOutcome, HybridSolver, HybridSystem,
     StopReason, Transition,

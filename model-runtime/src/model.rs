@@ -62,14 +62,16 @@ pub struct ModelInfo {
 /// Why a model could not be evaluated at a state.
 #[derive(Clone, Debug, PartialEq)]
 pub enum EvalError {
-    /// A pivot of the solve is zero or not finite at this state: the implicit system is singular
-    /// here (for the disk: `sin(theta)` at a flat disk, or the sliding determinant).
+    /// A pivot of the solve is zero, not finite, or cancelled to round-off at this state: the
+    /// implicit system is singular here (for the disk: `sin(theta)` at a flat disk, or the
+    /// sliding determinant).
     SingularPivot {
         /// The model's name.
         model: &'static str,
         /// The pivot as the user wrote it, e.g. `sin(theta)`.
         pivot: &'static str,
-        /// Its value at the state (zero, infinite or NaN).
+        /// Its value at the state (zero, infinite, NaN, or a remainder of cancellation small
+        /// against the terms it was summed from).
         value: f64,
     },
     /// A computed quantity is not finite (overflow, or a non-finite input).

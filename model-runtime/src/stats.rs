@@ -17,6 +17,9 @@ pub struct Stats {
     pub decompositions: u64,
     /// Guard evaluations (each evaluates all guards of the current mode once).
     pub guard_evals: u64,
+    /// Guard estimates from the dense output (no model evaluation; see
+    /// [`crate::events::InteriorChecks::Screened`]).
+    pub guard_estimates: u64,
     /// Events located (guards that fired).
     pub events: u64,
 }
@@ -29,6 +32,7 @@ impl AddAssign for Stats {
         self.jacobian_evals += o.jacobian_evals;
         self.decompositions += o.decompositions;
         self.guard_evals += o.guard_evals;
+        self.guard_estimates += o.guard_estimates;
         self.events += o.events;
     }
 }

@@ -6,8 +6,8 @@ mod common;
 
 use common::{dist, Forced, Kepler};
 use model_runtime::{
-    integrate, Dop853, Dopri5, Integrator, Observer, Rk4, Rodas4, StepOptions, StepView, Stepper,
-    Tolerance,
+    integrate, Dop853, Dopri5, Integrator, Model, Observer, Rk4, Rodas4, StepOptions, StepView,
+    Stepper, Tolerance,
 };
 
 const LOOSE: f64 = 1e6;
@@ -99,12 +99,20 @@ fn rk4_is_fourth_order() {
     check_global(Rk4::new, &[20, 40, 80, 160], 3.0, 4.0);
 }
 
-/// Max interpolation error over interior points of one step of size `h` from `t0`.
-fn dense_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
-    let t0 = 0.3;
+/// Start of the single steps whose dense output is checked.
+const T0: f64 = 0.3;
+
+/// An integrator that has taken one step of size `h` from `T0` on the exact solution.
+fn one_step<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> Integrator<S, 3> {
     let mut it = Integrator::new(make(h), Tolerance::scalar(LOOSE, LOOSE), fixed(h)).unwrap();
-    it.restart(&Forced, t0, &Forced::exact(t0)).unwrap();
-    it.step(&Forced, t0 + h).unwrap();
+    it.restart(&Forced, T0, &Forced::exact(T0)).unwrap();
+    it.step(&Forced, T0 + h).unwrap();
+    it
+}
+
+/// Max interpolation error over interior points of one step of size `h` from `T0`.
+fn dense_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
+    let (t0, mut it) = (T0, one_step(make, h));
     let mut worst: f64 = 0.0;
     for k in 1..10 {
         let t = t0 + h * k as f64 / 10.0;
@@ -132,6 +140,56 @@ fn dense_outputs_have_their_orders() {
     check_dense(|_| Dop853::new(), &[0.4, 0.2, 0.1]);
     check_dense(|_| Rodas4::new(), &[0.2, 0.1, 0.05, 0.025]);
     check_dense(Rk4::new, &[0.4, 0.2, 0.1, 0.05]);
+}
+
+/// Max error of the interpolant's derivative against the exact `f` over interior points of
+/// one step of size `h`.
+fn dense_derivative_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
+    let (t0, mut it) = (T0, one_step(make, h));
+    let mut worst: f64 = 0.0;
+    for k in 0..=10 {
+        let t = t0 + h * k as f64 / 10.0;
+        let (mut y, mut dy, mut f) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+        it.interpolate_with_derivative(&Forced, t, &mut y, &mut dy)
+            .unwrap();
+        Forced.rhs(t, &Forced::exact(t), &mut f).unwrap();
+        worst = worst.max(dist(&dy, &f));
+    }
+    worst
+}
+
+#[test]
+fn dense_derivatives_follow_the_solution() {
+    // DP5 differentiates its quartic exactly: an interpolant of order q has a derivative
+    // error O(h^q).
+    let hs = [0.2, 0.1, 0.05, 0.025];
+    let errors: Vec<f64> = hs
+        .iter()
+        .map(|&h| dense_derivative_error(&|_| Dopri5::<3>::new(), h))
+        .collect();
+    println!("DOPRI5 dense derivative: errors {errors:?}");
+    assert_order(
+        "DOPRI5 derivative",
+        &errors,
+        Dopri5::<3>::DENSE_ORDER as f64,
+    );
+    // The others differentiate their interpolant by a central difference: the derivative
+    // keeps the interpolant's order where the interpolant's own error dominates ...
+    let rodas: Vec<f64> = [0.2, 0.1, 0.05]
+        .iter()
+        .map(|&h| dense_derivative_error(&|_| Rodas4::<3>::new(), h))
+        .collect();
+    let rk4: Vec<f64> = [0.2, 0.1, 0.05]
+        .iter()
+        .map(|&h| dense_derivative_error(&Rk4::<3>::new, h))
+        .collect();
+    println!("Rodas4 {rodas:?}, RK4 {rk4:?}");
+    assert_order("Rodas4 derivative", &rodas, Rodas4::<3>::DENSE_ORDER as f64);
+    assert_order("RK4 derivative", &rk4, Rk4::<3>::DENSE_ORDER as f64);
+    // ... and DOP853's order-7 interpolant is differentiated to the difference's own
+    // accuracy, (2⁻¹⁰)²/6 of the third derivative's scale.
+    let dop853 = dense_derivative_error(&|_| Dop853::<3>::new(), 0.1);
+    assert!(dop853 < 1e-8, "DOP853 derivative error {dop853}");
 }
 
 /// Checks every accepted step's interpolant at interior points against the exact orbit.

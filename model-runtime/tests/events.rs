@@ -2,11 +2,11 @@
 
 mod common;
 
-use common::{dist, Kepler, UpCrossings};
+use common::{dist, stop, up_crossings, Harmonic, Kepler, OneGuard};
 use model_runtime::{
     ChatterLimit, Crossed, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError,
-    HybridOptions, HybridSolver, HybridSystem, Observer, Recorder, Rk4, Rodas4, Sample, Stepper,
-    StopReason, Tolerance, Transition, TransitionKind,
+    HybridOptions, HybridSolver, HybridSystem, InteriorChecks, Observer, Recorder, Rk4, Rodas4,
+    Sample, Stepper, StopReason, Tolerance, Transition, TransitionKind,
 };
 
 const G: f64 = 9.81;
@@ -155,10 +155,7 @@ fn kepler_orbit_crosses_upwards_once_per_period() {
     solver
         .run(
             // The Kepler orbit, watched for y crossing upwards (every periapsis passage).
-            &mut UpCrossings {
-                model: Kepler,
-                component: 1,
-            },
+            &mut up_crossings(Kepler, 1),
             (),
             0.0,
             &Kepler::periapsis(e),
@@ -315,7 +312,7 @@ fn is(event: Option<(usize, f64)>, guard: usize, t: f64) -> bool {
     matches!(event, Some((g, te)) if g == guard && (te - t).abs() <= 4.0 * f64::EPSILON)
 }
 
-fn first_event(guards: &[(Direction, f64)], checks: u32) -> Option<(usize, f64)> {
+fn first_event(guards: &[(Direction, f64)], checks: InteriorChecks) -> Option<(usize, f64)> {
     let mut sys = Clock {
         guards: guards
             .iter()
@@ -345,32 +342,109 @@ fn first_event(guards: &[(Direction, f64)], checks: u32) -> Option<(usize, f64)>
 fn earliest_guard_wins_and_filters_apply_within_one_step() {
     // Both roots inside the single step [0, 1].
     assert!(is(
-        first_event(&[(Direction::Up, 0.7), (Direction::Up, 0.3)], 0),
+        first_event(
+            &[(Direction::Up, 0.7), (Direction::Up, 0.3)],
+            InteriorChecks::None
+        ),
         1,
         0.3
     ));
     // Equal times: the guard listed first wins.
     assert_eq!(
-        first_event(&[(Direction::Up, 0.5), (Direction::Both, 0.5)], 0).map(|e| e.0),
+        first_event(
+            &[(Direction::Up, 0.5), (Direction::Both, 0.5)],
+            InteriorChecks::None
+        )
+        .map(|e| e.0),
         Some(0)
     );
     // A down-only guard ignores an up-crossing.
     assert!(is(
-        first_event(&[(Direction::Down, 0.3), (Direction::Up, 0.6)], 0),
+        first_event(
+            &[(Direction::Down, 0.3), (Direction::Up, 0.6)],
+            InteriorChecks::None
+        ),
         1,
         0.6
     ));
     // A root exactly at the end of the step fires there.
-    assert!(is(first_event(&[(Direction::Up, 1.0)], 0), 0, 1.0));
+    assert!(is(
+        first_event(&[(Direction::Up, 1.0)], InteriorChecks::None),
+        0,
+        1.0
+    ));
 }
 
 #[test]
 fn sign_change_and_back_is_seen_only_with_interior_checks() {
     // Guard 0 is positive only on (0.40, 0.41).
-    assert_eq!(first_event(&[(Direction::Up, -0.40)], 0), None);
-    let hit = first_event(&[(Direction::Up, -0.40)], 200).unwrap();
+    assert_eq!(
+        first_event(&[(Direction::Up, -0.40)], InteriorChecks::None),
+        None
+    );
+    let hit = first_event(&[(Direction::Up, -0.40)], InteriorChecks::Exact(200)).unwrap();
     assert_eq!(hit.0, 0);
     assert!((hit.1 - 0.40).abs() < 1e-12, "{hit:?}");
+}
+
+/// A spring `x'' = -x` whose guard reads the acceleration from `dy`: `-x - 0.9999` is
+/// positive only for a short while around `x = -1` (t = π), a sign change and back inside one
+/// step.
+fn spring() -> impl HybridSystem<2, Mode = (), Guard = (), Stop = ()> {
+    OneGuard {
+        model: Harmonic,
+        guard: |_: &[f64; 2], dy: &[f64; 2]| dy[1] - 0.9999,
+        on_event: stop::<2>,
+    }
+}
+
+fn spring_event(checks: InteriorChecks) -> (f64, model_runtime::Stats) {
+    let options = HybridOptions {
+        guard_checks: checks,
+        ..HybridOptions::default()
+    };
+    let mut solver =
+        HybridSolver::new(Dopri5::new(), Tolerance::scalar(1e-6, 1e-9), options).unwrap();
+    let out = solver
+        .run(&mut spring(), (), 0.0, &[1.0, 0.0], 5.0, &mut ())
+        .unwrap();
+    assert_eq!(out.stop, StopReason::User(()), "{checks:?}");
+    (out.t, out.stats)
+}
+
+#[test]
+fn screened_checks_find_an_excursion_of_a_derivative_guard_at_the_exact_time() {
+    // x = cos t; the guard -cos t - 0.9999 turns positive at t = π - acos(0.9999).
+    let exact_root = std::f64::consts::PI - 0.9999f64.acos();
+    assert_eq!(
+        first_event(&[(Direction::Up, -0.40)], InteriorChecks::Screened(200)).map(|e| e.0),
+        Some(0)
+    );
+    let (t_exact, exact) = spring_event(InteriorChecks::Exact(8));
+    let (t_screened, screened) = spring_event(InteriorChecks::Screened(8));
+    // Both locate the same crossing on the same dense output.
+    assert!(
+        (t_exact - t_screened).abs() < 1e-13,
+        "{t_exact} {t_screened}"
+    );
+    assert!(
+        (t_screened - exact_root).abs() < 1e-5,
+        "{t_screened} vs {exact_root}"
+    );
+    // The screened run evaluated the model only where an estimate fired.
+    assert!(screened.guard_estimates > 0);
+    assert!(
+        screened.rhs_evals < exact.rhs_evals,
+        "{screened:?} vs {exact:?}"
+    );
+    // Without interior checks the excursion (shorter than a step) goes unseen.
+    let options = HybridOptions::default();
+    let mut solver =
+        HybridSolver::new(Dopri5::new(), Tolerance::scalar(1e-6, 1e-9), options).unwrap();
+    let out = solver
+        .run(&mut spring(), (), 0.0, &[1.0, 0.0], 5.0, &mut ())
+        .unwrap();
+    assert_eq!(out.stop, StopReason::EndTime);
 }
 
 /// Counts on_step calls and checks every sample's mode.

@@ -1,6 +1,7 @@
 //! The hybrid driver's contract: switches, immediate switch-backs, projection, typed errors.
 
 mod common;
+use common::OneGuard;
 
 use model_runtime::{
     Crossed, Direction, Dopri5, EvalError, EventHit, GuardSpec, HybridError, HybridOptions,
@@ -300,33 +301,11 @@ fn a_non_finite_guard_is_a_typed_error_naming_the_mode() {
 }
 
 /// `y' = 1`, singular beyond `y = 2`, with a stop guard at `y = 1.9`.
-struct Cliff;
-impl HybridSystem<1> for Cliff {
-    type Mode = ();
-    type Guard = ();
-    type Stop = ();
-    fn rhs(&self, _: (), t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
-        model_runtime::Model::rhs(&common::Fragile, t, y, dy)
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
-        &[GuardSpec {
-            id: (),
-            direction: Direction::Up,
-        }]
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 1],
-        _dy: &[f64; 1],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[0] - 1.9;
-        Ok(())
-    }
-    fn on_event(&mut self, _: (), _: &EventHit<1, ()>) -> Result<Transition<1, (), ()>, EvalError> {
-        Ok(Transition::Stop(()))
+fn cliff() -> impl HybridSystem<1, Mode = (), Guard = (), Stop = ()> {
+    OneGuard {
+        model: common::Fragile,
+        guard: |y: &[f64; 1], _: &[f64; 1]| y[0] - 1.9,
+        on_event: common::stop::<1>,
     }
 }
 
@@ -342,7 +321,7 @@ fn a_step_overshooting_into_a_singular_region_is_retried_and_the_guard_found() {
     let mut solver =
         HybridSolver::new(Dopri5::new(), Tolerance::scalar(1e-8, 1e-8), options).unwrap();
     let out = solver
-        .run(&mut Cliff, (), 0.0, &[0.0], 5.0, &mut ())
+        .run(&mut cliff(), (), 0.0, &[0.0], 5.0, &mut ())
         .unwrap();
     assert_eq!(out.stop, StopReason::User(()));
     assert!((out.t - 1.9).abs() < 1e-14, "{}", out.t);
@@ -350,34 +329,11 @@ fn a_step_overshooting_into_a_singular_region_is_retried_and_the_guard_found() {
 }
 
 /// `y' = 1` whose transition map at `y = 1` returns a NaN state.
-struct Broken;
-impl HybridSystem<1> for Broken {
-    type Mode = ();
-    type Guard = ();
-    type Stop = ();
-    fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
-        dy[0] = 1.0;
-        Ok(())
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
-        &[GuardSpec {
-            id: (),
-            direction: Direction::Up,
-        }]
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 1],
-        _dy: &[f64; 1],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[0] - 1.0;
-        Ok(())
-    }
-    fn on_event(&mut self, _: (), _: &EventHit<1, ()>) -> Result<Transition<1, (), ()>, EvalError> {
-        Ok(Transition::Continue { y: [f64::NAN] })
+fn broken() -> impl HybridSystem<1, Mode = (), Guard = (), Stop = ()> {
+    OneGuard {
+        model: common::Ramp,
+        guard: |y: &[f64; 1], _: &[f64; 1]| y[0] - 1.0,
+        on_event: |_: &EventHit<1, ()>| Transition::Continue { y: [f64::NAN] },
     }
 }
 
@@ -390,7 +346,7 @@ fn a_non_finite_state_from_the_transition_map_is_named() {
     )
     .unwrap();
     let err = solver
-        .run(&mut Broken, (), 0.0, &[0.0], 10.0, &mut ())
+        .run(&mut broken(), (), 0.0, &[0.0], 10.0, &mut ())
         .unwrap_err();
     match err {
         HybridError::Solve {

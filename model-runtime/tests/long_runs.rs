@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{Harmonic, UpCrossings};
+use common::{up_crossings, Harmonic};
 use model_runtime::{Dop853, HybridOptions, HybridSolver, Tolerance};
 
 #[test]
@@ -49,10 +49,7 @@ fn events_every_period_do_not_change_the_solution() {
     let out = solver
         .run(
             // The oscillator, watched for x crossing upwards: events that restart in place.
-            &mut UpCrossings {
-                model: Harmonic,
-                component: 0,
-            },
+            &mut up_crossings(Harmonic, 0),
             (),
             0.0,
             &[1.0, 0.0],

@@ -3,12 +3,14 @@
 //! Each field is computed from the recorded samples alone (not from solver internals), so the
 //! same code summarises a synthetic run in the tests and the real one.
 
+use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use equations::params::DiskParams;
 use serde::Serialize;
 
 use super::oscillation::{mean_period, Series};
+use crate::quantity::Quantity;
 use crate::record::{RunData, TriggerKind};
 use crate::sample::Sample;
 use crate::scene::schema::ModeName;
@@ -21,6 +23,10 @@ pub const SETTLED_AFTER: f64 = 50.0;
 pub struct Summary {
     /// The scene's name.
     pub scene: String,
+    /// The models that ran, e.g. `pruned (8 states)`.
+    pub model: String,
+    /// Why those models.
+    pub model_reason: String,
     /// Mode at the start (after the initial decision).
     pub start_mode: Option<ModeName>,
     /// Why the run ended.
@@ -64,6 +70,8 @@ pub struct Summary {
     pub energy_drift_rel: Option<f64>,
     /// Largest constraint drift before projection (SI units).
     pub constraint_drift_max: Option<f64>,
+    /// Keys written as `null` because the models that ran do not compute them, with the reason.
+    pub not_computed: BTreeMap<&'static str, String>,
 }
 
 /// One line of the printed comparison.
@@ -126,8 +134,21 @@ impl Summary {
                 .filter(|e| e.to == ModeName::Rolling && e.t > last_window && e.t <= t_stop)
                 .count() as f64
         });
+        let mut not_computed = BTreeMap::new();
+        // Keys that need a state the models may leave frozen: (key, the quantity it is of).
+        for (key, q) in [
+            ("energy_drift_rel", Quantity::Energy),
+            ("constraint_drift_max", Quantity::ResidualZ),
+        ] {
+            if let Some(reason) = data.model.missing(q) {
+                not_computed.insert(key, reason);
+            }
+        }
+        let computes = |key| !not_computed.contains_key(key);
         Summary {
             scene: scene.to_string(),
+            model: data.model.model.label(),
+            model_reason: data.model.reason.clone(),
             start_mode: start_mode(data),
             stop_reason: data
                 .stop
@@ -166,8 +187,11 @@ impl Summary {
                     .map(|x| x.forces.normal / mg),
                 f64::max,
             ),
-            energy_drift_rel: rolling_energy_drift(s),
-            constraint_drift_max: data.constraint_drift_max,
+            energy_drift_rel: rolling_energy_drift(s).filter(|_| computes("energy_drift_rel")),
+            constraint_drift_max: data
+                .constraint_drift_max
+                .filter(|_| computes("constraint_drift_max")),
+            not_computed,
         }
     }
 
@@ -175,7 +199,12 @@ impl Summary {
     pub fn comparison(&self) -> Vec<ComparisonRow> {
         let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4e}"));
         let row = |key, ours: String, paper| ComparisonRow { key, ours, paper };
+        let maybe = |key: &'static str, v: Option<f64>| match self.not_computed.get(key) {
+            Some(reason) => row(key, format!("null ({reason})"), None),
+            None => row(key, num(v), None),
+        };
         vec![
+            row("model", self.model.clone(), None),
             row(
                 "start_mode",
                 self.start_mode.map_or("-".into(), |m| m.to_string()),
@@ -219,8 +248,8 @@ impl Summary {
             row("n_over_mg_min", num(self.n_over_mg_min), Some("> 0")),
             row("n_over_mg_max", num(self.n_over_mg_max), None),
             row("n_over_mg_max_last_s", num(self.n_over_mg_max_last_s), None),
-            row("energy_drift_rel", num(self.energy_drift_rel), None),
-            row("constraint_drift_max", num(self.constraint_drift_max), None),
+            maybe("energy_drift_rel", self.energy_drift_rel),
+            maybe("constraint_drift_max", self.constraint_drift_max),
         ]
     }
 

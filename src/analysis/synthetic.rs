@@ -124,6 +124,7 @@ impl SyntheticRun {
                 wall_s: 0.5,
             },
             constraint_drift_max: Some(1e-12),
+            model: Default::default(),
         }
     }
 }

@@ -126,6 +126,8 @@ pub struct Chart {
     pub y2_label: Option<String>,
     /// Logarithmic left axis.
     pub log_y: bool,
+    /// Logarithmic x axis (for a quantity spanning decades, like θ in Fig. 9).
+    pub log_x: bool,
     /// The lines.
     pub lines: Vec<Line>,
 }
@@ -223,7 +225,9 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
         .lines
         .iter()
         .flat_map(|l| l.points.iter().map(|p| p.0));
-    let x_range = {
+    let x_range = if chart.log_x {
+        padded_range(xs, true)
+    } else {
         let r = padded_range(xs, false);
         let span = r.end - r.start;
         // Time axes start and end at the data: remove the padding on x.
@@ -258,7 +262,8 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
                 .points
                 .iter()
                 .copied()
-                .filter(|p| p.0.is_finite() && p.1.is_finite() && (!chart.log_y || p.1 > 0.0))
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .filter(|p| (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0))
                 .collect();
             let max = if line.stroke == Stroke::Cloud {
                 4 * MAX_POINTS
@@ -291,6 +296,7 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
     macro_rules! mesh {
         ($ctx:expr) => {
             $ctx.configure_mesh()
+                .x_label_formatter(&|v: &f64| tick_label(*v, chart.log_x))
                 .y_label_formatter(&|v: &f64| tick_label(*v, chart.log_y))
                 .x_desc(chart.x_label.as_str())
                 .y_desc(chart.y_label.as_str())
@@ -312,12 +318,12 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
         };
     }
     macro_rules! finish {
-        ($ctx:expr) => {{
+        ($ctx:expr, $x:expr) => {{
             let ctx = $ctx;
             if has_right {
                 // The secondary axis must take the right label area before the primary
                 // mesh is drawn, or the primary labels are drawn there too.
-                let mut ctx = ctx.set_secondary_coord(x_range.clone(), right.clone());
+                let mut ctx = ctx.set_secondary_coord($x, right.clone());
                 mesh!(ctx);
                 for line in series_of(chart, Axis::Left) {
                     line_elements!(line, ctx.draw_series);
@@ -341,10 +347,18 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
             }
         }};
     }
-    if chart.log_y {
-        finish!(builder.build_cartesian_2d(x_range.clone(), left.log_scale())?);
-    } else {
-        finish!(builder.build_cartesian_2d(x_range.clone(), left)?);
+    let x = || x_range.clone();
+    match (chart.log_x, chart.log_y) {
+        (false, false) => finish!(builder.build_cartesian_2d(x(), left)?, x()),
+        (false, true) => finish!(builder.build_cartesian_2d(x(), left.log_scale())?, x()),
+        (true, false) => finish!(
+            builder.build_cartesian_2d(x().log_scale(), left)?,
+            x().log_scale()
+        ),
+        (true, true) => finish!(
+            builder.build_cartesian_2d(x().log_scale(), left.log_scale())?,
+            x().log_scale()
+        ),
     }
     root.present()
 }

@@ -11,8 +11,19 @@ use equations::params::DiskParams;
 use super::chart::{colors, render, Chart, Line};
 use crate::analysis::oscillation::{cycle_extremes, upward_crossings, CycleExtremes, Series};
 use crate::output::atomic::WriteError;
+use crate::quantity::Quantity;
 use crate::record::RunData;
 use crate::sample::Sample;
+
+/// Every quantity the figures plot (besides time): a run that draws them must compute these.
+pub const FIGURE_QUANTITIES: [Quantity; 6] = [
+    Quantity::Theta,
+    Quantity::ThetaDot,
+    Quantity::PsiDot,
+    Quantity::Nu,
+    Quantity::V_C,
+    Quantity::NOverMg,
+];
 
 /// A time window of the run with its samples.
 struct Window<'a> {
@@ -89,6 +100,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
         y_label: y_label.to_string(),
         y2_label: None,
         log_y: false,
+        log_x: false,
         lines,
     };
     let mut charts = Vec::new();
@@ -222,8 +234,11 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             .dots(),
         ],
     );
+    // θ spans three decades after the first second (0.5 down to ~1e-4 rad) and the peaks of N
+    // all happen below 0.01 rad: on a linear axis they crowd into the first pixel column.
     fig9.log_y = true;
-    fig9.x_label = "θ (rad)".to_string();
+    fig9.log_x = true;
+    fig9.x_label = "θ (rad, logarithmic)".to_string();
     charts.push(fig9);
 
     let [_, last] = windows(data);

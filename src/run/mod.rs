@@ -6,6 +6,7 @@
 //! had, marked as such in `events.csv` and `summary.json`.
 
 pub mod collect;
+pub mod model;
 pub mod progress;
 pub mod simulation;
 
@@ -19,6 +20,7 @@ use crate::eval::Backend;
 use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_atomic, write_bytes_atomic, WriteError};
 use crate::output::tables::{write_events, write_trajectory};
+use crate::quantity::Quantity;
 use crate::record::{RunData, StopRecord, Work};
 use crate::scene::schema::ModeName;
 use crate::scene::Scene;
@@ -100,7 +102,8 @@ pub fn run_scene(
     })?;
     let sampling = Sampling::for_rate(scene.file.run.sample_rate);
     let started = Instant::now();
-    let rx = simulation::start(scene, opts.backend, sampling.fine_rate());
+    let choice = model::choose(scene, opts.backend, opts.figures);
+    let rx = simulation::start(scene, &choice, sampling.fine_rate());
     let mut progress = Progress::new(opts.progress, scene.file.run.t_end);
     let mut collector = Collector::new(sampling);
     let allowed = &scene.file.modes.allowed;
@@ -170,7 +173,12 @@ pub fn run_scene(
         rhs_evals: outcome.as_ref().map_or(0, |o| o.rhs_evals),
         wall_s,
     };
-    data.constraint_drift_max = outcome.as_ref().map(|o| o.constraint_drift_max);
+    // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
+    data.constraint_drift_max = outcome
+        .as_ref()
+        .map(|o| o.constraint_drift_max)
+        .filter(|_| choice.computes(Quantity::ResidualZ));
+    data.model = choice;
     let (summary, files) = write_outputs(scene, &data, opts)?;
     Ok(RunReport {
         summary,

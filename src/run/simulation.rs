@@ -11,14 +11,13 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread;
 
 use equations::hybrid::{
-    self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
-    IntegratorChoice, RunOutcome, SimError, SlidingModel, SlipSign, StopReason, TransitionRecord,
-    Trigger,
+    self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, GeneratedModels,
+    InitialState, IntegratorChoice, PrunedModels, RunOutcome, SimError, SlipSign, StopReason,
+    TransitionRecord, Trigger,
 };
-use equations::models;
 use equations::modes::{Mode, SlipChart};
 
-use crate::eval::Backend;
+use super::model::{ModelChoice, RunModel};
 use crate::record::{EventRow, StopRecord, TriggerKind};
 use crate::sample::{ContactForces, DiskState, Sample, Slip};
 use crate::scene::schema::{IntegratorName, ModeName, SlipSignRule};
@@ -167,6 +166,8 @@ pub fn chart_of(scene: &Scene) -> SlipChart {
 struct ChannelObserver {
     tx: SyncSender<Message>,
     open: bool,
+    /// States the models do not integrate: blanked in every sample.
+    frozen: Vec<&'static str>,
 }
 
 impl ChannelObserver {
@@ -179,15 +180,19 @@ impl ChannelObserver {
 
 impl DiskObserver for ChannelObserver {
     fn on_sample(&mut self, sample: &DiskSample) {
-        self.send(Message::Sample(convert_sample(sample)));
+        let mut s = convert_sample(sample);
+        if !self.frozen.is_empty() {
+            s.forget(&self.frozen);
+        }
+        self.send(Message::Sample(s));
     }
     fn on_transition(&mut self, record: &TransitionRecord) {
         self.send(Message::Event(convert_event(record)));
     }
 }
 
-fn simulate_with<R, S>(
-    models: Result<DiskModels<R, S>, SimError>,
+fn simulate_with<R, S, E: ToString>(
+    models: Result<DiskModels<R, S>, E>,
     config: &DiskConfig,
     initial: &InitialState,
     observer: &mut ChannelObserver,
@@ -202,8 +207,9 @@ where
         .map_err(|e| e.to_string())
 }
 
-/// Starts the simulation of `scene` on a worker thread; returns the receiving end.
-pub fn start(scene: &Scene, backend: Backend, fine_rate: f64) -> Receiver<Message> {
+/// Starts the simulation of `scene` with the models of `choice` on a worker thread; returns
+/// the receiving end.
+pub fn start(scene: &Scene, choice: &ModelChoice, fine_rate: f64) -> Receiver<Message> {
     let (tx, rx) = sync_channel(8192);
     let config = config_of(scene, fine_rate);
     let chart = chart_of(scene);
@@ -212,20 +218,28 @@ pub fn start(scene: &Scene, backend: Backend, fine_rate: f64) -> Receiver<Messag
         t: 0.0,
         y: scene.initial.state.to_array(),
     };
+    let (model, frozen) = (choice.model, choice.frozen.clone());
     thread::spawn(move || {
         let mut observer = ChannelObserver {
             tx: tx.clone(),
             open: true,
+            frozen,
         };
-        let result = match backend {
-            Backend::Reference => simulate_with(
+        let result = match model {
+            RunModel::Reference => simulate_with(
                 reference_models(params, chart),
                 &config,
                 &initial,
                 &mut observer,
             ),
-            Backend::Generated => simulate_with(
-                Ok(generated_models(params, chart)),
+            RunModel::Full => simulate_with(
+                GeneratedModels::generated(params, chart).map_err(SimError::Params),
+                &config,
+                &initial,
+                &mut observer,
+            ),
+            RunModel::Pruned => simulate_with(
+                PrunedModels::pruned(params, chart).map_err(|e| e.to_string()),
                 &config,
                 &initial,
                 &mut observer,
@@ -241,25 +255,4 @@ fn reference_models(
     chart: SlipChart,
 ) -> Result<hybrid::ReferenceModels, SimError> {
     hybrid::ReferenceModels::reference(params, chart).map_err(SimError::Params)
-}
-
-/// The models generated from the DSL, sliding in `chart`.
-pub fn generated_models(
-    params: equations::DiskParams,
-    chart: SlipChart,
-) -> DiskModels<
-    models::rolling::Model,
-    SlidingModel<models::sliding_cartesian::Model, models::sliding::Model>,
-> {
-    let p = params.to_array();
-    let sliding = match chart {
-        SlipChart::Cartesian => SlidingModel::Cartesian(models::sliding_cartesian::Model::new(p)),
-        SlipChart::Polar => SlidingModel::Polar(models::sliding::Model::new(p)),
-    };
-    DiskModels {
-        params,
-        rolling: models::rolling::Model::new(p),
-        sliding,
-        chart,
-    }
 }

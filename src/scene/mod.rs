@@ -23,6 +23,10 @@ pub use validate::Scene;
 pub const BUILTIN: &[(&str, &str)] = &[
     ("tangent-toy", include_str!("../../scenes/tangent-toy.toml")),
     (
+        "tangent-toy-pruned",
+        include_str!("../../scenes/tangent-toy-pruned.toml"),
+    ),
+    (
         "pure-rolling",
         include_str!("../../scenes/pure-rolling.toml"),
     ),

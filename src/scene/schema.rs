@@ -233,7 +233,10 @@ fn default_slip_sign() -> SlipSignRule {
     SlipSignRule::Physical
 }
 
-/// `[output]`: the quantities written to `trajectory.csv`.
+/// `[output]`: the quantities written to `trajectory.csv`. They also decide the models that
+/// run: when none of them (nor the figures) needs a state the pruned variants drop (`X`, `Y`,
+/// `Z`, `phi`, hence `energy`, `residual_Z`) and the air is still, the pruned 8-state models
+/// run (`crate::run::model`).
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct OutputTable {

@@ -5,11 +5,13 @@
 //! 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and keeps
 //! only what it needs: the time and `N/mg`.
 
-use equations::hybrid::{self, DiskModels, DiskObserver, DiskSample, InitialState, SimError};
+use equations::hybrid::{
+    self, DiskModels, DiskObserver, DiskSample, GeneratedModels, InitialState, SimError,
+};
 
 use super::SoundError;
 use crate::eval::Backend;
-use crate::run::simulation::{chart_of, config_of, convert_outcome, generated_models};
+use crate::run::simulation::{chart_of, config_of, convert_outcome};
 use crate::scene::Scene;
 
 /// Most force samples one run may keep (about 0.8 GB of memory).
@@ -203,9 +205,9 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
     };
     let chart = chart_of(scene);
     let stop = match backend {
-        Backend::Generated => {
-            simulate_with(&generated_models(params, chart), scene, rate, &mut observer)
-        }
+        Backend::Generated => GeneratedModels::generated(params, chart)
+            .map_err(SimError::Params)
+            .and_then(|models| simulate_with(&models, scene, rate, &mut observer)),
         Backend::Reference => hybrid::ReferenceModels::reference(params, chart)
             .map_err(SimError::Params)
             .and_then(|models| simulate_with(&models, scene, rate, &mut observer)),

@@ -4,7 +4,13 @@
 //! equation compiler emits, so it sees the models only through [`Model<12>`]: everything it needs
 //! beyond `rhs` — the contact force, the slip, the acceleration of the contact particle at zero
 //! slip — is derived from `rhs` and the shared state layout ([`crate::modes::layout`]).
+//!
+//! Three sets exist: the hand-written reference, the generated models, and the generated
+//! *pruned* variants ([`PrunedModels`]), which integrate only what the mode switching needs in
+//! still air (8 of the 12 states; [`super::embedded`] explains how they run in the 12-state
+//! driver and why the states they drop must never be reported).
 
+use super::embedded::{Embedded, Embedding};
 use super::onset::SlipAcceleration;
 use crate::models::{rolling, sliding, sliding_cartesian};
 use crate::modes::{PhysicalState, Slip, SlipChart, DIM};
@@ -118,6 +124,112 @@ impl GeneratedModels {
             sliding,
             chart,
         })
+    }
+}
+
+/// A pruned variant of a generated model, run in the 12-state layout.
+pub type Pruned<M> = Embedded<M, PRUNED_STATES>;
+
+/// Number of states the pruned variants integrate (the same for all three).
+pub const PRUNED_STATES: usize = rolling::pruned::N_STATES;
+
+/// The pruned variants of the generated models: still air compiled in, `X`, `Y`, `Z` and `φ`
+/// frozen ([`PrunedModels::frozen_states`]).
+pub type PrunedModels = DiskModels<
+    Pruned<rolling::pruned::Model>,
+    SlidingModel<Pruned<sliding_cartesian::pruned::Model>, Pruned<sliding::pruned::Model>>,
+>;
+
+/// Why the pruned models cannot run a disk.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PruneError {
+    /// The parameters are invalid.
+    #[error("invalid parameters: {0}")]
+    Params(#[from] ParamError),
+    /// The pruned variants fix the air to still (`mu_a = 0`, `w_z = 0`) at compile time.
+    #[error("the pruned models assume still air, but parameter `{name}` = {value} (must be 0)")]
+    AirNotStill {
+        /// The parameter (`mu_a` or `w_z`).
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A variant has a parameter the disk does not.
+    #[error("model `{model}` has a parameter `{name}` that the disk's parameters lack")]
+    UnknownParam {
+        /// The variant.
+        model: &'static str,
+        /// The parameter.
+        name: &'static str,
+    },
+}
+
+/// A variant's parameter array, taken from `params` by the variant's parameter names.
+fn variant_params<const P: usize>(
+    info: &'static ModelInfo,
+    params: &DiskParams,
+) -> Result<[f64; P], PruneError> {
+    let values = params.to_array();
+    let mut out = [0.0; P];
+    for (slot, &name) in out.iter_mut().zip(info.param_names) {
+        let i =
+            DiskParams::NAMES
+                .iter()
+                .position(|&n| n == name)
+                .ok_or(PruneError::UnknownParam {
+                    model: info.name,
+                    name,
+                })?;
+        *slot = values[i];
+    }
+    Ok(out)
+}
+
+impl PrunedModels {
+    /// The pruned variants for `params`, sliding in `chart`; the air must be still.
+    pub fn pruned(params: DiskParams, chart: SlipChart) -> Result<Self, PruneError> {
+        let params = params.validated()?;
+        for (name, value) in [("mu_a", params.mu_a), ("w_z", params.w_z)] {
+            if value != 0.0 {
+                return Err(PruneError::AirNotStill { name, value });
+            }
+        }
+        let sliding = match chart {
+            SlipChart::Cartesian => {
+                SlidingModel::Cartesian(Embedded::new(sliding_cartesian::pruned::Model::new(
+                    variant_params(&sliding_cartesian::pruned::INFO, &params)?,
+                )))
+            }
+            SlipChart::Polar => SlidingModel::Polar(Embedded::new(sliding::pruned::Model::new(
+                variant_params(&sliding::pruned::INFO, &params)?,
+            ))),
+        };
+        let rolling = Embedded::new(rolling::pruned::Model::new(variant_params(
+            &rolling::pruned::INFO,
+            &params,
+        )?));
+        Ok(DiskModels {
+            params,
+            rolling,
+            sliding,
+            chart,
+        })
+    }
+
+    /// The states of the rolling layout that either mode leaves frozen, by name (`X`, `Y`, `Z`,
+    /// `phi`): their values in a run's samples, and everything computed from them (the energy,
+    /// the height residual `Z − a sin θ`), are not results. A slip kept by the sliding variant
+    /// counts as keeping `V_X` and `V_Y`, which follow from it.
+    pub fn frozen_states(&self) -> Vec<&'static str> {
+        let sliding: Embedding<PRUNED_STATES> = match &self.sliding {
+            SlidingModel::Cartesian(m) => m.embedding(),
+            SlidingModel::Polar(m) => m.embedding(),
+        };
+        let rolling = self.rolling.embedding();
+        (0..DIM)
+            .filter(|&i| !(rolling.keeps(i) && sliding.keeps(i)))
+            .map(|i| rolling::STATE_NAMES[i])
+            .collect()
     }
 }
 

@@ -47,6 +47,20 @@ pub enum OnsetError {
         /// The direction of the friction rolling needed.
         guess: f64,
     },
+    /// A consistent direction exists but the slip would not grow from it: its rate `v̇_C` is
+    /// below 1e-9 of the contact acceleration (as when `μ_st = μ_d`, where the friction sliding
+    /// gets is the friction rolling needed, and the slip grows only at second order). Sliding
+    /// cannot be started by a bridge at constant slip acceleration: it would last
+    /// `2δ / v̇_C`, seconds to hours, unguarded.
+    #[error("the slip would not grow at onset: dv_C/dt = {along:e} m/s^2 at alpha = {direction} is below 1e-9 of the contact acceleration with friction reversed, {scale:e} m/s^2 (static and dynamic friction (nearly) equal?)")]
+    NoSlipGrowth {
+        /// The consistent direction found (rad).
+        direction: f64,
+        /// `v̇_C` there (m/s²).
+        along: f64,
+        /// The size of the contact acceleration with the friction reversed (m/s²).
+        scale: f64,
+    },
     /// The sliding model failed at a probed direction.
     #[error("sliding model failed at alpha = {alpha}: {source}")]
     Model {
@@ -60,13 +74,41 @@ pub enum OnsetError {
 /// Angular resolution of the outward scan: two roots closer than this may be seen as none.
 const SCAN_STEP: f64 = PI / 90.0;
 
+/// A slip rate `v̇_C` at onset below this fraction of the contact acceleration's size does not
+/// start the slip at first order: it is round-off (~1e-15 of it) or a friction jump
+/// `μ_st − μ_d` below ~1e-10, and a bridge to the stick threshold would last seconds.
+const DEGENERATE_GROWTH: f64 = 1e-9;
+
 /// Finds the consistent slip direction nearest `guess` (EQUATIONS.md §6.1).
 ///
 /// `accel(α)` must return the contact acceleration at zero slip with friction direction `α`.
 /// If `w(guess)` already vanishes to round-off (e.g. by symmetry) `guess` is returned as is.
 /// Otherwise the scan walks outward from `guess` in both directions in steps of 2°, and the
 /// first bracket of a sign change of `w` whose root has `v̇_C > 0` is refined to a few ulps.
+/// A root whose `v̇_C` is below 1e-9 of the size of the contact acceleration with the friction
+/// reversed (one more evaluation, at `α0 + π`) is refused as [`OnsetError::NoSlipGrowth`]:
+/// the slip would not leave zero at first order.
 pub fn consistent_slip_direction(
+    guess: f64,
+    mut accel: impl FnMut(f64) -> Result<SlipAcceleration, EvalError>,
+) -> Result<SlipOnset, OnsetError> {
+    let mut onset = nearest_root(guess, &mut accel)?;
+    let alpha = onset.direction + PI;
+    let reversed = accel(alpha).map_err(|source| OnsetError::Model { alpha, source })?;
+    onset.evaluations += 1;
+    let scale = reversed.along.hypot(reversed.across);
+    if onset.acceleration.along <= DEGENERATE_GROWTH * scale {
+        return Err(OnsetError::NoSlipGrowth {
+            direction: onset.direction,
+            along: onset.acceleration.along,
+            scale,
+        });
+    }
+    Ok(onset)
+}
+
+/// The root of `w` with `v̇_C > 0` nearest `guess` (see [`consistent_slip_direction`]).
+fn nearest_root(
     guess: f64,
     mut accel: impl FnMut(f64) -> Result<SlipAcceleration, EvalError>,
 ) -> Result<SlipOnset, OnsetError> {
@@ -84,7 +126,7 @@ pub fn consistent_slip_direction(
             guess,
             acceleration: at_guess,
             attracting: right.across < 0.0,
-            evaluations: 2,
+            evaluations,
         });
     }
     // Outward scan: `left`/`right` are the inner ends of the next brackets on each side.
@@ -208,6 +250,24 @@ mod tests {
             consistent_slip_direction(0.3, f),
             Err(OnsetError::NoConsistentDirection { .. })
         ));
+    }
+
+    #[test]
+    fn a_slip_that_would_not_grow_is_a_typed_error() {
+        // The consistent root at π has v̇_C at round-off; reversed, the contact accelerates
+        // at 2 m/s².
+        let f = |alpha: f64| {
+            Ok(SlipAcceleration {
+                along: 1e-13 - (1.0 + 1e-13) * (1.0 + alpha.cos()),
+                across: (alpha - PI).sin(),
+            })
+        };
+        let result = consistent_slip_direction(PI + 0.1, f);
+        assert!(
+            matches!(result, Err(OnsetError::NoSlipGrowth { along, scale, .. })
+                if along.abs() < 1e-12 && (scale - 2.0).abs() < 1e-9),
+            "{result:?}"
+        );
     }
 
     #[test]

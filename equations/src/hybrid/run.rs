@@ -38,6 +38,9 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     }
 }
 
+/// The most samples a run may deliver (about a day of a fast observer's time).
+const MAX_SAMPLES: f64 = 1e9;
+
 fn config_error(name: &'static str, value: f64, reason: &'static str) -> SimError {
     SimError::Config {
         name,
@@ -73,11 +76,11 @@ fn validate<R, S>(
             return Err(config_error("sample_rate", rate, "must be finite and > 0"));
         }
     }
-    if !(config.min_inclination >= 0.0 && config.min_inclination < std::f64::consts::FRAC_PI_2) {
+    if !(config.min_inclination > 0.0 && config.min_inclination < std::f64::consts::FRAC_PI_2) {
         return Err(config_error(
             "min_inclination",
             config.min_inclination,
-            "must lie in [0, pi/2)",
+            "must lie in (0, pi/2): the models are singular at sin(theta) = 0",
         ));
     }
     if config.chatter.max_transitions == 0 {
@@ -89,6 +92,25 @@ fn validate<R, S>(
             config.t_end,
             "must be finite and not before the initial time",
         ));
+    }
+    if config.stick_threshold < config.atol {
+        // The slip's own error is about atol: a lower threshold is crossed by noise or,
+        // more often, never (the run then slides past every stick, silently wrong).
+        return Err(config_error(
+            "stick_threshold",
+            config.stick_threshold,
+            "must be at least atol: a slip below the integration error cannot be seen to stop",
+        ));
+    }
+    if let Some(rate) = config.sample_rate {
+        // Finite is not enough: 1e300 samples per second would never finish.
+        if rate * (config.t_end - initial.t) > MAX_SAMPLES {
+            return Err(config_error(
+                "sample_rate",
+                rate,
+                "gives more than 1e9 samples over the run",
+            ));
+        }
     }
     if config.slip_sign == SlipSign::Paper && models.chart != SlipChart::Polar {
         return Err(SimError::SignedSlipNeedsPolarChart);

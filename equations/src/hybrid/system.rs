@@ -43,7 +43,7 @@ pub enum DiskGuard {
     SlipStops,
     /// Either mode: `N`, downward.
     ContactLost,
-    /// Either mode: `θ − θ_min`, downward.
+    /// Either mode: `min(θ, π − θ) − θ_min`, downward.
     InclinationFloor,
     /// Bridge: time minus the bridge's end, upward.
     BridgeEnd,
@@ -64,6 +64,15 @@ const SLIDING_GUARDS: [GuardSpec<DiskGuard>; 3] = [
     guard(DiskGuard::InclinationFloor, Direction::Down),
 ];
 const BRIDGE_GUARDS: [GuardSpec<DiskGuard>; 1] = [guard(DiskGuard::BridgeEnd, Direction::Up)];
+
+/// The longest bridge (s). A bridge moves the state along a constant derivative, so it is exact
+/// only while the state barely changes; its duration is `2δ / |v̇_C|`, about `2e-9` s at the
+/// usual accelerations. When the slip's acceleration vanishes to round-off (a degenerate onset,
+/// e.g. `μ_st = μ_d` at the friction limit) the duration runs away — hours, during which the
+/// disk would fly on a straight line with no other guard. Beyond this bound sliding starts at
+/// once with the slip `2δ`, an error of `2δ` in the slip speed: the size the stick threshold
+/// already accepts.
+const MAX_BRIDGE: f64 = 1e-6;
 
 /// Sliding segments starting with a slip below this many stick thresholds get a first step
 /// from the slip's time scale (the ones after a bridge start at two).
@@ -187,7 +196,8 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
     /// started (its magnitude would touch zero inside a step without changing sign).
     fn slip_speed(&self, y: &[f64; DIM]) -> f64 {
         match self.models.chart {
-            SlipChart::Cartesian => y[U_X].hypot(y[U_Y]),
+            // Not `hypot`: slip speeds are far from overflow and underflow (δ ≥ 1e-9 m/s).
+            SlipChart::Cartesian => (y[U_X] * y[U_X] + y[U_Y] * y[U_Y]).sqrt(),
             SlipChart::Polar => self.speed_sign.get() * y[V_C],
         }
     }
@@ -304,9 +314,9 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             },
         );
         let end = state.sliding_vector(self.models.chart, target);
-        if t + duration <= t {
-            // Shorter than an ulp of t: a bridge guard would start at exactly zero and never
-            // arm, so sliding starts at once.
+        if t + duration <= t || duration > MAX_BRIDGE {
+            // Shorter than an ulp of t (a bridge guard would start at exactly zero and never
+            // arm), or too long to be a straight line ([`MAX_BRIDGE`]): sliding starts at once.
             return Ok(Ok((Phase::Sliding, self.start_sliding(&end, target))));
         }
         let mut slope = dy;
@@ -335,8 +345,9 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             }
             SlipChart::Polar => -y[V_C] / dy[V_C],
         };
-        if !(duration.is_finite() && hit.t + duration > hit.t) {
-            // Already at the zero to within an ulp of t (or receding from it): decide here.
+        if !(duration.is_finite() && hit.t + duration > hit.t) || duration > MAX_BRIDGE {
+            // Already at the zero to within an ulp of t (or receding from it), or approaching
+            // it too slowly for a straight line ([`MAX_BRIDGE`]): decide here.
             return self.decide_at_stop(hit.t, y);
         }
         let mut slope = *dy;
@@ -510,7 +521,10 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         let p = &self.models.params;
-        let floor = y[THETA] - self.settings.min_inclination;
+        // The distance from lying flat on either face: a kink at π/2 is harmless, the guard
+        // only needs to be continuous.
+        let theta = y[THETA];
+        let floor = theta.min(std::f64::consts::PI - theta) - self.settings.min_inclination;
         match phase {
             Phase::Rolling => {
                 let f = ContactForce::rolling(p, &PhysicalState::from_rolling(y, 0.0), dy);
@@ -519,9 +533,8 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                 values[2] = floor;
             }
             Phase::Sliding => {
-                let f = ContactForce::sliding(p, &self.models.sliding_state(y), dy);
                 values[0] = self.slip_speed(y) - self.settings.stick;
-                values[1] = f.normal;
+                values[1] = ContactForce::sliding_normal(p, self.models.chart, y, dy);
                 values[2] = floor;
             }
             Phase::Bridge => values[0] = t - self.bridge.t_end,

@@ -4,6 +4,7 @@
 
 pub mod dual;
 pub mod explicit;
+pub mod extreme;
 pub mod scales;
 pub mod subject;
 pub mod tracked;

@@ -17,18 +17,34 @@ use crate::solve::{solve_block, BlockSystem, Sampler, SolveContext};
 use crate::spec::{Diagnostic, ModelSpec, NodeId};
 use crate::structure::{blocks, StructureError};
 use crate::system::{Pivot, System};
+use crate::trig::{self, Rewritten};
 
 /// Knobs of the compiler.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct CompileOptions {
     /// The most operations a block's symbolic solution may cost (beyond computing its
     /// coefficients) before the block is solved numerically at run time instead.
     pub swell_bound: usize,
+    /// A checked pivot is singular when one of its sums has cancelled to at most this fraction
+    /// of the sum of its terms' magnitudes (see [`PIVOT_TOLERANCE`]); `0` tests exact zero only.
+    pub pivot_tolerance: f64,
 }
+
+/// The default [`CompileOptions::pivot_tolerance`]. A sum of `n` terms, each a few rounded
+/// operations, is computed with an error of about `(n + k)·ε·Σ|terms|` (`ε = 1.1e-16`, `k` the
+/// operations per term): for models like the disk's, ~`1e-15·Σ|terms|`. A pivot below
+/// `1e-12·Σ|terms|` has therefore at most ~3 correct digits left, and every value divided by it
+/// is amplified by ~`1e12` beyond its ordinary size: not an answer to integrate. A genuine
+/// pivot that is merely small (a small parameter, a product of small factors) has no
+/// cancelling sum and is never flagged, whatever its size.
+pub const PIVOT_TOLERANCE: f64 = 1e-12;
 
 impl Default for CompileOptions {
     fn default() -> Self {
-        CompileOptions { swell_bound: 600 }
+        CompileOptions {
+            swell_bound: 600,
+            pivot_tolerance: PIVOT_TOLERANCE,
+        }
     }
 }
 
@@ -85,6 +101,8 @@ pub struct Solved {
     pub outputs: Vec<ExprId>,
     /// The parameters fixed at compile time.
     pub fixed: Vec<Option<f64>>,
+    /// [`CompileOptions::pivot_tolerance`].
+    pub pivot_tolerance: f64,
 }
 
 impl Solved {
@@ -150,6 +168,7 @@ impl Solved {
             system,
             outputs,
             fixed,
+            pivot_tolerance: options.pivot_tolerance,
         })
     }
 
@@ -199,14 +218,25 @@ impl Solved {
             .map(|&i| self.pool.sym(Sym::Der(i)))
             .collect();
 
-        let mut e = Emitter::new(&mut self.pool, &self.system, &rhs_input, &ders);
+        let mut roots = ders.clone();
+        roots.extend(selection.outputs.iter().map(|&k| self.outputs[k]));
+        let Rewritten { system, outputs } = trig::rewrite(
+            &mut self.pool,
+            &self.system,
+            &self.outputs,
+            &roots,
+            &|pool, e| to_dsl(pool, e, &|s| symbol_name(spec, s)),
+        );
+        let tolerance = self.pivot_tolerance;
+
+        let mut e = Emitter::new(&mut self.pool, &system, &rhs_input, &ders, tolerance);
         for (new, &d) in ders.iter().enumerate() {
             e.store(Target::Der(new), d)?;
         }
         let (pivots, numeric_blocks) = (e.pivots.clone(), e.numeric_blocks.clone());
         let rhs = e.finish();
 
-        let mut jac_system = self.system.clone();
+        let mut jac_system = system.clone();
         let entries = jacobian(
             &mut self.pool,
             &mut jac_system,
@@ -215,11 +245,11 @@ impl Solved {
         );
         let mut roots: Vec<ExprId> = entries.iter().map(|x| x.value).collect();
         for &i in &selection.states {
-            if let Some(g) = self.system.owner(Sym::Der(i)) {
-                roots.extend(self.system.groups[g].pivots.iter().map(|p| p.value));
+            if let Some(g) = system.owner(Sym::Der(i)) {
+                roots.extend(system.groups[g].pivots.iter().map(|p| p.value));
             }
         }
-        let mut e = Emitter::new(&mut self.pool, &jac_system, &rhs_input, &roots);
+        let mut e = Emitter::new(&mut self.pool, &jac_system, &rhs_input, &roots, tolerance);
         for &i in &selection.states {
             e.check_pivots_of(Sym::Der(i))?;
         }
@@ -232,8 +262,8 @@ impl Solved {
         let jacobian_program = e.finish();
 
         let empty = System::default();
-        let outs: Vec<ExprId> = selection.outputs.iter().map(|&k| self.outputs[k]).collect();
-        let mut e = Emitter::new(&mut self.pool, &empty, &output_input, &outs);
+        let outs: Vec<ExprId> = selection.outputs.iter().map(|&k| outputs[k]).collect();
+        let mut e = Emitter::new(&mut self.pool, &empty, &output_input, &outs, tolerance);
         for (new, &o) in outs.iter().enumerate() {
             e.store(Target::Output(new), o)?;
         }

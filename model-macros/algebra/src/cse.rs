@@ -4,8 +4,9 @@
 //! node already emitted is read from its temporary. Definitions of the solved system are pulled
 //! in on first use (with their block's pivot checks in front), so a reduced variant computes only
 //! what its stores need. Two small analyses of everything reachable run first: arguments whose
-//! sine and cosine are both needed get one `SinCos`, and a reciprocal `1/p` used by two or more
-//! products is computed once and multiplied, while a reciprocal used once becomes a division.
+//! sine and cosine are both needed get one `SinCos`, and a reciprocal `1/p` (or `1/sqrt(p)`) used
+//! by two or more products is computed once and multiplied, while one used once becomes a
+//! division.
 
 use std::collections::{HashMap, HashSet};
 
@@ -13,6 +14,8 @@ use crate::expr::{integer_exponent, ExprId, Node, Pool, Sym};
 use crate::program::{Node as Op, Operand, Program, Stmt, Target};
 use crate::spec::Func;
 use crate::system::{Body, System};
+
+mod pivots;
 
 /// A symbol with no definition and no input slot (a bug in the caller's selection).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,6 +35,7 @@ pub struct Emitter<'a> {
     shared_reciprocals: HashSet<ExprId>,
     factor_uses: HashMap<ExprId, u32>,
     numbered: HashMap<ValueKey, Operand>,
+    pivot_tolerance: f64,
     /// Texts of the pivots checked, in order.
     pub pivots: Vec<String>,
     /// Texts of the blocks solved numerically, in order.
@@ -40,12 +44,14 @@ pub struct Emitter<'a> {
 
 impl<'a> Emitter<'a> {
     /// An emitter for stores of `roots`, reading symbols defined by `system` or mapped by
-    /// `input`.
+    /// `input`; pivots are checked for cancellation with `pivot_tolerance`
+    /// ([`crate::CompileOptions::pivot_tolerance`]).
     pub fn new(
         pool: &'a mut Pool,
         system: &'a System,
         input: &'a dyn Fn(Sym) -> Option<Operand>,
         roots: &[ExprId],
+        pivot_tolerance: f64,
     ) -> Emitter<'a> {
         let mut e = Emitter {
             group_started: vec![false; system.groups.len()],
@@ -60,6 +66,7 @@ impl<'a> Emitter<'a> {
             shared_reciprocals: HashSet::new(),
             factor_uses: HashMap::new(),
             numbered: HashMap::new(),
+            pivot_tolerance,
             pivots: Vec::new(),
             numeric_blocks: Vec::new(),
         };
@@ -69,35 +76,7 @@ impl<'a> Emitter<'a> {
 
     /// Everything reachable from `roots` through definitions, children before parents.
     fn analyse(&mut self, roots: &[ExprId]) {
-        let mut nodes: HashSet<ExprId> = HashSet::new();
-        let mut groups_seen = vec![false; self.system.groups.len()];
-        let mut syms_seen: HashSet<Sym> = HashSet::new();
-        let mut todo: Vec<ExprId> = roots.to_vec();
-        while let Some(r) = todo.pop() {
-            for n in self.pool.reachable(&[r]) {
-                if !nodes.insert(n) {
-                    continue;
-                }
-                let Node::Sym(s) = self.pool.node(n) else {
-                    continue;
-                };
-                let s = *s;
-                let Some(g) = self.system.owner(s) else {
-                    continue;
-                };
-                if !groups_seen[g] {
-                    groups_seen[g] = true;
-                    let group = &self.system.groups[g];
-                    todo.extend(group.pivots.iter().map(|p| p.value));
-                    if let Body::Numeric { .. } = group.body {
-                        todo.extend(group.expressions());
-                    }
-                }
-                if syms_seen.insert(s) {
-                    todo.extend(self.system.expression_of(s));
-                }
-            }
-        }
+        let nodes = self.system.reachable_nodes(self.pool, roots);
         let mut reciprocal_uses: HashMap<ExprId, u32> = HashMap::new();
         for &n in &nodes {
             let node = self.pool.node(n);
@@ -114,7 +93,7 @@ impl<'a> Emitter<'a> {
             }
             for &c in node.children() {
                 if let Node::Pow([_, e]) = self.pool.node(c) {
-                    if self.pool.as_const(*e) == Some(-1.0) {
+                    if self.pool.as_const(*e).is_some_and(|k| k < 0.0) {
                         *reciprocal_uses.entry(c).or_default() += 1;
                     }
                 }
@@ -215,40 +194,6 @@ impl<'a> Emitter<'a> {
         };
         self.value.insert(e, v);
         Ok(v)
-    }
-
-    /// Emits the pivot checks of group `g` (once).
-    fn check_pivots(&mut self, g: usize) -> Result<(), Unbound> {
-        if self.group_started[g] {
-            return Ok(());
-        }
-        self.group_started[g] = true;
-        let system = self.system;
-        for p in &system.groups[g].pivots {
-            if self.pivots.contains(&p.text) {
-                // The same pivot guards another group already checked.
-                continue;
-            }
-            let value = self.operand(p.value)?;
-            self.stmts.push(Stmt::CheckPivot {
-                value,
-                text: p.text.clone(),
-            });
-            self.pivots.push(p.text.clone());
-        }
-        Ok(())
-    }
-
-    /// Emits the pivot checks of the symbolic group defining `s`, even if `s` itself is never
-    /// read (a program that reads only what its definition was inlined into, like a Jacobian
-    /// column, must still refuse a singular point).
-    pub fn check_pivots_of(&mut self, s: Sym) -> Result<(), Unbound> {
-        match self.system.owner(s) {
-            Some(g) if matches!(self.system.groups[g].body, Body::Symbolic(_)) => {
-                self.check_pivots(g)
-            }
-            _ => Ok(()),
-        }
     }
 
     fn symbol(&mut self, s: Sym) -> Result<Operand, Unbound> {
@@ -394,9 +339,18 @@ impl<'a> Emitter<'a> {
     /// A sum: common factors pulled out, then positive terms added and negative ones
     /// subtracted.
     fn sum(&mut self, terms: &[ExprId]) -> Result<Operand, Unbound> {
+        match self.emitted_sum(terms)? {
+            EmittedSum::Refactored(e) => self.operand(e),
+            EmittedSum::Added { value, .. } => Ok(value),
+        }
+    }
+
+    /// The sum as it is emitted: either rewritten with a common factor pulled out (to be
+    /// emitted as that expression), or added up from the operands of its terms.
+    fn emitted_sum(&mut self, terms: &[ExprId]) -> Result<EmittedSum, Unbound> {
         if let Some(e) = self.factored(terms) {
             if !matches!(self.pool.node(e), Node::Add(ts) if **ts == *terms) {
-                return self.operand(e);
+                return Ok(EmittedSum::Refactored(e));
             }
         }
         let mut plus = Vec::new();
@@ -416,22 +370,30 @@ impl<'a> Emitter<'a> {
                 minus.push(magnitude);
             }
         }
+        let mut parts = Vec::with_capacity(terms.len());
         let mut acc = match plus.first() {
-            Some(&t) => self.operand(t)?,
+            Some(&t) => {
+                let v = self.operand(t)?;
+                parts.push(v);
+                v
+            }
             None => {
                 let first = self.operand(minus.remove(0))?;
+                parts.push(first);
                 self.let_(Op::Neg(first))
             }
         };
         for &t in plus.iter().skip(1) {
             let v = self.operand(t)?;
+            parts.push(v);
             acc = self.let_(Op::Add(acc, v));
         }
         for t in minus {
             let v = self.operand(t)?;
+            parts.push(v);
             acc = self.let_(Op::Sub(acc, v));
         }
-        Ok(acc)
+        Ok(EmittedSum::Added { value: acc, parts })
     }
 
     /// A product as `(a * b / (d * e)) * c`: the constant last, so products that differ only
@@ -450,7 +412,7 @@ impl<'a> Emitter<'a> {
             }
             if let Node::Pow([b, x]) = *self.pool.node(f) {
                 if let Some(k) = self.pool.as_const(x).filter(|k| *k < 0.0) {
-                    if k == -1.0 && self.shared_reciprocals.contains(&f) {
+                    if self.shared_reciprocals.contains(&f) {
                         num.push(f);
                     } else {
                         den.push(self.pool.powf(b, -k));
@@ -493,9 +455,30 @@ impl<'a> Emitter<'a> {
         Ok(match integer_exponent(k) {
             Some(n) => self.let_(Op::Powi(b, n)),
             None if k == 0.5 => self.let_(Op::Call(Func::Sqrt, b)),
+            // b^(n + 1/2) as b^n * sqrt(b), sharing the root (a derivative of `sqrt(r)` has
+            // `r^-1.5`).
+            None if k > 0.0 && (k - 0.5).fract() == 0.0 && k < 1024.0 => {
+                let root = self.pool.powf(base, 0.5);
+                let whole = self.pool.powf(base, k - 0.5);
+                let (r, w) = (self.operand(root)?, self.operand(whole)?);
+                self.let_(Op::Mul(w, r))
+            }
             None => self.let_(Op::Powf(b, Operand::Const(k))),
         })
     }
+}
+
+/// How a sum is emitted (see [`Emitter::emitted_sum`]).
+enum EmittedSum {
+    /// As this other expression (a common factor pulled out).
+    Refactored(ExprId),
+    /// Added up.
+    Added {
+        /// The sum.
+        value: Operand,
+        /// The operands added (subtracted ones by their magnitude).
+        parts: Vec<Operand>,
+    },
 }
 
 /// A statement's value, for value numbering: commutative operands in a fixed order.
@@ -553,131 +536,4 @@ impl ValueKey {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::program::Ops;
-
-    fn emit(pool: &mut Pool, roots: &[ExprId]) -> Program {
-        let system = System::default();
-        let input = |s: Sym| match s {
-            Sym::State(i) => Some(Operand::State(i)),
-            _ => None,
-        };
-        let mut e = Emitter::new(pool, &system, &input, roots);
-        for (k, &r) in roots.iter().enumerate() {
-            e.store(Target::Output(k), r).unwrap();
-        }
-        e.finish()
-    }
-
-    #[test]
-    fn sine_and_cosine_share_one_call() {
-        let mut p = Pool::new();
-        let x = p.sym(Sym::State(0));
-        let s = p.call(Func::Sin, x);
-        let c = p.call(Func::Cos, x);
-        let e = p.mul2(s, c);
-        let prog = emit(&mut p, &[e, s]);
-        let sincos = prog
-            .stmts
-            .iter()
-            .filter(|s| matches!(s, Stmt::SinCos { .. }))
-            .count();
-        assert_eq!(sincos, 1);
-        assert_eq!(
-            prog.ops(),
-            Ops {
-                mul: 1,
-                trig: 1,
-                ..Ops::default()
-            }
-        );
-    }
-
-    #[test]
-    fn integer_powers_and_shared_reciprocals() {
-        let mut p = Pool::new();
-        let x = p.sym(Sym::State(0));
-        let y = p.sym(Sym::State(1));
-        let q = p.add2(x, y);
-        let x3 = p.powf(x, 3.0);
-        let a = p.div(x3, q);
-        let b = p.div(y, q);
-        let prog = emit(&mut p, &[a, b]);
-        assert!(prog.stmts.iter().any(|s| matches!(
-            s,
-            Stmt::Let {
-                node: Op::Powi(Operand::State(0), 3),
-                ..
-            }
-        )));
-        // One reciprocal of x + y, two multiplications by it.
-        assert_eq!(
-            prog.ops(),
-            Ops {
-                add: 1,
-                mul: 4,
-                div: 1,
-                ..Ops::default()
-            },
-            "{prog}"
-        );
-    }
-
-    #[test]
-    fn a_quotient_used_once_is_a_division() {
-        let mut p = Pool::new();
-        let x = p.sym(Sym::State(0));
-        let y = p.sym(Sym::State(1));
-        let e = p.div(x, y);
-        let prog = emit(&mut p, &[e]);
-        assert_eq!(
-            prog.ops(),
-            Ops {
-                div: 1,
-                ..Ops::default()
-            }
-        );
-    }
-
-    #[test]
-    fn common_factors_are_pulled_out_of_sums() {
-        // x*y + x*z*2 + x  ->  x*(y + 2z + 1): one multiplication by x.
-        let mut p = Pool::new();
-        let x = p.sym(Sym::State(0));
-        let y = p.sym(Sym::State(1));
-        let z = p.sym(Sym::State(2));
-        let two = p.num(2.0);
-        let xy = p.mul2(x, y);
-        let xz2 = p.mul(&[x, z, two]);
-        let e = p.add(&[xy, xz2, x]);
-        let prog = emit(&mut p, &[e]);
-        assert_eq!(
-            prog.ops(),
-            Ops {
-                add: 2,
-                mul: 2,
-                ..Ops::default()
-            },
-            "{prog}"
-        );
-    }
-
-    #[test]
-    fn equal_partial_products_are_computed_once() {
-        let mut p = Pool::new();
-        let v: Vec<ExprId> = (0..4).map(|i| p.sym(Sym::State(i))).collect();
-        let a = p.mul(&[v[0], v[1], v[2]]);
-        let b = p.mul(&[v[0], v[1], v[3]]);
-        let prog = emit(&mut p, &[a, b]);
-        // x0*x1 once, then one multiplication each.
-        assert_eq!(
-            prog.ops(),
-            Ops {
-                mul: 3,
-                ..Ops::default()
-            },
-            "{prog}"
-        );
-    }
-}
+mod tests;

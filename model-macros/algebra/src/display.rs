@@ -52,7 +52,18 @@ impl fmt::Display for Program {
                 Stmt::SinCos { sin, cos, arg } => {
                     writeln!(f, "let (t{sin}, t{cos}) = {arg}.sin_cos();")?
                 }
-                Stmt::CheckPivot { value, text } => writeln!(f, "check({value}, {text:?})?;")?,
+                Stmt::CheckPivot {
+                    value,
+                    text,
+                    sums,
+                    tolerance,
+                } => {
+                    write!(f, "check({value}, {text:?}")?;
+                    for c in sums {
+                        write!(f, ", |{}| > {tolerance:e} * {}", c.sum, c.magnitude)?;
+                    }
+                    writeln!(f, ")?;")?
+                }
                 Stmt::SolveBlock {
                     n,
                     matrix,

@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 
 use crate::expr::{call_value, pow_value};
-use crate::program::{Node, Operand, Program, Stmt, Target};
+use crate::program::{Node, Operand, Program, Stmt, SumCheck, Target};
 
 /// The values a program reads.
 #[derive(Clone, Copy, Debug)]
@@ -25,7 +25,8 @@ pub struct Inputs<'a> {
 /// Why a program stopped.
 #[derive(Clone, Debug, PartialEq)]
 pub enum EvalFailure {
-    /// A checked pivot (or a pivot of a numeric block) is zero or not finite.
+    /// A checked pivot is zero, not finite or cancelled (a pivot of a numeric block: zero or
+    /// not finite).
     SingularPivot {
         /// The pivot's text.
         text: String,
@@ -120,9 +121,19 @@ impl Program {
                     tmps.insert(*sin, s);
                     tmps.insert(*cos, c);
                 }
-                Stmt::CheckPivot { value, text } => {
+                Stmt::CheckPivot {
+                    value,
+                    text,
+                    sums,
+                    tolerance,
+                } => {
                     let v = read(&tmps, *value)?;
-                    if v == 0.0 || !v.is_finite() {
+                    let mut cancelled = false;
+                    for c in sums {
+                        let (s, m) = (read(&tmps, c.sum)?, read(&tmps, c.magnitude)?);
+                        cancelled |= SumCheck::cancelled(s, m, *tolerance);
+                    }
+                    if v == 0.0 || !v.is_finite() || cancelled {
                         return Err(EvalFailure::SingularPivot {
                             text: text.clone(),
                             value: v,
@@ -226,6 +237,8 @@ mod tests {
                 Stmt::CheckPivot {
                     value: Operand::Tmp(0),
                     text: "sin(x)".into(),
+                    sums: vec![],
+                    tolerance: 0.0,
                 },
                 Stmt::Let {
                     tmp: 2,

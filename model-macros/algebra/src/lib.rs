@@ -6,8 +6,9 @@
 //! [`lower`] (syntax tree to interned expressions, with diagnostics at the user's nodes),
 //! [`linear`] (each equation as coefficients of the derivatives), [`structure`] (matching and
 //! block triangular form), [`solve`] (symbolic elimination per block into the definitions of
-//! [`system`], or a numeric block when that would swell or no safe pivot exists), [`jacobian`]
-//! (chain rule through the solution), [`cse`] (the DAG as a program, counted by [`ops`]) and
+//! [`system`], or a numeric block when that would swell or no safe pivot exists), [`trig`]
+//! (identities that take `atan2` and `sin_cos` calls out of the solution), [`jacobian`] (chain
+//! rule through the solution), [`cse`] (the DAG as a program, counted by [`ops`]) and
 //! [`variant`] (reduced models), chained by [`compile()`]. [`expr`], [`simplify`], [`expand`],
 //! [`diff`] and [`print`](mod@print) are the algebra underneath; [`eval`] interprets a program, so the
 //! emitted code can be tested without compiling it.
@@ -61,9 +62,10 @@ pub mod solve;
 pub mod spec;
 pub mod structure;
 pub mod system;
+pub mod trig;
 pub mod variant;
 
-pub use compile::{compile, CompileOptions};
+pub use compile::{compile, CompileOptions, PIVOT_TOLERANCE};
 pub use eval::{EvalFailure, Inputs, Stores};
 
 #[cfg(test)]

@@ -81,7 +81,9 @@ impl Program {
                     ops.mul += b.mul;
                     ops.div += b.div;
                 }
-                Stmt::CheckPivot { .. } | Stmt::Store { .. } => {}
+                // One multiplication per cancellation test (`|sum| <= tolerance * magnitude`).
+                Stmt::CheckPivot { sums, .. } => ops.mul += sums.len() as u32,
+                Stmt::Store { .. } => {}
             }
         }
         ops

@@ -47,6 +47,23 @@ pub enum Node {
     Atan2(Operand, Operand),
 }
 
+/// A sum inside a pivot (the pivot itself, or one factor of it) with the scale of its
+/// rounding error: the sum of its terms' magnitudes as the program adds them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SumCheck {
+    /// The sum's value.
+    pub sum: Operand,
+    /// `Σ |term|` over the terms the sum adds.
+    pub magnitude: Operand,
+}
+
+impl SumCheck {
+    /// Whether the sum has lost all but `tolerance` of its magnitude to cancellation.
+    pub fn cancelled(sum: f64, magnitude: f64, tolerance: f64) -> bool {
+        sum.abs() <= tolerance * magnitude
+    }
+}
+
 /// Where a result is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Target {
@@ -77,12 +94,18 @@ pub enum Stmt {
         /// The argument.
         arg: Operand,
     },
-    /// Return `EvalError::SingularPivot` if the operand is zero or not finite.
+    /// Return `EvalError::SingularPivot` if the operand is zero or not finite, or if one of its
+    /// sums has cancelled: `|sum| <= tolerance * magnitude`.
     CheckPivot {
         /// The pivot's value.
         value: Operand,
         /// The pivot as the user would write it (e.g. `sin(theta)`).
         text: String,
+        /// The sums of the pivot tested for cancellation (empty when the tolerance is zero or
+        /// the pivot has none).
+        sums: Vec<SumCheck>,
+        /// The fraction of its magnitude below which a sum counts as cancelled.
+        tolerance: f64,
     },
     /// Solve the `n × n` system `A x = b` at run time by Gaussian elimination with partial
     /// pivoting (used where a symbolic solution would swell); a zero or non-finite pivot

@@ -5,7 +5,7 @@
 //! definitions by the chain rule, and the emitter computes each definition once. This is what
 //! keeps a cascade of blocks from multiplying out into one huge expression.
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::{BTreeSet, HashMap, HashSet};
 
 use crate::expr::{ExprId, Node, Pool, Sym};
 
@@ -103,40 +103,47 @@ impl System {
     /// The input symbols (states, parameters, time, undefined derivatives) that `roots` read,
     /// directly or through definitions.
     pub fn inputs_read(&self, pool: &Pool, roots: &[ExprId]) -> BTreeSet<Sym> {
-        let mut inputs = BTreeSet::new();
+        self.reachable_nodes(pool, roots)
+            .into_iter()
+            .filter_map(|n| match pool.node(n) {
+                Node::Sym(s) if self.owner(*s).is_none() => Some(*s),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Every node that computing `roots` evaluates: through the definitions of the symbols it
+    /// reads, with the pivots of their groups (and all of a numeric group's entries).
+    pub fn reachable_nodes(&self, pool: &Pool, roots: &[ExprId]) -> HashSet<ExprId> {
+        let mut nodes = HashSet::new();
         let mut seen_groups = vec![false; self.groups.len()];
-        let mut seen_syms: BTreeSet<Sym> = BTreeSet::new();
+        let mut seen_syms: HashSet<Sym> = HashSet::new();
         let mut todo: Vec<ExprId> = roots.to_vec();
         while let Some(e) = todo.pop() {
             for n in pool.reachable(&[e]) {
+                if !nodes.insert(n) {
+                    continue;
+                }
                 let Node::Sym(s) = pool.node(n) else {
                     continue;
                 };
-                if !seen_syms.insert(*s) {
+                let Some(g) = self.owner(*s) else {
                     continue;
-                }
-                match self.owner(*s) {
-                    None => {
-                        inputs.insert(*s);
+                };
+                if !seen_groups[g] {
+                    seen_groups[g] = true;
+                    let group = &self.groups[g];
+                    todo.extend(group.pivots.iter().map(|p| p.value));
+                    if let Body::Numeric { .. } = group.body {
+                        todo.extend(group.expressions());
                     }
-                    Some(g) => match (&self.groups[g].body, seen_groups[g]) {
-                        (Body::Symbolic(_), _) => {
-                            todo.extend(self.expression_of(*s));
-                            if !seen_groups[g] {
-                                seen_groups[g] = true;
-                                todo.extend(self.groups[g].pivots.iter().map(|p| p.value));
-                            }
-                        }
-                        (Body::Numeric { .. }, false) => {
-                            seen_groups[g] = true;
-                            todo.extend(self.groups[g].expressions());
-                        }
-                        (Body::Numeric { .. }, true) => {}
-                    },
+                }
+                if seen_syms.insert(*s) {
+                    todo.extend(self.expression_of(*s));
                 }
             }
         }
-        inputs
+        nodes
     }
 }
 

@@ -3,7 +3,7 @@
 
 use crate::emit::emit;
 use crate::parse::parse_model;
-use model_algebra::program::{CompiledModel, Node, Operand, Program, Stmt, Target};
+use model_algebra::program::{CompiledModel, Node, Operand, Program, Stmt, SumCheck, Target};
 use model_algebra::spec::Func;
 use quote::quote;
 
@@ -18,10 +18,21 @@ fn compiled() -> CompiledModel {
             Stmt::CheckPivot {
                 value: Operand::Tmp(0),
                 text: "sin(a)".into(),
+                sums: vec![],
+                tolerance: 0.0,
             },
             Stmt::Let {
                 tmp: 2,
                 node: Node::Div(Operand::Tmp(1), Operand::Tmp(0)),
+            },
+            Stmt::CheckPivot {
+                value: Operand::Tmp(1),
+                text: "cos(a) - a".into(),
+                sums: vec![SumCheck {
+                    sum: Operand::Tmp(1),
+                    magnitude: Operand::Tmp(2),
+                }],
+                tolerance: 1e-12,
             },
             Stmt::Let {
                 tmp: 3,
@@ -140,6 +151,7 @@ fn each_statement_kind_is_translated() {
         "let (t0 , t1) = y [0] . sin_cos () ;",
         "if ! (t0 != 0.0 && t0 . is_finite ()) { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"sin(a)\" , value : t0 }) ; }",
         "let t2 : f64 = t1 / t0 ;",
+        "if ! (t1 != 0.0 && t1 . is_finite ()) || t1 . abs () <= 1e-12_f64 * t2 { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"cos(a) - a\" , value : t1 }) ; }",
         "let t3 : f64 = (- 2.0_f64) . powi (3) ;",
         "let t4 : f64 = p [0] . sqrt () ;",
         "let [t5 , t6] = :: model_runtime :: linalg :: solve_block ::< 2 > ([[t2 , 1.0_f64] , [1.0_f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\") ?;",

@@ -100,6 +100,9 @@ rejects! {
     unknown_option: {
         states { x } equations { der(x) = 1; } options { swell = 3 }
     } => ["unknown option `swell`; the options are `swell_bound` (the most operations"];
+    pivot_tolerance_is_a_fraction: {
+        states { x } equations { der(x) = 1; } options { pivot_tolerance = 1 }
+    } => ["`pivot_tolerance` must be at least 0 and below 1, not 1"];
     swell_bound_is_a_whole_number: {
         states { x } equations { der(x) = 1; } options { swell_bound = 1.5 }
     } => ["`swell_bound` must be a whole number of operations, not 1.5"];

@@ -3,7 +3,7 @@
 
 use super::{HybridError, HybridOptions, HybridOutcome, HybridSystem, StopReason, Transition};
 use crate::error::SolveError;
-use crate::events::{EventHit, Found, GuardTracker, Quiet};
+use crate::events::{EventHit, Found, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
 use crate::model::EvalError;
 use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
@@ -212,15 +212,32 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         let it = &mut *self.it;
         let mut y = [0.0; N];
         let mut dy = [0.0; N];
-        self.tracker
-            .scan(t0, t1, &self.values, self.opts.guard_checks, |t, out| {
-                it.interpolate(&m, t, &mut y)?;
-                crate::stepper::eval(&m, t, &y, &mut dy, it.stats_mut())?;
-                it.stats_mut().guard_evals += 1;
+        self.tracker.scan(
+            t0,
+            t1,
+            &self.values,
+            self.opts.guard_checks,
+            |t, probe, out| {
+                match probe {
+                    Probe::Exact => {
+                        it.interpolate(&m, t, &mut y)?;
+                        crate::stepper::eval(&m, t, &y, &mut dy, it.stats_mut())?;
+                        it.stats_mut().guard_evals += 1;
+                    }
+                    Probe::Estimate => {
+                        it.interpolate_with_derivative(&m, t, &mut y, &mut dy)?;
+                        it.stats_mut().guard_estimates += 1;
+                    }
+                }
                 sys.guard_values(m.mode, t, &y, &dy, out)
                     .map_err(crate::error::at(t))?;
-                check_finite(t, out)
-            })
+                match probe {
+                    Probe::Exact => check_finite(t, out),
+                    // A non-finite estimate only asks for the exact check.
+                    Probe::Estimate => Ok(()),
+                }
+            },
+        )
     }
 
     /// Starts a segment in the current mode at `(t, y)`: fresh integrator, guards armed

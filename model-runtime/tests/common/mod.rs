@@ -54,6 +54,19 @@ impl Forced {
     }
 }
 
+/// A clock: y' = 1.
+pub struct Ramp;
+static RAMP: ModelInfo = info("ramp", &["y"]);
+impl Model<1> for Ramp {
+    fn info(&self) -> &'static ModelInfo {
+        &RAMP
+    }
+    fn rhs(&self, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        dy[0] = 1.0;
+        Ok(())
+    }
+}
+
 /// Harmonic oscillator x' = v, v' = -x.
 pub struct Harmonic;
 static HARMONIC: ModelInfo = info("harmonic", &["x", "v"]);
@@ -174,14 +187,41 @@ pub fn dist<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// A one-mode hybrid system around `model` whose one guard is `y[component]` crossing upwards,
-/// restarting in place: events that leave the solution unchanged (periapsis passages of an
-/// orbit, zero crossings of an oscillator).
-pub struct UpCrossings<M> {
+/// A one-mode hybrid system around `model` with one upward guard `guard(y, dy)`; `on_event`
+/// decides what a crossing does. The test systems of the hybrid driver are all of this shape.
+pub struct OneGuard<M, G, E> {
     /// The model integrated.
     pub model: M,
-    /// The state component watched.
-    pub component: usize,
+    /// The guard's value at a state and its derivative.
+    pub guard: G,
+    /// The transition when the guard fires.
+    pub on_event: E,
+}
+
+/// The transition map of a [`OneGuard`] system of dimension `N`.
+pub type EventMap<const N: usize> = fn(&EventHit<N, ()>) -> Transition<N, (), ()>;
+
+/// Restarts in place: events that leave the solution unchanged.
+pub fn continue_in_place<const N: usize>(hit: &EventHit<N, ()>) -> Transition<N, (), ()> {
+    Transition::Continue { y: hit.y }
+}
+
+/// Stops the run.
+pub fn stop<const N: usize>(_: &EventHit<N, ()>) -> Transition<N, (), ()> {
+    Transition::Stop(())
+}
+
+/// The system whose guard is `y[component]` crossing upwards, restarting in place (periapsis
+/// passages of an orbit, zero crossings of an oscillator).
+pub fn up_crossings<M: Model<N>, const N: usize>(
+    model: M,
+    component: usize,
+) -> OneGuard<M, impl Fn(&[f64; N], &[f64; N]) -> f64, EventMap<N>> {
+    OneGuard {
+        model,
+        guard: move |y: &[f64; N], _: &[f64; N]| y[component],
+        on_event: continue_in_place,
+    }
 }
 
 const UP: [GuardSpec<()>; 1] = [GuardSpec {
@@ -189,7 +229,12 @@ const UP: [GuardSpec<()>; 1] = [GuardSpec {
     direction: Direction::Up,
 }];
 
-impl<M: Model<N>, const N: usize> HybridSystem<N> for UpCrossings<M> {
+impl<M, G, E, const N: usize> HybridSystem<N> for OneGuard<M, G, E>
+where
+    M: Model<N>,
+    G: Fn(&[f64; N], &[f64; N]) -> f64,
+    E: FnMut(&EventHit<N, ()>) -> Transition<N, (), ()>,
+{
     type Mode = ();
     type Guard = ();
     type Stop = ();
@@ -204,10 +249,10 @@ impl<M: Model<N>, const N: usize> HybridSystem<N> for UpCrossings<M> {
         _: (),
         _t: f64,
         y: &[f64; N],
-        _dy: &[f64; N],
+        dy: &[f64; N],
         g: &mut [f64],
     ) -> Result<(), EvalError> {
-        g[0] = y[self.component];
+        g[0] = (self.guard)(y, dy);
         Ok(())
     }
     fn on_event(
@@ -215,6 +260,6 @@ impl<M: Model<N>, const N: usize> HybridSystem<N> for UpCrossings<M> {
         _: (),
         hit: &EventHit<N, ()>,
     ) -> Result<Transition<N, (), ()>, EvalError> {
-        Ok(Transition::Continue { y: hit.y })
+        Ok((self.on_event)(hit))
     }
 }

@@ -57,10 +57,20 @@ fn cartesian_pendulum_matches_hand_derivation() {
 
 /// Central differences of the compiled right-hand side.
 pub fn finite_difference_jacobian(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<Vec<f64>> {
+    finite_difference_jacobian_with(m, y, p, 1e-6)
+}
+
+/// Central differences with steps `relative_step · max(|y_j|, 1)`.
+pub fn finite_difference_jacobian_with(
+    m: &CompiledModel,
+    y: &[f64],
+    p: &[f64],
+    relative_step: f64,
+) -> Vec<Vec<f64>> {
     let n = y.len();
     let mut jac = vec![vec![0.0; n]; n];
     for j in 0..n {
-        let h = 1e-6 * y[j].abs().max(1.0);
+        let h = relative_step * y[j].abs().max(1.0);
         let mut yp = y.to_vec();
         yp[j] += h;
         let fp = rhs(m, 0.0, &yp, p);
@@ -126,7 +136,14 @@ fn cartesian_pendulum_jacobian_and_outputs() {
 #[test]
 fn numeric_fallback_has_a_correct_jacobian() {
     let spec = model(PENDULUM);
-    let m = compile(&spec, &CompileOptions { swell_bound: 0 }).expect("compiles");
+    let m = compile(
+        &spec,
+        &CompileOptions {
+            swell_bound: 0,
+            ..CompileOptions::default()
+        },
+    )
+    .expect("compiles");
     assert_eq!(m.numeric_blocks, vec!["der(vx), der(vy), der(P)"]);
     let p = [1.5, 9.81];
     let y = [0.6, -0.8, 0.3, 0.7, 0.0];

@@ -130,7 +130,7 @@ fn check(sys: &RandomSystem, point: [f64; 3], swell_bound: usize) -> Result<(), 
         Sym::State(i) => Some(Operand::State(i)),
         _ => None,
     };
-    let mut e = Emitter::new(&mut pool, &system, &input, &ders);
+    let mut e = Emitter::new(&mut pool, &system, &input, &ders, 0.0);
     for (i, &d) in ders.iter().enumerate() {
         e.store(Target::Der(i), d).expect("bound");
     }

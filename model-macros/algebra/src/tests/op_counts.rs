@@ -34,7 +34,7 @@ fn pendulum_counts() {
 }
 
 const PENDULUM_RHS: [u32; 6] = [7, 11, 2, 0, 0, 0];
-const PENDULUM_JACOBIAN: [u32; 6] = [14, 32, 4, 0, 0, 0];
+const PENDULUM_JACOBIAN: [u32; 6] = [14, 34, 3, 0, 0, 0];
 const PENDULUM_OUTPUTS: [u32; 6] = [2, 5, 0, 0, 0, 0];
 
 #[test]
@@ -52,7 +52,7 @@ fn rolling_counts() {
 }
 
 const ROLLING_RHS: [u32; 6] = [20, 51, 3, 0, 2, 0];
-const ROLLING_JACOBIAN: [u32; 6] = [53, 148, 7, 0, 2, 0];
+const ROLLING_JACOBIAN: [u32; 6] = [53, 152, 4, 0, 2, 0];
 const ROLLING_SPIN_RHS: [u32; 6] = [4, 18, 2, 0, 1, 0];
 
 #[test]
@@ -69,9 +69,28 @@ fn sliding_counts() {
     );
 }
 
-const SLIDING_RHS: [u32; 6] = [37, 95, 5, 0, 4, 0];
-const SLIDING_JACOBIAN: [u32; 6] = [164, 424, 25, 0, 4, 0];
-const SLIDING_PRUNED_RHS: [u32; 6] = [23, 39, 4, 0, 2, 0];
+const SLIDING_RHS: [u32; 6] = [39, 99, 5, 0, 3, 0];
+const SLIDING_JACOBIAN: [u32; 6] = [169, 464, 9, 0, 3, 0];
+const SLIDING_PRUNED_RHS: [u32; 6] = [24, 40, 4, 0, 2, 0];
+
+#[test]
+fn cartesian_sliding_counts() {
+    let spec = model(&super::cartesian_disk::cartesian());
+    let m = compile(&spec, &CompileOptions::default()).unwrap();
+    assert_eq!(counts(&m.rhs), CARTESIAN_RHS, "{}", m.rhs);
+    assert_eq!(counts(&m.jacobian), CARTESIAN_JACOBIAN);
+    assert_eq!(
+        counts(&m.variants[0].rhs),
+        CARTESIAN_PRUNED_RHS,
+        "{}",
+        m.variants[0].rhs
+    );
+}
+
+// Before the trigonometric identities: rhs [42, 101, 6, 1, 5, 0], pruned [27, 53, 6, 1, 3, 0].
+const CARTESIAN_RHS: [u32; 6] = [43, 110, 5, 1, 2, 0];
+const CARTESIAN_JACOBIAN: [u32; 6] = [230, 616, 9, 1, 2, 0];
+const CARTESIAN_PRUNED_RHS: [u32; 6] = [28, 66, 5, 1, 2, 0];
 
 /// A dense `n × n` mass matrix of unrelated entries: its symbolic inverse swells.
 fn dense_model(n: usize) -> String {
@@ -117,6 +136,7 @@ fn swelling_block_falls_back_to_a_numeric_solve() {
         &spec,
         &CompileOptions {
             swell_bound: usize::MAX,
+            ..CompileOptions::default()
         },
     )
     .unwrap();

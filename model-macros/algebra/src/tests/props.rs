@@ -99,6 +99,44 @@ pub fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
     }
 }
 
+/// Below this, an intermediate of the unit-sized trees is round-off: rewritings that are
+/// exact (`cos(atan2(z, 0)) = 0`) and calls that are not (`6e-17`) may then differ.
+const ROUND_OFF: f64 = 1e-9;
+
+/// Whether evaluating `a` at `v` passes a point where the value is not determined to
+/// round-off by its inputs: `atan2` on its branch cut (`y = 0`, `x ≤ 0`, where the sign of a
+/// zero, which `-(a - b)` and `b - a` give differently, picks `±π`), a square root, logarithm,
+/// fractional power or division of a round-off-sized number, or `tan` next to a pole. Two
+/// correct evaluation orders may disagree there by far more than any tolerance.
+pub fn ill_conditioned(a: &Ast, v: &[f64; 3]) -> bool {
+    let tiny = |x: f64| x.abs() < ROUND_OFF;
+    match a {
+        Ast::Num(..) | Ast::Name(..) | Ast::Der(..) => false,
+        Ast::Neg(_, x) => ill_conditioned(x, v),
+        Ast::Bin(_, op, l, r) => {
+            let here = match op {
+                BinOp::Div => tiny(eval_ast(r, v)),
+                BinOp::Pow => eval_ast(r, v).fract() != 0.0 && tiny(eval_ast(l, v)),
+                _ => false,
+            };
+            here || ill_conditioned(l, v) || ill_conditioned(r, v)
+        }
+        Ast::Call(_, f, args) => {
+            let x = eval_ast(&args[0], v);
+            let here = match f {
+                Func::Atan2 => {
+                    let along = eval_ast(&args[1], v);
+                    tiny(x) && along <= ROUND_OFF
+                }
+                Func::Sqrt | Func::Ln => tiny(x),
+                Func::Tan => tiny(x.cos()),
+                _ => false,
+            };
+            here || args.iter().any(|x| ill_conditioned(x, v))
+        }
+    }
+}
+
 fn eval_signed(a: &Ast, v: &[f64; 3]) -> f64 {
     match a {
         Ast::Num(_, x) => *x,
@@ -193,7 +231,7 @@ proptest! {
         let Some(e) = lower.output(0) else { return Ok(()); };
         let want = eval_ast(&a, &v);
         let got = lower.pool.eval(e, &sym_value(&v));
-        if !want.is_finite() {
+        if !want.is_finite() || ill_conditioned(&a, &v) {
             return Ok(());
         }
         prop_assert!(
@@ -235,6 +273,13 @@ proptest! {
         let mut lower = Lowerer::new(&spec, vec![None]);
         let lowered: Vec<ExprId> = (0..exprs.len()).filter_map(|k| lower.output(k)).collect();
         prop_assert_eq!(lowered.len(), exprs.len());
+        // The program is emitted after the trigonometric identities, which are exact where the
+        // calls they replace round (`cos(atan2(x, 0))` is 0, not 6e-17); they are checked
+        // against the calls in `trig`. Here the emission is compared with its own input.
+        let system = crate::system::System::default();
+        let lowered =
+            crate::trig::rewrite(&mut lower.pool, &system, &lowered, &lowered, &|_, _| String::new())
+                .outputs;
         let dag = lower.pool.eval_many(&lowered, &sym_value(&v));
         let out = model
             .outputs_program
@@ -243,7 +288,7 @@ proptest! {
             .outputs(exprs.len());
         for k in 0..exprs.len() {
             let tree = eval_ast(&exprs[k], &v);
-            if !tree.is_finite() || !dag[k].is_finite() {
+            if !tree.is_finite() || !dag[k].is_finite() || ill_conditioned(&exprs[k], &v) {
                 continue;
             }
             let reference = |p: &[f64; 3]| lower.pool.eval(lowered[k], &sym_value(p));

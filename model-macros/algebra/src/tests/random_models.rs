@@ -5,8 +5,8 @@
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 
-use super::end_to_end::finite_difference_jacobian;
-use super::props::{ast, eval_ast};
+use super::end_to_end::{finite_difference_jacobian, finite_difference_jacobian_with};
+use super::props::{ast, eval_ast, ill_conditioned};
 use crate::compile::{compile, CompileOptions};
 use crate::eval::Inputs;
 use crate::spec::{Ast, BinOp, EquationSpec, ModelSpec, Named, NodeId};
@@ -114,6 +114,11 @@ proptest! {
                 }
             }
         }
+        let trees = || model.mass.iter().flatten().chain(&model.forcing);
+        if trees().any(|a| ill_conditioned(a, &tree_point)) {
+            // The reference itself is not determined to round-off there.
+            return Ok(());
+        }
         let f = DVector::from_iterator(n, model.forcing.iter().map(|a| eval_ast(a, &tree_point)));
         if !(m.iter().all(|x| x.is_finite()) && f.iter().all(|x| x.is_finite())) {
             return Ok(());
@@ -130,7 +135,10 @@ proptest! {
             // A symbolic pivot that is exactly zero here: reported, never a NaN.
             Err(_) => return Ok(()),
         };
-        let scale = want.amax() + f.amax() / sv.max();
+        // The trees work with unit-sized numbers (constants up to 3, angles, points in
+        // [0.3, 2]): a result that is round-off of such numbers (cos(atan2(z, 0)) is 6e-17
+        // through the calls and exactly 0 through the identities) carries ~1e-16 absolute.
+        let scale = want.amax() + f.amax() / sv.max() + 1e-7;
         for i in 0..n {
             prop_assert!(
                 (got[i] - want[i]).abs() <= 1e-9 * cond * scale,
@@ -144,6 +152,13 @@ proptest! {
             .map_err(|e| TestCaseError::fail(format!("{e:?}")))?
             .jacobian(n);
         let fd = finite_difference_jacobian(&compiled, &states, &[v[2]]);
+        // The differences are a reference only where they have converged: repeated with
+        // twice and half the step they must agree. Next to a pole (tan(tan(x)) at x ≈ 1.61)
+        // or where f oscillates faster than the step resolves (sin(tan(y)²) at y ≈ 1.565)
+        // they do not, and such entries are skipped: there the reference, not the Jacobian,
+        // is what is off.
+        let coarse = finite_difference_jacobian_with(&compiled, &states, &[v[2]], 2e-6);
+        let fine = finite_difference_jacobian_with(&compiled, &states, &[v[2]], 5e-7);
         // Differences lose about eps·|f|/h to rounding (h ≈ 1e-6): a huge value with a
         // moderate derivative is beyond them.
         let rounding = 1e-9 * got.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -153,7 +168,9 @@ proptest! {
                 // A derivative formula may pass through an infinite intermediate (like
                 // `atan2(1/atan2(0, x), ..)`) where the value itself is finite: such entries
                 // come out non-finite, never wrong; finite ones must match.
-                if fd[i][j].is_finite() && jac[i][j].is_finite() {
+                let converged = (coarse[i][j] - fd[i][j]).abs().max((fine[i][j] - fd[i][j]).abs())
+                    <= 1e-6 * jscale + 2.0 * rounding;
+                if converged && fd[i][j].is_finite() && jac[i][j].is_finite() {
                     prop_assert!(
                         (jac[i][j] - fd[i][j]).abs() <= 1e-5 * jscale + rounding,
                         "jac[{i}][{j}] = {} vs differences {}", jac[i][j], fd[i][j]

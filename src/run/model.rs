@@ -1,0 +1,138 @@
+//! Which models a run integrates: the scene's `[output] quantities` decide.
+//!
+//! The pruned variants (`variant pruned` in the model files) integrate 8 of the 12 states and
+//! compile the air out, so they are cheaper per step; but the states they drop (`X`, `Y`, `Z`,
+//! `phi`) stay frozen at their initial values, and so does everything computed from them (the
+//! energy, the height residual). A run therefore takes them only when nothing it writes needs
+//! a dropped state — every quantity of `trajectory.csv`, and every quantity the figures plot —
+//! and the air is still; otherwise the full models run. Summary keys that a pruned run cannot
+//! compute are written as `null` with the reason, never as a number from a frozen state.
+
+use equations::hybrid::{PruneError, PrunedModels, PRUNED_STATES};
+use equations::modes::DIM;
+
+use crate::eval::Backend;
+use crate::figures::paper::FIGURE_QUANTITIES;
+use crate::quantity::Quantity;
+use crate::scene::Scene;
+
+use super::simulation::chart_of;
+
+/// The models a run integrates.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RunModel {
+    /// The generated models, all 12 states.
+    #[default]
+    Full,
+    /// The generated pruned variants: 8 states, still air.
+    Pruned,
+    /// The hand-written reference models, all 12 states.
+    Reference,
+}
+
+impl RunModel {
+    /// The short name: `full`, `pruned` or `reference`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RunModel::Full => "full",
+            RunModel::Pruned => "pruned",
+            RunModel::Reference => "reference",
+        }
+    }
+
+    /// How `summary.json` and the printed table name it, e.g. `pruned (8 states)`.
+    pub fn label(self) -> String {
+        match self {
+            RunModel::Full => format!("full ({DIM} states)"),
+            RunModel::Pruned => format!("pruned ({PRUNED_STATES} states)"),
+            RunModel::Reference => format!("reference ({DIM} states)"),
+        }
+    }
+}
+
+/// The models chosen for a run, why, and what they leave unintegrated.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ModelChoice {
+    /// The models.
+    pub model: RunModel,
+    /// States (rolling-layout names) the models leave frozen; empty for the full models.
+    pub frozen: Vec<&'static str>,
+    /// Why these models (one line, for the user).
+    pub reason: String,
+}
+
+impl ModelChoice {
+    /// Whether the run computes `q`.
+    pub fn computes(&self, q: Quantity) -> bool {
+        q.computed_without(&self.frozen)
+    }
+
+    /// Why the run does not compute `q`, if it does not.
+    pub fn missing(&self, q: Quantity) -> Option<String> {
+        let frozen = q.reads_among(&self.frozen);
+        (!frozen.is_empty()).then(|| {
+            format!(
+                "{} models: {} not integrated",
+                self.model.name(),
+                frozen.join(", ")
+            )
+        })
+    }
+}
+
+fn full(model: RunModel, reason: String) -> ModelChoice {
+    ModelChoice {
+        model,
+        frozen: Vec::new(),
+        reason,
+    }
+}
+
+/// Chooses the models for `scene`: the pruned ones if the generated backend is asked for, the
+/// air is still, and every quantity of `trajectory.csv` (and of the figures, when `figures`)
+/// is computed by them; the full ones otherwise.
+pub fn choose(scene: &Scene, backend: Backend, figures: bool) -> ModelChoice {
+    if backend == Backend::Reference {
+        return full(RunModel::Reference, "--reference".into());
+    }
+    let pruned = match PrunedModels::pruned(scene.params, chart_of(scene)) {
+        Ok(m) => m,
+        Err(PruneError::AirNotStill { name, value }) => {
+            return full(
+                RunModel::Full,
+                format!("air.{name} = {value}: the pruned models assume still air"),
+            )
+        }
+        Err(e) => return full(RunModel::Full, format!("the pruned models cannot run: {e}")),
+    };
+    let frozen = pruned.frozen_states();
+    let needed = scene
+        .quantities
+        .iter()
+        .chain(if figures { &FIGURE_QUANTITIES[..] } else { &[] });
+    let lost: Vec<String> = needed
+        .filter_map(|q| {
+            let dropped = q.reads_among(&frozen);
+            (!dropped.is_empty()).then(|| format!("{} (needs {})", q.name(), dropped.join(", ")))
+        })
+        .collect();
+    if !lost.is_empty() {
+        return full(
+            RunModel::Full,
+            format!(
+                "output.quantities asks for {}; the pruned models do not integrate {}",
+                lost.join(", "),
+                frozen.join(", ")
+            ),
+        );
+    }
+    ModelChoice {
+        model: RunModel::Pruned,
+        reason: format!(
+            "every requested quantity follows from the {PRUNED_STATES} states of the pruned \
+             model (frozen: {}), in still air",
+            frozen.join(", ")
+        ),
+        frozen,
+    }
+}
