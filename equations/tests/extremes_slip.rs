@@ -100,16 +100,7 @@ fn cases(p: &DiskParams) -> [Case; 2] {
         },
         Case {
             name: "falling from rest",
-            y: rolling_state(
-                p,
-                0.0,
-                theta0,
-                Rates {
-                    x: 0.0,
-                    y: 0.0,
-                    z: 0.0,
-                },
-            ),
+            y: rolling_state(p, 0.0, theta0, Rates::ZERO),
             // Rolling needs friction along −E_X; slipping toward −E_X, friction pushes +E_X.
             slip_direction: [-1.0, 0.0],
             expected: Mode::Sliding,

@@ -72,16 +72,7 @@ fn at_rest_the_disk_falls_at_the_linearised_rate() {
             sample_rate: Some(1e3),
             ..dop853(1e-12, 4.0)
         };
-        let y = rolling_state(
-            &p,
-            0.0,
-            theta0,
-            Rates {
-                x: 0.0,
-                y: 0.0,
-                z: 0.0,
-            },
-        );
+        let y = rolling_state(&p, 0.0, theta0, Rates::ZERO);
         let (stop, watch) = run(&p, &config, y);
         let samples = watch.samples();
         let rate = growth_rate(samples, 1e-8, 1e-4);

@@ -48,70 +48,10 @@
 //!   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
 //!   point): the quiet guard's first nonzero value is already back on the near side.
 
-/// Where, besides the step ends, a step is searched for guard crossings.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum InteriorChecks {
-    /// Only at step ends.
-    #[default]
-    None,
-    /// At this many evenly spaced interior points, each with an exact model evaluation.
-    Exact(u32),
-    /// At this many evenly spaced interior points, estimated from the dense output and its
-    /// derivative without a model evaluation; a point whose estimate shows an admitted
-    /// crossing or departure (or a non-finite value) is then evaluated exactly.
-    Screened(u32),
-}
+mod interior;
 
-impl InteriorChecks {
-    /// Number of interior points.
-    pub fn points(self) -> u32 {
-        match self {
-            InteriorChecks::None => 0,
-            InteriorChecks::Exact(n) | InteriorChecks::Screened(n) => n,
-        }
-    }
-}
-
-/// Spelled `none`, `exact:N` or `screened:N`, as in scene files and command lines.
-impl std::fmt::Display for InteriorChecks {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            InteriorChecks::None => f.write_str("none"),
-            InteriorChecks::Exact(n) => write!(f, "exact:{n}"),
-            InteriorChecks::Screened(n) => write!(f, "screened:{n}"),
-        }
-    }
-}
-
-/// A spelling of [`InteriorChecks`] that is not `none`, `exact:N` or `screened:N`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseInteriorChecksError(pub String);
-
-impl std::fmt::Display for ParseInteriorChecksError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "guard checks {:?}: expected none, exact:N or screened:N with N a whole number",
-            self.0
-        )
-    }
-}
-
-impl std::error::Error for ParseInteriorChecksError {}
-
-impl std::str::FromStr for InteriorChecks {
-    type Err = ParseInteriorChecksError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = || ParseInteriorChecksError(s.to_owned());
-        match s.split_once(':') {
-            None if s == "none" => Ok(InteriorChecks::None),
-            Some(("exact", n)) => n.parse().map(InteriorChecks::Exact).map_err(|_| bad()),
-            Some(("screened", n)) => n.parse().map(InteriorChecks::Screened).map_err(|_| bad()),
-            _ => Err(bad()),
-        }
-    }
-}
+pub(crate) use interior::cubic_keeps_sign;
+pub use interior::{InteriorChecks, ParseInteriorChecksError};
 
 /// How guard values at a time are obtained.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -450,38 +390,6 @@ impl GuardTracker {
     }
 }
 
-/// Whether the cubic through `(0, a)`, `(1/3, b)`, `(2/3, c)`, `(1, d)` keeps one sign on
-/// `[0, 1]` with a margin of half its range (false for any non-finite value).
-fn cubic_keeps_sign(a: f64, b: f64, c: f64, d: f64) -> bool {
-    // Newton's forward differences in u = 3s ∈ [0, 3], expanded to a + c1 u + c2 u² + c3 u³.
-    let (d1, d2, d3) = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
-    let (c1, c2, c3) = (d1 - d2 / 2.0 + d3 / 3.0, (d2 - d3) / 2.0, d3 / 6.0);
-    let p = |u: f64| a + u * (c1 + u * (c2 + u * c3));
-    let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
-    let mut visit = |u: f64| {
-        if u > 0.0 && u < 3.0 {
-            let v = p(u);
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-    };
-    // The extrema: roots of c1 + 2 c2 u + 3 c3 u².
-    if c3 == 0.0 {
-        if c2 != 0.0 {
-            visit(-c1 / (2.0 * c2));
-        }
-    } else {
-        let disc = c2 * c2 - 3.0 * c3 * c1;
-        if disc >= 0.0 {
-            let r = disc.sqrt();
-            visit((-c2 + r) / (3.0 * c3));
-            visit((-c2 - r) / (3.0 * c3));
-        }
-    }
-    let margin = 0.5 * (hi - lo);
-    lo > margin || hi < -margin
-}
-
 #[inline]
 fn sign(v: f64) -> f64 {
     if v > 0.0 {
@@ -629,50 +537,6 @@ mod tests {
         assert!(run(&[Direction::Up], &[g0(g)], g, 1.0, 0).is_none());
         let f = run(&[Direction::Up], &[g0(g)], g, 1.0, 3).unwrap();
         assert!((f.t - 0.4).abs() < 1e-14, "{f:?}");
-    }
-
-    #[test]
-    fn the_cubic_test_sees_a_crossing_between_its_points() {
-        let at = |g: &dyn Fn(f64) -> f64| (g(0.0), g(1.0 / 3.0), g(2.0 / 3.0), g(1.0));
-        let clear = |g: &dyn Fn(f64) -> f64| {
-            let (a, b, c, d) = at(g);
-            cubic_keeps_sign(a, b, c, d)
-        };
-        // Far from zero against its variation, either sign: clear.
-        assert!(clear(&|s| -1.0 + 0.3 * s));
-        assert!(clear(&|s| 2.0 - 0.5 * s * s));
-        // All four values negative, but the cubic's bump at s ≈ 0.79 reaches +0.2.
-        let bump = |s: f64| -1.0 + 25.0 * s * (1.0 - s) * (s - 0.5);
-        let (a, b, c, d) = at(&bump);
-        assert!(a < 0.0 && b < 0.0 && c < 0.0 && d < 0.0);
-        assert!(!clear(&bump));
-        // Approaching zero fast, touching it, or not a number: not clear.
-        assert!(!clear(&|s| -1.0 + 0.9 * s));
-        assert!(!clear(&|s| -s * s));
-        assert!(!clear(&|_| f64::NAN));
-    }
-
-    #[test]
-    fn interior_checks_are_spelled_and_read_back() {
-        for c in [
-            InteriorChecks::None,
-            InteriorChecks::Exact(4),
-            InteriorChecks::Screened(16),
-        ] {
-            assert_eq!(c.to_string().parse::<InteriorChecks>(), Ok(c));
-        }
-        for bad in [
-            "",
-            "some",
-            "exact",
-            "exact:",
-            "exact:-1",
-            "screened:2.5",
-            "fast:3",
-        ] {
-            let e = bad.parse::<InteriorChecks>().unwrap_err();
-            assert!(e.to_string().contains(&format!("{bad:?}")), "{e}");
-        }
     }
 
     #[test]

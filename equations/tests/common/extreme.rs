@@ -32,6 +32,15 @@ pub struct Rates {
     pub z: f64,
 }
 
+impl Rates {
+    /// At rest.
+    pub const ZERO: Rates = Rates {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    };
+}
+
 /// A rolling-consistent state at the origin from `ψ`, `θ` and the body rates.
 pub fn rolling_state(p: &DiskParams, psi: f64, theta: f64, w: Rates) -> [f64; DIM] {
     let mut y = [0.0; DIM];
