@@ -49,7 +49,7 @@ pub struct RunArgs {
     /// Override `solver.atol`.
     #[arg(long, allow_negative_numbers = true)]
     pub atol: Option<f64>,
-    /// Override `solver.integrator` (dopri5, dop853).
+    /// Override `solver.integrator` (dopri5, dop853, rodas4).
     #[arg(long)]
     pub integrator: Option<String>,
     /// Output directory.

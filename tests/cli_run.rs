@@ -156,6 +156,40 @@ fn bad_scenes_write_nothing_and_name_the_key() {
 }
 
 #[test]
+fn every_integrator_finds_the_same_first_transitions() {
+    let dir = tempfile::tempdir().unwrap();
+    let times = |integrator: &str| -> Vec<f64> {
+        let out = dir.path().join(integrator);
+        let o = run(&[
+            "--t-end",
+            "0.3",
+            "--quiet",
+            "--no-figures",
+            "--integrator",
+            integrator,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let (_, rows) = csv(&out.join("events.csv"));
+        rows.iter()
+            .filter(|r| r[2] != "stop")
+            .map(|r| r[0].parse().unwrap())
+            .collect()
+    };
+    let reference = times("dop853");
+    assert!(reference.len() >= 3, "{reference:?}");
+    for integrator in ["dopri5", "rodas4"] {
+        let t = times(integrator);
+        assert_eq!(t.len(), reference.len(), "{integrator}: {t:?}");
+        for (a, b) in t.iter().zip(&reference) {
+            // rtol 1e-8: the transition times agree to ~1e-8 s (BENCHMARKS.md §2).
+            assert!((a - b).abs() < 1e-6, "{integrator}: {a} vs {b}");
+        }
+    }
+}
+
+#[test]
 fn forbidden_mode_stops_the_run_and_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");

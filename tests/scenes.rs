@@ -143,6 +143,11 @@ fn shape_errors_name_the_key() {
         "euler",
     );
     expect_key(
+        with_override("solver.guard_checks=often"),
+        "solver.guard_checks",
+        "expected none, exact:N or screened:N",
+    );
+    expect_key(
         with_override("run.slip_sign=sometimes"),
         "run.slip_sign",
         "sometimes",
@@ -178,6 +183,13 @@ fn overrides_replace_values_and_bad_overrides_are_named() {
     assert_eq!(s.params.mu_d, 0.15);
     let s = with_override("solver.integrator=dopri5").unwrap();
     assert_eq!(s.file.solver.integrator.as_str(), "dopri5");
+    let s = with_override("solver.integrator=rodas4").unwrap();
+    assert_eq!(s.file.solver.integrator.as_str(), "rodas4");
+    let s = with_override("solver.guard_checks=exact:4").unwrap();
+    assert_eq!(
+        s.file.solver.guard_checks.0,
+        equations::hybrid::InteriorChecks::Exact(4)
+    );
     for bad in ["mu_d=0.1", "friction.mu_d", ".x=1", "a.b.c=1"] {
         let err = Override::parse(bad).and_then(|o| scene::parse("t", PAPER, &[o]));
         assert!(err.is_err(), "{bad}");

@@ -136,7 +136,9 @@ pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
     c.integrator = match f.solver.integrator {
         IntegratorName::Dopri5 => IntegratorChoice::Dopri5,
         IntegratorName::Dop853 => IntegratorChoice::Dop853,
+        IntegratorName::Rodas4 => IntegratorChoice::Rodas4,
     };
+    c.guard_checks = f.solver.guard_checks.0;
     c.rtol = f.solver.rtol;
     c.atol = f.solver.atol;
     // The stick threshold must sit above the slip's integration error (BENCHMARKS.md §2:

@@ -4,6 +4,7 @@
 //! silently ignored line; the loader reports the path of the key (`friction.mu`). Values are
 //! kept as written here; the rules between them live in `validate.rs`.
 
+use equations::hybrid::{DiskConfig, InteriorChecks};
 use serde::{Deserialize, Serialize};
 
 /// A whole scene file.
@@ -155,6 +156,8 @@ pub enum IntegratorName {
     Dopri5,
     /// Dormand–Prince 8(5,3).
     Dop853,
+    /// Rodas4, linearly implicit (uses the generated symbolic Jacobians): for stiff stretches.
+    Rodas4,
 }
 
 impl IntegratorName {
@@ -163,6 +166,7 @@ impl IntegratorName {
         match self {
             IntegratorName::Dopri5 => "dopri5",
             IntegratorName::Dop853 => "dop853",
+            IntegratorName::Rodas4 => "rodas4",
         }
     }
 }
@@ -180,6 +184,35 @@ pub struct SolverTable {
     /// Absolute tolerance (default the paper's 1e-10).
     #[serde(default = "default_atol")]
     pub atol: f64,
+    /// Where inside each step the guards are looked at: `none`, `exact:N` or `screened:N`
+    /// (default `screened:64`, BENCHMARKS.md §3).
+    #[serde(default)]
+    pub guard_checks: GuardChecks,
+}
+
+/// `[solver] guard_checks`, spelled as [`InteriorChecks`] reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GuardChecks(pub InteriorChecks);
+
+impl Default for GuardChecks {
+    fn default() -> Self {
+        GuardChecks(DiskConfig::paper().guard_checks)
+    }
+}
+
+impl<'de> Deserialize<'de> for GuardChecks {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(d)?;
+        text.parse()
+            .map(GuardChecks)
+            .map_err(serde::de::Error::custom)
+    }
+}
+
+impl Serialize for GuardChecks {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(&self.0)
+    }
 }
 
 fn default_integrator() -> IntegratorName {
@@ -198,6 +231,7 @@ impl Default for SolverTable {
             integrator: default_integrator(),
             rtol: default_rtol(),
             atol: default_atol(),
+            guard_checks: GuardChecks::default(),
         }
     }
 }
