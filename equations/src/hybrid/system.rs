@@ -9,11 +9,16 @@
 use super::models::DiskModels;
 use super::onset::{consistent_slip_direction, OnsetError};
 use super::{DiskConfig, SlipSign, StopReason, TransitionRecord, Trigger};
-use crate::modes::layout::{ALPHA, THETA, U_X, U_Y, V_C};
+use crate::modes::layout::{THETA, U_X, U_Y, V_C};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use model_runtime::{Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, Transition};
 use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
+
+mod bridge;
+
+pub(crate) use bridge::BridgeStart;
+use bridge::{into_bridge, AfterBridge, BridgePlan};
 
 /// What the integrator is doing: one of the two modes, or a bridge between zero slip and the
 /// stick threshold (part of sliding).
@@ -65,49 +70,11 @@ const SLIDING_GUARDS: [GuardSpec<DiskGuard>; 3] = [
 ];
 const BRIDGE_GUARDS: [GuardSpec<DiskGuard>; 1] = [guard(DiskGuard::BridgeEnd, Direction::Up)];
 
-/// The longest bridge (s). A bridge moves the state along a constant derivative, so it is exact
-/// only while the state barely changes; its duration is `2δ / |v̇_C|`, about `2e-9` s at the
-/// usual accelerations. When the slip's acceleration vanishes to round-off (a degenerate onset,
-/// e.g. `μ_st = μ_d` at the friction limit) the duration runs away — hours, during which the
-/// disk would fly on a straight line with no other guard. Beyond this bound sliding starts at
-/// once with the slip `2δ`, an error of `2δ` in the slip speed: the size the stick threshold
-/// already accepts.
-const MAX_BRIDGE: f64 = 1e-6;
-
 /// Sliding segments starting with a slip below this many stick thresholds get a first step
 /// from the slip's time scale (the ones after a bridge start at two).
 const FIRST_STEP_SLIP_LIMIT: f64 = 4.0;
 /// The first step after a bridge, as a fraction of the slip's doubling time `|u| / |u̇|`.
 const FIRST_STEP_FRACTION: f64 = 3.0;
-
-/// What happens when a bridge ends.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum AfterBridge {
-    /// The slip has reached zero: the rolling equations decide.
-    StickDecision,
-    /// The slip has grown to the stick threshold's double: sliding proper starts with it.
-    StartSliding { slip: Slip },
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct BridgePlan {
-    t_end: f64,
-    slope: [f64; DIM],
-    then: AfterBridge,
-}
-
-/// Where sliding starts — the bridge's first state, or sliding proper when the bridge would
-/// be shorter than an ulp of `t` — or why the run must stop instead (no consistent direction,
-/// or a sliding disk that the floor would have to pull).
-pub(crate) type BridgeStart = Result<(Phase, [f64; DIM]), Halt>;
-
-/// The transition into a planned start (or the stop when there is none).
-fn into_bridge(start: BridgeStart) -> Transition<DIM, Phase, Halt> {
-    match start {
-        Ok((to, y)) => Transition::Switch { to, y },
-        Err(halt) => Transition::Stop(halt),
-    }
-}
 
 /// Why the system asked the driver to stop.
 #[derive(Clone, Debug, PartialEq)]
@@ -266,107 +233,6 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             counted,
         );
         self.bridge_into_sliding(t, &state, onset.direction, onset.acceleration.along)
-    }
-
-    /// Plans a bridge from zero slip to `|v_C| = 2δ` along `e_s(direction)`, the slip speed
-    /// signed like `along` (its rate), and returns the bridge's first state.
-    fn bridge_into_sliding(
-        &mut self,
-        t: f64,
-        state: &PhysicalState,
-        direction: f64,
-        along: f64,
-    ) -> Result<BridgeStart, EvalError> {
-        if !(along != 0.0 && along.is_finite()) {
-            return Ok(Err(Halt::Onset {
-                t,
-                source: OnsetError::NoConsistentDirection { guess: direction },
-            }));
-        }
-        let (_, dy) = self.models.probe_onset(t, state, direction)?;
-        self.shared.bridge_slip.set(Some(Slip {
-            speed: 0.0,
-            direction,
-        }));
-        let mut start_state = *state;
-        start_state.slip = Slip {
-            speed: 0.0,
-            direction,
-        };
-        let normal = ContactForce::sliding(&self.models.params, &start_state, &dy).normal;
-        if normal <= 0.0 || normal.is_nan() {
-            // Rolling was not admissible and sliding would need the floor to pull.
-            return Ok(Err(Halt::Stop(StopReason::ContactLost {
-                t,
-                mode: Mode::Sliding,
-            })));
-        }
-        let target = Slip {
-            speed: 2.0 * self.settings.stick * along.signum(),
-            direction,
-        };
-        let duration = 2.0 * self.settings.stick / along.abs();
-        let start = state.sliding_vector(
-            self.models.chart,
-            Slip {
-                speed: 0.0,
-                direction,
-            },
-        );
-        let end = state.sliding_vector(self.models.chart, target);
-        if t + duration <= t || duration > MAX_BRIDGE {
-            // Shorter than an ulp of t (a bridge guard would start at exactly zero and never
-            // arm), or too long to be a straight line ([`MAX_BRIDGE`]): sliding starts at once.
-            return Ok(Ok((Phase::Sliding, self.start_sliding(&end, target))));
-        }
-        let mut slope = dy;
-        for i in [U_X, U_Y] {
-            // U_X/U_Y and V_C/ALPHA share indices 3 and 4: a straight line in either chart.
-            slope[i] = (end[i] - start[i]) / duration;
-        }
-        self.bridge = BridgePlan {
-            t_end: t + duration,
-            slope,
-            then: AfterBridge::StartSliding { slip: target },
-        };
-        Ok(Ok((Phase::Bridge, start)))
-    }
-
-    /// The slip reached the stick threshold: bridge it to its exact zero.
-    fn bridge_to_stop(
-        &mut self,
-        hit: &EventHit<DIM, DiskGuard>,
-    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
-        let (y, dy) = (&hit.y, &hit.dy);
-        let duration = match self.models.chart {
-            SlipChart::Cartesian => {
-                let (u, du) = ([y[U_X], y[U_Y]], [dy[U_X], dy[U_Y]]);
-                -(u[0] * du[0] + u[1] * du[1]) / (du[0] * du[0] + du[1] * du[1])
-            }
-            SlipChart::Polar => -y[V_C] / dy[V_C],
-        };
-        if !(duration.is_finite() && hit.t + duration > hit.t) || duration > MAX_BRIDGE {
-            // Already at the zero to within an ulp of t (or receding from it), or approaching
-            // it too slowly for a straight line ([`MAX_BRIDGE`]): decide here.
-            return self.decide_at_stop(hit.t, y);
-        }
-        let mut slope = *dy;
-        if self.models.chart == SlipChart::Polar {
-            // α̇ = w / v_C is not followed through zero: the slip direction is held.
-            slope[ALPHA] = 0.0;
-        }
-        self.bridge = BridgePlan {
-            t_end: hit.t + duration,
-            slope,
-            then: AfterBridge::StickDecision,
-        };
-        self.shared
-            .bridge_slip
-            .set(Some(self.models.sliding_state(y).slip));
-        Ok(Transition::Switch {
-            to: Phase::Bridge,
-            y: *y,
-        })
     }
 
     /// At the exact zero of the slip: roll if static friction can hold, else slide on.
