@@ -290,24 +290,28 @@ fn air_drag(p: &DiskParams, state: &PhysicalState) -> f64 {
     }
 }
 
+/// The normal force without the air's share: `m (V̇_Z + g)`.
+fn vertical_balance(p: &DiskParams, dy: &[f64; DIM]) -> f64 {
+    p.m * (dy[V_Z] + p.g)
+}
+
 impl ContactForce {
     /// The secondary outputs of Box 1 (rolling) from the state and its derivative `dy`.
     pub fn rolling(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
         let air = air_drag(p, state);
-        if air == 0.0 {
-            // Still air: no angle is needed (guards evaluate this millions of times).
-            return ContactForce {
-                r_x: p.m * dy[V_X],
-                r_y: p.m * dy[V_Y],
-                normal: p.m * (dy[V_Z] + p.g),
-            };
-        }
-        let (sp, cp) = state.y[PSI].sin_cos();
-        let (st, ct) = state.y[THETA].sin_cos();
+        // The air's share along the normal e_z, on the fixed axes. In still air no angle is
+        // needed, which matters: the guards evaluate this millions of times per run.
+        let [air_x, air_y, air_z] = if air == 0.0 {
+            [0.0; 3]
+        } else {
+            let (sp, cp) = state.y[PSI].sin_cos();
+            let (st, ct) = state.y[THETA].sin_cos();
+            [air * st * cp, air * st * sp, air * ct]
+        };
         ContactForce {
-            r_x: p.m * dy[V_X] + air * st * cp,
-            r_y: p.m * dy[V_Y] + air * st * sp,
-            normal: p.m * (dy[V_Z] + p.g) + air * ct,
+            r_x: p.m * dy[V_X] + air_x,
+            r_y: p.m * dy[V_Y] + air_y,
+            normal: vertical_balance(p, dy) + air_z,
         }
     }
 
@@ -320,7 +324,7 @@ impl ContactForce {
         dy: &[f64; DIM],
     ) -> f64 {
         if p.k_F() == 0.0 {
-            p.m * (dy[V_Z] + p.g)
+            vertical_balance(p, dy)
         } else {
             Self::sliding(p, &PhysicalState::from_sliding(chart, p, y), dy).normal
         }
@@ -329,7 +333,7 @@ impl ContactForce {
     /// The secondary outputs of Box 3 (sliding): `N` from `V̇_Z`, friction `mu_d N` along α.
     pub fn sliding(p: &DiskParams, state: &PhysicalState, dy: &[f64; DIM]) -> Self {
         let air = air_drag(p, state);
-        let normal = p.m * (dy[V_Z] + p.g) + air * state.y[THETA].cos();
+        let normal = vertical_balance(p, dy) + air * state.y[THETA].cos();
         let (sa, ca) = state.slip.direction.sin_cos();
         let t = p.mu_d * normal;
         ContactForce {

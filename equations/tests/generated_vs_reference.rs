@@ -15,7 +15,7 @@ use common::subject::{
     CARTESIAN_OUTPUTS, ROLLING_OUTPUTS, SLIDING_OUTPUTS,
 };
 use common::tracked::Tracked;
-use common::{scales, Agreement, Reach, Rng};
+use common::{scales, Agreement, Layout, Reach, Rng};
 use equations::models;
 use equations::reference::{rolling, sliding_cartesian as cart, sliding_polar as polar};
 use equations::DiskParams;
@@ -71,179 +71,206 @@ fn energy_scale(p: &DiskParams, y: &[f64; 12], v_hor: f64) -> f64 {
         + (p.m * p.g * y[2]).abs()
 }
 
-fn rolling_agrees<G: Family<ROLLING_OUTPUTS>, R: Family<ROLLING_OUTPUTS>>() {
-    let mut rng = Rng::new(51);
+/// What a mode's comparison at one state expects, besides the two evaluations compared.
+struct Expected {
+    /// The explicit form's derivatives, with their running rounding bounds.
+    dy: [Tracked; 12],
+    /// The derivatives' row scales.
+    row: [f64; 12],
+    /// The speed the air drag acts on (for the force's rounding).
+    air_speed: f64,
+    /// The centre's horizontal speed (for the energy's scale).
+    v_hor: f64,
+}
+
+/// The parts of one mode that the comparison needs.
+struct ModeCase<const M: usize> {
+    layout: &'static Layout,
+    names: &'static [&'static str; M],
+    /// Output indices of N, T, R_X, R_Y.
+    forces: [usize; 4],
+}
+
+/// Checks the outputs `(index, scale)`.
+fn check_outputs<const M: usize>(
+    agreement: &mut Agreement,
+    y: &[f64; 12],
+    (gen, refr): (&Eval<M>, &Eval<M>),
+    names: &[&str; M],
+    outputs: &[(usize, f64)],
+) {
+    for &(i, scale) in outputs {
+        agreement.check(gen.out[i], refr.out[i], scale, || {
+            format!("{} at {y:?}", names[i])
+        });
+    }
+}
+
+/// The generated model `G` against the reference `R` at random states of one mode: both
+/// against the explicit form and against each other, then the outputs every mode has;
+/// `own(agreement, p, y, (gen, refr), expected, force)` checks the mode's own outputs.
+fn agrees<G: Family<M>, R: Family<M>, const M: usize>(
+    seed: u64,
+    case: ModeCase<M>,
+    state: impl Fn(&mut Rng, &DiskParams, Reach) -> [f64; 12],
+    expected: impl Fn(&DiskParams, &[f64; 12]) -> Expected,
+    own: impl Fn(&mut Agreement, &DiskParams, &[f64; 12], (&Eval<M>, &Eval<M>), &Expected, f64),
+) {
+    let mut rng = Rng::new(seed);
     let mut agreement = Agreement::default();
     for reach in [Reach::Typical, Reach::Extreme] {
         for _ in 0..STATES_PER_REACH {
             let p = common::some_params(&mut rng);
-            let y = common::rolling_state(&mut rng, &p, reach);
+            let y = state(&mut rng, &p, reach);
             let gen =
                 eval(&G::build(&p), &y).unwrap_or_else(|e| panic!("{}: {e} at {y:?}", G::NAME));
             let refr = eval(&R::build(&p), &y).unwrap();
-            let ex = explicit::rolling::<Tracked>(&p, &y);
-            let row = scales::rolling(&p, &y, &ex.dy.map(|x| x.v));
-            agreement.check_derivatives(&common::ROLLING, &y, &gen.dy, &ex.dy, &row);
-            agreement.check_derivatives(&common::ROLLING, &y, &refr.dy, &ex.dy, &row);
-            let scale = std::array::from_fn(|i| row[i].max(ex.dy[i].scale));
-            agreement.check_derivative_pair(&common::ROLLING, &y, &gen.dy, &refr.dy, &scale);
-            let (sp, cp) = y[6].sin_cos();
-            let (st, ct) = y[7].sin_cos();
-            let v_z = (y[3] * cp + y[4] * sp) * st + y[5] * ct;
-            let force = force_scale(&p, &row, &refr.dy, (v_z - p.w_z).abs());
-            let v_hor = y[3].hypot(y[4]);
-            let o = rolling::output::N;
-            let idx = [
-                o,
-                rolling::output::T,
-                rolling::output::R_X,
-                rolling::output::R_Y,
-            ];
-            let e_scale = energy_scale(&p, &y, v_hor);
+            let ex = expected(&p, &y);
+            agreement.check_derivatives(case.layout, &y, &gen.dy, &ex.dy, &ex.row);
+            agreement.check_derivatives(case.layout, &y, &refr.dy, &ex.dy, &ex.row);
+            let scale = std::array::from_fn(|i| ex.row[i].max(ex.dy[i].scale));
+            agreement.check_derivative_pair(case.layout, &y, &gen.dy, &refr.dy, &scale);
+            let force = force_scale(&p, &ex.row, &refr.dy, ex.air_speed);
             compare_common_outputs(
                 &mut agreement,
                 &y,
                 &gen,
                 &refr,
-                &rolling::OUTPUT_NAMES,
-                idx,
+                case.names,
+                case.forces,
                 force,
-                e_scale,
+                energy_scale(&p, &y, ex.v_hor),
             );
-            let t = refr.out[rolling::output::T];
-            let gap = angle_gap(
-                gen.out[rolling::output::alpha_r],
-                refr.out[rolling::output::alpha_r],
-            );
-            agreement.check(gap, 0.0, force / t, || format!("alpha_r at {y:?}"));
-            let rim = p.a * (y[10].abs() + y[11].abs());
-            for (i, scale) in [
-                (rolling::output::z_residual, y[2].abs() + p.a),
-                (rolling::output::vz_residual, y[5].abs() + rim),
-                (rolling::output::vx_residual, y[3].abs() + rim),
-                (rolling::output::vy_residual, y[4].abs() + rim),
-            ] {
-                agreement.check(gen.out[i], refr.out[i], scale, || {
-                    format!("{} at {y:?}", rolling::OUTPUT_NAMES[i])
-                });
-            }
+            own(&mut agreement, &p, &y, (&gen, &refr), &ex, force);
         }
     }
     agreement.assert_within(&format!("{} vs {}", G::NAME, R::NAME));
+}
+
+fn rolling_agrees<G: Family<ROLLING_OUTPUTS>, R: Family<ROLLING_OUTPUTS>>() {
+    use rolling::output as o;
+    let case = ModeCase {
+        layout: &common::ROLLING,
+        names: &rolling::OUTPUT_NAMES,
+        forces: [o::N, o::T, o::R_X, o::R_Y],
+    };
+    let expected = |p: &DiskParams, y: &[f64; 12]| {
+        let dy = explicit::rolling::<Tracked>(p, y).dy;
+        let (sp, cp) = y[6].sin_cos();
+        let (st, ct) = y[7].sin_cos();
+        let v_z = (y[3] * cp + y[4] * sp) * st + y[5] * ct;
+        Expected {
+            row: scales::rolling(p, y, &dy.map(|x| x.v)),
+            dy,
+            air_speed: (v_z - p.w_z).abs(),
+            v_hor: y[3].hypot(y[4]),
+        }
+    };
+    let own = |agreement: &mut Agreement,
+               p: &DiskParams,
+               y: &[f64; 12],
+               (gen, refr): (&Eval<ROLLING_OUTPUTS>, &Eval<ROLLING_OUTPUTS>),
+               _: &Expected,
+               force: f64| {
+        let gap = angle_gap(gen.out[o::alpha_r], refr.out[o::alpha_r]);
+        agreement.check(gap, 0.0, force / refr.out[o::T], || {
+            format!("alpha_r at {y:?}")
+        });
+        let rim = p.a * (y[10].abs() + y[11].abs());
+        let outputs = [
+            (o::z_residual, y[2].abs() + p.a),
+            (o::vz_residual, y[5].abs() + rim),
+            (o::vx_residual, y[3].abs() + rim),
+            (o::vy_residual, y[4].abs() + rim),
+        ];
+        check_outputs(agreement, y, (gen, refr), &rolling::OUTPUT_NAMES, &outputs);
+    };
+    agrees::<G, R, ROLLING_OUTPUTS>(51, case, common::rolling_state, expected, own);
 }
 
 fn sliding_agrees<G: Family<SLIDING_OUTPUTS>, R: Family<SLIDING_OUTPUTS>>() {
-    let mut rng = Rng::new(52);
-    let mut agreement = Agreement::default();
-    for reach in [Reach::Typical, Reach::Extreme] {
-        for _ in 0..STATES_PER_REACH {
-            let p = common::some_params(&mut rng);
-            let y = common::sliding_state(&mut rng, &p, reach);
-            let gen =
-                eval(&G::build(&p), &y).unwrap_or_else(|e| panic!("{}: {e} at {y:?}", G::NAME));
-            let refr = eval(&R::build(&p), &y).unwrap();
-            let ex = explicit::sliding_polar::<Tracked>(&p, &y);
-            let row = scales::sliding_polar(&p, &y, &ex.dy.map(|x| x.v));
-            agreement.check_derivatives(&common::POLAR, &y, &gen.dy, &ex.dy, &row);
-            agreement.check_derivatives(&common::POLAR, &y, &refr.dy, &ex.dy, &row);
-            let scale = std::array::from_fn(|i| row[i].max(ex.dy[i].scale));
-            agreement.check_derivative_pair(&common::POLAR, &y, &gen.dy, &refr.dy, &scale);
-            let v_z = (-y[3] * (y[4] - y[6]).cos() * y[7].sin()).abs()
+    use polar::output as o;
+    let case = ModeCase {
+        layout: &common::POLAR,
+        names: &polar::OUTPUT_NAMES,
+        forces: [o::N, o::T, o::R_X, o::R_Y],
+    };
+    let expected = |p: &DiskParams, y: &[f64; 12]| {
+        let dy = explicit::sliding_polar::<Tracked>(p, y).dy;
+        let row = scales::sliding_polar(p, y, &dy.map(|x| x.v));
+        Expected {
+            dy,
+            air_speed: (-y[3] * (y[4] - y[6]).cos() * y[7].sin()).abs()
                 + p.a * y[10].abs()
                 + y[5].abs()
-                + p.w_z.abs();
-            let force = force_scale(&p, &row, &refr.dy, v_z);
-            let v_hor = row[0].hypot(row[1]);
-            let idx = [
-                polar::output::N,
-                polar::output::T,
-                polar::output::R_X,
-                polar::output::R_Y,
-            ];
-            let e_scale = energy_scale(&p, &y, v_hor);
-            compare_common_outputs(
-                &mut agreement,
-                &y,
-                &gen,
-                &refr,
-                &polar::OUTPUT_NAMES,
-                idx,
-                force,
-                e_scale,
-            );
-            for (i, scale) in [
-                (polar::output::V_X, row[0]),
-                (polar::output::V_Y, row[1]),
-                (polar::output::friction_power, p.mu_d * force * y[3].abs()),
-                (polar::output::z_residual, y[2].abs() + p.a),
-                (polar::output::vz_residual, y[5].abs() + p.a * y[10].abs()),
-            ] {
-                agreement.check(gen.out[i], refr.out[i], scale, || {
-                    format!("{} at {y:?}", polar::OUTPUT_NAMES[i])
-                });
-            }
+                + p.w_z.abs(),
+            v_hor: row[0].hypot(row[1]),
+            row,
         }
+    };
+    let own = |agreement: &mut Agreement,
+               p: &DiskParams,
+               y: &[f64; 12],
+               evals: (&Eval<SLIDING_OUTPUTS>, &Eval<SLIDING_OUTPUTS>),
+               ex: &Expected,
+               force: f64| {
+        let row = ex.row;
+        let outputs = [
+            (o::V_X, row[0]),
+            (o::V_Y, row[1]),
+            (o::friction_power, p.mu_d * force * y[3].abs()),
+            (o::z_residual, y[2].abs() + p.a),
+            (o::vz_residual, y[5].abs() + p.a * y[10].abs()),
+        ];
+        check_outputs(agreement, y, evals, &polar::OUTPUT_NAMES, &outputs);
+    };
+    agrees::<G, R, SLIDING_OUTPUTS>(52, case, common::sliding_state, expected, own);
+}
+
+/// The Cartesian chart's expectations; its row scales follow from the polar form's derivatives.
+fn cartesian_expected(p: &DiskParams, y: &[f64; 12]) -> Expected {
+    let polar_y = common::cartesian_to_polar(y);
+    let polar_dy = explicit::sliding_polar::<f64>(p, &polar_y).dy;
+    let row = scales::sliding_cartesian(p, &polar_y, &polar_dy);
+    Expected {
+        dy: explicit::sliding_cartesian::<Tracked>(p, y).dy,
+        air_speed: polar_y[3].abs() + p.a * y[10].abs() + y[5].abs() + p.w_z.abs(),
+        v_hor: row[0].hypot(row[1]),
+        row,
     }
-    agreement.assert_within(&format!("{} vs {}", G::NAME, R::NAME));
 }
 
 fn cartesian_agrees<G: Family<CARTESIAN_OUTPUTS>, R: Family<CARTESIAN_OUTPUTS>>() {
-    let mut rng = Rng::new(53);
-    let mut agreement = Agreement::default();
-    for reach in [Reach::Typical, Reach::Extreme] {
-        for _ in 0..STATES_PER_REACH {
-            let p = common::some_params(&mut rng);
-            let yp = common::sliding_state(&mut rng, &p, reach);
-            let y = common::polar_to_cartesian(&yp);
-            let gen =
-                eval(&G::build(&p), &y).unwrap_or_else(|e| panic!("{}: {e} at {y:?}", G::NAME));
-            let refr = eval(&R::build(&p), &y).unwrap();
-            let ex = explicit::sliding_cartesian::<Tracked>(&p, &y);
-            let polar_y = common::cartesian_to_polar(&y);
-            let polar_dy = explicit::sliding_polar::<f64>(&p, &polar_y).dy;
-            let row = scales::sliding_cartesian(&p, &polar_y, &polar_dy);
-            agreement.check_derivatives(&common::CARTESIAN, &y, &gen.dy, &ex.dy, &row);
-            agreement.check_derivatives(&common::CARTESIAN, &y, &refr.dy, &ex.dy, &row);
-            let scale = std::array::from_fn(|i| row[i].max(ex.dy[i].scale));
-            agreement.check_derivative_pair(&common::CARTESIAN, &y, &gen.dy, &refr.dy, &scale);
-            let v_z = yp[3].abs() + p.a * y[10].abs() + y[5].abs() + p.w_z.abs();
-            let force = force_scale(&p, &row, &refr.dy, v_z);
-            let v_hor = row[0].hypot(row[1]);
-            let idx = [
-                cart::output::N,
-                cart::output::T,
-                cart::output::R_X,
-                cart::output::R_Y,
-            ];
-            let e_scale = energy_scale(&p, &y, v_hor);
-            compare_common_outputs(
-                &mut agreement,
-                &y,
-                &gen,
-                &refr,
-                &cart::OUTPUT_NAMES,
-                idx,
-                force,
-                e_scale,
-            );
-            for (i, scale) in [
-                (cart::output::V_X, row[0]),
-                (cart::output::V_Y, row[1]),
-                (cart::output::slip_speed, yp[3]),
-                (cart::output::friction_power, p.mu_d * force * yp[3]),
-                (cart::output::z_residual, y[2].abs() + p.a),
-                (cart::output::vz_residual, y[5].abs() + p.a * y[10].abs()),
-            ] {
-                agreement.check(gen.out[i], refr.out[i], scale, || {
-                    format!("{} at {y:?}", cart::OUTPUT_NAMES[i])
-                });
-            }
-            let i = cart::output::slip_direction;
-            let gap = angle_gap(gen.out[i], refr.out[i]);
-            agreement.check(gap, 0.0, 1.0, || format!("slip_direction at {y:?}"));
-        }
-    }
-    agreement.assert_within(&format!("{} vs {}", G::NAME, R::NAME));
+    use cart::output as o;
+    let case = ModeCase {
+        layout: &common::CARTESIAN,
+        names: &cart::OUTPUT_NAMES,
+        forces: [o::N, o::T, o::R_X, o::R_Y],
+    };
+    let state = |rng: &mut Rng, p: &DiskParams, reach| {
+        common::polar_to_cartesian(&common::sliding_state(rng, p, reach))
+    };
+    let own = |agreement: &mut Agreement,
+               p: &DiskParams,
+               y: &[f64; 12],
+               (gen, refr): (&Eval<CARTESIAN_OUTPUTS>, &Eval<CARTESIAN_OUTPUTS>),
+               ex: &Expected,
+               force: f64| {
+        let row = ex.row;
+        let speed = y[3].hypot(y[4]);
+        let outputs = [
+            (o::V_X, row[0]),
+            (o::V_Y, row[1]),
+            (o::slip_speed, speed),
+            (o::friction_power, p.mu_d * force * speed),
+            (o::z_residual, y[2].abs() + p.a),
+            (o::vz_residual, y[5].abs() + p.a * y[10].abs()),
+        ];
+        check_outputs(agreement, y, (gen, refr), &cart::OUTPUT_NAMES, &outputs);
+        let gap = angle_gap(gen.out[o::slip_direction], refr.out[o::slip_direction]);
+        agreement.check(gap, 0.0, 1.0, || format!("slip_direction at {y:?}"));
+    };
+    agrees::<G, R, CARTESIAN_OUTPUTS>(53, case, state, cartesian_expected, own);
 }
 
 #[test]
@@ -300,12 +327,9 @@ fn generated_cartesian_sliding_is_regular_along_the_axes() {
         let gen = eval(&CartesianGen::build(&p), &y)
             .unwrap_or_else(|e| panic!("{}: {e} at {y:?}", CartesianGen::NAME));
         let refr = eval(&CartesianRef::build(&p), &y).unwrap();
-        let ex = explicit::sliding_cartesian::<Tracked>(&p, &y);
-        let polar_y = common::cartesian_to_polar(&y);
-        let polar_dy = explicit::sliding_polar::<f64>(&p, &polar_y).dy;
-        let row = scales::sliding_cartesian(&p, &polar_y, &polar_dy);
-        agreement.check_derivatives(&common::CARTESIAN, &y, &gen.dy, &ex.dy, &row);
-        agreement.check_derivatives(&common::CARTESIAN, &y, &refr.dy, &ex.dy, &row);
+        let ex = cartesian_expected(&p, &y);
+        agreement.check_derivatives(&common::CARTESIAN, &y, &gen.dy, &ex.dy, &ex.row);
+        agreement.check_derivatives(&common::CARTESIAN, &y, &refr.dy, &ex.dy, &ex.row);
     }
     agreement.assert_within("cartesian sliding along the axes");
 }

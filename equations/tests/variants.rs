@@ -73,77 +73,82 @@ fn force_scale(p: &DiskParams, row: &[f64; 12]) -> f64 {
     p.m * (p.g + row[3].max(row[4]).max(row[5]))
 }
 
-#[test]
-fn pruned_rolling_agrees_with_rolling() {
-    let mut rng = Rng::new(71);
+/// The variant against its full model at 4000 random still-air states of one mode, half of
+/// them at the extremes; `models` builds the pair from the parameters.
+fn variant_agrees<F, V, const M: usize, const N: usize, const K: usize>(
+    seed: u64,
+    label: &str,
+    state: impl Fn(&mut Rng, &DiskParams, Reach) -> [f64; 12],
+    row: impl Fn(&DiskParams, &[f64; 12]) -> [f64; 12],
+    models: impl Fn(&DiskParams) -> (F, V),
+) where
+    F: WithOutputs<12, M>,
+    V: WithOutputs<N, K>,
+{
+    let mut rng = Rng::new(seed);
     let mut agreement = Agreement::default();
     for reach in [Reach::Typical, Reach::Extreme] {
         for _ in 0..2000 {
             let p = still_air(&mut rng);
-            let y = common::rolling_state(&mut rng, &p, reach);
-            let row = scales::rolling_full(&p, &y);
-            let full = models::rolling::Model::new(p.to_array());
-            let variant = models::rolling::pruned::Model::new(variant_params(&p));
-            variant_matches(
-                &full,
-                &variant,
-                &y,
-                &row,
-                force_scale(&p, &row),
-                &mut agreement,
-            );
+            let y = state(&mut rng, &p, reach);
+            let row = row(&p, &y);
+            let (full, variant) = models(&p);
+            let force = force_scale(&p, &row);
+            variant_matches(&full, &variant, &y, &row, force, &mut agreement);
         }
     }
-    agreement.assert_within("rolling::pruned");
+    agreement.assert_within(label);
+}
+
+#[test]
+fn pruned_rolling_agrees_with_rolling() {
+    use models::rolling::{pruned, Model};
+    variant_agrees(
+        71,
+        "rolling::pruned",
+        common::rolling_state,
+        scales::rolling_full,
+        |p| {
+            (
+                Model::new(p.to_array()),
+                pruned::Model::new(variant_params(p)),
+            )
+        },
+    );
 }
 
 #[test]
 fn pruned_sliding_agrees_with_sliding() {
-    let mut rng = Rng::new(72);
-    let mut agreement = Agreement::default();
-    for reach in [Reach::Typical, Reach::Extreme] {
-        for _ in 0..2000 {
-            let p = still_air(&mut rng);
-            let y = common::sliding_state(&mut rng, &p, reach);
-            let row = scales::sliding_polar_full(&p, &y);
-            let full = models::sliding::Model::new(p.to_array());
-            let variant = models::sliding::pruned::Model::new(variant_params(&p));
-            variant_matches(
-                &full,
-                &variant,
-                &y,
-                &row,
-                force_scale(&p, &row),
-                &mut agreement,
-            );
-        }
-    }
-    agreement.assert_within("sliding::pruned");
+    use models::sliding::{pruned, Model};
+    variant_agrees(
+        72,
+        "sliding::pruned",
+        common::sliding_state,
+        scales::sliding_polar_full,
+        |p| {
+            (
+                Model::new(p.to_array()),
+                pruned::Model::new(variant_params(p)),
+            )
+        },
+    );
 }
 
 #[test]
 fn pruned_cartesian_sliding_agrees_with_cartesian_sliding() {
-    let mut rng = Rng::new(73);
-    let mut agreement = Agreement::default();
-    for reach in [Reach::Typical, Reach::Extreme] {
-        for _ in 0..2000 {
-            let p = still_air(&mut rng);
-            let polar = common::sliding_state(&mut rng, &p, reach);
-            let y = common::polar_to_cartesian(&polar);
-            let row = scales::sliding_cartesian_full(&p, &y);
-            let full = models::sliding_cartesian::Model::new(p.to_array());
-            let variant = models::sliding_cartesian::pruned::Model::new(variant_params(&p));
-            variant_matches(
-                &full,
-                &variant,
-                &y,
-                &row,
-                force_scale(&p, &row),
-                &mut agreement,
-            );
-        }
-    }
-    agreement.assert_within("sliding_cartesian::pruned");
+    use models::sliding_cartesian::{pruned, Model};
+    variant_agrees(
+        73,
+        "sliding_cartesian::pruned",
+        |rng, p, reach| common::polar_to_cartesian(&common::sliding_state(rng, p, reach)),
+        scales::sliding_cartesian_full,
+        |p| {
+            (
+                Model::new(p.to_array()),
+                pruned::Model::new(variant_params(p)),
+            )
+        },
+    );
 }
 
 #[test]

@@ -247,26 +247,16 @@ impl GuardTracker {
             };
             // A departure from zero happened at `lo` at the latest: earlier than any crossing.
             for i in 0..n {
-                let v = self.scratch[i];
-                if self.reference[i] == 0.0 && v != 0.0 && self.departure_fires[i] {
-                    let c = if v > 0.0 { Crossed::Up } else { Crossed::Down };
-                    if self.directions[i].admits(c) {
-                        return Ok(Some(Found {
-                            index: i,
-                            t: lo,
-                            before: lo,
-                            direction: c,
-                        }));
-                    }
+                if let Some(c) = self.departure(i, self.scratch[i]) {
+                    return Ok(Some(Found {
+                        index: i,
+                        t: lo,
+                        before: lo,
+                        direction: c,
+                    }));
                 }
             }
-            let mut any = false;
-            for i in 0..n {
-                if let Some(c) = crossing(self.reference[i], self.scratch[i]) {
-                    any |= self.directions[i].admits(c);
-                }
-            }
-            if any {
+            if (0..n).any(|i| self.admitted_crossing(i, self.scratch[i]).is_some()) {
                 return self.locate(lo, tk, &mut eval);
             }
             for i in 0..n {
@@ -319,14 +309,24 @@ impl GuardTracker {
     fn may_fire(&self) -> bool {
         (0..self.len()).any(|i| {
             let v = self.scratch[i];
-            let departs = self.reference[i] == 0.0 && v != 0.0 && self.departure_fires[i];
-            let moved = if departs {
-                Some(if v > 0.0 { Crossed::Up } else { Crossed::Down })
-            } else {
-                crossing(self.reference[i], v)
-            };
-            !v.is_finite() || moved.is_some_and(|c| self.directions[i].admits(c))
+            !v.is_finite()
+                || self.departure(i, v).is_some()
+                || self.admitted_crossing(i, v).is_some()
         })
+    }
+
+    /// The departure from zero of pending guard `i` to the value `v`, if it fires.
+    fn departure(&self, i: usize, v: f64) -> Option<Crossed> {
+        if self.reference[i] != 0.0 || v == 0.0 || !self.departure_fires[i] {
+            return None;
+        }
+        let c = if v > 0.0 { Crossed::Up } else { Crossed::Down };
+        self.directions[i].admits(c).then_some(c)
+    }
+
+    /// The crossing of guard `i`'s reference sign by the value `v`, if its filter admits it.
+    fn admitted_crossing(&self, i: usize, v: f64) -> Option<Crossed> {
+        crossing(self.reference[i], v).filter(|&c| self.directions[i].admits(c))
     }
 
     /// Locates the earliest admitted crossing in `[lo, hi]`; `self.scratch` holds the values
@@ -341,12 +341,9 @@ impl GuardTracker {
         let mut best: Option<Found> = None;
         for i in 0..n {
             let r = self.reference[i];
-            let Some(c) = crossing(r, self.scratch[i]) else {
+            let Some(c) = self.admitted_crossing(i, self.scratch[i]) else {
                 continue;
             };
-            if !self.directions[i].admits(c) {
-                continue;
-            }
             let (upper, f_upper) = match best {
                 None => (hi, self.scratch[i]),
                 Some(b) => {

@@ -12,6 +12,16 @@ use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
 use crate::tolerance::Tolerance;
 
+/// Where a time falls in the last accepted step.
+enum InStep {
+    /// At or after its end.
+    End,
+    /// At or before its start.
+    Start,
+    /// Inside, at the fraction `theta` of the step.
+    Inside { theta: f64 },
+}
+
 /// A stepper plus its step-size control and the current and previous accepted points.
 #[derive(Clone, Debug)]
 pub struct Integrator<S, const N: usize> {
@@ -233,6 +243,21 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         Ok(())
     }
 
+    /// Where `t` falls in the last accepted step (clamped to it), the interpolant built when
+    /// `t` is inside.
+    fn place<F: Rhs<N>>(&mut self, sys: &F, t: f64) -> Result<InStep, SolveError> {
+        if !self.has_step || t >= self.t {
+            return Ok(InStep::End);
+        }
+        if t <= self.t_prev {
+            return Ok(InStep::Start);
+        }
+        self.ensure_dense(sys)?;
+        Ok(InStep::Inside {
+            theta: (t - self.t_prev) / (self.t - self.t_prev),
+        })
+    }
+
     /// The interpolated state at `t` inside the last accepted step (`t` is clamped to it).
     /// The end points are returned exactly.
     pub fn interpolate<F: Rhs<N>>(
@@ -241,17 +266,11 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         t: f64,
         out: &mut [f64; N],
     ) -> Result<(), SolveError> {
-        if !self.has_step || t >= self.t {
-            *out = self.y;
-            return Ok(());
+        match self.place(sys, t)? {
+            InStep::End => *out = self.y,
+            InStep::Start => *out = self.y_prev,
+            InStep::Inside { theta } => self.stepper.interpolate(theta, out),
         }
-        if t <= self.t_prev {
-            *out = self.y_prev;
-            return Ok(());
-        }
-        self.ensure_dense(sys)?;
-        let theta = (t - self.t_prev) / (self.t - self.t_prev);
-        self.stepper.interpolate(theta, out);
         Ok(())
     }
 
@@ -265,19 +284,15 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         y: &mut [f64; N],
         dy: &mut [f64; N],
     ) -> Result<(), SolveError> {
-        if !self.has_step || t >= self.t {
-            (*y, *dy) = (self.y, self.f);
-            return Ok(());
+        match self.place(sys, t)? {
+            InStep::End => (*y, *dy) = (self.y, self.f),
+            InStep::Start => (*y, *dy) = (self.y_prev, self.f_prev),
+            InStep::Inside { theta } => {
+                self.stepper.interpolate(theta, y);
+                self.stepper
+                    .interpolate_derivative(theta, self.t - self.t_prev, dy);
+            }
         }
-        if t <= self.t_prev {
-            (*y, *dy) = (self.y_prev, self.f_prev);
-            return Ok(());
-        }
-        self.ensure_dense(sys)?;
-        let h = self.t - self.t_prev;
-        let theta = (t - self.t_prev) / h;
-        self.stepper.interpolate(theta, y);
-        self.stepper.interpolate_derivative(theta, h, dy);
         Ok(())
     }
 

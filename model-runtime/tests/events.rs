@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dist, stop, up_crossings, Harmonic, Kepler, OneGuard};
+use common::{dist, stop, up_crossings, ClockGuards, Harmonic, Kepler, OneGuard};
 use model_runtime::{
     ChatterLimit, Crossed, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError,
     HybridOptions, HybridSolver, HybridSystem, InteriorChecks, Observer, Recorder, Rk4, Rodas4,
@@ -263,63 +263,29 @@ fn relay_chattering_is_detected_not_looped() {
     }
 }
 
-/// Two guards on a linear clock `x' = 1`: which fires first, ties, direction filters.
-struct Clock {
-    guards: Vec<GuardSpec<usize>>,
-    roots: Vec<f64>,
-}
-impl HybridSystem<1> for Clock {
-    type Mode = ();
-    type Guard = usize;
-    type Stop = usize;
-    fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
-        dy[0] = 1.0;
-        Ok(())
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<usize>] {
-        &self.guards
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 1],
-        _dy: &[f64; 1],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        for (i, r) in self.roots.iter().enumerate() {
-            // Guard i: a parabola opening down when r < 0 (negative root stored as marker).
-            g[i] = if *r >= 0.0 {
-                y[0] - r
-            } else {
-                // Positive only on (|r|, |r| + 0.01): a sign change and back.
-                0.000025 - (y[0] - (-r + 0.005)).powi(2)
-            };
-        }
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<1, usize>,
-    ) -> Result<Transition<1, (), usize>, EvalError> {
-        Ok(Transition::Stop(hit.guard))
-    }
-}
-
 /// Whether an event is `(guard, t)` with `t` within a few ulps of the exact root.
 fn is(event: Option<(usize, f64)>, guard: usize, t: f64) -> bool {
     matches!(event, Some((g, te)) if g == guard && (te - t).abs() <= 4.0 * f64::EPSILON)
 }
 
 fn first_event(guards: &[(Direction, f64)], checks: InteriorChecks) -> Option<(usize, f64)> {
-    let mut sys = Clock {
-        guards: guards
+    // Guard i crosses up at x = r_i; a negative r_i marks a guard positive only on
+    // (|r_i|, |r_i| + 0.01): a sign change and back.
+    let roots: Vec<f64> = guards.iter().map(|&(_, r)| r).collect();
+    let mut sys = ClockGuards {
+        specs: guards
             .iter()
             .enumerate()
             .map(|(i, &(direction, _))| GuardSpec { id: i, direction })
             .collect(),
-        roots: guards.iter().map(|&(_, r)| r).collect(),
+        value: |i: usize, x: f64| {
+            let r = roots[i];
+            if r >= 0.0 {
+                x - r
+            } else {
+                0.000025 - (x - (-r + 0.005)).powi(2)
+            }
+        },
     };
     let options = HybridOptions {
         guard_checks: checks,

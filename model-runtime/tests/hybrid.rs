@@ -9,6 +9,16 @@ use model_runtime::{
     Transition, TransitionKind,
 };
 
+/// DP5 at rtol = atol = 1e-8 with default options: the solver most tests here need.
+fn dp5<const N: usize>() -> HybridSolver<Dopri5<N>, N> {
+    HybridSolver::new(
+        Dopri5::new(),
+        Tolerance::scalar(1e-8, 1e-8),
+        HybridOptions::default(),
+    )
+    .unwrap()
+}
+
 /// A toy stick–slip: in `Stick` the speed stays 0 until the drive `t - 1` turns positive; in
 /// `Slide` the speed follows `v' = a` and sliding ends when `v` falls back to 0. With `a < 0`
 /// sliding wants to end the instant it starts.
@@ -153,12 +163,7 @@ fn a_switch_into_a_consistent_mode_runs_on() {
 
 #[test]
 fn transition_map_failures_are_typed() {
-    let mut solver = HybridSolver::new(
-        Dopri5::new(),
-        Tolerance::scalar(1e-8, 1e-8),
-        HybridOptions::default(),
-    )
-    .unwrap();
+    let mut solver = dp5();
     let err = solver
         .run(
             &mut StickSlip {
@@ -269,12 +274,7 @@ fn projection_keeps_the_state_on_its_constraint() {
 
 #[test]
 fn a_non_finite_guard_is_a_typed_error_naming_the_mode() {
-    let mut solver = HybridSolver::new(
-        Dopri5::new(),
-        Tolerance::scalar(1e-8, 1e-8),
-        HybridOptions::default(),
-    )
-    .unwrap();
+    let mut solver = dp5();
     let err = solver
         .run(
             &mut Circle {
@@ -339,12 +339,7 @@ fn broken() -> impl HybridSystem<1, Mode = (), Guard = (), Stop = ()> {
 
 #[test]
 fn a_non_finite_state_from_the_transition_map_is_named() {
-    let mut solver = HybridSolver::new(
-        Dopri5::new(),
-        Tolerance::scalar(1e-8, 1e-8),
-        HybridOptions::default(),
-    )
-    .unwrap();
+    let mut solver = dp5();
     let err = solver
         .run(&mut broken(), (), 0.0, &[0.0], 10.0, &mut ())
         .unwrap_err();
@@ -419,12 +414,7 @@ impl model_runtime::Observer<2, Phase, Why> for FirstSteps {
 
 #[test]
 fn a_first_step_hint_starts_the_segment() {
-    let mut solver = HybridSolver::new(
-        Dopri5::new(),
-        Tolerance::scalar(1e-8, 1e-8),
-        HybridOptions::default(),
-    )
-    .unwrap();
+    let mut solver = dp5();
     let mut obs = FirstSteps::default();
     let mut sys = Hinted(StickSlip {
         a: 2.0,

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{dist, Forced};
+use common::{dist, ClockGuards, Forced};
 use model_runtime::{
     integrate, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridOptions,
     HybridSolver, HybridSystem, Recorder, StepOptions, Stepper, Tolerance, Transition,
@@ -226,46 +226,6 @@ proptest! {
     }
 }
 
-/// `x' = 1` with guards `s_i (x - r_i)`: guard `i` crosses up (`s_i = 1`) or down (`s_i = -1`)
-/// at `t = r_i`.
-struct Ramps {
-    specs: Vec<GuardSpec<usize>>,
-    roots: Vec<f64>,
-    signs: Vec<f64>,
-}
-impl HybridSystem<1> for Ramps {
-    type Mode = ();
-    type Guard = usize;
-    type Stop = usize;
-    fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
-        dy[0] = 1.0;
-        Ok(())
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<usize>] {
-        &self.specs
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 1],
-        _dy: &[f64; 1],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        for (i, v) in g.iter_mut().enumerate() {
-            *v = self.signs[i] * (y[0] - self.roots[i]);
-        }
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<1, usize>,
-    ) -> Result<Transition<1, (), usize>, EvalError> {
-        Ok(Transition::Stop(hit.guard))
-    }
-}
-
 fn direction(k: u8) -> Direction {
     match k % 3 {
         0 => Direction::Up,
@@ -287,10 +247,10 @@ proptest! {
             .enumerate()
             .map(|(i, g)| GuardSpec { id: i, direction: direction(g.2) })
             .collect();
-        let mut sys = Ramps {
+        // Guard i is s_i (x - r_i): it crosses up (s_i = 1) or down (s_i = -1) at t = r_i.
+        let mut sys = ClockGuards {
             specs: sys_guards,
-            roots: guards.iter().map(|g| g.0).collect(),
-            signs: guards.iter().map(|g| if g.1 { 1.0 } else { -1.0 }).collect(),
+            value: |i: usize, x: f64| if guards[i].1 { x - guards[i].0 } else { guards[i].0 - x },
         };
         // The brute-force answer: the smallest admitted root, the first listed on ties.
         let expected = guards

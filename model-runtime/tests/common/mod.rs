@@ -263,3 +263,46 @@ where
         Ok((self.on_event)(hit))
     }
 }
+
+/// A clock `x' = 1` with several guards `value(i, x)`; the first that fires stops the run and
+/// names itself. The guard semantics (earliest wins, ties, direction filters, excursions) are
+/// tested on it.
+pub struct ClockGuards<G> {
+    /// The guards, identified by their index.
+    pub specs: Vec<GuardSpec<usize>>,
+    /// Guard `i`'s value at `x`.
+    pub value: G,
+}
+
+impl<G: Fn(usize, f64) -> f64> HybridSystem<1> for ClockGuards<G> {
+    type Mode = ();
+    type Guard = usize;
+    type Stop = usize;
+    fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+        dy[0] = 1.0;
+        Ok(())
+    }
+    fn guards(&self, _: ()) -> &[GuardSpec<usize>] {
+        &self.specs
+    }
+    fn guard_values(
+        &self,
+        _: (),
+        _t: f64,
+        y: &[f64; 1],
+        _dy: &[f64; 1],
+        g: &mut [f64],
+    ) -> Result<(), EvalError> {
+        for (i, v) in g.iter_mut().enumerate() {
+            *v = (self.value)(i, y[0]);
+        }
+        Ok(())
+    }
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<1, usize>,
+    ) -> Result<Transition<1, (), usize>, EvalError> {
+        Ok(Transition::Stop(hit.guard))
+    }
+}
