@@ -4,12 +4,13 @@
 use std::f64::consts::{PI, TAU};
 
 use eulerdisk::eval::Backend;
+use eulerdisk::run::model::RunModel;
 use eulerdisk::scene::{self, Override};
 use eulerdisk::sound::peaks::{major_peaks, PeakRule};
 use eulerdisk::sound::rate::rate_between;
 use eulerdisk::sound::render::{render, RenderOptions, HEADROOM};
 use eulerdisk::sound::spectrogram::{spectrogram, StftSettings};
-use eulerdisk::sound::trace::{ForceTrace, TimeSpan};
+use eulerdisk::sound::trace::{record_force, ForceTrace, TimeSpan};
 use eulerdisk::sound::{analyse, sound_scene, wav_name, SoundOptions};
 use proptest::prelude::*;
 
@@ -225,4 +226,49 @@ fn time_compression_is_named_in_the_file_and_the_summary() {
     };
     assert_eq!(wav.duration() as usize, opts.render.samples_for(span));
     assert!(!dir.path().join("rattle.wav").exists());
+}
+
+/// The sound needs only `N`, so in still air it runs the pruned models: their force trace is
+/// the hand-written reference's to within the integration error, and the summary says which
+/// models ran and why. With air, the full models run and the reason names the setting.
+#[test]
+fn sound_runs_the_pruned_models_in_still_air() {
+    let t_end = 0.5;
+    let rate = 2000.0;
+    let scene = scene::load(
+        scene::DEFAULT_SCENE,
+        &[Override::new("run", "t_end", t_end)],
+    )
+    .unwrap();
+    let pruned = record_force(&scene, Backend::Generated, rate).unwrap();
+    let reference = record_force(&scene, Backend::Reference, rate).unwrap();
+    assert_eq!(
+        pruned.model.model,
+        RunModel::Pruned,
+        "{}",
+        pruned.model.reason
+    );
+    assert_eq!(reference.model.model, RunModel::Reference);
+    assert_eq!(pruned.trace.t(), reference.trace.t());
+    let worst = pruned
+        .trace
+        .n_over_mg()
+        .iter()
+        .zip(reference.trace.n_over_mg())
+        .map(|(a, b)| (a - b).abs() / b.abs().max(1.0))
+        .fold(0.0, f64::max);
+    println!("largest difference of N/mg, pruned vs reference: {worst:e}");
+    assert!(worst < 1e-6, "{worst:e}");
+
+    let airy = scene::load(
+        scene::DEFAULT_SCENE,
+        &[
+            Override::new("run", "t_end", 0.05),
+            Override::new("air", "mu_a", 0.01),
+        ],
+    )
+    .unwrap();
+    let full = record_force(&airy, Backend::Generated, rate).unwrap();
+    assert_eq!(full.model.model, RunModel::Full);
+    assert!(full.model.reason.contains("mu_a"), "{}", full.model.reason);
 }

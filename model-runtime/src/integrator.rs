@@ -64,7 +64,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
             stepper,
             tol,
             opts,
-            ctrl: Controller::new(S::ERROR_ORDER),
+            ctrl: Controller::new(S::ERROR_ORDER, opts.control),
             t: 0.0,
             y: [0.0; N],
             f: [0.0; N],

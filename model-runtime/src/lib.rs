@@ -55,7 +55,7 @@ pub mod stepper;
 mod tableau;
 pub mod tolerance;
 
-pub use control::StepOptions;
+pub use control::{ParseStepControlError, StepControl, StepOptions};
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use error::{InputError, SolveError};

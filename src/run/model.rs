@@ -7,9 +7,17 @@
 //! a dropped state — every quantity of `trajectory.csv`, and every quantity the figures plot —
 //! and the air is still; otherwise the full models run. Summary keys that a pruned run cannot
 //! compute are written as `null` with the reason, never as a number from a frozen state.
+//! `eulerdisk sound` asks the same question for the one quantity it keeps, `N`.
+//!
+//! The three model sets are three types; [`with_models`] builds the chosen one and hands it to
+//! a [`ModelsTask`], so a caller states once what it does with models, whichever they are.
 
-use equations::hybrid::{PruneError, PrunedModels, PRUNED_STATES};
-use equations::modes::DIM;
+use equations::hybrid::{
+    DiskModels, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
+};
+use equations::modes::{SlipChart, DIM};
+use equations::{DiskParams, ParamError};
+use model_runtime::Model;
 
 use crate::eval::Backend;
 use crate::figures::paper::FIGURE_QUANTITIES;
@@ -92,6 +100,21 @@ fn full(model: RunModel, reason: String) -> ModelChoice {
 /// air is still, and every quantity of `trajectory.csv` (and of the figures, when `figures`)
 /// is computed by them; the full ones otherwise.
 pub fn choose(scene: &Scene, backend: Backend, figures: bool) -> ModelChoice {
+    let needed = scene
+        .quantities
+        .iter()
+        .chain(if figures { &FIGURE_QUANTITIES[..] } else { &[] });
+    choose_for(scene, backend, needed, "output.quantities")
+}
+
+/// Chooses the models for a run of `scene` that needs the quantities `needed` (`asked_by`
+/// names where they come from, for the reason shown to the user).
+pub fn choose_for<'q>(
+    scene: &Scene,
+    backend: Backend,
+    needed: impl IntoIterator<Item = &'q Quantity>,
+    asked_by: &str,
+) -> ModelChoice {
     if backend == Backend::Reference {
         return full(RunModel::Reference, "--reference".into());
     }
@@ -106,11 +129,8 @@ pub fn choose(scene: &Scene, backend: Backend, figures: bool) -> ModelChoice {
         Err(e) => return full(RunModel::Full, format!("the pruned models cannot run: {e}")),
     };
     let frozen = pruned.frozen_states();
-    let needed = scene
-        .quantities
-        .iter()
-        .chain(if figures { &FIGURE_QUANTITIES[..] } else { &[] });
     let lost: Vec<String> = needed
+        .into_iter()
         .filter_map(|q| {
             let dropped = q.reads_among(&frozen);
             (!dropped.is_empty()).then(|| format!("{} (needs {})", q.name(), dropped.join(", ")))
@@ -120,7 +140,7 @@ pub fn choose(scene: &Scene, backend: Backend, figures: bool) -> ModelChoice {
         return full(
             RunModel::Full,
             format!(
-                "output.quantities asks for {}; the pruned models do not integrate {}",
+                "{asked_by} asks for {}; the pruned models do not integrate {}",
                 lost.join(", "),
                 frozen.join(", ")
             ),
@@ -135,4 +155,37 @@ pub fn choose(scene: &Scene, backend: Backend, figures: bool) -> ModelChoice {
         ),
         frozen,
     }
+}
+
+/// Work to do with a set of disk models, whichever of the three it is.
+pub trait ModelsTask {
+    /// What the work returns.
+    type Output;
+    /// Does the work with `models`.
+    fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output;
+}
+
+/// Why the chosen models could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// The parameters are not valid for the full or reference models.
+    #[error("invalid parameters: {0}")]
+    Params(#[from] ParamError),
+    /// The pruned models refuse these parameters.
+    #[error(transparent)]
+    Pruned(#[from] PruneError),
+}
+
+/// Builds the models `model` for `params` and `chart` and runs `task` with them.
+pub fn with_models<T: ModelsTask>(
+    model: RunModel,
+    params: DiskParams,
+    chart: SlipChart,
+    task: T,
+) -> Result<T::Output, BuildError> {
+    Ok(match model {
+        RunModel::Reference => task.run(&ReferenceModels::reference(params, chart)?),
+        RunModel::Full => task.run(&GeneratedModels::generated(params, chart)?),
+        RunModel::Pruned => task.run(&PrunedModels::pruned(params, chart)?),
+    })
 }

@@ -11,13 +11,13 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread;
 
 use equations::hybrid::{
-    self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, GeneratedModels,
-    InitialState, IntegratorChoice, PrunedModels, RunOutcome, SimError, SlipSign, StopReason,
-    TransitionRecord, Trigger,
+    self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
+    IntegratorChoice, RunOutcome, SlipSign, StopReason, TransitionRecord, Trigger,
 };
-use equations::modes::{Mode, SlipChart};
+use equations::modes::{Mode, SlipChart, DIM};
+use model_runtime::Model;
 
-use super::model::{ModelChoice, RunModel};
+use super::model::{with_models, ModelChoice, ModelsTask};
 use crate::record::{EventRow, StopRecord, TriggerKind};
 use crate::sample::{ContactForces, DiskState, Sample, Slip};
 use crate::scene::schema::{IntegratorName, ModeName, SlipSignRule};
@@ -193,20 +193,21 @@ impl DiskObserver for ChannelObserver {
     }
 }
 
-fn simulate_with<R, S, E: ToString>(
-    models: Result<DiskModels<R, S>, E>,
-    config: &DiskConfig,
-    initial: &InitialState,
-    observer: &mut ChannelObserver,
-) -> Result<Outcome, String>
-where
-    R: model_runtime::Model<12>,
-    S: model_runtime::Model<12>,
-{
-    let models = models.map_err(|e| e.to_string())?;
-    hybrid::simulate(&models, config, initial, observer)
-        .map(|o| convert_outcome(&o))
-        .map_err(|e| e.to_string())
+/// The worker's task: simulate and stream what is observed.
+struct Streamed<'a> {
+    config: &'a DiskConfig,
+    initial: &'a InitialState,
+    observer: &'a mut ChannelObserver,
+}
+
+impl ModelsTask for Streamed<'_> {
+    type Output = Result<Outcome, String>;
+
+    fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
+        hybrid::simulate(models, self.config, self.initial, self.observer)
+            .map(|o| convert_outcome(&o))
+            .map_err(|e| e.to_string())
+    }
 }
 
 /// Starts the simulation of `scene` with the models of `choice` on a worker thread; returns
@@ -227,34 +228,13 @@ pub fn start(scene: &Scene, choice: &ModelChoice, fine_rate: f64) -> Receiver<Me
             open: true,
             frozen,
         };
-        let result = match model {
-            RunModel::Reference => simulate_with(
-                reference_models(params, chart),
-                &config,
-                &initial,
-                &mut observer,
-            ),
-            RunModel::Full => simulate_with(
-                GeneratedModels::generated(params, chart).map_err(SimError::Params),
-                &config,
-                &initial,
-                &mut observer,
-            ),
-            RunModel::Pruned => simulate_with(
-                PrunedModels::pruned(params, chart).map_err(|e| e.to_string()),
-                &config,
-                &initial,
-                &mut observer,
-            ),
+        let task = Streamed {
+            config: &config,
+            initial: &initial,
+            observer: &mut observer,
         };
+        let result = with_models(model, params, chart, task).unwrap_or_else(|e| Err(e.to_string()));
         let _ = tx.send(Message::Done(result));
     });
     rx
-}
-
-fn reference_models(
-    params: equations::DiskParams,
-    chart: SlipChart,
-) -> Result<hybrid::ReferenceModels, SimError> {
-    hybrid::ReferenceModels::reference(params, chart).map_err(SimError::Params)
 }

@@ -69,6 +69,10 @@ pub struct SoundSummary {
     pub stop_reason: String,
     /// Details of the stop.
     pub stop_detail: String,
+    /// The models that ran, e.g. `pruned (8 states)`.
+    pub model: String,
+    /// Why those models.
+    pub model_reason: String,
     /// Samples of `N/mg` per second.
     pub force_rate: f64,
     /// Samples of `N/mg` kept.
@@ -145,6 +149,8 @@ impl SoundSummary {
             t_end: analysis.span.end,
             stop_reason: run.stop_reason.clone(),
             stop_detail: run.stop_detail.clone(),
+            model: run.model.model.label(),
+            model_reason: run.model.reason.clone(),
             force_rate: opts.force_rate,
             force_samples: run.trace.len(),
             rule: opts.rule.into(),
@@ -197,6 +203,7 @@ impl SoundSummary {
             self.force_rate,
             self.force_samples
         );
+        s += &format!("models: {} ({})\n", self.model, self.model_reason);
         s += &format!(
             "{} major peaks: local maxima of N/mg rising >= max({}, {}·|baseline|) above the higher flanking minimum within ±{} s,\n  >= {} of the largest rise within ±{} s, >= {} s apart\n",
             self.peaks,

@@ -5,12 +5,14 @@
 //! 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and keeps
 //! only what it needs: the time and `N/mg`.
 
-use equations::hybrid::{
-    self, DiskModels, DiskObserver, DiskSample, GeneratedModels, InitialState, SimError,
-};
+use equations::hybrid::{self, DiskModels, DiskObserver, DiskSample, InitialState, SimError};
+use equations::modes::DIM;
+use model_runtime::Model;
 
 use super::SoundError;
 use crate::eval::Backend;
+use crate::quantity::Quantity;
+use crate::run::model::{choose_for, with_models, ModelChoice, ModelsTask};
 use crate::run::simulation::{chart_of, config_of, convert_outcome};
 use crate::scene::Scene;
 
@@ -139,6 +141,8 @@ pub struct ForceRun {
     pub stop_reason: String,
     /// Details of the stop.
     pub stop_detail: String,
+    /// The models that ran, and why.
+    pub model: ModelChoice,
 }
 
 /// Keeps `(t, N/mg)` of every sample.
@@ -160,24 +164,26 @@ impl DiskObserver for ForceObserver {
     }
 }
 
-fn simulate_with<R, S>(
-    models: &DiskModels<R, S>,
-    scene: &Scene,
+/// The sound's simulation: keeps `N/mg` of every sample; returns the stop's name and detail.
+struct Recording<'a> {
+    scene: &'a Scene,
     rate: f64,
-    observer: &mut ForceObserver,
-) -> Result<(String, String), SimError>
-where
-    R: model_runtime::Model<12>,
-    S: model_runtime::Model<12>,
-{
-    let config = config_of(scene, rate);
-    let initial = InitialState {
-        t: 0.0,
-        y: scene.initial.state.to_array(),
-    };
-    let outcome = hybrid::simulate(models, &config, &initial, observer)?;
-    let stop = convert_outcome(&outcome).stop;
-    Ok((stop.reason, stop.detail))
+    observer: &'a mut ForceObserver,
+}
+
+impl ModelsTask for Recording<'_> {
+    type Output = Result<(String, String), SimError>;
+
+    fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
+        let config = config_of(self.scene, self.rate);
+        let initial = InitialState {
+            t: 0.0,
+            y: self.scene.initial.state.to_array(),
+        };
+        let outcome = hybrid::simulate(models, &config, &initial, self.observer)?;
+        let stop = convert_outcome(&outcome).stop;
+        Ok((stop.reason, stop.detail))
+    }
 }
 
 /// Simulates `scene` and keeps `N/mg` at `rate` samples per second.
@@ -203,23 +209,23 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
         t: Vec::with_capacity((t_end * rate) as usize + 2),
         n_over_mg: Vec::with_capacity((t_end * rate) as usize + 2),
     };
-    let chart = chart_of(scene);
-    let stop = match backend {
-        Backend::Generated => GeneratedModels::generated(params, chart)
-            .map_err(SimError::Params)
-            .and_then(|models| simulate_with(&models, scene, rate, &mut observer)),
-        Backend::Reference => hybrid::ReferenceModels::reference(params, chart)
-            .map_err(SimError::Params)
-            .and_then(|models| simulate_with(&models, scene, rate, &mut observer)),
+    // The sound needs N only: the pruned models whenever the air is still.
+    let model = choose_for(scene, backend, &[Quantity::N], "the sound");
+    let task = Recording {
+        scene,
+        rate,
+        observer: &mut observer,
     };
-    let (stop_reason, stop_detail) = stop.map_err(|e| SoundError::Simulation {
-        message: e.to_string(),
-    })?;
+    let stop = with_models(model.model, params, chart_of(scene), task)
+        .map_err(|e| e.to_string())
+        .and_then(|r| r.map_err(|e| e.to_string()));
+    let (stop_reason, stop_detail) = stop.map_err(|message| SoundError::Simulation { message })?;
     let trace = ForceTrace::new(observer.t, observer.n_over_mg)?;
     Ok(ForceRun {
         trace,
         stop_reason,
         stop_detail,
+        model,
     })
 }
 
