@@ -7,8 +7,12 @@
 //! printed, so a reader can see how far down the error axis the figure means anything.
 //!
 //! ```text
-//! cargo bench -p equations --bench work_precision [-- --quick] [--out DIR]
+//! cargo bench -p equations --bench work_precision [-- --quick] [--out DIR] [--methods LIST]
 //! ```
+//!
+//! `--methods "DP5,DP5 vectors"` runs only the named lines. `DP5 vectors` is DP5 with the
+//! vector error norm ([`ErrorNorm::Vectors`]): whether its fewer steps are a good trade shows
+//! only at equal accuracy, which is what this table measures.
 //!
 //! Tolerances: `atol = rtol·1e-2` (the paper's 1e-8/1e-10 pair is one point of the sweep), stick
 //! threshold `max(1e-9, 10·atol)` m/s. RK4 runs at fixed steps `h` with the stick threshold
@@ -17,7 +21,7 @@
 
 use common::{Args, Clock};
 use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskRecorder, GeneratedModels, InitialState,
+    simulate, DiskConfig, DiskModels, DiskRecorder, ErrorNorm, GeneratedModels, InitialState,
     IntegratorChoice, RunOutcome, SimError,
 };
 use equations::modes::{layout, SlipChart, DIM};
@@ -73,31 +77,41 @@ fn rolling_scene(t_end: f64) -> Scene {
     }
 }
 
-/// The integrator and the accuracy knob it was given.
+/// The lines of the table and figure, in order.
+const METHOD_NAMES: [&str; 5] = ["DP5", "DP5 vectors", "DOP853", "Rodas4", "RK4"];
+
+/// The integrator, its error norm and the accuracy knob it was given.
 #[derive(Clone, Copy)]
 struct Method {
     choice: IntegratorChoice,
+    norm: ErrorNorm,
     /// `rtol` for adaptive methods, the step for RK4.
     knob: f64,
 }
 
 impl Method {
     fn name(&self) -> &'static str {
-        match self.choice {
-            IntegratorChoice::Dopri5 => "DP5",
-            IntegratorChoice::Dop853 => "DOP853",
-            IntegratorChoice::Rodas4 => "Rodas4",
-            IntegratorChoice::Rk4 { .. } => "RK4",
+        match (self.choice, self.norm) {
+            (IntegratorChoice::Dopri5, ErrorNorm::Components) => "DP5",
+            (IntegratorChoice::Dopri5, ErrorNorm::Vectors) => "DP5 vectors",
+            (IntegratorChoice::Dop853, _) => "DOP853",
+            (IntegratorChoice::Rodas4, _) => "Rodas4",
+            (IntegratorChoice::Rk4 { .. }, _) => "RK4",
         }
     }
 
     fn adaptive(choice: IntegratorChoice, rtol: f64) -> Self {
-        Method { choice, knob: rtol }
+        Method {
+            choice,
+            norm: ErrorNorm::Components,
+            knob: rtol,
+        }
     }
 
     fn rk4(h: f64) -> Self {
         Method {
             choice: IntegratorChoice::Rk4 { h },
+            norm: ErrorNorm::Components,
             knob: h,
         }
     }
@@ -114,7 +128,10 @@ impl Method {
                     ..config
                 }
             }
-            _ => sweep_config(self.choice, self.knob, t_end),
+            _ => DiskConfig {
+                error_norm: self.norm,
+                ..sweep_config(self.choice, self.knob, t_end)
+            },
         }
     }
 }
@@ -218,14 +235,23 @@ struct Settings {
     quick: bool,
     repeats: usize,
     out: PathBuf,
+    /// The method names to run (all if `None`).
+    only: Option<Vec<String>>,
 }
 
 fn settings() -> Settings {
     let Args { quick, out } = Args::parse();
+    let args: Vec<String> = std::env::args().collect();
+    let only = args
+        .iter()
+        .position(|a| a == "--methods")
+        .and_then(|i| args.get(i + 1))
+        .map(|list| list.split(',').map(|m| m.trim().to_string()).collect());
     Settings {
         quick,
         repeats: if quick { 1 } else { 3 },
         out,
+        only,
     }
 }
 
@@ -239,6 +265,10 @@ fn methods(quick: bool) -> Vec<Method> {
     for choice in [IntegratorChoice::Dopri5, IntegratorChoice::Dop853] {
         all.extend(rtols.iter().map(|&r| Method::adaptive(choice, r)));
     }
+    all.extend(rtols.iter().map(|&r| Method {
+        norm: ErrorNorm::Vectors,
+        ..Method::adaptive(IntegratorChoice::Dopri5, r)
+    }));
     // Rodas4 with its symbolic Jacobian: an order-4 method, so the sweep stops where its cost
     // runs away (documented in BENCHMARKS.md).
     all.extend(
@@ -302,7 +332,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         print_header();
         let first = rows.len();
-        for method in methods(s.quick) {
+        let chosen = methods(s.quick).into_iter().filter(|m| {
+            s.only
+                .as_ref()
+                .is_none_or(|names| names.iter().any(|n| n == m.name()))
+        });
+        for method in chosen {
             let config = method.config(scene.t_end, &scene.params);
             let result = timed(&models, scene, &config, s.repeats)
                 .map(|run| {
@@ -434,10 +469,7 @@ fn figure(out: &Path, scene: &str, rows: &[Row]) -> Result<(), Box<dyn std::erro
             .filter(|(t, e)| t.is_finite() && e.is_finite() && *t > 0.0)
             .collect()
     };
-    let all: Vec<(f64, f64)> = ["DP5", "DOP853", "Rodas4", "RK4"]
-        .iter()
-        .flat_map(|m| points(m))
-        .collect();
+    let all: Vec<(f64, f64)> = METHOD_NAMES.iter().flat_map(|m| points(m)).collect();
     if all.is_empty() {
         return Ok(());
     }
@@ -463,7 +495,7 @@ fn figure(out: &Path, scene: &str, rows: &[Row]) -> Result<(), Box<dyn std::erro
         .x_desc("time (s)")
         .y_desc("final-state error vs reference")
         .draw()?;
-    for (k, m) in ["DP5", "DOP853", "Rodas4", "RK4"].iter().enumerate() {
+    for (k, m) in METHOD_NAMES.iter().enumerate() {
         let mut pts = points(m);
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let color = Palette99::pick(k).to_rgba();

@@ -1,11 +1,11 @@
 //! Runs the paper's scene (EQUATIONS.md §9) on the hybrid driver and prints what it cost.
 //!
 //! ```text
-//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N]
+//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N] [components|vectors]
 //! ```
 
 use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskObserver, GeneratedModels, InitialState,
+    simulate, DiskConfig, DiskModels, DiskObserver, ErrorNorm, GeneratedModels, InitialState,
     IntegratorChoice, ReferenceModels, RunOutcome, SlipSign, TransitionRecord,
 };
 use equations::modes::{Mode, SlipChart};
@@ -90,6 +90,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(c) = arg(7) {
         config.guard_checks = c.parse()?;
     }
+    config.error_norm = match arg(8).unwrap_or("components") {
+        "components" => ErrorNorm::Components,
+        "vectors" => ErrorNorm::Vectors,
+        other => return Err(format!("unknown error norm `{other}`").into()),
+    };
     let mut counter = Counter {
         t_end: config.t_end,
         ..Counter::default()
@@ -105,8 +110,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let elapsed = start.elapsed();
     println!(
-        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}, guard checks {}",
-        config.integrator, config.slip_sign, config.rtol, config.atol, config.guard_checks
+        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}, guard checks {}, error norm {:?}",
+        config.integrator, config.slip_sign, config.rtol, config.atol, config.guard_checks, config.error_norm
     );
     println!("stop: {} at t = {}", out.stop.name(), out.last.t);
     println!(
@@ -140,7 +145,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out.max_drift.height, out.max_drift.vertical_speed, out.max_drift.no_slip
     );
     println!(
-        "final: theta {:.6}, energy {:.9} J, mode {}",
+        "final: theta {:.10}, energy {:.12} J, mode {}",
         out.last.state.y[equations::modes::layout::THETA],
         out.last.energy,
         out.last.mode

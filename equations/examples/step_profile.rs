@@ -8,14 +8,20 @@
 //! largest friction ratio seen on rolling samples: above `μ_st`, an excursion was missed
 //! between guard checks.
 //!
+//! It also counts the steps by slip speed and, for each state component, the accepted steps
+//! whose size it limited (the largest scaled error), which shows what a different error norm
+//! (`components` or `vectors`, [`ErrorNorm`]) would change.
+//!
 //! ```text
 //! cargo run --release -p equations --example step_profile -- \
-//!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz]
+//!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors]
 //! ```
 
 use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, DiskSample, GeneratedModels, InitialState, TransitionRecord,
+    simulate, DiskConfig, DiskObserver, DiskSample, ErrorNorm, GeneratedModels, InitialState,
+    LimitingComponent, TransitionRecord,
 };
+use equations::models::{rolling, sliding_cartesian};
 use equations::modes::{layout::THETA, Mode, SlipChart};
 use equations::DiskParams;
 use std::time::Instant;
@@ -23,7 +29,10 @@ use std::time::Instant;
 /// Upper edges of the inclination bands (rad).
 const BANDS: [f64; 5] = [1e-4, 3e-4, 1e-3, 1e-2, f64::INFINITY];
 
-/// Accepted steps and simulated time in one inclination band.
+/// Upper edges of the slip-speed bands of sliding steps (m/s); rolling steps are counted apart.
+const SLIP_BANDS: [f64; 4] = [1e-9, 1e-7, 3e-5, f64::INFINITY];
+
+/// Accepted steps and simulated time in one band.
 #[derive(Clone, Copy, Default)]
 struct Band {
     steps: u64,
@@ -43,10 +52,38 @@ struct Profile {
     /// Steps per 10 s window: rolling, sliding.
     windows: Vec<[u64; 2]>,
     bands: [Band; 5],
+    /// Sliding steps by slip speed, then rolling steps.
+    slip_bands: [Band; 5],
     last_t: f64,
     kinds: Kinds,
     /// Largest friction ratio on rolling samples.
     nu_rolling_max: f64,
+}
+
+impl Band {
+    fn add(&mut self, dt: f64) {
+        self.steps += 1;
+        self.time += dt;
+    }
+}
+
+/// The band of `value` among bands with upper `edges` (the last one open).
+fn band(edges: &[f64], value: f64) -> usize {
+    edges
+        .iter()
+        .position(|&e| value < e)
+        .unwrap_or(edges.len() - 1)
+}
+
+/// The name of state component `i` in both modes of the Cartesian chart ("V_X/u_X" where
+/// they differ).
+fn component_name(i: usize) -> String {
+    let (r, s) = (rolling::STATE_NAMES[i], sliding_cartesian::STATE_NAMES[i]);
+    if r == s {
+        r.to_string()
+    } else {
+        format!("{r}/{s}")
+    }
 }
 
 impl DiskObserver for Profile {
@@ -61,14 +98,15 @@ impl DiskObserver for Profile {
             self.windows.resize(w + 1, [0; 2]);
         }
         self.windows[w][usize::from(s.mode == Mode::Sliding)] += 1;
-        let theta = s.state.y[THETA];
-        let b = BANDS
-            .iter()
-            .position(|&e| theta < e)
-            .unwrap_or(BANDS.len() - 1);
-        self.bands[b].steps += 1;
-        self.bands[b].time += s.t - self.last_t;
+        let dt = s.t - self.last_t;
         self.last_t = s.t;
+        let theta = s.state.y[THETA];
+        self.bands[band(&BANDS, theta)].add(dt);
+        let slip = match s.mode {
+            Mode::Rolling => SLIP_BANDS.len(),
+            Mode::Sliding => band(&SLIP_BANDS, s.state.slip.speed.abs()),
+        };
+        self.slip_bands[slip].add(dt);
     }
 
     fn on_sample(&mut self, s: &DiskSample) {
@@ -99,6 +137,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         config.guard_checks = c.parse()?;
     }
     config.sample_rate = number(4)?.filter(|&r| r > 0.0);
+    config.error_norm = match args.get(5).map(String::as_str) {
+        None | Some("components") => ErrorNorm::Components,
+        Some("vectors") => ErrorNorm::Vectors,
+        Some(other) => return Err(format!("unknown error norm `{other}`").into()),
+    };
+    config.limiting_component = LimitingComponent::Tracked;
     let models = GeneratedModels::generated(params, SlipChart::Cartesian)?;
     let mut p = Profile::default();
     let start = Instant::now();
@@ -106,11 +150,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let wall = start.elapsed().as_secs_f64();
     let s = &out.stats;
     println!(
-        "t_end {} rtol {:e} atol {:e} guard checks {:?}: stop {} at t = {}",
+        "t_end {} rtol {:e} atol {:e} guard checks {:?} error norm {:?}: stop {} at t = {}",
         config.t_end,
         config.rtol,
         config.atol,
         config.guard_checks,
+        config.error_norm,
         out.stop.name(),
         out.last.t
     );
@@ -138,6 +183,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "theta < {edge:e}: {:>8} steps over {:.4} s",
             b.steps, b.time
         );
+    }
+    for (i, b) in p.slip_bands.iter().enumerate() {
+        let label = match (i.checked_sub(1).map(|j| SLIP_BANDS[j]), SLIP_BANDS.get(i)) {
+            (_, None) => "rolling".to_string(),
+            (None, Some(hi)) => format!("slip < {hi:e} m/s"),
+            (Some(lo), Some(hi)) if hi.is_infinite() => format!("slip >= {lo:e} m/s"),
+            (Some(lo), Some(hi)) => format!("slip {lo:e}..{hi:e} m/s"),
+        };
+        println!("{label:>24}: {:>8} steps over {:.4} s", b.steps, b.time);
+    }
+    println!("steps limited by (largest scaled error):");
+    for (i, n) in s.limiting.nonzero() {
+        let share = 100.0 * n as f64 / s.steps.max(1) as f64;
+        println!("{:>16}: {n:>8} ({share:.1}%)", component_name(i));
     }
     Ok(())
 }

@@ -206,13 +206,14 @@ pub(crate) fn initial_step<F: Rhs<N>, const N: usize>(
     stats: &mut Stats,
 ) -> Result<f64, SolveError> {
     let (t, y, f) = (start.t, start.y, start.f);
+    let scales = tol.scales(y, &[0.0; N]);
     let norm = |v: &[f64; N]| -> f64 {
         if N == 0 {
             return 0.0;
         }
         let mut s = 0.0;
         for i in 0..N {
-            let x = v[i] / tol.scale(i, y[i], 0.0);
+            let x = v[i] / scales[i];
             s += x * x;
         }
         (s / N as f64).sqrt()

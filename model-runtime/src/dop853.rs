@@ -305,9 +305,10 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         sum(&ER, &self.k, &mut e5);
         let mut e3 = [0.0; N];
         sum(&BHH, &self.k, &mut e3);
+        let scales = tol.scales(start.y, end.y);
         let (mut err5, mut err3) = (0.0, 0.0);
         for i in 0..N {
-            let sk = tol.scale(i, start.y[i], end.y[i]);
+            let sk = scales[i];
             let a = e5[i] / sk;
             let c = (b[i] - e3[i]) / sk;
             err5 += a * a;
@@ -325,13 +326,9 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         if norm <= 1.0 {
             eval(sys, start.t + h, end.y, end.f, stats)?;
             self.k[12] = *end.f;
-            return Ok(ErrorEstimate { norm, worst: 0 });
         }
-        // Rejected (or NaN): the fifth-order estimate names the worst component.
-        Ok(ErrorEstimate {
-            norm: if norm.is_nan() { f64::INFINITY } else { norm },
-            worst: tol.worst(&e5, start.y, end.y),
-        })
+        // The fifth-order estimate names the worst component.
+        Ok(tol.estimate(norm, &e5, &scales))
     }
 
     fn prepare_dense<F: Rhs<N>>(

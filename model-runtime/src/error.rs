@@ -80,6 +80,17 @@ pub enum InputError {
         /// Its absolute tolerance.
         atol: f64,
     },
+    /// A group of components declared as one vector for the error norm is unusable.
+    ComponentGroup {
+        /// The group's position in the declared list.
+        group: usize,
+        /// Its first component.
+        start: usize,
+        /// One past its last component.
+        end: usize,
+        /// What is wrong with it.
+        problem: GroupProblem,
+    },
     /// An initial state component is not finite.
     InitialState {
         /// The offending component.
@@ -110,6 +121,23 @@ pub enum InputError {
         max_transitions: usize,
         /// The window's width.
         window: f64,
+    },
+}
+
+/// Why a component group cannot be used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupProblem {
+    /// It has no component.
+    Empty,
+    /// It reaches past the last state component.
+    OutOfRange {
+        /// The number of state components.
+        dim: usize,
+    },
+    /// It shares a component with an earlier group.
+    Overlaps {
+        /// The earlier group's position in the declared list.
+        other: usize,
     },
 }
 
@@ -162,6 +190,21 @@ impl fmt::Display for InputError {
                 f,
                 "tolerance of component {component} unusable (rtol = {rtol:e}, atol = {atol:e})"
             ),
+            InputError::ComponentGroup {
+                group,
+                start,
+                end,
+                problem,
+            } => {
+                write!(f, "component group {group} (components {start}..{end}) ")?;
+                match problem {
+                    GroupProblem::Empty => write!(f, "is empty"),
+                    GroupProblem::OutOfRange { dim } => {
+                        write!(f, "reaches past the {dim} state components")
+                    }
+                    GroupProblem::Overlaps { other } => write!(f, "overlaps group {other}"),
+                }
+            }
             InputError::InitialState { component, value } => {
                 write!(f, "initial state component {component} is {value}")
             }

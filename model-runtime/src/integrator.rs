@@ -10,7 +10,7 @@ use crate::error::{InputError, SolveError};
 use crate::model::Model;
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
-use crate::tolerance::Tolerance;
+use crate::tolerance::{LimitingComponent, Tolerance};
 
 /// Where a time falls in the last accepted step.
 enum InStep {
@@ -195,6 +195,9 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
             };
             if est.norm <= 1.0 {
                 self.stats.steps += 1;
+                if fixed.is_none() && self.tol.limiting() == LimitingComponent::Tracked {
+                    self.stats.limiting.record(est.worst);
+                }
                 self.t_prev = self.t;
                 self.y_prev = self.y;
                 self.f_prev = self.f;

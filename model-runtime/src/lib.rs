@@ -6,6 +6,9 @@
 //!   Jacobian, dense order 3) and fixed-step [`Rk4`] (cubic Hermite dense output).
 //! * [`Integrator`]: the shared adaptive loop (PI control, Hairer's initial step, typed
 //!   collapse detection); [`integrate`] for a plain run.
+//! * [`Tolerance`]: one mixed relative/absolute error norm for every method; components that
+//!   form a vector can be scaled by the vector's length (frame-independent), and the component
+//!   that limits each step can be counted ([`Stats::limiting`]).
 //! * [`hybrid`]: modes, guards with exact crossing location ([`events`] documents the guard
 //!   semantics), transition maps, chattering detection, projection, streaming [`observer`]s.
 //!
@@ -58,7 +61,7 @@ pub mod tolerance;
 pub use control::{ParseStepControlError, StepControl, StepOptions};
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
-pub use error::{InputError, SolveError};
+pub use error::{GroupProblem, InputError, SolveError};
 pub use events::{
     Crossed, Direction, EventHit, GuardSpec, InteriorChecks, ParseInteriorChecksError,
 };
@@ -73,6 +76,6 @@ pub use observer::{
 };
 pub use rk4::Rk4;
 pub use rodas4::Rodas4;
-pub use stats::Stats;
+pub use stats::{ComponentCounts, Stats};
 pub use stepper::{StepEnd, StepStart, Stepper};
-pub use tolerance::{ErrorEstimate, Tolerance};
+pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

@@ -1,36 +1,94 @@
 //! The mixed relative/absolute error norm shared by every adaptive method.
 //!
 //! One norm for all methods keeps their tolerances comparable: a step is acceptable when the
-//! root-mean-square of `err_i / (atol_i + rtol_i * max(|y0_i|, |y1_i|))` is at most one.
-//! The component with the largest scaled error is remembered, so a failing run can name it.
+//! root-mean-square of `err_i / scale_i` is at most one, with
+//! `scale_i = atol_i + rtol_i * max(m_i(y0), m_i(y1))`. By default `m_i(y) = |y_i|`, each
+//! component's own magnitude. Components declared as one vector ([`Tolerance::with_group`])
+//! use the vector's Euclidean length instead: `m_i(y) = |y_G|` for every `i` in the group `G`
+//! (`atol_i` and `rtol_i` stay per component). With equal tolerances across a group, its
+//! contribution to the norm is then `|err_G|² / scale_G²`, unchanged by a rotation of the
+//! vector and its error, i.e. independent of the frame the vector is written in
+//! ([`groups`] explains why that matters).
+//!
+//! The component with the largest scaled error is remembered, so a failing run can name it;
+//! on request ([`Tolerance::tracking_limiting`]) it is also determined for accepted steps, so a
+//! driver can count which component limits the step size.
+
+pub mod groups;
 
 use crate::error::InputError;
+pub use groups::{ComponentGroup, VectorGroups};
+use std::ops::Range;
 
-/// Relative and absolute tolerances, one pair per state component.
+/// Whether the norm names the worst component of accepted steps too.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LimitingComponent {
+    /// Only rejected steps name it (the common path does not search for it).
+    #[default]
+    Untracked,
+    /// Every estimate names it, and the integrator counts it per accepted step
+    /// ([`crate::Stats::limiting`]).
+    Tracked,
+}
+
+/// Relative and absolute tolerances, one pair per state component, and the components that
+/// form vectors.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance<const N: usize> {
     /// Relative tolerances.
     pub rtol: [f64; N],
     /// Absolute tolerances.
     pub atol: [f64; N],
+    groups: VectorGroups<N>,
+    limiting: LimitingComponent,
 }
 
 impl<const N: usize> Tolerance<N> {
     /// The same tolerances for every component.
     pub fn scalar(rtol: f64, atol: f64) -> Self {
-        Tolerance {
-            rtol: [rtol; N],
-            atol: [atol; N],
-        }
+        Self::per_component([rtol; N], [atol; N])
     }
 
     /// Per-component tolerances.
     pub fn per_component(rtol: [f64; N], atol: [f64; N]) -> Self {
-        Tolerance { rtol, atol }
+        Tolerance {
+            rtol,
+            atol,
+            groups: VectorGroups::default(),
+            limiting: LimitingComponent::Untracked,
+        }
+    }
+
+    /// The same tolerances, with the components `range` scaled as one vector (see the module
+    /// docs), in addition to the groups declared before. Fails with
+    /// [`InputError::ComponentGroup`] on an empty or out-of-range group, or one that overlaps
+    /// an earlier group.
+    pub fn with_group(mut self, range: Range<usize>) -> Result<Self, InputError> {
+        self.groups.push(range)?;
+        Ok(self)
+    }
+
+    /// The same tolerances, naming the worst component of every estimate (a small cost per
+    /// step) so that [`crate::Integrator`] counts it in [`crate::Stats::limiting`].
+    pub fn tracking_limiting(self) -> Self {
+        Tolerance {
+            limiting: LimitingComponent::Tracked,
+            ..self
+        }
+    }
+
+    /// The declared vector groups.
+    pub fn groups(&self) -> &VectorGroups<N> {
+        &self.groups
+    }
+
+    /// Whether accepted steps name their worst component.
+    pub fn limiting(&self) -> LimitingComponent {
+        self.limiting
     }
 
     /// Checks that every tolerance is finite and non-negative and that no component has both
-    /// zero (which would demand an exact solution).
+    /// zero (which would demand an exact solution). The groups were checked when declared.
     pub fn validate(&self) -> Result<(), InputError> {
         for i in 0..N {
             let (r, a) = (self.rtol[i], self.atol[i]);
@@ -46,42 +104,75 @@ impl<const N: usize> Tolerance<N> {
         Ok(())
     }
 
-    /// The error scale of component `i` between two states of magnitude `a` and `b`.
+    /// The error scale of component `i` alone between two states of magnitude `a` and `b`
+    /// (groups are not consulted; see [`Tolerance::scales`]).
     #[inline]
     pub fn scale(&self, i: usize, a: f64, b: f64) -> f64 {
         self.atol[i] + self.rtol[i] * a.abs().max(b.abs())
     }
 
+    /// The error scale of every component between the states `y0` and `y1`, grouped
+    /// components taking their vector's magnitude (module docs).
+    #[inline]
+    pub fn scales(&self, y0: &[f64; N], y1: &[f64; N]) -> [f64; N] {
+        let mut s = [0.0; N];
+        for i in 0..N {
+            s[i] = self.scale(i, y0[i], y1[i]);
+        }
+        for g in self.groups.iter() {
+            let m = g.magnitude(y0).max(g.magnitude(y1));
+            for i in g.range() {
+                s[i] = self.scale(i, m, 0.0);
+            }
+        }
+        s
+    }
+
     /// The root-mean-square scaled norm of `v` with scales taken from `y0` and `y1`.
     pub fn norm(&self, v: &[f64; N], y0: &[f64; N], y1: &[f64; N]) -> ErrorEstimate {
-        let scaled = |i: usize| v[i] / self.scale(i, y0[i], y1[i]);
+        let s = self.scales(y0, y1);
         let mut sum = 0.0;
         for i in 0..N {
-            let s = scaled(i);
-            sum += s * s;
+            let x = v[i] / s[i];
+            sum += x * x;
         }
         let norm = if N == 0 { 0.0 } else { (sum / N as f64).sqrt() };
+        self.estimate(norm, v, &s)
+    }
+
+    /// The estimate for a computed `norm` of `v` (scales `s`): NaN is reported as infinite,
+    /// and the worst component is named when the step is rejected or when tracked.
+    pub fn estimate(&self, norm: f64, v: &[f64; N], s: &[f64; N]) -> ErrorEstimate {
         if norm <= 1.0 {
-            // Accepted: which component is worst matters only for reports of failures, so the
-            // common path does not search for it.
-            return ErrorEstimate { norm, worst: 0 };
+            // Accepted: which component is worst matters only for reports of failures and the
+            // opt-in count, so the common path does not search for it.
+            let worst = match self.limiting {
+                LimitingComponent::Untracked => 0,
+                LimitingComponent::Tracked => worst_scaled(v, s),
+            };
+            return ErrorEstimate { norm, worst };
         }
         // Rejected (or NaN, which counts as infinitely bad): name the worst component.
         ErrorEstimate {
             norm: if norm.is_nan() { f64::INFINITY } else { norm },
-            worst: self.worst(v, y0, y1),
+            worst: worst_scaled(v, s),
         }
     }
 
     /// The component of `v` with the largest scaled magnitude (a NaN one first).
     pub fn worst(&self, v: &[f64; N], y0: &[f64; N], y1: &[f64; N]) -> usize {
-        let scaled = |i: usize| v[i] / self.scale(i, y0[i], y1[i]);
-        (0..N).find(|&i| scaled(i).is_nan()).unwrap_or_else(|| {
-            (0..N)
-                .max_by(|&a, &b| scaled(a).abs().total_cmp(&scaled(b).abs()))
-                .unwrap_or(0)
-        })
+        worst_scaled(v, &self.scales(y0, y1))
     }
+}
+
+/// The component of `v` with the largest `|v_i / s_i|` (a NaN one first).
+fn worst_scaled<const N: usize>(v: &[f64; N], s: &[f64; N]) -> usize {
+    let scaled = |i: usize| v[i] / s[i];
+    (0..N).find(|&i| scaled(i).is_nan()).unwrap_or_else(|| {
+        (0..N)
+            .max_by(|&a, &b| scaled(a).abs().total_cmp(&scaled(b).abs()))
+            .unwrap_or(0)
+    })
 }
 
 /// The scaled size of a local error estimate.
@@ -90,8 +181,8 @@ pub struct ErrorEstimate {
     /// Scaled norm: the step is acceptable when it is at most one. Never NaN (a NaN error is
     /// reported as infinite).
     pub norm: f64,
-    /// The component with the largest scaled error; only determined when `norm > 1` (zero
-    /// otherwise).
+    /// The component with the largest scaled error; only determined when `norm > 1` or the
+    /// tolerance tracks it ([`Tolerance::tracking_limiting`]); zero otherwise.
     pub worst: usize,
 }
 

@@ -11,8 +11,9 @@ use crate::modes::layout::THETA;
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use model_runtime::hybrid::ChatterLimit as DriverChatter;
 use model_runtime::{
-    Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, Model, Observer, Rk4,
-    Rodas4, Sample, StepOptions, StepView, Stepper, Tolerance, TransitionRecord,
+    Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
+    LimitingComponent, Model, Observer, Rk4, Rodas4, Sample, StepOptions, StepView, Stepper,
+    Tolerance, TransitionRecord,
 };
 
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
@@ -182,12 +183,12 @@ where
         sample_rate: config.sample_rate,
         guard_checks: config.guard_checks,
     };
-    let tolerance = Tolerance::scalar(config.rtol, config.atol);
-    let mut solver =
-        HybridSolver::new(stepper, tolerance, options).map_err(|e| SimError::Solve {
-            mode: phase.mode(),
-            error: e.into(),
-        })?;
+    let input_error = |e: InputError| SimError::Solve {
+        mode: phase.mode(),
+        error: e.into(),
+    };
+    let tolerance = config.tolerance(models.chart).map_err(input_error)?;
+    let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input_error)?;
     let mut adaptor = Adaptor {
         models,
         shared: &shared,
@@ -246,6 +247,24 @@ where
         stats: out.stats,
         max_drift: system.max_drift(),
     })
+}
+
+impl DiskConfig {
+    /// The error norm of a run sliding in `chart`: the tolerances, the vector groups of
+    /// [`DiskConfig::error_norm`], and whether the limiting component is counted.
+    pub fn tolerance(&self, chart: SlipChart) -> Result<Tolerance<DIM>, InputError> {
+        let tol = self
+            .error_norm
+            .groups(chart)
+            .iter()
+            .try_fold(Tolerance::scalar(self.rtol, self.atol), |tol, g| {
+                tol.with_group(g.clone())
+            })?;
+        Ok(match self.limiting_component {
+            LimitingComponent::Untracked => tol,
+            LimitingComponent::Tracked => tol.tracking_limiting(),
+        })
+    }
 }
 
 /// The phase and state the driver starts from (see [`simulate`]).
