@@ -148,6 +148,16 @@ fn shape_errors_name_the_key() {
         "expected none, exact:N or screened:N",
     );
     expect_key(
+        with_override("solver.error_norm=euclid"),
+        "solver.error_norm",
+        "expected components or vectors",
+    );
+    expect_key(
+        with_override("solver.step_control=pid"),
+        "solver.step_control",
+        "expected integral, pi-hairer or pi-gustafsson",
+    );
+    expect_key(
         with_override("run.slip_sign=sometimes"),
         "run.slip_sign",
         "sometimes",
@@ -190,6 +200,21 @@ fn overrides_replace_values_and_bad_overrides_are_named() {
         s.file.solver.guard_checks.0,
         equations::hybrid::InteriorChecks::Exact(4)
     );
+    let s = with_override("solver.error_norm=vectors").unwrap();
+    assert_eq!(
+        s.file.solver.error_norm.0,
+        equations::hybrid::ErrorNorm::Vectors
+    );
+    let s = with_override("solver.step_control=integral").unwrap();
+    assert_eq!(
+        s.file.solver.step_control.0,
+        equations::hybrid::StepControl::Integral
+    );
+    // The defaults are the library's.
+    let s = with_override("solver.rtol=1e-8").unwrap();
+    let paper = equations::hybrid::DiskConfig::paper();
+    assert_eq!(s.file.solver.error_norm.0, paper.error_norm);
+    assert_eq!(s.file.solver.step_control.0, paper.step_control);
     for bad in ["mu_d=0.1", "friction.mu_d", ".x=1", "a.b.c=1"] {
         let err = Override::parse(bad).and_then(|o| scene::parse("t", PAPER, &[o]));
         assert!(err.is_err(), "{bad}");

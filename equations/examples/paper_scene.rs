@@ -1,11 +1,11 @@
 //! Runs the paper's scene (EQUATIONS.md §9) on the hybrid driver and prints what it cost.
 //!
 //! ```text
-//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N] [components|vectors]
+//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N] [components|vectors] [pi-gustafsson|pi-hairer|integral]
 //! ```
 
 use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskObserver, ErrorNorm, GeneratedModels, InitialState,
+    simulate, DiskConfig, DiskModels, DiskObserver, GeneratedModels, InitialState,
     IntegratorChoice, ReferenceModels, RunOutcome, SlipSign, TransitionRecord,
 };
 use equations::modes::{Mode, SlipChart};
@@ -90,11 +90,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(c) = arg(7) {
         config.guard_checks = c.parse()?;
     }
-    config.error_norm = match arg(8).unwrap_or("components") {
-        "components" => ErrorNorm::Components,
-        "vectors" => ErrorNorm::Vectors,
-        other => return Err(format!("unknown error norm `{other}`").into()),
-    };
+    if let Some(n) = arg(8) {
+        config.error_norm = n.parse()?;
+    }
+    if let Some(c) = arg(9) {
+        config.step_control = c.parse()?;
+    }
     let mut counter = Counter {
         t_end: config.t_end,
         ..Counter::default()

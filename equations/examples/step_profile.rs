@@ -10,15 +10,15 @@
 //!
 //! It also counts the steps by slip speed and, for each state component, the accepted steps
 //! whose size it limited (the largest scaled error), which shows what a different error norm
-//! (`components` or `vectors`, [`ErrorNorm`]) would change.
+//! (`components` or `vectors`, `equations::hybrid::ErrorNorm`) would change.
 //!
 //! ```text
 //! cargo run --release -p equations --example step_profile -- \
-//!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors]
+//!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors] [pi-gustafsson|pi-hairer|integral]
 //! ```
 
 use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, DiskSample, ErrorNorm, GeneratedModels, InitialState,
+    simulate, DiskConfig, DiskObserver, DiskSample, GeneratedModels, InitialState,
     LimitingComponent, TransitionRecord,
 };
 use equations::models::{rolling, sliding_cartesian};
@@ -137,11 +137,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         config.guard_checks = c.parse()?;
     }
     config.sample_rate = number(4)?.filter(|&r| r > 0.0);
-    config.error_norm = match args.get(5).map(String::as_str) {
-        None | Some("components") => ErrorNorm::Components,
-        Some("vectors") => ErrorNorm::Vectors,
-        Some(other) => return Err(format!("unknown error norm `{other}`").into()),
-    };
+    if let Some(n) = args.get(5) {
+        config.error_norm = n.parse()?;
+    }
+    if let Some(c) = args.get(6) {
+        config.step_control = c.parse()?;
+    }
     config.limiting_component = LimitingComponent::Tracked;
     let models = GeneratedModels::generated(params, SlipChart::Cartesian)?;
     let mut p = Profile::default();

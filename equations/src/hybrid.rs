@@ -77,6 +77,8 @@ use model_runtime::EvalError;
 pub use model_runtime::InteriorChecks;
 /// Whether a run counts the component that limits each step (re-exported from the runtime).
 pub use model_runtime::LimitingComponent;
+/// The gains of the step-size controller (re-exported from the runtime).
+pub use model_runtime::StepControl;
 use std::f64::consts::FRAC_PI_2;
 use std::ops::Range;
 
@@ -134,6 +136,39 @@ pub enum ErrorNorm {
     /// per component too: a run has one norm for all its modes, and slot 5 (`V_Z`) cannot
     /// join slots 3 and 4 in rolling without joining the slip in sliding.
     Vectors,
+}
+
+/// Spelled `components` or `vectors`, as in scene files and command lines.
+impl std::fmt::Display for ErrorNorm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ErrorNorm::Components => "components",
+            ErrorNorm::Vectors => "vectors",
+        })
+    }
+}
+
+/// A spelling of [`ErrorNorm`] that is not `components` or `vectors`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseErrorNormError(pub String);
+
+impl std::fmt::Display for ParseErrorNormError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "error norm {:?}: expected components or vectors", self.0)
+    }
+}
+
+impl std::error::Error for ParseErrorNormError {}
+
+impl std::str::FromStr for ErrorNorm {
+    type Err = ParseErrorNormError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [ErrorNorm::Components, ErrorNorm::Vectors]
+            .into_iter()
+            .find(|n| n.to_string() == s)
+            .ok_or_else(|| ParseErrorNormError(s.to_owned()))
+    }
 }
 
 impl ErrorNorm {
@@ -195,6 +230,8 @@ pub struct DiskConfig {
     pub atol: f64,
     /// Whether the error of a vector is measured against its own components or its length.
     pub error_norm: ErrorNorm,
+    /// How the step size follows the error estimates (adaptive methods).
+    pub step_control: StepControl,
     /// Whether the run counts, for every accepted step, the state component with the largest
     /// scaled error (the one that limited the step) in `RunOutcome::stats.limiting`.
     /// A diagnostic: tracking costs a search over the components per step.
@@ -238,6 +275,7 @@ impl DiskConfig {
             rtol: 1e-8,
             atol: 1e-10,
             error_norm: ErrorNorm::Components,
+            step_control: StepControl::PiGustafsson,
             limiting_component: LimitingComponent::Untracked,
             t_end: 100.0,
             slip_sign: SlipSign::Physical,

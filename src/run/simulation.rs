@@ -139,6 +139,8 @@ pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
         IntegratorName::Rodas4 => IntegratorChoice::Rodas4,
     };
     c.guard_checks = f.solver.guard_checks.0;
+    c.error_norm = f.solver.error_norm.0;
+    c.step_control = f.solver.step_control.0;
     c.rtol = f.solver.rtol;
     c.atol = f.solver.atol;
     // The stick threshold must sit above the slip's integration error (BENCHMARKS.md §2:

@@ -4,7 +4,7 @@
 //! silently ignored line; the loader reports the path of the key (`friction.mu`). Values are
 //! kept as written here; the rules between them live in `validate.rs`.
 
-use equations::hybrid::{DiskConfig, InteriorChecks};
+use equations::hybrid::{DiskConfig, ErrorNorm, InteriorChecks, StepControl};
 use serde::{Deserialize, Serialize};
 
 /// A whole scene file.
@@ -186,35 +186,49 @@ pub struct SolverTable {
     pub atol: f64,
     /// Where inside each step the guards are looked at: `none`, `exact:N` or `screened:N`
     /// (default `screened:64`, BENCHMARKS.md §3).
-    #[serde(default)]
-    pub guard_checks: GuardChecks,
+    #[serde(default = "default_guard_checks")]
+    pub guard_checks: Spelled<InteriorChecks>,
+    /// How the error of a vector is measured: `components` (default) or `vectors` (each
+    /// component against the length of its vector, BENCHMARKS.md §3).
+    #[serde(default = "default_error_norm")]
+    pub error_norm: Spelled<ErrorNorm>,
+    /// The step-size controller: `pi-gustafsson` (default), `pi-hairer` or `integral`.
+    #[serde(default = "default_step_control")]
+    pub step_control: Spelled<StepControl>,
 }
 
-/// `[solver] guard_checks`, spelled as [`InteriorChecks`] reads it.
+/// A `[solver]` setting written as a word that its type parses and prints (`screened:64`,
+/// `vectors`, `pi-hairer`): one reading and writing rule for all of them, and a bad word is
+/// rejected with the type's own message, which lists the valid spellings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct GuardChecks(pub InteriorChecks);
+pub struct Spelled<T>(pub T);
 
-impl Default for GuardChecks {
-    fn default() -> Self {
-        GuardChecks(DiskConfig::paper().guard_checks)
-    }
-}
-
-impl<'de> Deserialize<'de> for GuardChecks {
+impl<'de, T> Deserialize<'de> for Spelled<T>
+where
+    T: std::str::FromStr,
+    T::Err: std::fmt::Display,
+{
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let text = String::deserialize(d)?;
-        text.parse()
-            .map(GuardChecks)
-            .map_err(serde::de::Error::custom)
+        text.parse().map(Spelled).map_err(serde::de::Error::custom)
     }
 }
 
-impl Serialize for GuardChecks {
+impl<T: std::fmt::Display> Serialize for Spelled<T> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.collect_str(&self.0)
     }
 }
 
+fn default_guard_checks() -> Spelled<InteriorChecks> {
+    Spelled(DiskConfig::paper().guard_checks)
+}
+fn default_error_norm() -> Spelled<ErrorNorm> {
+    Spelled(DiskConfig::paper().error_norm)
+}
+fn default_step_control() -> Spelled<StepControl> {
+    Spelled(DiskConfig::paper().step_control)
+}
 fn default_integrator() -> IntegratorName {
     IntegratorName::Dop853
 }
@@ -231,7 +245,9 @@ impl Default for SolverTable {
             integrator: default_integrator(),
             rtol: default_rtol(),
             atol: default_atol(),
-            guard_checks: GuardChecks::default(),
+            guard_checks: default_guard_checks(),
+            error_norm: default_error_norm(),
+            step_control: default_step_control(),
         }
     }
 }

@@ -172,6 +172,7 @@ where
     let options = HybridOptions {
         step: StepOptions {
             max_steps: config.max_steps,
+            control: config.step_control,
             ..StepOptions::default()
         },
         // A backstop only: the disk counts its own decisions (each may take three driver
