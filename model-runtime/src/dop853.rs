@@ -13,7 +13,7 @@
 
 use crate::error::SolveError;
 use crate::stats::Stats;
-use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
+use crate::stepper::{central_difference, eval, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tableau::{combine, sum};
 use crate::tolerance::{ErrorEstimate, Tolerance};
 
@@ -363,14 +363,46 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
     }
 
     fn interpolate(&self, s: f64, out: &mut [f64; N]) {
+        for i in 0..N {
+            out[i] = self.value(s, i);
+        }
+    }
+
+    /// Component by component: the unchosen ones cost nothing.
+    fn interpolate_components(&self, s: f64, which: &Components<N>, out: &mut [f64; N]) {
+        for &i in which.indices() {
+            out[i] = self.value(s, i);
+        }
+    }
+
+    /// The default central difference, on the chosen components only.
+    fn interpolate_derivative_components(
+        &self,
+        s: f64,
+        h: f64,
+        which: &Components<N>,
+        out: &mut [f64; N],
+    ) {
+        central_difference(
+            |s, o| self.interpolate_components(s, which, o),
+            s,
+            h,
+            which,
+            out,
+        );
+    }
+}
+
+impl<const N: usize> Dop853<N> {
+    /// Component `i` of the seventh-order interpolant at `s`.
+    #[inline(always)]
+    fn value(&self, s: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
         let c = &self.cont;
-        for i in 0..N {
-            out[i] = c[0][i]
-                + s * (c[1][i]
-                    + s1 * (c[2][i]
-                        + s * (c[3][i]
-                            + s1 * (c[4][i] + s * (c[5][i] + s1 * (c[6][i] + s * c[7][i]))))));
-        }
+        c[0][i]
+            + s * (c[1][i]
+                + s1 * (c[2][i]
+                    + s * (c[3][i]
+                        + s1 * (c[4][i] + s * (c[5][i] + s1 * (c[6][i] + s * c[7][i]))))))
     }
 }

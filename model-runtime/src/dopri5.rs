@@ -6,7 +6,7 @@
 
 use crate::error::SolveError;
 use crate::stats::Stats;
-use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
+use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tableau::{combine, sum};
 use crate::tolerance::{ErrorEstimate, Tolerance};
 
@@ -138,24 +138,57 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
     }
 
     fn interpolate(&self, s: f64, out: &mut [f64; N]) {
-        let s1 = 1.0 - s;
-        let c = &self.cont;
         for i in 0..N {
-            out[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
+            out[i] = self.value(s, i);
         }
     }
 
-    /// The exact derivative of the quartic interpolant, by the product rule on its nested form.
     fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
+        for i in 0..N {
+            out[i] = self.rate(s, h, i);
+        }
+    }
+
+    /// Component by component: the unchosen ones cost nothing.
+    fn interpolate_components(&self, s: f64, which: &Components<N>, out: &mut [f64; N]) {
+        for &i in which.indices() {
+            out[i] = self.value(s, i);
+        }
+    }
+
+    fn interpolate_derivative_components(
+        &self,
+        s: f64,
+        h: f64,
+        which: &Components<N>,
+        out: &mut [f64; N],
+    ) {
+        for &i in which.indices() {
+            out[i] = self.rate(s, h, i);
+        }
+    }
+}
+
+impl<const N: usize> Dopri5<N> {
+    /// Component `i` of the quartic interpolant at `s`.
+    #[inline(always)]
+    fn value(&self, s: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
         let c = &self.cont;
-        for i in 0..N {
-            let q = c[3][i] + s1 * c[4][i];
-            let r = c[2][i] + s * q;
-            let dr = q - s * c[4][i];
-            let outer = c[1][i] + s1 * r;
-            let d_outer = s1 * dr - r;
-            out[i] = (outer + s * d_outer) / h;
-        }
+        c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])))
+    }
+
+    /// Component `i` of the interpolant's exact derivative at `s` (step `h`), by the product
+    /// rule on its nested form.
+    #[inline(always)]
+    fn rate(&self, s: f64, h: f64, i: usize) -> f64 {
+        let s1 = 1.0 - s;
+        let c = &self.cont;
+        let q = c[3][i] + s1 * c[4][i];
+        let r = c[2][i] + s * q;
+        let dr = q - s * c[4][i];
+        let outer = c[1][i] + s1 * r;
+        let d_outer = s1 * dr - r;
+        (outer + s * d_outer) / h
     }
 }

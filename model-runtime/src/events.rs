@@ -42,16 +42,23 @@
 //!   still goes unseen. [`InteriorChecks::Screened`] samples cost no model evaluation: the
 //!   guards see the interpolant and its derivative, and only a sample that shows an admitted
 //!   crossing (or a non-finite value) is evaluated exactly, so estimates can trigger a check
-//!   but never decide an event or move a reference sign. Most steps need only two estimates:
+//!   but never decide an event or move a reference sign. An estimate interpolates only the
+//!   components the mode's guards declare they read ([`GuardInputs`]) and is NaN in all
+//!   others, so a guard that reads an undeclared one gets a non-finite estimate: an exact
+//!   check, never a wrong answer. Most steps need only two estimates:
 //!   with the exact end values they fit a cubic per guard, and when every cubic keeps its sign
 //!   with a margin, the other sample points are skipped. The same holds for an excursion shorter than a step right after a
 //!   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
 //!   point): the quiet guard's first nonzero value is already back on the near side.
 
+mod inputs;
 mod interior;
+mod quiet;
 
+pub use inputs::GuardInputs;
 pub(crate) use interior::cubic_keeps_sign;
 pub use interior::{InteriorChecks, ParseInteriorChecksError};
+use quiet::QuietRange;
 
 /// How guard values at a time are obtained.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -163,6 +170,9 @@ pub(crate) struct GuardTracker {
     reference: Vec<f64>,
     /// For pending guards: whether leaving zero in an admitted direction fires.
     departure_fires: Vec<bool>,
+    /// Per guard, the values that cannot fire it against its current reference sign
+    /// ([`QuietRange`]), kept in step with `reference`.
+    quiet: Vec<QuietRange>,
     /// Guard values at the last check point.
     lo_values: Vec<f64>,
     scratch: Vec<f64>,
@@ -191,6 +201,14 @@ impl GuardTracker {
                 Quiet::Guard(q) => q != i,
                 Quiet::All => false,
             }));
+        self.quiet.clear();
+        self.quiet.extend((0..values.len()).map(|i| {
+            QuietRange::of(
+                self.reference[i],
+                self.directions[i],
+                self.departure_fires[i],
+            )
+        }));
         self.lo_values.clear();
         self.lo_values.extend_from_slice(values);
         self.scratch.clear();
@@ -245,24 +263,33 @@ impl GuardTracker {
                 eval(tk, Probe::Exact, &mut self.scratch)?;
                 tk
             };
-            // A departure from zero happened at `lo` at the latest: earlier than any crossing.
-            for i in 0..n {
-                if let Some(c) = self.departure(i, self.scratch[i]) {
-                    return Ok(Some(Found {
-                        index: i,
-                        t: lo,
-                        before: lo,
-                        direction: c,
-                    }));
+            // Values inside every quiet range fire nothing (the common case, two comparisons
+            // per guard); otherwise find out what fires.
+            if self.may_fire() {
+                // A departure from zero happened at `lo` at the latest: before any crossing.
+                for i in 0..n {
+                    if let Some(c) = self.departure(i, self.scratch[i]) {
+                        return Ok(Some(Found {
+                            index: i,
+                            t: lo,
+                            before: lo,
+                            direction: c,
+                        }));
+                    }
                 }
-            }
-            if (0..n).any(|i| self.admitted_crossing(i, self.scratch[i]).is_some()) {
-                return self.locate(lo, tk, &mut eval);
+                if (0..n).any(|i| self.admitted_crossing(i, self.scratch[i]).is_some()) {
+                    return self.locate(lo, tk, &mut eval);
+                }
             }
             for i in 0..n {
                 let v = self.scratch[i];
-                if v != 0.0 {
+                if v != 0.0 && sign(v) != self.reference[i] {
                     self.reference[i] = sign(v);
+                    self.quiet[i] = QuietRange::of(
+                        self.reference[i],
+                        self.directions[i],
+                        self.departure_fires[i],
+                    );
                 }
                 self.lo_values[i] = v;
             }
@@ -305,14 +332,12 @@ impl GuardTracker {
     }
 
     /// Whether the values in `self.scratch` would fire a guard (or are not finite), judged
-    /// against the reference signs.
+    /// against the reference signs: a departure or an admitted crossing.
     fn may_fire(&self) -> bool {
-        (0..self.len()).any(|i| {
-            let v = self.scratch[i];
-            !v.is_finite()
-                || self.departure(i, v).is_some()
-                || self.admitted_crossing(i, v).is_some()
-        })
+        self.scratch
+            .iter()
+            .zip(&self.quiet)
+            .any(|(&v, q)| !q.contains(v))
     }
 
     /// The departure from zero of pending guard `i` to the value `v`, if it fires.

@@ -46,7 +46,7 @@ mod run;
 
 use crate::control::StepOptions;
 use crate::error::{InputError, SolveError};
-use crate::events::{EventHit, GuardSpec, GuardTracker, InteriorChecks};
+use crate::events::{EventHit, GuardInputs, GuardSpec, GuardTracker, InteriorChecks};
 use crate::integrator::Integrator;
 use crate::model::EvalError;
 use crate::observer::Observer;
@@ -103,6 +103,15 @@ pub trait HybridSystem<const N: usize> {
         dy: &[f64; N],
         values: &mut [f64],
     ) -> Result<(), EvalError>;
+
+    /// The components of the state and of its derivative that the guards of `mode` read
+    /// (default: all). Screening estimates ([`InteriorChecks::Screened`]) interpolate only
+    /// these and pass NaN in every other component; exact evaluations always get the full
+    /// state. Declaring less than the guards read is safe but slow: the guard sees NaN, and a
+    /// non-finite estimate only asks for an exact evaluation ([`crate::events`]).
+    fn guard_inputs(&self, _mode: Self::Mode) -> GuardInputs<N> {
+        GuardInputs::ALL
+    }
 
     /// The transition map, called when a guard of `mode` fires (`hit` holds the guard, the
     /// exact time and the state there).
@@ -352,6 +361,7 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             opts: self.options,
             tracker: GuardTracker::default(),
             values: Vec::new(),
+            inputs: GuardInputs::ALL,
             recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
             next_sample: 0,
             t_first: t0,

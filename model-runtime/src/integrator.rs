@@ -9,7 +9,7 @@ use crate::control::{initial_step, min_step, Controller, StepOptions};
 use crate::error::{InputError, SolveError};
 use crate::model::Model;
 use crate::stats::Stats;
-use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
+use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tolerance::{LimitingComponent, Tolerance};
 
 /// Where a time falls in the last accepted step.
@@ -287,13 +287,40 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         y: &mut [f64; N],
         dy: &mut [f64; N],
     ) -> Result<(), SolveError> {
+        let all = Components::ALL;
+        self.interpolate_components(sys, t, &all, &all, y, dy)
+    }
+
+    /// [`Integrator::interpolate_with_derivative`] in the components `state` of `y` and
+    /// `rates` of `dy` only; the other components are left as they are (at the step's end
+    /// points too), so that a caller that filled them with NaN sees NaN there.
+    #[inline]
+    pub fn interpolate_components<F: Rhs<N>>(
+        &mut self,
+        sys: &F,
+        t: f64,
+        state: &Components<N>,
+        rates: &Components<N>,
+        y: &mut [f64; N],
+        dy: &mut [f64; N],
+    ) -> Result<(), SolveError> {
         match self.place(sys, t)? {
-            InStep::End => (*y, *dy) = (self.y, self.f),
-            InStep::Start => (*y, *dy) = (self.y_prev, self.f_prev),
+            InStep::End => {
+                state.copy(&self.y, y);
+                rates.copy(&self.f, dy);
+            }
+            InStep::Start => {
+                state.copy(&self.y_prev, y);
+                rates.copy(&self.f_prev, dy);
+            }
             InStep::Inside { theta } => {
-                self.stepper.interpolate(theta, y);
-                self.stepper
-                    .interpolate_derivative(theta, self.t - self.t_prev, dy);
+                self.stepper.interpolate_components(theta, state, y);
+                self.stepper.interpolate_derivative_components(
+                    theta,
+                    self.t - self.t_prev,
+                    rates,
+                    dy,
+                );
             }
         }
         Ok(())

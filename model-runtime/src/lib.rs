@@ -63,7 +63,7 @@ pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use error::{GroupProblem, InputError, SolveError};
 pub use events::{
-    Crossed, Direction, EventHit, GuardSpec, InteriorChecks, ParseInteriorChecksError,
+    Crossed, Direction, EventHit, GuardInputs, GuardSpec, InteriorChecks, ParseInteriorChecksError,
 };
 pub use hybrid::{
     ChatterLimit, HybridError, HybridOptions, HybridOutcome, HybridSolver, HybridSystem,
@@ -77,5 +77,5 @@ pub use observer::{
 pub use rk4::Rk4;
 pub use rodas4::Rodas4;
 pub use stats::{ComponentCounts, Stats};
-pub use stepper::{StepEnd, StepStart, Stepper};
+pub use stepper::{Components, StepEnd, StepStart, Stepper};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

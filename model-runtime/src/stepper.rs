@@ -64,6 +64,123 @@ pub struct StepEnd<'a, const N: usize> {
     pub f: &'a mut [f64; N],
 }
 
+/// A set of components of an `N`-vector: which ones a partial interpolation fills.
+///
+/// Kept both as a mask and as the list of its indices: the list lets a partial interpolation
+/// visit only the chosen components (a handful of twelve, for the disk's guards), and both are
+/// built together by [`Components::of`], so every index is valid for `N` by construction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Components<const N: usize> {
+    mask: [bool; N],
+    /// The indices in the set, increasing, in `list[..len]`; the rest is zero.
+    list: [usize; N],
+    len: usize,
+}
+
+impl<const N: usize> Components<N> {
+    /// Every component.
+    pub const ALL: Self = Self::from_mask([true; N]);
+    /// No component.
+    pub const NONE: Self = Self::from_mask([false; N]);
+
+    /// The set with this mask.
+    const fn from_mask(mask: [bool; N]) -> Self {
+        let mut list = [0; N];
+        let mut len = 0;
+        let mut i = 0;
+        while i < N {
+            if mask[i] {
+                list[len] = i;
+                len += 1;
+            }
+            i += 1;
+        }
+        Components { mask, list, len }
+    }
+
+    /// The components at `indices` (repetitions are harmless). A `const fn`, so that a
+    /// constant set is checked when it compiles.
+    ///
+    /// # Panics
+    ///
+    /// If an index is `N` or more (at compile time for a constant).
+    pub const fn of(indices: &[usize]) -> Self {
+        let mut mask = [false; N];
+        let mut k = 0;
+        while k < indices.len() {
+            assert!(indices[k] < N, "component index out of range");
+            mask[indices[k]] = true;
+            k += 1;
+        }
+        Self::from_mask(mask)
+    }
+
+    /// The components in either set.
+    pub const fn union(self, other: Self) -> Self {
+        let mut mask = self.mask;
+        let mut i = 0;
+        while i < N {
+            mask[i] |= other.mask[i];
+            i += 1;
+        }
+        Self::from_mask(mask)
+    }
+
+    /// Whether component `i` is in the set (false for `i >= N`).
+    #[inline]
+    pub fn contains(&self, i: usize) -> bool {
+        self.mask.get(i).copied().unwrap_or(false)
+    }
+
+    /// Whether the set holds every component.
+    pub fn is_all(&self) -> bool {
+        self.len == N
+    }
+
+    /// The indices in the set, increasing.
+    #[inline]
+    pub fn indices(&self) -> &[usize] {
+        &self.list[..self.len]
+    }
+
+    /// Copies the components in the set from `from` to `to`, leaving the others of `to`.
+    #[inline]
+    pub fn copy(&self, from: &[f64; N], to: &mut [f64; N]) {
+        for &i in self.indices() {
+            to[i] = from[i];
+        }
+    }
+}
+
+impl<const N: usize> Default for Components<N> {
+    /// Every component: the safe choice for a caller that does not know what it needs.
+    fn default() -> Self {
+        Self::ALL
+    }
+}
+
+/// The spacing in `theta` of [`Stepper::interpolate_derivative`]'s default central difference.
+const DIFFERENCE_STEP: f64 = 1.0 / 1024.0;
+
+/// The central difference in `theta` of `interpolate` over a step `h`, in the components
+/// `which` of `out` (the others are left as they are): the default derivative of an
+/// interpolant, shared by the full and the partial version so that both give the same bits.
+pub(crate) fn central_difference<const N: usize>(
+    interpolate: impl Fn(f64, &mut [f64; N]),
+    theta: f64,
+    h: f64,
+    which: &Components<N>,
+    out: &mut [f64; N],
+) {
+    let mut below = [0.0; N];
+    interpolate(theta - DIFFERENCE_STEP, &mut below);
+    interpolate(theta + DIFFERENCE_STEP, out);
+    let scale = 1.0 / (2.0 * DIFFERENCE_STEP * h);
+    for &i in which.indices() {
+        out[i] = (out[i] - below[i]) * scale;
+    }
+}
+
 /// A one-step method with an interpolant over its last accepted step.
 pub trait Stepper<const N: usize> {
     /// The method's name, for reports.
@@ -116,13 +233,39 @@ pub trait Stepper<const N: usize> {
     /// `δ²/6 · |P'''|` (≈ 1.6e-7 relative) for the rest. That is ample for its one use,
     /// estimating guard values between the points where they are evaluated exactly.
     fn interpolate_derivative(&self, theta: f64, h: f64, out: &mut [f64; N]) {
-        const DELTA: f64 = 1.0 / 1024.0;
-        let mut below = [0.0; N];
-        self.interpolate(theta - DELTA, &mut below);
-        self.interpolate(theta + DELTA, out);
-        let scale = 1.0 / (2.0 * DELTA * h);
-        for (o, b) in out.iter_mut().zip(&below) {
-            *o = (*o - b) * scale;
-        }
+        central_difference(
+            |s, o| self.interpolate(s, o),
+            theta,
+            h,
+            &Components::ALL,
+            out,
+        );
+    }
+
+    /// [`Stepper::interpolate`] in the components `which` of `out` only; the others are left
+    /// as they are, so a caller that filled them with NaN sees NaN there.
+    ///
+    /// The default interpolates every component into a scratch vector and copies the chosen
+    /// ones: correct for any method, and no faster. Methods whose interpolant is evaluated
+    /// component by component override it to skip the rest (bit for bit the same values).
+    fn interpolate_components(&self, theta: f64, which: &Components<N>, out: &mut [f64; N]) {
+        let mut full = [0.0; N];
+        self.interpolate(theta, &mut full);
+        which.copy(&full, out);
+    }
+
+    /// [`Stepper::interpolate_derivative`] in the components `which` of `out` only; the others
+    /// are left as they are. The default, like [`Stepper::interpolate_components`], computes
+    /// every component and copies the chosen ones.
+    fn interpolate_derivative_components(
+        &self,
+        theta: f64,
+        h: f64,
+        which: &Components<N>,
+        out: &mut [f64; N],
+    ) {
+        let mut full = [0.0; N];
+        self.interpolate_derivative(theta, h, &mut full);
+        which.copy(&full, out);
     }
 }

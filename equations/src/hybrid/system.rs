@@ -11,11 +11,14 @@ use super::onset::{consistent_slip_direction, OnsetError};
 use super::{DiskConfig, SlipSign, StopReason, TransitionRecord, Trigger};
 use crate::modes::layout::{THETA, U_X, U_Y, V_C};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
-use model_runtime::{Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, Transition};
+use model_runtime::{
+    Direction, EvalError, EventHit, GuardInputs, GuardSpec, HybridSystem, Model, Transition,
+};
 use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
 
 mod bridge;
+mod inputs;
 
 pub(crate) use bridge::BridgeStart;
 use bridge::{into_bridge, AfterBridge, BridgePlan};
@@ -376,6 +379,12 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
             Phase::Sliding => &SLIDING_GUARDS,
             Phase::Bridge => &BRIDGE_GUARDS,
         }
+    }
+
+    /// What [`Self::guard_values`] reads in `phase` (module `inputs`), so that screening
+    /// interpolates four components instead of twenty-four.
+    fn guard_inputs(&self, phase: Phase) -> GuardInputs<DIM> {
+        inputs::guard_inputs(phase, self.models.chart, self.models.params.k_F() != 0.0)
     }
 
     fn guard_values(

@@ -67,13 +67,38 @@ impl std::str::FromStr for InteriorChecks {
 }
 
 /// Whether the cubic through `(0, a)`, `(1/3, b)`, `(2/3, c)`, `(1, d)` keeps one sign on
-/// `[0, 1]` with a margin of half its range (false for any non-finite value).
+/// `[0, 1]` with a margin of half its range (false when all four are NaN; the driver passes
+/// only finite values).
+///
+/// It runs for every guard of every screened step, so it answers early where it can, always
+/// with the value the full computation would give: the range only widens as the cubic's
+/// interior extrema join the four values, and a wider range never turns "not clear" into
+/// "clear". So the four values alone can say "not clear", and a cheap bound on every value the
+/// cubic takes (no square root, no division) can say "clear".
 pub(crate) fn cubic_keeps_sign(a: f64, b: f64, c: f64, d: f64) -> bool {
+    /// Far more than the relative rounding of the coefficients, of Horner's rule and of the
+    /// bound itself (a few units of 1e-16).
+    const SLACK: f64 = 1e-12;
+    let clear = |lo: f64, hi: f64| {
+        let margin = 0.5 * (hi - lo);
+        lo > margin || hi < -margin
+    };
+    let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
+    if !clear(lo, hi) {
+        return false;
+    }
     // Newton's forward differences in u = 3s ∈ [0, 3], expanded to a + c1 u + c2 u² + c3 u³.
     let (d1, d2, d3) = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
+    // On [0, 3], |c1| u + |c2| u² + |c3| u³ ≤ 3|c1| + 9|c2| + 27|c3| ≤ 3|d1| + 6|d2| + 10|d3|
+    // (from the expansion below): every value computed there lies within `a ± reach`.
+    let reach = (3.0 * d1.abs() + 6.0 * d2.abs() + 10.0 * d3.abs() + SLACK * a.abs())
+        * (1.0 + SLACK)
+        + f64::MIN_POSITIVE;
+    if clear(lo.min(a - reach), hi.max(a + reach)) {
+        return true;
+    }
     let (c1, c2, c3) = (d1 - d2 / 2.0 + d3 / 3.0, (d2 - d3) / 2.0, d3 / 6.0);
     let p = |u: f64| a + u * (c1 + u * (c2 + u * c3));
-    let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
     let mut visit = |u: f64| {
         if u > 0.0 && u < 3.0 {
             let v = p(u);
@@ -94,8 +119,7 @@ pub(crate) fn cubic_keeps_sign(a: f64, b: f64, c: f64, d: f64) -> bool {
             visit((-c2 - r) / (3.0 * c3));
         }
     }
-    let margin = 0.5 * (hi - lo);
-    lo > margin || hi < -margin
+    clear(lo, hi)
 }
 
 #[cfg(test)]
@@ -121,6 +145,72 @@ mod tests {
         assert!(!clear(&|s| -1.0 + 0.9 * s));
         assert!(!clear(&|s| -s * s));
         assert!(!clear(&|_| f64::NAN));
+    }
+
+    /// The test as first written, without its early answers: the oracle for the fast one.
+    fn cubic_keeps_sign_in_full(a: f64, b: f64, c: f64, d: f64) -> bool {
+        let (d1, d2, d3) = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
+        let (c1, c2, c3) = (d1 - d2 / 2.0 + d3 / 3.0, (d2 - d3) / 2.0, d3 / 6.0);
+        let p = |u: f64| a + u * (c1 + u * (c2 + u * c3));
+        let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
+        let mut visit = |u: f64| {
+            if u > 0.0 && u < 3.0 {
+                let v = p(u);
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        };
+        if c3 == 0.0 {
+            if c2 != 0.0 {
+                visit(-c1 / (2.0 * c2));
+            }
+        } else {
+            let disc = c2 * c2 - 3.0 * c3 * c1;
+            if disc >= 0.0 {
+                let r = disc.sqrt();
+                visit((-c2 + r) / (3.0 * c3));
+                visit((-c2 - r) / (3.0 * c3));
+            }
+        }
+        let margin = 0.5 * (hi - lo);
+        lo > margin || hi < -margin
+    }
+
+    /// Values near a decision: a smooth guard sampled at the four points, far from zero or
+    /// close to it, with its slope and curvature on either side of the margin.
+    fn near_decisions() -> impl Strategy<Value = (f64, f64, f64, f64)> {
+        let scale = prop::sample::select(vec![1e-160, 1e-9, 1.0, 1e9, 1e160]);
+        (
+            -2.0..2.0f64,
+            -3.0..3.0f64,
+            -3.0..3.0f64,
+            -30.0..30.0f64,
+            scale,
+        )
+            .prop_map(|(mean, slope, curve, cubic, scale)| {
+                let g = |s: f64| scale * (mean + s * (slope + s * (curve + s * cubic)));
+                (g(0.0), g(1.0 / 3.0), g(2.0 / 3.0), g(1.0))
+            })
+    }
+
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn the_early_answers_are_the_full_computations(
+            (a, b, c, d) in near_decisions(),
+        ) {
+            prop_assert_eq!(cubic_keeps_sign(a, b, c, d), cubic_keeps_sign_in_full(a, b, c, d));
+        }
+
+        #[test]
+        fn any_four_values_get_the_full_computations_answer(
+            a in any::<f64>(), b in any::<f64>(), c in any::<f64>(), d in any::<f64>(),
+        ) {
+            prop_assert_eq!(cubic_keeps_sign(a, b, c, d), cubic_keeps_sign_in_full(a, b, c, d));
+        }
     }
 
     #[test]

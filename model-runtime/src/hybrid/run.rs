@@ -3,7 +3,7 @@
 
 use super::{HybridError, HybridOptions, HybridOutcome, HybridSystem, StopReason, Transition};
 use crate::error::SolveError;
-use crate::events::{EventHit, Found, GuardTracker, Probe, Quiet};
+use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
 use crate::model::EvalError;
 use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
@@ -34,6 +34,8 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) opts: HybridOptions,
     pub(super) tracker: GuardTracker,
     pub(super) values: Vec<f64>,
+    /// What the current mode's guards read (see [`HybridSystem::guard_inputs`]).
+    pub(super) inputs: GuardInputs<N>,
     pub(super) recent: VecDeque<(f64, Md, Md)>,
     pub(super) next_sample: u64,
     pub(super) t_first: f64,
@@ -210,26 +212,39 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             .map_err(crate::error::at(t1))?;
         check_finite(t1, &self.values)?;
         let it = &mut *self.it;
+        let inputs = &self.inputs;
         let mut y = [0.0; N];
         let mut dy = [0.0; N];
+        // Estimates fill only the declared inputs: a guard that reads anything else sees NaN.
+        let mut y_est = [f64::NAN; N];
+        let mut dy_est = [f64::NAN; N];
         self.tracker.scan(
             t0,
             t1,
             &self.values,
             self.opts.guard_checks,
             |t, probe, out| {
-                match probe {
+                let (y, dy) = match probe {
                     Probe::Exact => {
                         it.interpolate(&m, t, &mut y)?;
                         crate::stepper::eval(&m, t, &y, &mut dy, it.stats_mut())?;
                         it.stats_mut().guard_evals += 1;
+                        (&y, &dy)
                     }
                     Probe::Estimate => {
-                        it.interpolate_with_derivative(&m, t, &mut y, &mut dy)?;
+                        it.interpolate_components(
+                            &m,
+                            t,
+                            &inputs.state,
+                            &inputs.rates,
+                            &mut y_est,
+                            &mut dy_est,
+                        )?;
                         it.stats_mut().guard_estimates += 1;
+                        (&y_est, &dy_est)
                     }
-                }
-                sys.guard_values(m.mode, t, &y, &dy, out)
+                };
+                sys.guard_values(m.mode, t, y, dy, out)
                     .map_err(crate::error::at(t))?;
                 match probe {
                     Probe::Exact => check_finite(t, out),
@@ -257,6 +272,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         self.it
             .restart_with_step(&m, t, y, first_step)
             .map_err(|e| self.solve_err(e))?;
+        self.inputs = sys.guard_inputs(self.mode);
         let specs = sys.guards(self.mode);
         self.values.clear();
         self.values.resize(specs.len(), 0.0);
