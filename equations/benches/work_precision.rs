@@ -11,7 +11,8 @@
 //! ```
 //!
 //! `--methods "DP5,DP5 vectors"` runs only the named lines. `DP5 vectors` is DP5 with the
-//! vector error norm ([`ErrorNorm::Vectors`]): whether its fewer steps are a good trade shows
+//! vector error norm ([`ErrorNorm::Vectors`]), `DP5 pi-hairer` and `DP5 integral` DP5 with
+//! other step controls ([`StepControl`]): whether their fewer steps are a good trade shows
 //! only at equal accuracy, which is what this table measures.
 //!
 //! Tolerances: `atol = rtol·1e-2` (the paper's 1e-8/1e-10 pair is one point of the sweep), stick
@@ -22,7 +23,7 @@
 use common::{Args, Clock};
 use equations::hybrid::{
     simulate, DiskConfig, DiskModels, DiskRecorder, ErrorNorm, GeneratedModels, InitialState,
-    IntegratorChoice, RunOutcome, SimError,
+    IntegratorChoice, RunOutcome, SimError, StepControl,
 };
 use equations::modes::{layout, SlipChart, DIM};
 use equations::DiskParams;
@@ -78,25 +79,36 @@ fn rolling_scene(t_end: f64) -> Scene {
 }
 
 /// The lines of the table and figure, in order.
-const METHOD_NAMES: [&str; 5] = ["DP5", "DP5 vectors", "DOP853", "Rodas4", "RK4"];
+const METHOD_NAMES: [&str; 7] = [
+    "DP5",
+    "DP5 vectors",
+    "DP5 pi-hairer",
+    "DP5 integral",
+    "DOP853",
+    "Rodas4",
+    "RK4",
+];
 
-/// The integrator, its error norm and the accuracy knob it was given.
+/// The integrator, its error norm, its step control and the accuracy knob it was given.
 #[derive(Clone, Copy)]
 struct Method {
     choice: IntegratorChoice,
     norm: ErrorNorm,
+    control: StepControl,
     /// `rtol` for adaptive methods, the step for RK4.
     knob: f64,
 }
 
 impl Method {
     fn name(&self) -> &'static str {
-        match (self.choice, self.norm) {
-            (IntegratorChoice::Dopri5, ErrorNorm::Components) => "DP5",
-            (IntegratorChoice::Dopri5, ErrorNorm::Vectors) => "DP5 vectors",
-            (IntegratorChoice::Dop853, _) => "DOP853",
-            (IntegratorChoice::Rodas4, _) => "Rodas4",
-            (IntegratorChoice::Rk4 { .. }, _) => "RK4",
+        match (self.choice, self.norm, self.control) {
+            (IntegratorChoice::Dopri5, ErrorNorm::Vectors, _) => "DP5 vectors",
+            (IntegratorChoice::Dopri5, _, StepControl::PiHairer) => "DP5 pi-hairer",
+            (IntegratorChoice::Dopri5, _, StepControl::Integral) => "DP5 integral",
+            (IntegratorChoice::Dopri5, ..) => "DP5",
+            (IntegratorChoice::Dop853, ..) => "DOP853",
+            (IntegratorChoice::Rodas4, ..) => "Rodas4",
+            (IntegratorChoice::Rk4 { .. }, ..) => "RK4",
         }
     }
 
@@ -104,6 +116,7 @@ impl Method {
         Method {
             choice,
             norm: ErrorNorm::Components,
+            control: StepControl::default(),
             knob: rtol,
         }
     }
@@ -112,6 +125,7 @@ impl Method {
         Method {
             choice: IntegratorChoice::Rk4 { h },
             norm: ErrorNorm::Components,
+            control: StepControl::default(),
             knob: h,
         }
     }
@@ -130,6 +144,7 @@ impl Method {
             }
             _ => DiskConfig {
                 error_norm: self.norm,
+                step_control: self.control,
                 ..sweep_config(self.choice, self.knob, t_end)
             },
         }
@@ -269,6 +284,13 @@ fn methods(quick: bool) -> Vec<Method> {
         norm: ErrorNorm::Vectors,
         ..Method::adaptive(IntegratorChoice::Dopri5, r)
     }));
+    // The other step controls (BENCHMARKS.md §3: fewer steps, not less work at equal accuracy).
+    for control in [StepControl::PiHairer, StepControl::Integral] {
+        all.extend(rtols.iter().map(|&r| Method {
+            control,
+            ..Method::adaptive(IntegratorChoice::Dopri5, r)
+        }));
+    }
     // Rodas4 with its symbolic Jacobian: an order-4 method, so the sweep stops where its cost
     // runs away (documented in BENCHMARKS.md).
     all.extend(

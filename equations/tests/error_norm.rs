@@ -10,6 +10,10 @@ use equations::modes::{SlipChart, DIM};
 use equations::DiskParams;
 use model_runtime::Model;
 
+mod common;
+
+use common::assert_same_decisions;
+
 const OMEGA: [&str; 3] = ["Omega_x", "Omega_y", "Omega_z"];
 
 /// The state names of a 12-state model, by layout index.
@@ -126,16 +130,7 @@ fn the_vector_norm_makes_the_same_decisions() {
     let (a, ra) = run(ErrorNorm::Components, 0.5);
     let (b, rb) = run(ErrorNorm::Vectors, 0.5);
     assert!(ra.transitions.len() >= 3, "{}", ra.transitions.len());
-    assert_eq!(ra.transitions.len(), rb.transitions.len());
-    for (k, (x, y)) in ra.transitions.iter().zip(&rb.transitions).enumerate() {
-        assert_eq!((x.from, x.to), (y.from, y.to), "transition {k}");
-        assert!(
-            (x.t - y.t).abs() < 1e-8,
-            "transition {k}: {} vs {}",
-            x.t,
-            y.t
-        );
-    }
+    assert_same_decisions(&ra.transitions, &rb.transitions, 1e-8);
     assert_eq!(a.stop, b.stop);
     for out in [&a, &b] {
         assert_eq!(out.stats.limiting.total(), out.stats.steps);

@@ -9,6 +9,10 @@ use equations::modes::{Mode, SlipChart};
 use equations::DiskParams;
 use std::f64::consts::PI;
 
+mod common;
+
+use common::assert_same_decisions;
+
 /// Runs the paper's scene on the generated models.
 fn run(config: &DiskConfig, chart: SlipChart) -> (RunOutcome, DiskRecorder) {
     let params = DiskParams::paper();
@@ -106,17 +110,7 @@ fn polar_and_cartesian_charts_give_the_same_transitions() {
     };
     let (_, a) = run(&config, SlipChart::Cartesian);
     let (_, b) = run(&config, SlipChart::Polar);
-    let (a, b) = (events(&a), events(&b));
-    assert_eq!(a.len(), b.len());
-    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
-        assert_eq!((x.from, x.to), (y.from, y.to), "transition {k}");
-        assert!(
-            (x.t - y.t).abs() < 1e-8,
-            "transition {k}: {} vs {}",
-            x.t,
-            y.t
-        );
-    }
+    assert_same_decisions(&events(&a), &events(&b), 1e-8);
 }
 
 #[test]
@@ -439,16 +433,7 @@ fn slides_that_end_at_once_are_resolved_alike_by_both_integrators() {
     // DOP853 (409 decisions up to 19.5 s).
     let (_, a) = run(&tight(IntegratorChoice::Dopri5, 19.5), SlipChart::Cartesian);
     let (_, b) = run(&tight(IntegratorChoice::Dop853, 19.5), SlipChart::Cartesian);
-    assert_eq!(a.transitions.len(), b.transitions.len());
-    for (k, (x, y)) in a.transitions.iter().zip(&b.transitions).enumerate() {
-        assert_eq!((x.from, x.to), (y.from, y.to), "transition {k}");
-        assert!(
-            (x.t - y.t).abs() < 1e-8,
-            "transition {k}: {} vs {}",
-            x.t,
-            y.t
-        );
-    }
+    assert_same_decisions(&a.transitions, &b.transitions, 1e-8);
     let short: Vec<(f64, f64)> = a
         .transitions
         .windows(2)

@@ -363,16 +363,12 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
     }
 
     fn interpolate(&self, s: f64, out: &mut [f64; N]) {
-        for i in 0..N {
-            out[i] = self.value(s, i);
-        }
+        Components::ALL.fill(out, |i| self.value(s, i));
     }
 
     /// Component by component: the unchosen ones cost nothing.
     fn interpolate_components(&self, s: f64, which: &Components<N>, out: &mut [f64; N]) {
-        for &i in which.indices() {
-            out[i] = self.value(s, i);
-        }
+        which.fill(out, |i| self.value(s, i));
     }
 
     /// The default central difference, on the chosen components only.

@@ -138,22 +138,16 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
     }
 
     fn interpolate(&self, s: f64, out: &mut [f64; N]) {
-        for i in 0..N {
-            out[i] = self.value(s, i);
-        }
+        Components::ALL.fill(out, |i| self.value(s, i));
     }
 
     fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
-        for i in 0..N {
-            out[i] = self.rate(s, h, i);
-        }
+        Components::ALL.fill(out, |i| self.rate(s, h, i));
     }
 
     /// Component by component: the unchosen ones cost nothing.
     fn interpolate_components(&self, s: f64, which: &Components<N>, out: &mut [f64; N]) {
-        for &i in which.indices() {
-            out[i] = self.value(s, i);
-        }
+        which.fill(out, |i| self.value(s, i));
     }
 
     fn interpolate_derivative_components(
@@ -163,9 +157,7 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         which: &Components<N>,
         out: &mut [f64; N],
     ) {
-        for &i in which.indices() {
-            out[i] = self.rate(s, h, i);
-        }
+        which.fill(out, |i| self.rate(s, h, i));
     }
 }
 

@@ -146,8 +146,15 @@ impl<const N: usize> Components<N> {
     /// Copies the components in the set from `from` to `to`, leaving the others of `to`.
     #[inline]
     pub fn copy(&self, from: &[f64; N], to: &mut [f64; N]) {
+        self.fill(to, |i| from[i]);
+    }
+
+    /// Sets each component `i` in the set of `out` to `value(i)`, leaving the others: how an
+    /// interpolant evaluated component by component fills a full or a partial state.
+    #[inline]
+    pub fn fill(&self, out: &mut [f64; N], mut value: impl FnMut(usize) -> f64) {
         for &i in self.indices() {
-            to[i] = from[i];
+            out[i] = value(i);
         }
     }
 }

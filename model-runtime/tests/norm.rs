@@ -7,7 +7,7 @@ mod common;
 use common::info;
 use model_runtime::{
     integrate, Dop853, Dopri5, EvalError, GroupProblem, InputError, Model, ModelInfo, Rk4, Rodas4,
-    StepOptions, Stepper, Tolerance,
+    Solution, StepOptions, Stepper, Tolerance,
 };
 use proptest::prelude::*;
 
@@ -158,8 +158,9 @@ impl Model<2> for SlowAndFast {
     }
 }
 
-fn limiting_counts<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> (u64, u64, u64) {
-    let sol = integrate(
+/// The slow-and-fast system over 3 s from (1, 0).
+fn slow_and_fast<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> Solution<2> {
+    integrate(
         &SlowAndFast,
         stepper,
         tol,
@@ -168,7 +169,11 @@ fn limiting_counts<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> (u64, u64, u
         &[1.0, 0.0],
         3.0,
     )
-    .unwrap();
+    .unwrap()
+}
+
+fn limiting_counts<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> (u64, u64, u64) {
+    let sol = slow_and_fast(stepper, tol);
     let l = sol.stats.limiting;
     (sol.stats.steps, l.get(1), l.total())
 }
@@ -193,26 +198,8 @@ fn every_adaptive_method_counts_the_limiting_component_on_request() {
     assert_eq!(limiting_counts(Dopri5::new(), tol).2, 0);
     assert_eq!(limiting_counts(Rk4::new(1e-2), tracked).2, 0);
     // Tracking does not change the run.
-    let plain = integrate(
-        &SlowAndFast,
-        Dopri5::new(),
-        tol,
-        StepOptions::default(),
-        0.0,
-        &[1.0, 0.0],
-        3.0,
-    )
-    .unwrap();
-    let counted = integrate(
-        &SlowAndFast,
-        Dopri5::new(),
-        tracked,
-        StepOptions::default(),
-        0.0,
-        &[1.0, 0.0],
-        3.0,
-    )
-    .unwrap();
+    let plain = slow_and_fast(Dopri5::new(), tol);
+    let counted = slow_and_fast(Dopri5::new(), tracked);
     assert_eq!(plain.y, counted.y);
     assert_eq!(plain.stats.steps, counted.stats.steps);
 }

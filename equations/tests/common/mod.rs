@@ -9,8 +9,19 @@ pub mod scales;
 pub mod subject;
 pub mod tracked;
 
+use equations::hybrid::TransitionRecord;
 use equations::DiskParams;
 use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Two runs made the same mode decisions: the same number, the same kinds in the same order,
+/// and times within `dt` of each other.
+pub fn assert_same_decisions(a: &[TransitionRecord], b: &[TransitionRecord], dt: f64) {
+    assert_eq!(a.len(), b.len(), "number of transitions");
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        assert_eq!((x.from, x.to), (y.from, y.to), "transition {k}");
+        assert!((x.t - y.t).abs() < dt, "transition {k}: {} vs {}", x.t, y.t);
+    }
+}
 
 /// A small deterministic generator (SplitMix64), so that every failure is reproducible.
 pub struct Rng(u64);

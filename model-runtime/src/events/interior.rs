@@ -79,24 +79,35 @@ pub(crate) fn cubic_keeps_sign(a: f64, b: f64, c: f64, d: f64) -> bool {
     /// Far more than the relative rounding of the coefficients, of Horner's rule and of the
     /// bound itself (a few units of 1e-16).
     const SLACK: f64 = 1e-12;
-    let clear = |lo: f64, hi: f64| {
-        let margin = 0.5 * (hi - lo);
-        lo > margin || hi < -margin
-    };
-    let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
+    let (lo, hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
     if !clear(lo, hi) {
         return false;
     }
     // Newton's forward differences in u = 3s ∈ [0, 3], expanded to a + c1 u + c2 u² + c3 u³.
     let (d1, d2, d3) = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
     // On [0, 3], |c1| u + |c2| u² + |c3| u³ ≤ 3|c1| + 9|c2| + 27|c3| ≤ 3|d1| + 6|d2| + 10|d3|
-    // (from the expansion below): every value computed there lies within `a ± reach`.
+    // (from the expansion in `with_interior_extrema`): every value computed there lies within
+    // `a ± reach`.
     let reach = (3.0 * d1.abs() + 6.0 * d2.abs() + 10.0 * d3.abs() + SLACK * a.abs())
         * (1.0 + SLACK)
         + f64::MIN_POSITIVE;
     if clear(lo.min(a - reach), hi.max(a + reach)) {
         return true;
     }
+    let (lo, hi) = with_interior_extrema(a, (d1, d2, d3), (lo, hi));
+    clear(lo, hi)
+}
+
+/// Whether the range `[lo, hi]` stays clear of zero by half its width.
+fn clear(lo: f64, hi: f64) -> bool {
+    let margin = 0.5 * (hi - lo);
+    lo > margin || hi < -margin
+}
+
+/// The range `(lo, hi)` widened by the values of the cubic `a + c1 u + c2 u² + c3 u³` at its
+/// extrema inside `u ∈ (0, 3)`, the cubic given by its forward differences `(d1, d2, d3)`.
+fn with_interior_extrema(a: f64, (d1, d2, d3): (f64, f64, f64), range: (f64, f64)) -> (f64, f64) {
+    let (mut lo, mut hi) = range;
     let (c1, c2, c3) = (d1 - d2 / 2.0 + d3 / 3.0, (d2 - d3) / 2.0, d3 / 6.0);
     let p = |u: f64| a + u * (c1 + u * (c2 + u * c3));
     let mut visit = |u: f64| {
@@ -119,7 +130,7 @@ pub(crate) fn cubic_keeps_sign(a: f64, b: f64, c: f64, d: f64) -> bool {
             visit((-c2 - r) / (3.0 * c3));
         }
     }
-    clear(lo, hi)
+    (lo, hi)
 }
 
 #[cfg(test)]
@@ -147,33 +158,13 @@ mod tests {
         assert!(!clear(&|_| f64::NAN));
     }
 
-    /// The test as first written, without its early answers: the oracle for the fast one.
+    /// The test without its early answers: the oracle for the fast one (the early answers
+    /// must never change the verdict of the full range).
     fn cubic_keeps_sign_in_full(a: f64, b: f64, c: f64, d: f64) -> bool {
-        let (d1, d2, d3) = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
-        let (c1, c2, c3) = (d1 - d2 / 2.0 + d3 / 3.0, (d2 - d3) / 2.0, d3 / 6.0);
-        let p = |u: f64| a + u * (c1 + u * (c2 + u * c3));
-        let (mut lo, mut hi) = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
-        let mut visit = |u: f64| {
-            if u > 0.0 && u < 3.0 {
-                let v = p(u);
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-        };
-        if c3 == 0.0 {
-            if c2 != 0.0 {
-                visit(-c1 / (2.0 * c2));
-            }
-        } else {
-            let disc = c2 * c2 - 3.0 * c3 * c1;
-            if disc >= 0.0 {
-                let r = disc.sqrt();
-                visit((-c2 + r) / (3.0 * c3));
-                visit((-c2 - r) / (3.0 * c3));
-            }
-        }
-        let margin = 0.5 * (hi - lo);
-        lo > margin || hi < -margin
+        let diffs = (b - a, c - 2.0 * b + a, d - 3.0 * c + 3.0 * b - a);
+        let range = (a.min(b).min(c).min(d), a.max(b).max(c).max(d));
+        let (lo, hi) = with_interior_extrema(a, diffs, range);
+        clear(lo, hi)
     }
 
     /// Values near a decision: a smooth guard sampled at the four points, far from zero or
