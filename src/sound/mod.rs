@@ -4,8 +4,8 @@
 //! and faster as the disk settles, are the rattle one hears. To let a listener judge, the
 //! pipeline is: simulate and keep `N/mg` finely sampled ([`trace`]) → pick the major peaks
 //! with a written-down rule ([`peaks`]) → measure their rate ([`rate`]) → render each peak
-//! as a knock on a resonance into a WAV ([`render`]) → show the sound's spectrogram and the
-//! rate against the paper's numbers ([`spectrogram`], [`figures`]). Each stage is a plain
+//! as a knock on a resonance into a WAV ([`mod@render`]) → show the sound's spectrogram and the
+//! rate against the paper's numbers ([`mod@spectrogram`], [`figures`]). Each stage is a plain
 //! function of the previous stage's data, so each is tested on synthetic input with a known
 //! answer.
 
