@@ -70,7 +70,7 @@ pub use system::DiskGuard;
 
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, SlipChart, DIM};
 use crate::ParamError;
-use model_runtime::error::SolveError;
+use model_runtime::error::{parse_word, ParseSettingError, SolveError};
 use model_runtime::stats::Stats;
 use model_runtime::EvalError;
 /// Where a step's interior is searched for guard crossings (re-exported from the runtime).
@@ -149,26 +149,16 @@ impl std::fmt::Display for ErrorNorm {
     }
 }
 
-/// A spelling of [`ErrorNorm`] that is not `components` or `vectors`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseErrorNormError(pub String);
-
-impl std::fmt::Display for ParseErrorNormError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "error norm {:?}: expected components or vectors", self.0)
-    }
-}
-
-impl std::error::Error for ParseErrorNormError {}
-
 impl std::str::FromStr for ErrorNorm {
-    type Err = ParseErrorNormError;
+    type Err = ParseSettingError;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        [ErrorNorm::Components, ErrorNorm::Vectors]
-            .into_iter()
-            .find(|n| n.to_string() == s)
-            .ok_or_else(|| ParseErrorNormError(s.to_owned()))
+        parse_word(
+            s,
+            &[ErrorNorm::Components, ErrorNorm::Vectors],
+            "error norm",
+            "components or vectors",
+        )
     }
 }
 

@@ -4,7 +4,7 @@
 //! The controller is shared by all adaptive methods (only the error order differs), so two
 //! methods compared on the same problem differ only in their formulas.
 
-use crate::error::SolveError;
+use crate::error::{parse_word, ParseSettingError, SolveError};
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, StepStart};
 use crate::tolerance::Tolerance;
@@ -71,34 +71,20 @@ impl std::fmt::Display for StepControl {
     }
 }
 
-/// A spelling of [`StepControl`] that is not `integral`, `pi-hairer` or `pi-gustafsson`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseStepControlError(pub String);
-
-impl std::fmt::Display for ParseStepControlError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "step control {:?}: expected integral, pi-hairer or pi-gustafsson",
-            self.0
-        )
-    }
-}
-
-impl std::error::Error for ParseStepControlError {}
-
 impl std::str::FromStr for StepControl {
-    type Err = ParseStepControlError;
+    type Err = ParseSettingError;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        [
-            StepControl::Integral,
-            StepControl::PiHairer,
-            StepControl::PiGustafsson,
-        ]
-        .into_iter()
-        .find(|c| c.to_string() == s)
-        .ok_or_else(|| ParseStepControlError(s.to_owned()))
+        parse_word(
+            s,
+            &[
+                StepControl::Integral,
+                StepControl::PiHairer,
+                StepControl::PiGustafsson,
+            ],
+            "step control",
+            "integral, pi-hairer or pi-gustafsson",
+        )
     }
 }
 

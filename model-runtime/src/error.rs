@@ -239,3 +239,46 @@ impl From<InputError> for SolveError {
 pub(crate) fn at(t: f64) -> impl Fn(EvalError) -> SolveError {
     move |source| SolveError::Eval { t, source }
 }
+
+/// A setting written as a word (in a scene file or on a command line) that is not one of its
+/// spellings: which setting, what was written, and what it may be.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseSettingError {
+    /// The setting, e.g. `step control`.
+    pub setting: &'static str,
+    /// What was written.
+    pub text: String,
+    /// The valid spellings, e.g. `integral, pi-hairer or pi-gustafsson`.
+    pub expected: &'static str,
+}
+
+impl fmt::Display for ParseSettingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} {:?}: expected {}",
+            self.setting, self.text, self.expected
+        )
+    }
+}
+
+impl std::error::Error for ParseSettingError {}
+
+/// The value of `choices` whose `Display` spelling is `text`: the reading of a setting spelled
+/// as one word per value (`expected` lists them for the error).
+pub fn parse_word<T: Copy + fmt::Display>(
+    text: &str,
+    choices: &[T],
+    setting: &'static str,
+    expected: &'static str,
+) -> Result<T, ParseSettingError> {
+    choices
+        .iter()
+        .copied()
+        .find(|c| c.to_string() == text)
+        .ok_or_else(|| ParseSettingError {
+            setting,
+            text: text.to_owned(),
+            expected,
+        })
+}

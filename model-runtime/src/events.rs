@@ -57,7 +57,7 @@ mod quiet;
 
 pub use inputs::GuardInputs;
 pub(crate) use interior::cubic_keeps_sign;
-pub use interior::{InteriorChecks, ParseInteriorChecksError};
+pub use interior::InteriorChecks;
 use quiet::QuietRange;
 
 /// How guard values at a time are obtained.

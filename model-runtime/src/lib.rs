@@ -58,13 +58,11 @@ pub mod stepper;
 mod tableau;
 pub mod tolerance;
 
-pub use control::{ParseStepControlError, StepControl, StepOptions};
+pub use control::{StepControl, StepOptions};
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
-pub use error::{GroupProblem, InputError, SolveError};
-pub use events::{
-    Crossed, Direction, EventHit, GuardInputs, GuardSpec, InteriorChecks, ParseInteriorChecksError,
-};
+pub use error::{parse_word, GroupProblem, InputError, ParseSettingError, SolveError};
+pub use events::{Crossed, Direction, EventHit, GuardInputs, GuardSpec, InteriorChecks};
 pub use hybrid::{
     ChatterLimit, HybridError, HybridOptions, HybridOutcome, HybridSolver, HybridSystem,
     StopReason, Transition,

@@ -1,6 +1,8 @@
 //! Where inside a step the guards are looked at, and the cheap test that lets a screened step
 //! skip most of its sample points (see the module docs of [`crate::events`]).
 
+use crate::error::ParseSettingError;
+
 /// Where, besides the step ends, a step is searched for guard crossings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum InteriorChecks {
@@ -36,27 +38,15 @@ impl std::fmt::Display for InteriorChecks {
     }
 }
 
-/// A spelling of [`InteriorChecks`] that is not `none`, `exact:N` or `screened:N`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseInteriorChecksError(pub String);
-
-impl std::fmt::Display for ParseInteriorChecksError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "guard checks {:?}: expected none, exact:N or screened:N with N a whole number",
-            self.0
-        )
-    }
-}
-
-impl std::error::Error for ParseInteriorChecksError {}
-
 impl std::str::FromStr for InteriorChecks {
-    type Err = ParseInteriorChecksError;
+    type Err = ParseSettingError;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = || ParseInteriorChecksError(s.to_owned());
+        let bad = || ParseSettingError {
+            setting: "guard checks",
+            text: s.to_owned(),
+            expected: "none, exact:N or screened:N with N a whole number",
+        };
         match s.split_once(':') {
             None if s == "none" => Ok(InteriorChecks::None),
             Some(("exact", n)) => n.parse().map(InteriorChecks::Exact).map_err(|_| bad()),

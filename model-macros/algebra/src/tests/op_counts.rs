@@ -37,60 +37,62 @@ const PENDULUM_RHS: [u32; 6] = [7, 11, 2, 0, 0, 0];
 const PENDULUM_JACOBIAN: [u32; 6] = [14, 34, 3, 0, 0, 0];
 const PENDULUM_OUTPUTS: [u32; 6] = [2, 5, 0, 0, 0, 0];
 
-#[test]
-fn rolling_counts() {
-    let spec = model(super::rolling_disk::ROLLING);
-    let m = compile(&spec, &CompileOptions::default()).unwrap();
-    assert_eq!(counts(&m.rhs), ROLLING_RHS, "{}", m.rhs);
-    assert_eq!(counts(&m.jacobian), ROLLING_JACOBIAN);
-    assert_eq!(
-        counts(&m.variants[0].rhs),
-        ROLLING_SPIN_RHS,
-        "{}",
-        m.variants[0].rhs
-    );
+/// The pinned counts of a disk model: its right-hand side, its Jacobian, and the right-hand
+/// side of its first variant.
+struct DiskCounts {
+    rhs: [u32; 6],
+    jacobian: [u32; 6],
+    variant_rhs: [u32; 6],
 }
 
-const ROLLING_RHS: [u32; 6] = [20, 51, 3, 0, 2, 0];
-const ROLLING_JACOBIAN: [u32; 6] = [53, 152, 4, 0, 2, 0];
-const ROLLING_SPIN_RHS: [u32; 6] = [4, 18, 2, 0, 1, 0];
+/// Compiles the model `text` and compares its counts with `expected` (printing the program
+/// whose counts differ).
+fn assert_counts(text: &str, expected: DiskCounts) {
+    let m = compile(&model(text), &CompileOptions::default()).unwrap();
+    assert_eq!(counts(&m.rhs), expected.rhs, "{}", m.rhs);
+    assert_eq!(counts(&m.jacobian), expected.jacobian);
+    let variant = &m.variants[0].rhs;
+    assert_eq!(counts(variant), expected.variant_rhs, "{variant}");
+}
+
+#[test]
+fn rolling_counts() {
+    // The variant: the spin-only rolling model.
+    assert_counts(
+        super::rolling_disk::ROLLING,
+        DiskCounts {
+            rhs: [20, 51, 3, 0, 2, 0],
+            jacobian: [53, 152, 4, 0, 2, 0],
+            variant_rhs: [4, 18, 2, 0, 1, 0],
+        },
+    );
+}
 
 #[test]
 fn sliding_counts() {
-    let spec = model(super::sliding_disk::SLIDING);
-    let m = compile(&spec, &CompileOptions::default()).unwrap();
-    assert_eq!(counts(&m.rhs), SLIDING_RHS, "{}", m.rhs);
-    assert_eq!(counts(&m.jacobian), SLIDING_JACOBIAN);
-    assert_eq!(
-        counts(&m.variants[0].rhs),
-        SLIDING_PRUNED_RHS,
-        "{}",
-        m.variants[0].rhs
+    // The variant: the pruned sliding model.
+    assert_counts(
+        super::sliding_disk::SLIDING,
+        DiskCounts {
+            rhs: [39, 99, 5, 0, 3, 0],
+            jacobian: [169, 464, 9, 0, 3, 0],
+            variant_rhs: [24, 40, 4, 0, 2, 0],
+        },
     );
 }
-
-const SLIDING_RHS: [u32; 6] = [39, 99, 5, 0, 3, 0];
-const SLIDING_JACOBIAN: [u32; 6] = [169, 464, 9, 0, 3, 0];
-const SLIDING_PRUNED_RHS: [u32; 6] = [24, 40, 4, 0, 2, 0];
 
 #[test]
 fn cartesian_sliding_counts() {
-    let spec = model(&super::cartesian_disk::cartesian());
-    let m = compile(&spec, &CompileOptions::default()).unwrap();
-    assert_eq!(counts(&m.rhs), CARTESIAN_RHS, "{}", m.rhs);
-    assert_eq!(counts(&m.jacobian), CARTESIAN_JACOBIAN);
-    assert_eq!(
-        counts(&m.variants[0].rhs),
-        CARTESIAN_PRUNED_RHS,
-        "{}",
-        m.variants[0].rhs
+    // Before the trigonometric identities: rhs [42, 101, 6, 1, 5, 0], pruned [27, 53, 6, 1, 3, 0].
+    assert_counts(
+        &super::cartesian_disk::cartesian(),
+        DiskCounts {
+            rhs: [43, 110, 5, 1, 2, 0],
+            jacobian: [230, 616, 9, 1, 2, 0],
+            variant_rhs: [28, 66, 5, 1, 2, 0],
+        },
     );
 }
-
-// Before the trigonometric identities: rhs [42, 101, 6, 1, 5, 0], pruned [27, 53, 6, 1, 3, 0].
-const CARTESIAN_RHS: [u32; 6] = [43, 110, 5, 1, 2, 0];
-const CARTESIAN_JACOBIAN: [u32; 6] = [230, 616, 9, 1, 2, 0];
-const CARTESIAN_PRUNED_RHS: [u32; 6] = [28, 66, 5, 1, 2, 0];
 
 /// A dense `n × n` mass matrix of unrelated entries: its symbolic inverse swells.
 fn dense_model(n: usize) -> String {
