@@ -80,6 +80,23 @@ pub struct Work {
     pub wall_s: f64,
 }
 
+/// Where the wall time of a run went (s, from its start).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Timings {
+    /// The simulation, with the trajectory streamed to its file meanwhile.
+    pub simulation_s: f64,
+    /// A second pass over the last second of a run that stopped early (0 otherwise).
+    pub replay_s: f64,
+    /// Committing the trajectory and writing the events.
+    pub outputs_s: f64,
+    /// The summary's analysis.
+    pub analysis_s: f64,
+    /// The figures.
+    pub figures_s: f64,
+    /// Everything, up to the summary.
+    pub total_s: f64,
+}
+
 /// Everything a run produced.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RunData {

@@ -1,39 +1,38 @@
 //! The shipped scenes do what their descriptions say, checked against EQUATIONS.md §7.
 
+use std::sync::atomic::AtomicBool;
+
 use eulerdisk::record::RunData;
-use eulerdisk::run::collect::{Collector, Sampling};
 use eulerdisk::run::model::ModelChoice;
-use eulerdisk::run::simulation::{self, Message};
+use eulerdisk::run::plan::SamplePlan;
+use eulerdisk::run::progress::Progress;
+use eulerdisk::run::{record, ProgressStyle};
 use eulerdisk::scene::{self, Override};
 
 /// Runs a built-in scene for `t_end` seconds with the full models (the checks read `X`, `Y`
-/// and the energy) and returns what it recorded.
+/// and the energy) and returns what it recorded: every sample at the scene's rate.
 fn simulate(name: &str, t_end: f64) -> RunData {
     let scene = scene::load(name, &[Override::new("run", "t_end", t_end)]).unwrap();
-    let sampling = Sampling {
-        rate: scene.file.run.sample_rate,
+    let plan = SamplePlan {
         every: 1,
+        first: None,
+        last: None,
+        ..SamplePlan::new(0.0, t_end, scene.file.run.sample_rate)
     };
-    let rx = simulation::start(&scene, &ModelChoice::default(), sampling.fine_rate());
-    let mut c = Collector::new(sampling);
-    loop {
-        match rx.recv().unwrap() {
-            Message::Sample(s) => c.sample(s),
-            Message::Event(e) => {
-                c.event(e, &scene.file.modes.allowed);
-            }
-            Message::Done(result) => {
-                let outcome = result.unwrap();
-                assert_eq!(
-                    outcome.stop.reason, "end_time",
-                    "{name}: {:?}",
-                    outcome.stop
-                );
-                break;
-            }
-        }
-    }
-    c.finish()
+    let interrupt = AtomicBool::new(false);
+    let mut progress = Progress::new(ProgressStyle::Quiet, t_end);
+    let recorded = record(
+        &scene,
+        &ModelChoice::default(),
+        plan,
+        &interrupt,
+        &mut progress,
+        None,
+    )
+    .unwrap();
+    let stop = recorded.data.stop.clone().unwrap();
+    assert_eq!(stop.reason, "end_time", "{name}: {stop:?}");
+    recorded.data
 }
 
 fn theta_range(d: &RunData) -> (f64, f64) {

@@ -1,7 +1,7 @@
 //! Runs the paper's scene (EQUATIONS.md §9) on the hybrid driver and prints what it cost.
 //!
 //! ```text
-//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N] [components|vectors] [pi-gustafsson|pi-hairer|integral]
+//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853] [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N] [components|vectors] [pi-gustafsson|pi-hairer|integral] [physical|regularised]
 //! ```
 
 use equations::hybrid::{
@@ -96,6 +96,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(c) = arg(9) {
         config.step_control = c.parse()?;
     }
+    if let Some(t) = arg(10) {
+        config.time = t.parse()?;
+    }
     let mut counter = Counter {
         t_end: config.t_end,
         ..Counter::default()
@@ -111,8 +114,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let elapsed = start.elapsed();
     println!(
-        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}, guard checks {}, error norm {:?}",
-        config.integrator, config.slip_sign, config.rtol, config.atol, config.guard_checks, config.error_norm
+        "paper scene, {which} models, {:?}, {chart:?} chart, {:?} slip, rtol {:e}, atol {:e}, guard checks {}, error norm {:?}, time {}",
+        config.integrator, config.slip_sign, config.rtol, config.atol, config.guard_checks, config.error_norm, config.time
     );
     println!("stop: {} at t = {}", out.stop.name(), out.last.t);
     println!(

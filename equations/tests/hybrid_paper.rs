@@ -3,7 +3,7 @@
 
 use equations::hybrid::{
     simulate, DiskConfig, DiskRecorder, GeneratedModels, InitialState, IntegratorChoice,
-    ReferenceModels, RunOutcome, StopReason, TransitionRecord, Trigger,
+    ReferenceModels, RunOutcome, StopReason, TimeVariable, TransitionRecord, Trigger,
 };
 use equations::modes::{Mode, SlipChart};
 use equations::DiskParams;
@@ -97,6 +97,55 @@ fn the_first_twenty_transitions_agree_between_dp5_and_dop853() {
             x.t,
             y.t,
             x.t - y.t
+        );
+    }
+}
+
+/// Regularised time changes the variable the integrator steps in, not the motion: over the
+/// first 5 s at tight tolerances both charts and both methods make the decisions of a run in
+/// physical time at the same times, and sample the same states at the same physical times.
+#[test]
+fn regularised_time_reproduces_the_run_in_physical_time() {
+    let physical = tight(IntegratorChoice::Dop853, 5.0);
+    let regularised = |integrator| DiskConfig {
+        time: TimeVariable::Regularised,
+        sample_rate: Some(50.0),
+        ..tight(integrator, 5.0)
+    };
+    let (out_p, a) = run(
+        &DiskConfig {
+            sample_rate: Some(50.0),
+            ..physical
+        },
+        SlipChart::Cartesian,
+    );
+    for (integrator, chart) in [
+        (IntegratorChoice::Dop853, SlipChart::Cartesian),
+        (IntegratorChoice::Dopri5, SlipChart::Cartesian),
+        (IntegratorChoice::Dop853, SlipChart::Polar),
+    ] {
+        let (out_r, b) = run(&regularised(integrator), chart);
+        assert_eq!(out_r.stop, StopReason::EndTime);
+        assert_eq!(out_r.last.t, 5.0);
+        assert!(events(&a).len() > 40, "{}", events(&a).len());
+        assert_same_decisions(&events(&a), &events(&b), 1e-8);
+        assert_eq!(a.samples.len(), b.samples.len());
+        for (x, y) in a.samples.iter().zip(&b.samples) {
+            assert_eq!(x.t, y.t);
+            let theta = equations::modes::layout::THETA;
+            assert!(
+                (x.state.y[theta] - y.state.y[theta]).abs() < 1e-8,
+                "{integrator:?} {chart:?}: theta at t = {}: {} against {}",
+                x.t,
+                x.state.y[theta],
+                y.state.y[theta]
+            );
+        }
+        assert!(
+            out_r.stats.steps < out_p.stats.steps || integrator == IntegratorChoice::Dopri5,
+            "{integrator:?}: {} regularised steps against {} in physical time",
+            out_r.stats.steps,
+            out_p.stats.steps
         );
     }
 }

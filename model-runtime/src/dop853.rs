@@ -13,7 +13,7 @@
 
 use crate::error::SolveError;
 use crate::stats::Stats;
-use crate::stepper::{central_difference, eval, Components, Rhs, StepEnd, StepStart, Stepper};
+use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tableau::{combine, sum};
 use crate::tolerance::{ErrorEstimate, Tolerance};
 
@@ -371,7 +371,11 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         which.fill(out, |i| self.value(s, i));
     }
 
-    /// The default central difference, on the chosen components only.
+    fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
+        Components::ALL.fill(out, |i| self.rate(s, h, i));
+    }
+
+    /// Component by component, like the values.
     fn interpolate_derivative_components(
         &self,
         s: f64,
@@ -379,13 +383,7 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         which: &Components<N>,
         out: &mut [f64; N],
     ) {
-        central_difference(
-            |s, o| self.interpolate_components(s, which, o),
-            s,
-            h,
-            which,
-            out,
-        );
+        which.fill(out, |i| self.rate(s, h, i));
     }
 }
 
@@ -400,5 +398,27 @@ impl<const N: usize> Dop853<N> {
                 + s1 * (c[2][i]
                     + s * (c[3][i]
                         + s1 * (c[4][i] + s * (c[5][i] + s1 * (c[6][i] + s * c[7][i]))))))
+    }
+
+    /// Component `i` of the interpolant's exact derivative at `s` (step `h`): the product rule
+    /// through the nesting of [`Self::value`], innermost first (each level is
+    /// `a_k = c_k + w·a_{k+1}` with `w` alternating between `s` and `1 − s`).
+    #[inline(always)]
+    fn rate(&self, s: f64, h: f64, i: usize) -> f64 {
+        let s1 = 1.0 - s;
+        let c = &self.cont;
+        let a6 = c[6][i] + s * c[7][i];
+        let d6 = c[7][i];
+        let a5 = c[5][i] + s1 * a6;
+        let d5 = s1 * d6 - a6;
+        let a4 = c[4][i] + s * a5;
+        let d4 = s * d5 + a5;
+        let a3 = c[3][i] + s1 * a4;
+        let d3 = s1 * d4 - a4;
+        let a2 = c[2][i] + s * a3;
+        let d2 = s * d3 + a3;
+        let a1 = c[1][i] + s1 * a2;
+        let d1 = s1 * d2 - a2;
+        (a1 + s * d1) / h
     }
 }

@@ -68,6 +68,23 @@ pub enum SolveError {
     InvalidInput(InputError),
 }
 
+impl SolveError {
+    /// The same failure dated `t` instead (a run in regularised time reports the physical
+    /// time, not the integration variable's); an input error has no time and is unchanged.
+    pub fn at_time(mut self, t_new: f64) -> Self {
+        match &mut self {
+            SolveError::StepSizeCollapse { t, .. }
+            | SolveError::Eval { t, .. }
+            | SolveError::MaxSteps { t, .. }
+            | SolveError::SingularIterationMatrix { t, .. }
+            | SolveError::GuardNotFinite { t, .. }
+            | SolveError::TransitionState { t, .. } => *t = t_new,
+            SolveError::InvalidInput(_) => {}
+        }
+        self
+    }
+}
+
 /// A problem with the arguments of a run, found before any step is taken.
 #[derive(Clone, Debug, PartialEq)]
 pub enum InputError {

@@ -42,6 +42,7 @@
 //! assert!(out.transitions >= 2);
 //! ```
 
+pub mod regularised;
 mod run;
 
 use crate::control::StepOptions;
@@ -53,6 +54,7 @@ use crate::observer::Observer;
 use crate::stats::Stats;
 use crate::stepper::Stepper;
 use crate::tolerance::Tolerance;
+pub use regularised::{ClockGuard, Clocked, PhysicalTime, Regularised, TimeScale};
 use run::Run;
 use std::collections::VecDeque;
 use std::fmt::{self, Debug};
@@ -224,6 +226,8 @@ pub enum StopReason<R> {
     EndTime,
     /// The transition map asked to stop.
     User(R),
+    /// The observer asked to stop ([`Observer::proceed`]).
+    Observer,
 }
 
 /// The end of a hybrid run.

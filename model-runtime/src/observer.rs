@@ -2,6 +2,7 @@
 //! observer as it happens, so a long run never holds its trajectory in memory.
 
 use crate::events::EventHit;
+use std::ops::ControlFlow;
 
 /// Evaluation of the interpolant of one accepted step.
 pub trait Interpolant<const N: usize> {
@@ -82,8 +83,20 @@ pub trait Observer<const N: usize, Md, G> {
     }
     /// An accepted step.
     fn on_step(&mut self, _step: &StepView<'_, N, Md>) {}
+    /// Whether the sample due at `t` is wanted (default: every one). Asked before the state
+    /// is interpolated, so an observer that needs the grid only in places (a coarse grid for
+    /// a file and a fine one in a window, say) pays nothing for the samples it declines.
+    fn wants_sample(&self, _t: f64) -> bool {
+        true
+    }
     /// A dense sample at a requested time.
     fn on_sample(&mut self, _sample: &Sample<'_, N, Md>) {}
+    /// Asked after every accepted step and every transition: [`ControlFlow::Break`] ends the
+    /// run there, with everything delivered so far (an interrupt, a time budget, a state the
+    /// caller forbids). The default never stops.
+    fn proceed(&mut self) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
     /// A transition (the event that caused it is in the record).
     fn on_transition(&mut self, _record: &TransitionRecord<N, Md, G>) {}
 }

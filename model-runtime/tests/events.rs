@@ -301,6 +301,7 @@ fn first_event(guards: &[(Direction, f64)], checks: InteriorChecks) -> Option<(u
     match out.stop {
         StopReason::User(i) => Some((i, out.t)),
         StopReason::EndTime => None,
+        StopReason::Observer => unreachable!("the unit observer never stops a run"),
     }
 }
 

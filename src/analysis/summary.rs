@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use super::oscillation::{mean_period, Series};
 use crate::quantity::Quantity;
-use crate::record::{RunData, TriggerKind};
+use crate::record::{RunData, Timings, TriggerKind};
 use crate::sample::Sample;
 use crate::scene::schema::ModeName;
 
@@ -72,6 +72,9 @@ pub struct Summary {
     pub constraint_drift_max: Option<f64>,
     /// Keys written as `null` because the models that ran do not compute them, with the reason.
     pub not_computed: BTreeMap<&'static str, String>,
+    /// Where the wall time went: simulation (with the trajectory streamed meanwhile),
+    /// outputs, analysis, figures.
+    pub timings: Timings,
 }
 
 /// One line of the printed comparison.
@@ -192,6 +195,7 @@ impl Summary {
                 .constraint_drift_max
                 .filter(|_| computes("constraint_drift_max")),
             not_computed,
+            timings: Timings::default(),
         }
     }
 

@@ -276,16 +276,36 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     charts
 }
 
-/// Renders every figure into `dir` (PNG and SVG); returns the stems written.
+/// Renders every figure into `dir` (PNG and SVG) on every core; returns the stems written.
+/// The figures are independent and each is written atomically, so they are drawn in
+/// parallel, a few per thread, in the order they are numbered.
 pub fn write_paper_figures(
     data: &RunData,
     p: &DiskParams,
     dir: &Path,
 ) -> Result<Vec<String>, WriteError> {
-    let mut stems = Vec::new();
-    for chart in paper_charts(data, p) {
-        render(&chart, dir)?;
-        stems.push(chart.stem);
-    }
-    Ok(stems)
+    let charts = paper_charts(data, p);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let draw = || -> Result<(), WriteError> {
+        loop {
+            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(chart) = charts.get(i) else {
+                return Ok(());
+            };
+            render(chart, dir)?;
+        }
+    };
+    std::thread::scope(|scope| {
+        let workers: Vec<_> = (1..threads.min(charts.len()))
+            .map(|_| scope.spawn(draw))
+            .collect();
+        let mine = draw();
+        workers
+            .into_iter()
+            .map(|w| w.join().expect("a figure thread panicked"))
+            .chain(std::iter::once(mine))
+            .collect::<Result<(), WriteError>>()
+    })?;
+    Ok(charts.into_iter().map(|c| c.stem).collect())
 }

@@ -48,6 +48,78 @@ where
     })
 }
 
+/// A file written piece by piece (a trajectory streamed while the run goes on) that appears
+/// under its name only when [`AtomicFile::commit`] has flushed it; dropped uncommitted (an
+/// error, a panic), it leaves nothing but the previous version of `path`, if any.
+#[derive(Debug)]
+pub struct AtomicFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    writer: Option<BufWriter<File>>,
+}
+
+impl AtomicFile {
+    /// Starts writing `path` (under its temporary name).
+    pub fn create(path: &Path) -> Result<AtomicFile, WriteError> {
+        let tmp = temporary_name(path);
+        let file = File::create(&tmp).map_err(|source| WriteError {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Ok(AtomicFile {
+            path: path.to_path_buf(),
+            tmp,
+            writer: Some(BufWriter::with_capacity(1 << 16, file)),
+        })
+    }
+
+    /// The file's final path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Where to write the content.
+    pub fn writer(&mut self) -> &mut BufWriter<File> {
+        self.writer
+            .as_mut()
+            .expect("an AtomicFile is only consumed by commit")
+    }
+
+    /// Flushes the content to disk and gives the file its name.
+    pub fn commit(mut self) -> Result<(), WriteError> {
+        let writer = self
+            .writer
+            .take()
+            .expect("an AtomicFile is only consumed by commit");
+        let result = writer
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .and_then(|file| file.sync_all())
+            .and_then(|()| fs::rename(&self.tmp, &self.path));
+        result.map_err(|source| WriteError {
+            path: self.path.clone(),
+            source,
+        })
+    }
+
+    /// Wraps an I/O error of writing the content with the file's path.
+    pub fn error(&self, source: io::Error) -> WriteError {
+        WriteError {
+            path: self.path.clone(),
+            source,
+        }
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        // Committed files were renamed away; an uncommitted one is removed.
+        if self.writer.take().is_some() || self.tmp.exists() {
+            let _ = fs::remove_file(&self.tmp);
+        }
+    }
+}
+
 /// Writes `path` through `fill`, atomically: the content goes to a temporary file that is
 /// renamed to `path` only when `fill` succeeded and the data is flushed. On failure the
 /// temporary file is removed and `path` is untouched.
@@ -55,22 +127,11 @@ pub fn write_atomic<F>(path: &Path, fill: F) -> Result<(), WriteError>
 where
     F: FnOnce(&mut BufWriter<File>) -> io::Result<()>,
 {
-    let tmp = temporary_name(path);
-    let wrap = |source| WriteError {
-        path: path.to_path_buf(),
-        source,
-    };
-    let result = (|| {
-        let mut w = BufWriter::new(File::create(&tmp)?);
-        fill(&mut w)?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
+    let mut file = AtomicFile::create(path)?;
+    match fill(file.writer()) {
+        Ok(()) => file.commit(),
+        Err(source) => Err(file.error(source)),
     }
-    result.map_err(wrap)
 }
 
 /// Writes `path` from a complete byte buffer, atomically.

@@ -15,11 +15,22 @@ use crate::sample::Sample;
 /// moderate magnitudes, exponent notation otherwise (Rust prints the shortest round-trip
 /// digits in both).
 pub fn number(v: f64) -> String {
-    let a = v.abs();
-    if v == 0.0 || (1e-4..1e15).contains(&a) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
+    Number(v).to_string()
+}
+
+/// [`number`] as a `Display`, so that a writer formats it in place, without a `String` per
+/// number (a trajectory has millions of them).
+#[derive(Clone, Copy, Debug)]
+pub struct Number(pub f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || (1e-4..1e15).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
     }
 }
 
@@ -42,13 +53,23 @@ pub fn write_trajectory<W: Write>(
 ) -> io::Result<()> {
     writeln!(w, "{}", trajectory_header(quantities))?;
     for s in samples {
-        write!(w, "{},{}", number(s.t), s.mode)?;
-        for q in quantities {
-            write!(w, ",{}", number(q.value(s, p)))?;
-        }
-        writeln!(w)?;
+        write_trajectory_row(w, quantities, s, p)?;
     }
     Ok(())
+}
+
+/// Writes one row of `trajectory.csv` (a run streams them as its samples arrive).
+pub fn write_trajectory_row<W: Write>(
+    w: &mut W,
+    quantities: &[Quantity],
+    s: &Sample,
+    p: &DiskParams,
+) -> io::Result<()> {
+    write!(w, "{},{}", Number(s.t), s.mode)?;
+    for q in quantities {
+        write!(w, ",{}", Number(q.value(s, p)))?;
+    }
+    writeln!(w)
 }
 
 /// The header of `events.csv`.

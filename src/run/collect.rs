@@ -1,52 +1,67 @@
-//! Keeps what a run streams: every k-th fine sample for the trajectory, and every fine sample
-//! of the first and of the latest second for the figures.
-//!
-//! The figures of the two windows need finer sampling than the trajectory file (the normal
-//! force peaks last milliseconds), but a 100 s run at that rate would not fit in a file
-//! anyone wants; so the simulation samples finely and this collector thins out.
+//! Keeps what a run streams, sorted by the [`SamplePlan`]: the trajectory's grid (also
+//! written to `trajectory.csv` as it arrives, when a file is given), and the finely sampled
+//! first and last second for the figures.
 
-use std::collections::VecDeque;
+use std::io::Write;
 
+use equations::params::DiskParams;
+
+use super::plan::{SamplePlan, Window};
+use crate::output::atomic::{AtomicFile, WriteError};
+use crate::output::tables::{trajectory_header, write_trajectory_row};
+use crate::quantity::Quantity;
 use crate::record::{EventRow, RunData};
 use crate::sample::Sample;
 use crate::scene::schema::ModeName;
 
-/// Length of the two finely sampled windows (s).
-pub const WINDOW: f64 = 1.0;
-/// Highest fine sampling rate used for the windows (1/s).
-pub const FINE_RATE_MAX: f64 = 20_000.0;
-
-/// The fine sampling: a rate that is a whole multiple of the trajectory's.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sampling {
-    /// The trajectory's rate (1/s).
-    pub rate: f64,
-    /// Fine samples per trajectory sample.
-    pub every: u64,
+/// `trajectory.csv`, written row by row while the run goes on, so that writing overlaps the
+/// simulation instead of following it.
+#[derive(Debug)]
+pub struct TrajectoryFile {
+    file: AtomicFile,
+    quantities: Vec<Quantity>,
+    params: DiskParams,
 }
 
-impl Sampling {
-    /// The fine sampling for a trajectory rate: as fine as [`FINE_RATE_MAX`] allows, never
-    /// coarser than the trajectory.
-    pub fn for_rate(rate: f64) -> Sampling {
-        let every = (FINE_RATE_MAX / rate).floor().max(1.0) as u64;
-        Sampling { rate, every }
+impl TrajectoryFile {
+    /// Starts the file (under its temporary name) with its header.
+    pub fn create(
+        path: &std::path::Path,
+        quantities: &[Quantity],
+        params: DiskParams,
+    ) -> Result<TrajectoryFile, WriteError> {
+        let mut file = AtomicFile::create(path)?;
+        writeln!(file.writer(), "{}", trajectory_header(quantities)).map_err(|e| file.error(e))?;
+        Ok(TrajectoryFile {
+            file,
+            quantities: quantities.to_vec(),
+            params,
+        })
     }
 
-    /// The fine rate (1/s).
-    pub fn fine_rate(&self) -> f64 {
-        self.rate * self.every as f64
+    fn row(&mut self, s: &Sample) -> Result<(), WriteError> {
+        write_trajectory_row(self.file.writer(), &self.quantities, s, &self.params)
+            .map_err(|e| self.file.error(e))
+    }
+
+    /// Flushes the file and gives it its name.
+    pub fn commit(self) -> Result<(), WriteError> {
+        self.file.commit()
+    }
+
+    /// The file's final path.
+    pub fn path(&self) -> &std::path::Path {
+        self.file.path()
     }
 }
 
 /// Collects a run's stream.
 #[derive(Debug)]
 pub struct Collector {
-    sampling: Sampling,
-    received: u64,
-    t0: Option<f64>,
+    plan: SamplePlan,
     data: RunData,
-    latest: VecDeque<Sample>,
+    latest: Option<Sample>,
+    file: Option<TrajectoryFile>,
 }
 
 /// A mode the scene does not allow was entered.
@@ -59,47 +74,52 @@ pub struct ForbiddenMode {
 }
 
 impl Collector {
-    /// An empty collector.
-    pub fn new(sampling: Sampling) -> Collector {
+    /// An empty collector that keeps the samples of `plan`.
+    pub fn new(plan: SamplePlan) -> Collector {
         Collector {
-            sampling,
-            received: 0,
-            t0: None,
+            plan,
             data: RunData::default(),
-            latest: VecDeque::new(),
+            latest: None,
+            file: None,
         }
     }
 
-    /// Takes one fine sample.
-    pub fn sample(&mut self, s: Sample) {
-        let t0 = *self.t0.get_or_insert(s.t);
-        if self.received.is_multiple_of(self.sampling.every) {
+    /// Also writes every trajectory sample into `file` as it arrives.
+    pub fn writing(mut self, file: TrajectoryFile) -> Collector {
+        self.file = Some(file);
+        self
+    }
+
+    /// Takes one sample of the plan.
+    pub fn sample(&mut self, s: Sample) -> Result<(), WriteError> {
+        if self.plan.is_coarse(s.t) {
+            if let Some(file) = &mut self.file {
+                file.row(&s)?;
+            }
             self.data.samples.push(s);
         }
-        self.received += 1;
-        if s.t <= t0 + WINDOW {
-            self.data.first_second.push(s);
+        match self.plan.window(s.t) {
+            Some(Window::First) => self.data.first_second.push(s),
+            Some(Window::Last) => self.data.last_second.push(s),
+            None => {}
         }
-        self.latest.push_back(s);
-        while self.latest.front().is_some_and(|f| f.t < s.t - WINDOW) {
-            self.latest.pop_front();
-        }
+        self.latest = Some(s);
+        Ok(())
     }
 
-    /// Takes one mode decision; reports it when it enters a mode not in `allowed`.
-    pub fn event(&mut self, e: EventRow, allowed: &[ModeName]) -> Option<ForbiddenMode> {
+    /// Takes one mode decision.
+    pub fn event(&mut self, e: EventRow) {
         self.data.events.push(e);
-        (!allowed.contains(&e.to)).then_some(ForbiddenMode { t: e.t, mode: e.to })
     }
 
     /// The time of the latest sample.
     pub fn latest_t(&self) -> Option<f64> {
-        self.latest.back().map(|s| s.t)
+        self.latest.map(|s| s.t)
     }
 
     /// The mode of the latest sample or event.
     pub fn latest_mode(&self) -> Option<ModeName> {
-        let sample = self.latest.back().map(|s| (s.t, s.mode));
+        let sample = self.latest.map(|s| (s.t, s.mode));
         let event = self.data.events.last().map(|e| (e.t, e.to));
         match (sample, event) {
             (Some(s), Some(e)) => Some(if e.0 >= s.0 { e.1 } else { s.1 }),
@@ -107,16 +127,23 @@ impl Collector {
         }
     }
 
-    /// Everything collected; the latest window becomes the last second.
-    pub fn finish(mut self) -> RunData {
-        if let Some(last) = self.latest.back() {
-            // The trajectory ends with the last state, even off the regular grid.
-            if self.data.samples.last().map(|s| s.t) != Some(last.t) {
-                self.data.samples.push(*last);
+    /// Everything collected, with `last` (the exact final state, if known) ending the
+    /// trajectory when it lies beyond its last row; the file, if any, is handed back complete
+    /// but not yet committed.
+    pub fn finish(
+        mut self,
+        last: Option<Sample>,
+    ) -> Result<(RunData, Option<TrajectoryFile>), WriteError> {
+        let end = last.or(self.latest);
+        if let Some(end) = end {
+            if self.data.samples.last().is_none_or(|s| s.t < end.t) {
+                if let Some(file) = &mut self.file {
+                    file.row(&end)?;
+                }
+                self.data.samples.push(end);
             }
         }
-        self.data.last_second = self.latest.into_iter().collect();
-        self.data
+        Ok((self.data, self.file))
     }
 }
 
@@ -126,7 +153,7 @@ mod tests {
     use crate::analysis::synthetic::SyntheticRun;
 
     #[test]
-    fn thins_out_and_keeps_both_windows() {
+    fn keeps_the_trajectory_grid_and_both_windows() {
         let p = equations::params::DiskParams::paper();
         let fine = SyntheticRun {
             period: 0.1,
@@ -135,17 +162,16 @@ mod tests {
         }
         .data(&p)
         .samples;
-        let sampling = Sampling::for_rate(100.0);
-        assert_eq!(sampling.every, 200);
-        let sampling = Sampling {
-            rate: 100.0,
+        let plan = SamplePlan {
             every: 20,
+            ..SamplePlan::new(0.0, 3.0, 100.0)
         };
-        let mut c = Collector::new(sampling);
-        for s in &fine {
-            c.sample(*s);
+        let mut c = Collector::new(plan.clone());
+        for s in fine.iter().filter(|s| plan.wants(s.t)) {
+            c.sample(*s).unwrap();
         }
-        let d = c.finish();
+        let (d, file) = c.finish(None).unwrap();
+        assert!(file.is_none());
         assert_eq!(d.samples.len(), 301);
         assert_eq!(d.samples[1].t, fine[20].t);
         assert_eq!(d.first_second.len(), 2001);
@@ -154,23 +180,30 @@ mod tests {
     }
 
     #[test]
-    fn forbidden_modes_are_reported() {
-        let mut c = Collector::new(Sampling::for_rate(1000.0));
-        let e = EventRow {
-            t: 0.5,
-            from: ModeName::Rolling,
-            to: ModeName::Sliding,
-            trigger: crate::record::TriggerKind::FrictionLimit,
-            value: 0.2,
-            slip_direction: None,
-        };
-        assert_eq!(c.event(e, &[ModeName::Rolling, ModeName::Sliding]), None);
-        assert_eq!(
-            c.event(e, &[ModeName::Rolling]),
-            Some(ForbiddenMode {
-                t: 0.5,
-                mode: ModeName::Sliding
-            })
-        );
+    fn the_final_state_ends_the_trajectory_and_the_file() {
+        let p = equations::params::DiskParams::paper();
+        let run = SyntheticRun {
+            period: 0.1,
+            t_end: 2.0,
+            rate: 100.0,
+        }
+        .data(&p)
+        .samples;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("trajectory.csv");
+        let file = TrajectoryFile::create(&path, &[Quantity::Theta], p).unwrap();
+        let mut c = Collector::new(SamplePlan::new(0.0, 2.0, 100.0)).writing(file);
+        for s in &run[..150] {
+            c.sample(*s).unwrap();
+        }
+        let mut last = run[150];
+        last.t = 1.4973;
+        let (d, file) = c.finish(Some(last)).unwrap();
+        assert_eq!(d.samples.last().unwrap().t, 1.4973);
+        assert!(!path.exists(), "not committed yet");
+        file.unwrap().commit().unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(text.lines().count(), 1 + 151);
+        assert!(text.lines().last().unwrap().starts_with("1.4973,"));
     }
 }

@@ -1,17 +1,22 @@
 //! `eulerdisk run`: simulate a scene and write the trajectory, the events, the paper's figures
 //! and the summary.
 //!
-//! The outputs are written only after the simulation has ended (or was interrupted), each
-//! atomically, so `out/` always holds complete files; an interrupted run still writes what it
-//! had, marked as such in `events.csv` and `summary.json`.
+//! The simulation runs on a worker thread and is asked only for the samples that are kept
+//! ([`plan`]); this thread writes `trajectory.csv` row by row as they arrive, so on a machine
+//! with two cores the file costs the simulation nothing. After the run the analysis, the
+//! figures (rendered on every core) and the small files follow. Every file is written under a
+//! temporary name and renamed when complete, so `out/` always holds complete files; an
+//! interrupted run still writes what it had, marked as such in `events.csv` and
+//! `summary.json`. The split of the time between the four stages goes into the summary.
 
 pub mod collect;
 pub mod model;
+pub mod plan;
 pub mod progress;
 pub mod simulation;
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::RecvTimeoutError;
 use std::time::{Duration, Instant};
 
@@ -19,14 +24,16 @@ use crate::analysis::summary::Summary;
 use crate::eval::Backend;
 use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_atomic, write_bytes_atomic, WriteError};
-use crate::output::tables::{write_events, write_trajectory};
+use crate::output::tables::write_events;
 use crate::quantity::Quantity;
-use crate::record::{RunData, StopRecord, Work};
+use crate::record::{RunData, StopRecord, Timings, Work};
 use crate::scene::schema::ModeName;
 use crate::scene::Scene;
-use collect::{Collector, Sampling};
+use collect::{Collector, TrajectoryFile};
+use model::ModelChoice;
+use plan::SamplePlan;
 use progress::Progress;
-use simulation::Message;
+use simulation::{Message, Outcome};
 
 /// How a run reports while it runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,7 +97,8 @@ pub enum RunError {
     Write(#[from] WriteError),
 }
 
-/// Runs `scene`; `interrupt` is polled and, once set, the run stops and writes what it has.
+/// Runs `scene`; once `interrupt` is set, the simulation stops at its next step and the run
+/// writes what it has.
 pub fn run_scene(
     scene: &Scene,
     opts: &RunOptions,
@@ -100,78 +108,48 @@ pub fn run_scene(
         path: opts.out_dir.clone(),
         source,
     })?;
-    let sampling = Sampling::for_rate(scene.file.run.sample_rate);
     let started = Instant::now();
     let choice = model::choose(scene, opts.backend, opts.figures);
-    let rx = simulation::start(scene, &choice, sampling.fine_rate());
+    let plan = SamplePlan::new(0.0, scene.file.run.t_end, scene.file.run.sample_rate);
+    let file = TrajectoryFile::create(
+        &opts.out_dir.join("trajectory.csv"),
+        &scene.quantities,
+        scene.params,
+    )?;
     let mut progress = Progress::new(opts.progress, scene.file.run.t_end);
-    let mut collector = Collector::new(sampling);
-    let allowed = &scene.file.modes.allowed;
-    let mut outcome = None;
-    let mut ending = Ending::Completed;
-    let stop;
-    loop {
-        if interrupt.load(Ordering::SeqCst) {
-            ending = Ending::Interrupted;
-            stop = Some(abandoned(
-                &collector,
-                "interrupted",
-                "stopped by the user (Ctrl-C)".into(),
-            ));
-            break;
-        }
-        match rx.recv_timeout(Duration::from_millis(100)) {
-            Ok(Message::Sample(s)) => {
-                progress.update(s.t);
-                collector.sample(s);
-            }
-            Ok(Message::Event(e)) => {
-                if let Some(f) = collector.event(e, allowed) {
-                    ending = Ending::Failed;
-                    stop = Some(StopRecord {
-                        t: f.t,
-                        mode: f.mode,
-                        reason: "mode_not_allowed".into(),
-                        detail: format!(
-                            "the disk entered {} at t = {} s but modes.allowed = {:?}",
-                            f.mode,
-                            f.t,
-                            allowed.iter().map(|m| m.as_str()).collect::<Vec<_>>()
-                        ),
-                    });
-                    break;
-                }
-            }
-            Ok(Message::Done(Ok(o))) => {
-                stop = Some(o.stop.clone());
-                outcome = Some(o);
-                break;
-            }
-            Ok(Message::Done(Err(message))) => {
-                ending = Ending::Failed;
-                stop = Some(abandoned(&collector, "error", message));
-                break;
-            }
-            Err(RecvTimeoutError::Timeout) => {}
-            Err(RecvTimeoutError::Disconnected) => {
-                ending = Ending::Failed;
-                stop = Some(abandoned(
-                    &collector,
-                    "error",
-                    "the simulation thread died".into(),
-                ));
-                break;
-            }
-        }
-    }
+    let recorded = record(
+        scene,
+        &choice,
+        plan.clone(),
+        interrupt,
+        &mut progress,
+        Some(file),
+    );
     progress.finish();
-    let wall_s = started.elapsed().as_secs_f64();
-    let mut data = collector.finish();
-    data.stop = stop;
+    let Recorded {
+        mut data,
+        outcome,
+        file,
+    } = recorded?;
+    let mut timings = Timings {
+        simulation_s: started.elapsed().as_secs_f64(),
+        ..Timings::default()
+    };
+    let stop = data.stop.clone().expect("a recorded run has a stop");
+    let ending = ending_of(&stop);
+    if ending != Ending::Interrupted && !plan.covers_last_second(stop.t) {
+        // The run stopped early: its last second was not known in advance. The simulation is
+        // deterministic, so a second pass sampling only that second records the same motion.
+        let replay = plan.last_second_before(stop.t);
+        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.run.t_end);
+        let again = record(scene, &choice, replay, interrupt, &mut quiet, None)?;
+        data.last_second = again.data.last_second;
+        timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
+    }
     data.work = Work {
         steps: outcome.as_ref().map_or(0, |o| o.steps),
         rhs_evals: outcome.as_ref().map_or(0, |o| o.rhs_evals),
-        wall_s,
+        wall_s: timings.simulation_s,
     };
     // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
     data.constraint_drift_max = outcome
@@ -179,11 +157,95 @@ pub fn run_scene(
         .map(|o| o.constraint_drift_max)
         .filter(|_| choice.computes(Quantity::ResidualZ));
     data.model = choice;
-    let (summary, files) = write_outputs(scene, &data, opts)?;
+    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started)?;
     Ok(RunReport {
         summary,
         ending,
         files,
+    })
+}
+
+/// How a run that ended with `stop` ended, for the exit code.
+fn ending_of(stop: &StopRecord) -> Ending {
+    match stop.reason.as_str() {
+        "interrupted" => Ending::Interrupted,
+        "error" | "mode_not_allowed" => Ending::Failed,
+        _ => Ending::Completed,
+    }
+}
+
+/// What one pass of the simulation left: the data (with its stop record), the simulation's
+/// outcome if it ended by itself, and the trajectory file, complete but not committed.
+pub struct Recorded {
+    /// Samples, events and the stop.
+    pub data: RunData,
+    /// The simulation's outcome (`None` when it failed).
+    pub outcome: Option<Outcome>,
+    /// `trajectory.csv`, if it was written.
+    pub file: Option<TrajectoryFile>,
+}
+
+/// Runs the simulation of `scene` once, keeping what `plan` asks for and writing the
+/// trajectory into `file` as it comes.
+pub fn record(
+    scene: &Scene,
+    choice: &ModelChoice,
+    plan: SamplePlan,
+    interrupt: &AtomicBool,
+    progress: &mut Progress,
+    file: Option<TrajectoryFile>,
+) -> Result<Recorded, WriteError> {
+    let mut collector = Collector::new(plan.clone());
+    if let Some(file) = file {
+        collector = collector.writing(file);
+    }
+    std::thread::scope(|scope| {
+        let rx = simulation::start(scope, scene, choice, plan, interrupt);
+        collect(&rx, &mut collector, progress)
+    })
+    .and_then(|(outcome, stop)| {
+        let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
+        data.stop = Some(stop);
+        Ok(Recorded {
+            data,
+            outcome,
+            file,
+        })
+    })
+}
+
+/// Receives the worker's stream into `collector` until the simulation ends. A write error
+/// leaves the loop at once; dropping the receiver then makes the worker's sends fail, and
+/// its observer stops the simulation at the next step.
+fn collect(
+    rx: &std::sync::mpsc::Receiver<Message>,
+    collector: &mut Collector,
+    progress: &mut Progress,
+) -> Result<(Option<Outcome>, StopRecord), WriteError> {
+    Ok(loop {
+        match rx.recv_timeout(Duration::from_millis(100)) {
+            Ok(Message::Samples(batch)) => {
+                if let Some(last) = batch.last() {
+                    progress.update(last.t);
+                }
+                for s in batch {
+                    collector.sample(s)?;
+                }
+            }
+            Ok(Message::Event(e)) => collector.event(e),
+            Ok(Message::Done(done)) => match *done {
+                Ok(o) => {
+                    let stop = o.stop.clone();
+                    break (Some(o), stop);
+                }
+                Err(message) => break (None, abandoned(collector, "error", message)),
+            },
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => {
+                let why = "the simulation thread died".to_string();
+                break (None, abandoned(collector, "error", why));
+            }
+        }
     })
 }
 
@@ -196,19 +258,37 @@ fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
     }
 }
 
-/// Writes every output of `data` into `opts.out_dir`; returns the summary and the paths
-/// written.
+/// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
+/// run, is committed here); returns the summary and the paths written.
 pub fn write_outputs(
     scene: &Scene,
     data: &RunData,
     opts: &RunOptions,
+    trajectory: Option<TrajectoryFile>,
+    mut timings: Timings,
+    started: Instant,
 ) -> Result<(Summary, Vec<PathBuf>), WriteError> {
     let dir: &Path = &opts.out_dir;
+    let lap = |since: &mut f64| {
+        let now = started.elapsed().as_secs_f64();
+        let spent = now - *since;
+        *since = now;
+        spent
+    };
+    let mut clock = started.elapsed().as_secs_f64();
     let mut files = Vec::new();
     let path = dir.join("trajectory.csv");
-    write_atomic(&path, |w| {
-        write_trajectory(w, &scene.quantities, &data.samples, &scene.params)
-    })?;
+    match trajectory {
+        Some(file) => file.commit()?,
+        None => write_atomic(&path, |w| {
+            crate::output::tables::write_trajectory(
+                w,
+                &scene.quantities,
+                &data.samples,
+                &scene.params,
+            )
+        })?,
+    }
     files.push(path);
     let stop = data.stop.clone().unwrap_or(StopRecord {
         t: data.samples.last().map_or(0.0, |s| s.t),
@@ -219,13 +299,18 @@ pub fn write_outputs(
     let path = dir.join("events.csv");
     write_atomic(&path, |w| write_events(w, &data.events, &stop))?;
     files.push(path);
+    timings.outputs_s = lap(&mut clock);
+    let mut summary = Summary::of(&scene.name, data, &scene.params);
+    timings.analysis_s = lap(&mut clock);
     if opts.figures && !data.samples.is_empty() {
         for stem in write_paper_figures(data, &scene.params, dir)? {
             files.push(dir.join(format!("{stem}.png")));
             files.push(dir.join(format!("{stem}.svg")));
         }
     }
-    let summary = Summary::of(&scene.name, data, &scene.params);
+    timings.figures_s = lap(&mut clock);
+    timings.total_s = clock;
+    summary.timings = timings;
     let path = dir.join("summary.json");
     let json = serde_json::to_string_pretty(&summary).map_err(|e| WriteError {
         path: path.clone(),

@@ -2,13 +2,15 @@
 //! the CLI's named records.
 //!
 //! The simulation runs on a worker thread and streams what it observes through a bounded
-//! channel; the caller's thread collects, shows progress and watches for an interrupt. The
-//! hybrid solver has no cancellation hook, so a run that is abandoned (Ctrl-C, a mode the
-//! scene forbids) leaves the worker to finish on its own: the binary exits right after
-//! writing, which ends it.
+//! channel, in batches; the caller's thread writes and collects meanwhile (on a second core,
+//! the files cost the simulation nothing). The worker asks only for the samples of the
+//! [`SamplePlan`], and it stops by itself, through its observer, when the caller raises the
+//! stop flag (Ctrl-C) or the disk enters a mode the scene forbids.
 
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
-use std::thread;
+use std::thread::Scope;
 
 use equations::hybrid::{
     self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
@@ -18,6 +20,7 @@ use equations::modes::{Mode, SlipChart, DIM};
 use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
+use super::plan::SamplePlan;
 use crate::record::{EventRow, StopRecord, TriggerKind};
 use crate::sample::{ContactForces, DiskState, Sample, Slip};
 use crate::scene::schema::{IntegratorName, ModeName, SlipSignRule};
@@ -26,12 +29,12 @@ use crate::scene::Scene;
 /// What the worker sends.
 #[derive(Debug)]
 pub enum Message {
-    /// A sample (at the fine rate).
-    Sample(Sample),
+    /// Samples of the plan, in order.
+    Samples(Vec<Sample>),
     /// A mode decision.
     Event(EventRow),
-    /// The run ended.
-    Done(Result<Outcome, String>),
+    /// The run ended (boxed: an outcome holds a whole sample).
+    Done(Box<Result<Outcome, String>>),
 }
 
 /// The end of a run, in the CLI's terms.
@@ -45,6 +48,8 @@ pub struct Outcome {
     pub rhs_evals: u64,
     /// Largest constraint drift (SI units).
     pub constraint_drift_max: f64,
+    /// The exact final state.
+    pub last: Sample,
 }
 
 /// The mode's name in the CLI.
@@ -98,6 +103,7 @@ pub fn convert_event(r: &TransitionRecord) -> EventRow {
 /// Converts the simulation's stop reason.
 pub fn convert_outcome(o: &RunOutcome) -> Outcome {
     let (reason, detail) = match o.stop {
+        StopReason::Requested { t } => ("interrupted", format!("stopped on request at t = {t} s")),
         StopReason::EndTime => ("end_time", String::new()),
         StopReason::ContactLost { t, mode } => (
             "contact_lost",
@@ -126,13 +132,14 @@ pub fn convert_outcome(o: &RunOutcome) -> Outcome {
         steps: o.stats.steps,
         rhs_evals: o.stats.rhs_evals,
         constraint_drift_max: o.max_drift.max_abs(),
+        last: convert_sample(&o.last),
     }
 }
 
 /// The simulation settings for a scene; samples are delivered at `fine_rate`.
 pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
     let f = &scene.file;
-    let mut c = DiskConfig::paper();
+    let mut c = DiskConfig::default();
     c.integrator = match f.solver.integrator {
         IntegratorName::Dopri5 => IntegratorChoice::Dopri5,
         IntegratorName::Dop853 => IntegratorChoice::Dop853,
@@ -141,6 +148,7 @@ pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
     c.guard_checks = f.solver.guard_checks.0;
     c.error_norm = f.solver.error_norm.0;
     c.step_control = f.solver.step_control.0;
+    c.time = f.solver.time.0;
     c.rtol = f.solver.rtol;
     c.atol = f.solver.atol;
     // The stick threshold must sit above the slip's integration error (BENCHMARKS.md §2:
@@ -167,42 +175,98 @@ pub fn chart_of(scene: &Scene) -> SlipChart {
     }
 }
 
-struct ChannelObserver {
-    tx: SyncSender<Message>,
-    open: bool,
-    /// States the models do not integrate: blanked in every sample.
-    frozen: Vec<&'static str>,
+/// Samples per message: the channel's cost spread over many samples.
+const BATCH: usize = 256;
+
+/// Why the worker's observer stopped the run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Halted {
+    /// The caller's stop flag (Ctrl-C).
+    Interrupted,
+    /// The disk entered a mode the scene does not allow.
+    Forbidden { t: f64, mode: ModeName },
 }
 
-impl ChannelObserver {
+struct ChannelObserver<'a> {
+    tx: SyncSender<Message>,
+    open: bool,
+    plan: SamplePlan,
+    batch: Vec<Sample>,
+    /// Flush the batch once the simulation passes this time, so progress keeps moving even
+    /// where samples are sparse.
+    flush_at: f64,
+    flush_every: f64,
+    /// States the models do not integrate: blanked in every sample.
+    frozen: Vec<&'static str>,
+    allowed: Vec<ModeName>,
+    stop: &'a AtomicBool,
+    halted: Option<Halted>,
+}
+
+impl ChannelObserver<'_> {
     fn send(&mut self, m: Message) {
         if self.open && self.tx.send(m).is_err() {
             self.open = false;
         }
     }
+
+    fn flush(&mut self) {
+        if !self.batch.is_empty() {
+            let batch = std::mem::replace(&mut self.batch, Vec::with_capacity(BATCH));
+            self.send(Message::Samples(batch));
+        }
+    }
 }
 
-impl DiskObserver for ChannelObserver {
+impl DiskObserver for ChannelObserver<'_> {
+    fn wants_sample(&self, t: f64) -> bool {
+        self.plan.wants(t)
+    }
+
     fn on_sample(&mut self, sample: &DiskSample) {
         let mut s = convert_sample(sample);
         if !self.frozen.is_empty() {
             s.forget(&self.frozen);
         }
-        self.send(Message::Sample(s));
+        self.batch.push(s);
+        if self.batch.len() >= BATCH || s.t >= self.flush_at {
+            self.flush_at = s.t + self.flush_every;
+            self.flush();
+        }
     }
+
     fn on_transition(&mut self, record: &TransitionRecord) {
-        self.send(Message::Event(convert_event(record)));
+        self.flush();
+        let row = convert_event(record);
+        if self.halted.is_none() && !self.allowed.contains(&row.to) {
+            self.halted = Some(Halted::Forbidden {
+                t: row.t,
+                mode: row.to,
+            });
+        }
+        self.send(Message::Event(row));
+    }
+
+    fn proceed(&mut self) -> ControlFlow<()> {
+        // A closed channel: the caller has given up on this run (a write error).
+        if self.halted.is_none() && (!self.open || self.stop.load(Ordering::Relaxed)) {
+            self.halted = Some(Halted::Interrupted);
+        }
+        match self.halted {
+            Some(_) => ControlFlow::Break(()),
+            None => ControlFlow::Continue(()),
+        }
     }
 }
 
 /// The worker's task: simulate and stream what is observed.
-struct Streamed<'a> {
+struct Streamed<'a, 'b> {
     config: &'a DiskConfig,
     initial: &'a InitialState,
-    observer: &'a mut ChannelObserver,
+    observer: &'a mut ChannelObserver<'b>,
 }
 
-impl ModelsTask for Streamed<'_> {
+impl ModelsTask for Streamed<'_, '_> {
     type Output = Result<Outcome, String>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
@@ -212,11 +276,38 @@ impl ModelsTask for Streamed<'_> {
     }
 }
 
-/// Starts the simulation of `scene` with the models of `choice` on a worker thread; returns
-/// the receiving end.
-pub fn start(scene: &Scene, choice: &ModelChoice, fine_rate: f64) -> Receiver<Message> {
-    let (tx, rx) = sync_channel(8192);
-    let config = config_of(scene, fine_rate);
+/// The stop record of a run its observer stopped.
+fn halted_record(halted: Halted, allowed: &[ModeName], stop: &StopRecord) -> StopRecord {
+    match halted {
+        Halted::Interrupted => StopRecord {
+            reason: "interrupted".into(),
+            detail: format!("stopped by the user (Ctrl-C) at t = {} s", stop.t),
+            ..stop.clone()
+        },
+        Halted::Forbidden { t, mode } => StopRecord {
+            t,
+            mode,
+            reason: "mode_not_allowed".into(),
+            detail: format!(
+                "the disk entered {mode} at t = {t} s but modes.allowed = {:?}",
+                allowed.iter().map(|m| m.as_str()).collect::<Vec<_>>()
+            ),
+        },
+    }
+}
+
+/// Starts the simulation of `scene` with the models of `choice` on a worker thread of
+/// `scope`, sampling what `plan` keeps; raising `stop` ends it at its next step. Returns the
+/// receiving end.
+pub fn start<'scope>(
+    scope: &'scope Scope<'scope, '_>,
+    scene: &Scene,
+    choice: &ModelChoice,
+    plan: SamplePlan,
+    stop: &'scope AtomicBool,
+) -> Receiver<Message> {
+    let (tx, rx) = sync_channel(64);
+    let config = config_of(scene, plan.fine_rate());
     let chart = chart_of(scene);
     let params = scene.params;
     let initial = InitialState {
@@ -224,11 +315,20 @@ pub fn start(scene: &Scene, choice: &ModelChoice, fine_rate: f64) -> Receiver<Me
         y: scene.initial.state.to_array(),
     };
     let (model, frozen) = (choice.model, choice.frozen.clone());
-    thread::spawn(move || {
+    let allowed = scene.file.modes.allowed.clone();
+    let flush_every = scene.file.run.t_end / 200.0;
+    scope.spawn(move || {
         let mut observer = ChannelObserver {
             tx: tx.clone(),
             open: true,
+            plan,
+            batch: Vec::with_capacity(BATCH),
+            flush_at: flush_every,
+            flush_every,
             frozen,
+            allowed,
+            stop,
+            halted: None,
         };
         let task = Streamed {
             config: &config,
@@ -236,7 +336,14 @@ pub fn start(scene: &Scene, choice: &ModelChoice, fine_rate: f64) -> Receiver<Me
             observer: &mut observer,
         };
         let result = with_models(model, params, chart, task).unwrap_or_else(|e| Err(e.to_string()));
-        let _ = tx.send(Message::Done(result));
+        observer.flush();
+        let result = result.map(|mut o| {
+            if let Some(h) = observer.halted {
+                o.stop = halted_record(h, &observer.allowed, &o.stop);
+            }
+            o
+        });
+        let _ = tx.send(Message::Done(Box::new(result)));
     });
     rx
 }

@@ -4,7 +4,9 @@
 //! silently ignored line; the loader reports the path of the key (`friction.mu`). Values are
 //! kept as written here; the rules between them live in `validate.rs`.
 
-use equations::hybrid::{DiskConfig, ErrorNorm, InteriorChecks, StepControl};
+use equations::hybrid::{
+    DiskConfig, ErrorNorm, IntegratorChoice, InteriorChecks, StepControl, TimeVariable,
+};
 use serde::{Deserialize, Serialize};
 
 /// A whole scene file.
@@ -175,7 +177,7 @@ impl IntegratorName {
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SolverTable {
-    /// The integrator (default `dop853`).
+    /// The integrator (default `dop853`, from `DiskConfig::default`).
     #[serde(default = "default_integrator")]
     pub integrator: IntegratorName,
     /// Relative tolerance (default the paper's 1e-8).
@@ -195,6 +197,10 @@ pub struct SolverTable {
     /// The step-size controller: `pi-gustafsson` (default), `pi-hairer` or `integral`.
     #[serde(default = "default_step_control")]
     pub step_control: Spelled<StepControl>,
+    /// The variable the integrator steps in: `physical` time or `regularised` (slowed near
+    /// zero slip and near lying flat, so steps stay long there; BENCHMARKS.md §3).
+    #[serde(default = "default_time")]
+    pub time: Spelled<TimeVariable>,
 }
 
 /// A `[solver]` setting written as a word that its type parses and prints (`screened:64`,
@@ -221,22 +227,29 @@ impl<T: std::fmt::Display> Serialize for Spelled<T> {
 }
 
 fn default_guard_checks() -> Spelled<InteriorChecks> {
-    Spelled(DiskConfig::paper().guard_checks)
+    Spelled(DiskConfig::default().guard_checks)
 }
 fn default_error_norm() -> Spelled<ErrorNorm> {
-    Spelled(DiskConfig::paper().error_norm)
+    Spelled(DiskConfig::default().error_norm)
 }
 fn default_step_control() -> Spelled<StepControl> {
-    Spelled(DiskConfig::paper().step_control)
+    Spelled(DiskConfig::default().step_control)
+}
+fn default_time() -> Spelled<TimeVariable> {
+    Spelled(DiskConfig::default().time)
 }
 fn default_integrator() -> IntegratorName {
-    IntegratorName::Dop853
+    match DiskConfig::default().integrator {
+        IntegratorChoice::Dopri5 => IntegratorName::Dopri5,
+        IntegratorChoice::Rodas4 => IntegratorName::Rodas4,
+        IntegratorChoice::Dop853 | IntegratorChoice::Rk4 { .. } => IntegratorName::Dop853,
+    }
 }
 fn default_rtol() -> f64 {
-    1e-8
+    DiskConfig::default().rtol
 }
 fn default_atol() -> f64 {
-    1e-10
+    DiskConfig::default().atol
 }
 
 impl Default for SolverTable {
@@ -248,6 +261,7 @@ impl Default for SolverTable {
             guard_checks: default_guard_checks(),
             error_norm: default_error_norm(),
             step_control: default_step_control(),
+            time: default_time(),
         }
     }
 }

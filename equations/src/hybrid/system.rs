@@ -8,9 +8,10 @@
 
 use super::models::DiskModels;
 use super::onset::{consistent_slip_direction, OnsetError};
-use super::{DiskConfig, SlipSign, StopReason, TransitionRecord, Trigger};
+use super::{DiskConfig, SlipSign, StopReason, TimeVariable, TransitionRecord, Trigger};
 use crate::modes::layout::{THETA, U_X, U_Y, V_C};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use model_runtime::hybrid::TimeScale;
 use model_runtime::{
     Direction, EvalError, EventHit, GuardInputs, GuardSpec, HybridSystem, Model, Transition,
 };
@@ -508,5 +509,22 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
         let changed = state.y != *y;
         *y = state.y;
         changed
+    }
+}
+
+/// The clock of [`TimeVariable::Regularised`]: slowed near lying flat and near zero slip.
+impl<R: Model<DIM>, S: Model<DIM>> TimeScale<DIM> for DiskSystem<'_, R, S> {
+    #[inline]
+    fn time_scale(&self, phase: Phase, y: &[f64; DIM]) -> f64 {
+        let theta = y[THETA].min(std::f64::consts::PI - y[THETA]);
+        let inclination = theta / (theta + TimeVariable::THETA_SCALE);
+        match phase {
+            Phase::Rolling => inclination,
+            Phase::Sliding => {
+                let slip = self.slip_speed(y).abs();
+                inclination * slip / (slip + TimeVariable::SLIP_SCALE)
+            }
+            Phase::Bridge => 1.0,
+        }
     }
 }

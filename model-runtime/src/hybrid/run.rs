@@ -82,6 +82,9 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
                     }
                 }
             }
+            if obs.proceed().is_break() {
+                return Ok(self.outcome(StopReason::Observer));
+            }
         }
     }
 
@@ -331,6 +334,10 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             if ts > t_hi {
                 return Ok(());
             }
+            self.next_sample += 1;
+            if !obs.wants_sample(ts) {
+                continue;
+            }
             self.it
                 .interpolate(&m, ts, &mut y)
                 .map_err(|e| self.solve_err(e))?;
@@ -339,7 +346,6 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
                 mode: self.mode,
                 y: &y,
             });
-            self.next_sample += 1;
         }
     }
 
