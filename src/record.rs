@@ -97,6 +97,17 @@ pub struct Timings {
     pub total_s: f64,
 }
 
+/// How many samples a run kept, by where they went.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct SampleCounts {
+    /// Rows of `trajectory.csv`.
+    pub trajectory: usize,
+    /// Fine samples of the first second (figures).
+    pub first_second: usize,
+    /// Fine samples of the last second (figures).
+    pub last_second: usize,
+}
+
 /// Everything a run produced.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RunData {

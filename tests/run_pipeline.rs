@@ -1,22 +1,32 @@
 //! The run pipeline in-process: a short run of the paper's scene streams finite samples, the
-//! collector keeps both windows, and the summary reads the paper's first period.
+//! collector keeps both windows, and the summary reads the paper's first period; a run that
+//! stops early still gets its finely sampled last second; an interrupt stops the simulation.
 
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
 use eulerdisk::eval::Backend;
 use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use eulerdisk::scene::{self, Override};
 
 fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
-    let dir = tempfile::tempdir().unwrap();
     let scene = scene::load("tangent-toy", &[Override::new("run", "t_end", t_end)]).unwrap();
+    run_in_tempdir(&scene, backend, &AtomicBool::new(false))
+}
+
+fn run_in_tempdir(
+    scene: &scene::Scene,
+    backend: Backend,
+    interrupt: &AtomicBool,
+) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
+    let dir = tempfile::tempdir().unwrap();
     let opts = RunOptions {
         out_dir: dir.path().to_path_buf(),
         progress: ProgressStyle::Quiet,
         backend,
         figures: false,
     };
-    let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
+    let report = run_scene(scene, &opts, interrupt).unwrap();
     (dir, report)
 }
 
@@ -50,4 +60,58 @@ fn generated_and_reference_runs_agree() {
     if let (Some(pg), Some(pr)) = (pg, pr) {
         assert!((pg - pr).abs() < 1e-6, "{pg} {pr}");
     }
+}
+
+/// The paper's reading of the slip sign lifts the disk off the floor at t ≈ 18.16 s: the
+/// run stops long before its end time, so its last second was not sampled finely the first
+/// time; a replay samples it, and the trajectory still ends at the stop.
+#[test]
+fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
+    let scene = scene::load(
+        "tangent-toy",
+        &[
+            Override::new("run", "t_end", 30.0),
+            Override::new("run", "slip_sign", "paper"),
+        ],
+    )
+    .unwrap();
+    let (_dir, report) = run_in_tempdir(&scene, Backend::Generated, &AtomicBool::new(false));
+    let s = &report.summary;
+    assert_eq!(s.stop_reason, "contact_lost");
+    assert!((s.t_end - 18.159).abs() < 1e-3, "{}", s.t_end);
+    assert!(s.timings.replay_s > 0.0);
+    // 20 kHz over the second before the stop; 1 kHz (every 20th) for the trajectory.
+    assert!(
+        (19_990..=20_001).contains(&s.samples.last_second),
+        "{:?}",
+        s.samples
+    );
+    assert_eq!(s.samples.first_second, 20_001);
+    assert_eq!(s.samples.trajectory, 18_160 + 1);
+    assert!(s.n_over_mg_max_last_s.is_some() && s.theta_period_last_s.is_some());
+}
+
+/// An interrupt stops the simulation itself, at its next step: the run reports the work done
+/// up to then, long before the 100 s would have taken.
+#[test]
+fn an_interrupt_stops_the_simulation_and_keeps_its_work() {
+    let scene = scene::load("tangent-toy", &[]).unwrap();
+    let interrupt = AtomicBool::new(false);
+    let (_dir, report) = std::thread::scope(|scope| {
+        scope.spawn(|| {
+            std::thread::sleep(Duration::from_millis(100));
+            interrupt.store(true, Ordering::SeqCst);
+        });
+        run_in_tempdir(&scene, Backend::Generated, &interrupt)
+    });
+    assert_eq!(report.ending, Ending::Interrupted);
+    let s = &report.summary;
+    assert_eq!(s.stop_reason, "interrupted");
+    assert!(s.t_end > 0.0 && s.t_end < 100.0, "{}", s.t_end);
+    assert!(
+        s.steps > 0 && s.rhs_evals > 0,
+        "{} {}",
+        s.steps,
+        s.rhs_evals
+    );
 }

@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use super::oscillation::{mean_period, Series};
 use crate::quantity::Quantity;
-use crate::record::{RunData, Timings, TriggerKind};
+use crate::record::{RunData, SampleCounts, Timings, TriggerKind};
 use crate::sample::Sample;
 use crate::scene::schema::ModeName;
 
@@ -72,6 +72,8 @@ pub struct Summary {
     pub constraint_drift_max: Option<f64>,
     /// Keys written as `null` because the models that ran do not compute them, with the reason.
     pub not_computed: BTreeMap<&'static str, String>,
+    /// How many samples were kept, and where.
+    pub samples: SampleCounts,
     /// Where the wall time went: simulation (with the trajectory streamed meanwhile),
     /// outputs, analysis, figures.
     pub timings: Timings,
@@ -195,6 +197,11 @@ impl Summary {
                 .constraint_drift_max
                 .filter(|_| computes("constraint_drift_max")),
             not_computed,
+            samples: SampleCounts {
+                trajectory: s.len(),
+                first_second: data.first_second.len(),
+                last_second: data.last_second.len(),
+            },
             timings: Timings::default(),
         }
     }
