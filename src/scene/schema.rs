@@ -252,7 +252,7 @@ impl Default for SolverTable {
     }
 }
 
-/// Which reading of the slip speed's sign to use (EQUATIONS.md §6.5).
+/// Which reading of the slip speed's sign to use (docs/physics.md §7.4).
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum SlipSignRule {
