@@ -216,6 +216,127 @@ fn forbidden_mode_stops_the_run_and_says_so() {
         ["rolling", "stop", "mode_not_allowed"],
         "{last:?}"
     );
+    // The reason is on the terminal and in the summary, not only in the last row of events.csv.
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("mode_not_allowed") && stderr.contains("modes.allowed"),
+        "{stderr}"
+    );
+    let summary = read_summary(&out);
+    assert_eq!(summary["stop_reason"], "mode_not_allowed");
+    let detail = summary["stop_detail"].as_str().unwrap();
+    assert!(
+        detail.contains("entered rolling") && detail.contains("modes.allowed"),
+        "{detail}"
+    );
+    // The abandoned simulation's counters are unknown: null, with the reason.
+    assert!(summary["steps"].is_null(), "{summary}");
+    assert!(summary["not_computed"]["steps"]
+        .as_str()
+        .unwrap()
+        .contains("abandoned"));
+}
+
+fn read_summary(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn the_summary_records_how_it_was_produced_and_a_rerun_leaves_no_stale_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let out_s = out.to_str().unwrap();
+    let o = run(&[
+        "--t-end",
+        "0.1",
+        "--rtol",
+        "1e-9",
+        "--set",
+        "solver.guard_checks=exact:4",
+        "--quiet",
+        "--out",
+        out_s,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = read_summary(&out);
+    let by = &summary["produced_by"];
+    assert!(
+        by["program"].as_str().unwrap().starts_with("eulerdisk "),
+        "{by}"
+    );
+    assert!(!by["git_revision"].as_str().unwrap().is_empty(), "{by}");
+    assert_eq!(by["scene"], "tangent-toy");
+    assert_eq!(by["scene_file"], "built-in scenes/tangent-toy.toml");
+    let overrides: Vec<&str> = by["overrides"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(overrides.len(), 3, "{overrides:?}");
+    assert!(overrides[0].starts_with("run.t_end=") && overrides[1].starts_with("solver.rtol="));
+    assert_eq!(overrides[2], "solver.guard_checks=\"exact:4\"");
+    let solver = &by["settings"]["solver"];
+    assert_eq!(solver["rtol"], 1e-9);
+    assert_eq!(solver["atol"], 1e-10);
+    assert_eq!(solver["guard_checks"], "exact:4");
+    for key in ["integrator", "error_norm", "step_control"] {
+        assert!(solver[key].is_string(), "{solver}");
+    }
+    assert!(by["derived"]["stick_threshold"].as_f64().unwrap() > 0.0);
+    assert_eq!(summary["compared_with_paper"], true);
+    let figures = names_in(&out)
+        .iter()
+        .filter(|n| n.starts_with("fig"))
+        .count();
+    assert_eq!(figures, 30);
+
+    // Rerun another scene without figures into the same directory, beside a file of the user's.
+    fs::write(out.join("notes.txt"), "mine").unwrap();
+    let o = run(&[
+        "pure-rolling",
+        "--t-end",
+        "0.1",
+        "--quiet",
+        "--no-figures",
+        "--out",
+        out_s,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        names_in(&out),
+        ["events.csv", "notes.txt", "summary.json", "trajectory.csv"],
+        "the first run's figures are gone, the user's file stays"
+    );
+    let summary = read_summary(&out);
+    assert_eq!(summary["produced_by"]["scene"], "pure-rolling");
+    assert_eq!(summary["produced_by"]["overrides"][0], "run.t_end=0.1");
+    // Not the paper's scene: no paper column.
+    assert_eq!(summary["compared_with_paper"], false);
+}
+
+#[test]
+fn quiet_says_it_hides_the_summary_too() {
+    let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8_lossy(&o.stdout);
+    let quiet = help
+        .lines()
+        .skip_while(|l| !l.contains("--quiet"))
+        .take(3)
+        .collect::<String>();
+    assert!(quiet.contains("summary"), "{help}");
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use equations::params::DiskParams;
 use eulerdisk::analysis::summary::Summary;
 use eulerdisk::analysis::synthetic::SyntheticRun;
-use eulerdisk::figures::paper::{paper_charts, write_paper_figures};
+use eulerdisk::figures::paper::{paper_charts, write_paper_figures, FIGURE_STEMS};
 
 fn synthetic(period: f64, t_end: f64) -> (DiskParams, eulerdisk::record::RunData) {
     let p = DiskParams::paper();
@@ -21,7 +21,7 @@ fn synthetic(period: f64, t_end: f64) -> (DiskParams, eulerdisk::record::RunData
 fn summary_reads_the_known_answers() {
     let period = 0.125;
     let (p, data) = synthetic(period, 60.0);
-    let s = Summary::of("synthetic", &data, &p);
+    let mut s = Summary::of("synthetic", &data, &p);
     for got in [
         s.theta_period_first_s.unwrap(),
         s.theta_period_last_s.unwrap(),
@@ -43,10 +43,57 @@ fn summary_reads_the_known_answers() {
     assert_eq!(s.transitions, data.events.len());
     assert_eq!(s.energy_drift_rel, Some(0.0));
     assert_eq!(s.stop_reason, "end_time");
+    // The paper's column is shown only beside the paper's scene.
     let table = s.table();
+    assert!(table.contains("theta_period_first_s"), "{table}");
     assert!(
-        table.contains("theta_period_first_s") && table.contains("0.14"),
+        !table.contains("paper") && !table.contains("0.14"),
         "{table}"
+    );
+    assert!(s.comparison().iter().all(|r| r.paper.is_none()));
+    s.compared_with_paper = true;
+    let table = s.table();
+    assert!(table.contains("paper") && table.contains("0.14"), "{table}");
+    for (key, paper) in [
+        ("transitions", "over 6000"),
+        ("stop_reason", "contact kept"),
+        ("t_end", "100"),
+    ] {
+        let row = s.comparison().into_iter().find(|r| r.key == key).unwrap();
+        assert!(row.paper.unwrap_or("").contains(paper), "{key}: {row:?}");
+    }
+}
+
+#[test]
+fn an_abandoned_run_says_why_and_reports_no_made_up_counters() {
+    let (p, mut data) = synthetic(0.1, 3.0);
+    data.work.steps = None;
+    data.work.rhs_evals = None;
+    data.constraint_drift_max = None;
+    let stop = data.stop.as_mut().unwrap();
+    stop.reason = "error".into();
+    stop.detail = "step size 1e-20 s below the spacing of t at t = 2.5 s".into();
+    let s = Summary::of("synthetic", &data, &p);
+    assert_eq!(s.stop_reason, "error");
+    assert!(s.stop_detail.contains("step size"), "{}", s.stop_detail);
+    assert_eq!(
+        (s.steps, s.rhs_evals, s.constraint_drift_max),
+        (None, None, None)
+    );
+    for key in ["steps", "rhs_evals", "constraint_drift_max"] {
+        let why = &s.not_computed[key];
+        assert!(
+            why.contains("abandoned") && why.contains("error"),
+            "{key}: {why}"
+        );
+    }
+    let json = serde_json::to_value(&s).unwrap();
+    assert!(json["steps"].is_null());
+    assert!(json["stop_detail"].as_str().unwrap().contains("step size"));
+    assert!(
+        s.table().contains("null (the simulation was abandoned"),
+        "{}",
+        s.table()
     );
 }
 
@@ -64,7 +111,11 @@ fn short_runs_have_no_settled_values() {
 fn every_paper_figure_is_drawn() {
     let (p, data) = synthetic(0.1, 5.0);
     let charts = paper_charts(&data, &p);
-    assert_eq!(charts.len(), 15);
+    let stems: Vec<&str> = charts.iter().map(|c| c.stem.as_str()).collect();
+    assert_eq!(
+        stems, FIGURE_STEMS,
+        "the stems a run owns are the ones it draws"
+    );
     for c in &charts {
         assert!(c.title.starts_with("Fig. "), "{}", c.title);
         assert!(

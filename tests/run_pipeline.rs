@@ -4,17 +4,20 @@
 use std::sync::atomic::AtomicBool;
 
 use eulerdisk::eval::Backend;
+use eulerdisk::run::provenance::Provenance;
 use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use eulerdisk::scene::{self, Override};
 
 fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
     let dir = tempfile::tempdir().unwrap();
-    let scene = scene::load("tangent-toy", &[Override::new("run", "t_end", t_end)]).unwrap();
+    let overrides = [Override::new("run", "t_end", t_end)];
+    let scene = scene::load("tangent-toy", &overrides).unwrap();
     let opts = RunOptions {
         out_dir: dir.path().to_path_buf(),
         progress: ProgressStyle::Quiet,
         backend,
         figures: false,
+        provenance: Provenance::new(&scene, "tangent-toy", &overrides),
     };
     let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
     (dir, report)

@@ -28,6 +28,26 @@ pub const FIGURE_QUANTITIES: [Quantity; 6] = [
     Quantity::NOverMg,
 ];
 
+/// The file stems of the figures, in the order [`paper_charts`] builds them: the files a run
+/// writes (and owns: a rerun clears them first).
+pub const FIGURE_STEMS: [&str; 15] = [
+    "fig01a_theta",
+    "fig03a_theta_dot",
+    "fig05a_nu",
+    "fig06a_slip_speed",
+    "fig08a_normal_force",
+    "fig01b_theta",
+    "fig03b_theta_dot",
+    "fig05b_nu",
+    "fig06b_slip_speed",
+    "fig08b_normal_force",
+    "fig02_theta_envelope",
+    "fig04_theta_dot_over_psi_dot",
+    "fig07_slip_speed_envelope",
+    "fig09_normal_force_vs_theta",
+    "fig10_normal_force_last_second",
+];
+
 /// A time window of the run with its samples.
 struct Window<'a> {
     /// `a` (first second) or `b` (last second), as in the paper's panels.

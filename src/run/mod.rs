@@ -7,7 +7,9 @@
 
 pub mod collect;
 pub mod model;
+pub mod owned;
 pub mod progress;
+pub mod provenance;
 pub mod simulation;
 
 use std::path::{Path, PathBuf};
@@ -26,6 +28,7 @@ use crate::scene::schema::ModeName;
 use crate::scene::Scene;
 use collect::{Collector, Sampling};
 use progress::Progress;
+use provenance::{is_papers_scene, Provenance};
 use simulation::Message;
 
 /// How a run reports while it runs.
@@ -50,6 +53,9 @@ pub struct RunOptions {
     pub backend: Backend,
     /// Whether to draw the figures.
     pub figures: bool,
+    /// How the run is produced (program, scene source, overrides, settings), for
+    /// `summary.json`.
+    pub provenance: Provenance,
 }
 
 /// How a run ended, for the exit code.
@@ -169,8 +175,8 @@ pub fn run_scene(
     let mut data = collector.finish();
     data.stop = stop;
     data.work = Work {
-        steps: outcome.as_ref().map_or(0, |o| o.steps),
-        rhs_evals: outcome.as_ref().map_or(0, |o| o.rhs_evals),
+        steps: outcome.as_ref().map(|o| o.steps),
+        rhs_evals: outcome.as_ref().map(|o| o.rhs_evals),
         wall_s,
     };
     // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
@@ -196,14 +202,23 @@ fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
     }
 }
 
-/// Writes every output of `data` into `opts.out_dir`; returns the summary and the paths
-/// written.
+/// `summary.json`: the summary and how the run was produced.
+#[derive(serde::Serialize)]
+struct SummaryFile<'a> {
+    #[serde(flatten)]
+    summary: &'a Summary,
+    produced_by: &'a Provenance,
+}
+
+/// Writes every output of `data` into `opts.out_dir`, after clearing the files an earlier
+/// run left there ([`owned`]); returns the summary and the paths written.
 pub fn write_outputs(
     scene: &Scene,
     data: &RunData,
     opts: &RunOptions,
 ) -> Result<(Summary, Vec<PathBuf>), WriteError> {
     let dir: &Path = &opts.out_dir;
+    owned::clear_owned(dir)?;
     let mut files = Vec::new();
     let path = dir.join("trajectory.csv");
     write_atomic(&path, |w| {
@@ -225,9 +240,14 @@ pub fn write_outputs(
             files.push(dir.join(format!("{stem}.svg")));
         }
     }
-    let summary = Summary::of(&scene.name, data, &scene.params);
+    let mut summary = Summary::of(&scene.name, data, &scene.params);
+    summary.compared_with_paper = is_papers_scene(scene);
     let path = dir.join("summary.json");
-    let json = serde_json::to_string_pretty(&summary).map_err(|e| WriteError {
+    let file = SummaryFile {
+        summary: &summary,
+        produced_by: &opts.provenance,
+    };
+    let json = serde_json::to_string_pretty(&file).map_err(|e| WriteError {
         path: path.clone(),
         source: std::io::Error::other(e),
     })?;

@@ -276,7 +276,8 @@ pub struct RunTable {
     pub slip_sign: SlipSignRule,
 }
 
-fn default_sample_rate() -> f64 {
+/// The default of `run.sample_rate` (samples per second).
+pub(crate) fn default_sample_rate() -> f64 {
     1000.0
 }
 fn default_slip_sign() -> SlipSignRule {
