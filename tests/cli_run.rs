@@ -405,3 +405,190 @@ fn every_builtin_scene_is_listed() {
         assert!(text.contains(name), "{name}");
     }
 }
+
+/// The numbers in `text` as written: `7419`, `471,084`, `0.04204`, `3.9e-3`.
+fn quoted_numbers(text: &str) -> Vec<String> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let starts = chars[i].is_ascii_digit() && (i == 0 || !chars[i - 1].is_alphanumeric());
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j < chars.len() {
+            let c = chars[j];
+            let next_digit = chars.get(j + 1).is_some_and(|n| n.is_ascii_digit());
+            let exponent = c == 'e'
+                && chars
+                    .get(j + 1)
+                    .is_some_and(|n| n.is_ascii_digit() || *n == '-');
+            let sign = c == '-' && chars[j - 1] == 'e';
+            if c.is_ascii_digit() || ((c == '.' || c == ',') && next_digit) || exponent || sign {
+                j += 1;
+            } else {
+                break;
+            }
+        }
+        out.push(chars[i..j].iter().collect());
+        i = j;
+    }
+    out
+}
+
+/// `value` written the way `quoted` is (same decimals, or same exponent form) equals `quoted`.
+fn same_as_printed(quoted: &str, value: f64) -> bool {
+    let plain = quoted.replace(',', "");
+    let printed = match plain.split_once('e') {
+        Some((mantissa, _)) => {
+            let decimals = mantissa.split_once('.').map_or(0, |(_, d)| d.len());
+            format!("{value:.decimals$e}")
+        }
+        None => {
+            let decimals = plain.split_once('.').map_or(0, |(_, d)| d.len());
+            format!("{value:.decimals$}")
+        }
+    };
+    printed == plain
+}
+
+/// The "ours" cell of the README's comparison row `label`.
+fn readme_cell<'a>(readme: &'a str, label: &str) -> &'a str {
+    let line = readme
+        .lines()
+        .find(|l| l.starts_with(&format!("| {label} |")))
+        .unwrap_or_else(|| panic!("README has no row `{label}`"));
+    line.split('|').nth(2).unwrap().trim()
+}
+
+#[test]
+fn quoted_numbers_are_read_as_printed() {
+    assert_eq!(
+        quoted_numbers("7419 (471,084 steps, 8.23 M, 3.9e-3 m/s at 50.2 s; x2)"),
+        ["7419", "471,084", "8.23", "3.9e-3", "50.2"]
+    );
+    assert!(same_as_printed("0.04204", 0.042042));
+    assert!(!same_as_printed("0.04204", 0.04206));
+    assert!(same_as_printed("3.9e-3", 3.8665e-3));
+    assert!(same_as_printed("471,084", 471_084.0));
+    assert!(!same_as_printed("2438", 2437.4));
+}
+
+/// The README's table and its figure are today's: the main job (the paper's scene, 100 s, as
+/// `cargo run --release` runs it) must print every number the table quotes, to the digits
+/// quoted, and draw the figure byte for byte. When the code changes a result, this test says
+/// which number to update; the figure is remade by the command under it in the README.
+#[test]
+fn the_readmes_numbers_and_figure_are_todays() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = fs::read_to_string(root.join("README.md")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = run(&["--quiet", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = read_summary(&out);
+    let num = |key: &str| {
+        s[key]
+            .as_f64()
+            .unwrap_or_else(|| panic!("summary.json has no number `{key}`"))
+    };
+    let (header, rows) = csv(&out.join("trajectory.csv"));
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (t, v_c) = (col("t_s"), col(&Quantity::V_C.column()));
+    let at = |row: &Vec<String>, i: usize| row[i].parse::<f64>().unwrap();
+    let (slip_max, slip_max_t) = rows
+        .iter()
+        .filter(|r| at(r, t) >= 50.0)
+        .map(|r| (at(r, v_c), at(r, t)))
+        .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    let t_end = num("t_end");
+    let slip_last = rows
+        .iter()
+        .filter(|r| at(r, t) >= t_end - 1.0)
+        .map(|r| at(r, v_c))
+        .fold(0.0, f64::max);
+    let (_, events) = csv(&out.join("events.csv"));
+    let initial_ratio: f64 = events[0][4].parse().unwrap();
+
+    let checks: [(&str, Vec<f64>); 11] = [
+        ("start mode", vec![initial_ratio]),
+        ("stop reason, t_end", vec![t_end]),
+        (
+            "mode transitions",
+            vec![num("transitions"), num("steps"), num("rhs_evals") / 1e6],
+        ),
+        (
+            "θ period, first / last second",
+            vec![num("theta_period_first_s"), num("theta_period_last_s")],
+        ),
+        (
+            "2π/period, first / last second",
+            vec![num("theta_omega_first"), num("theta_omega_last")],
+        ),
+        ("θ max after 50 s", vec![num("theta_max_after_50s")]),
+        (
+            "slip speed max after 50 s",
+            vec![num("slip_speed_max_after_50s"), slip_max_t, slip_last],
+        ),
+        (
+            "ν while sliding / ν max",
+            vec![num("nu_sliding"), num("nu_max")],
+        ),
+        (
+            "rolling phases per second, last second",
+            vec![num("rolling_phases_per_s_last")],
+        ),
+        (
+            "N/mg min / max (max in the last second)",
+            vec![
+                num("n_over_mg_min"),
+                num("n_over_mg_max"),
+                num("n_over_mg_max_last_s"),
+            ],
+        ),
+        (
+            "energy drift in rolling phases (relative)",
+            vec![num("energy_drift_rel")],
+        ),
+    ];
+    let mut stale = Vec::new();
+    for (label, values) in checks {
+        let quoted = quoted_numbers(readme_cell(&readme, label));
+        assert_eq!(quoted.len(), values.len(), "`{label}`: {quoted:?}");
+        for (q, v) in quoted.iter().zip(&values) {
+            if !same_as_printed(q, *v) {
+                stale.push(format!("`{label}`: README {q}, run {v}"));
+            }
+        }
+    }
+    let drift = readme
+        .lines()
+        .find(|l| l.starts_with("| constraint drift max"))
+        .unwrap();
+    let drift = quoted_numbers(drift.split('|').nth(2).unwrap());
+    if !same_as_printed(&drift[0], num("constraint_drift_max")) {
+        stale.push(format!(
+            "constraint drift: README {}, run {}",
+            drift[0],
+            num("constraint_drift_max")
+        ));
+    }
+    assert!((slip_max - num("slip_speed_max_after_50s")).abs() < 1e-15);
+    assert_eq!(s["start_mode"], "sliding");
+    assert_eq!(s["stop_reason"], "end_time");
+    assert!(
+        stale.is_empty(),
+        "the README quotes another run:\n{}",
+        stale.join("\n")
+    );
+
+    let hero = "fig08b_normal_force.png";
+    assert!(
+        fs::read(out.join(hero)).unwrap()
+            == fs::read(root.join("docs/figures").join(hero)).unwrap(),
+        "docs/figures/{hero} is not today's figure: remake it with \
+         `cargo run --release && cp out/{hero} docs/figures/`"
+    );
+}
