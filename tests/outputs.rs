@@ -215,7 +215,7 @@ fn time_axes_span_the_time_each_figure_covers() {
     // The windows span their samples.
     assert_eq!(find(&charts, "fig01a_theta").x_axis(), 0.0..1.0);
     assert_eq!(find(&charts, "fig01b_theta").x_axis(), 1.0..2.0);
-    // Fig. 9's x axis is θ (logarithmic), inside the data's θ range.
+    // Fig. 9's x axis is θ (here within a decade: linear), inside the data's θ range.
     let fig9 = find(&charts, "fig09_normal_force_vs_theta");
     let x = fig9.x_axis();
     assert!(x.start > 0.1 && x.end < 1.0, "{x:?}");

@@ -133,9 +133,9 @@ pub struct Chart {
     pub y_label: String,
     /// Right y-axis label, when a line uses it.
     pub y2_label: Option<String>,
-    /// Logarithmic left axis.
+    /// Logarithmic left axis, if the data span a decade ([`Chart::log_scales`]).
     pub log_y: bool,
-    /// Logarithmic x axis (for a quantity spanning decades, like θ in Fig. 9).
+    /// Logarithmic x axis (for a quantity spanning decades, like θ in Fig. 9), as for `log_y`.
     pub log_x: bool,
     /// The lines, drawn in this order (later ones on top).
     pub lines: Vec<Line>,
@@ -184,14 +184,34 @@ impl Chart {
             .all(|l| self.drawable(l).is_empty())
     }
 
+    /// Whether the x and the left y axis are drawn logarithmic: asked for, and the drawable
+    /// values span at least a decade (or there are none). Over less than a decade a logarithmic
+    /// axis carries one tick label or none, so a short run's data get a linear one.
+    pub fn log_scales(&self) -> (bool, bool) {
+        let spans_decades = |values: &mut dyn Iterator<Item = f64>| {
+            let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+            !lo.is_finite() || hi >= LOG_MIN_RATIO * lo
+        };
+        let mut xs = self.xs();
+        let mut ys =
+            series_of(self, Axis::Left).flat_map(|l| self.drawable(l).into_iter().map(|p| p.1));
+        (
+            self.log_x && spans_decades(&mut xs),
+            self.log_y && spans_decades(&mut ys),
+        )
+    }
+
+    /// The x values of every drawable point.
+    fn xs(&self) -> impl Iterator<Item = f64> + '_ {
+        self.lines
+            .iter()
+            .flat_map(|l| self.drawable(l).into_iter().map(|p| p.0))
+    }
+
     /// The x range drawn: the chart's own (a time span) or the extent of the drawable points.
     pub fn x_axis(&self) -> Range<f64> {
-        let xs = || {
-            self.lines
-                .iter()
-                .flat_map(|l| self.drawable(l).into_iter().map(|p| p.0))
-        };
-        match (&self.x_range, self.log_x) {
+        let xs = || self.xs();
+        match (&self.x_range, self.log_scales().0) {
             (Some(r), false) => usable_span(r.start, r.end),
             (Some(r), true) if r.start > 0.0 => usable_span(r.start, r.end),
             (_, true) => padded_range(xs(), true),
@@ -251,6 +271,9 @@ fn series_of(chart: &Chart, axis: Axis) -> impl Iterator<Item = &Line> {
     chart.lines.iter().filter(move |l| l.axis == axis)
 }
 
+/// A logarithmic axis needs its values to span at least this ratio (one decade).
+const LOG_MIN_RATIO: f64 = 10.0;
+
 /// Left edge of the plotting area inside the chart's area (margin plus y label area).
 const PLOT_LEFT: i32 = MARGIN as i32 + Y_LABEL_AREA as i32;
 const MARGIN: u32 = 20;
@@ -265,9 +288,21 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
     let (legend_strip, plot) = body.split_vertically(legend::HEIGHT);
     legend::draw(&legend_strip, &chart.lines, PLOT_LEFT)?;
     let x_range = chart.x_axis();
+    let (log_x, log_y) = chart.log_scales();
     let left = padded_range(
         series_of(chart, Axis::Left).flat_map(|l| chart.drawable(l).into_iter().map(|p| p.1)),
-        chart.log_y,
+        log_y,
+    );
+    let described = |label: &str, log: bool| {
+        if log {
+            format!("{label}, logarithmic")
+        } else {
+            label.to_string()
+        }
+    };
+    let (x_desc, y_desc) = (
+        described(&chart.x_label, log_x),
+        described(&chart.y_label, log_y),
     );
     let right = padded_range(
         series_of(chart, Axis::Right).flat_map(|l| chart.drawable(l).into_iter().map(|p| p.1)),
@@ -328,10 +363,10 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
     macro_rules! mesh {
         ($ctx:expr) => {
             $ctx.configure_mesh()
-                .x_label_formatter(&|v: &f64| tick_label(*v, chart.log_x, x_span))
-                .y_label_formatter(&|v: &f64| tick_label(*v, chart.log_y, left_span))
-                .x_desc(chart.x_label.as_str())
-                .y_desc(chart.y_label.as_str())
+                .x_label_formatter(&|v: &f64| tick_label(*v, log_x, x_span))
+                .y_label_formatter(&|v: &f64| tick_label(*v, log_y, left_span))
+                .x_desc(x_desc.as_str())
+                .y_desc(y_desc.as_str())
                 .axis_desc_style(label_font.clone())
                 .label_style(tick_font.clone())
                 .light_line_style(RGBColor(235, 235, 235))
@@ -374,7 +409,7 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
         }};
     }
     let x = || x_range.clone();
-    match (chart.log_x, chart.log_y) {
+    match (log_x, log_y) {
         (false, false) => finish!(builder.build_cartesian_2d(x(), left)?, x()),
         (false, true) => finish!(builder.build_cartesian_2d(x(), left.log_scale())?, x()),
         (true, false) => finish!(
@@ -484,6 +519,28 @@ mod tests {
         c.lines.clear();
         c.x_range = None;
         assert_eq!(c.x_axis(), 0.0..1.0);
+    }
+
+    #[test]
+    fn a_logarithmic_axis_needs_a_decade_of_data() {
+        let narrow = Line::new("n", vec![(0.0, 0.1), (1.0, 0.15)], colors::BLUE);
+        let wide = Line::new("w", vec![(0.0, 1e-4), (1.0, 0.15)], colors::BLUE);
+        assert_eq!(
+            chart_of(vec![narrow.clone()], true).log_scales(),
+            (false, false)
+        );
+        assert_eq!(chart_of(vec![wide], true).log_scales(), (false, true));
+        // Not asked for, never logarithmic; no data, as asked.
+        assert_eq!(chart_of(vec![narrow], false).log_scales(), (false, false));
+        assert_eq!(chart_of(Vec::new(), true).log_scales(), (false, true));
+        // A narrow logarithmic x axis falls back to the data's extent.
+        let mut c = chart_of(
+            vec![Line::new("x", vec![(0.2, 1.0), (0.5, 2.0)], colors::BLUE)],
+            false,
+        );
+        c.log_x = true;
+        assert_eq!(c.log_scales(), (false, false));
+        assert_eq!(c.x_axis(), 0.2..0.5);
     }
 
     #[test]

@@ -304,7 +304,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     // all happen below 0.01 rad: on a linear axis they crowd into the first pixel column.
     fig9.log_y = true;
     fig9.log_x = true;
-    fig9.x_label = "θ (rad, logarithmic)".to_string();
+    fig9.x_label = "θ (rad)".to_string();
     charts.push(fig9);
 
     let [_, last] = windows(data);
