@@ -592,3 +592,83 @@ fn the_readmes_numbers_and_figure_are_todays() {
          `cargo run --release && cp out/{hero} docs/figures/`"
     );
 }
+
+/// The repository's text files (sources, docs, scenes), without build output.
+fn repository_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if name.starts_with('.') || name == "target" {
+            continue;
+        }
+        if path.is_dir() {
+            repository_files(&path, out);
+        } else if ["rs", "md", "toml"]
+            .iter()
+            .any(|ext| path.extension().is_some_and(|e| e == *ext))
+        {
+            out.push(path);
+        }
+    }
+}
+
+/// Every reference to the physics write-up names a section it has, and nothing cites a file
+/// that is not in the repository.
+#[test]
+fn every_physics_reference_names_a_section_of_docs_physics() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let physics = fs::read_to_string(root.join("docs/physics.md")).unwrap();
+    let sections: Vec<String> = physics
+        .lines()
+        .filter_map(|l| l.strip_prefix("## ").or_else(|| l.strip_prefix("### ")))
+        .filter_map(|h| h.split_whitespace().next())
+        .map(|n| n.trim_end_matches('.').to_string())
+        .filter(|n| n.chars().next().is_some_and(|c| c.is_ascii_digit()))
+        .collect();
+    assert!(sections.len() >= 12, "{sections:?}");
+    let mut files = Vec::new();
+    repository_files(root, &mut files);
+    let mut references = 0;
+    let mut bad = Vec::new();
+    for file in files.iter().filter(|f| !f.ends_with("docs/physics.md")) {
+        let text = fs::read_to_string(file).unwrap();
+        let shown = file.strip_prefix(root).unwrap().display().to_string();
+        if text.contains(&format!("{}.md", "EQUATIONS")) {
+            bad.push(format!("{shown}: cites a file outside the repository"));
+        }
+        for (at, _) in text.match_indices("docs/physics.md") {
+            // The reference runs to the end of its parenthesis or sentence, across a line
+            // break and the comment marker that continues it.
+            let after: String = text[at + "docs/physics.md".len()..]
+                .chars()
+                .take(70)
+                .collect();
+            let after = after
+                .replace("\n", " ")
+                .replace("//!", "")
+                .replace("///", "");
+            let end = after
+                .find(|c| c == ')' || c == ':' || c == ',')
+                .unwrap_or(after.len());
+            let window = &after[..end];
+            for part in window.split('§').skip(1) {
+                let number: String = part
+                    .chars()
+                    .take_while(|c| c.is_ascii_digit() || *c == '.')
+                    .collect();
+                let number = number.trim_end_matches('.');
+                references += 1;
+                if !sections.iter().any(|s| s == number) {
+                    bad.push(format!(
+                        "{shown}: the physics write-up has no section {number}"
+                    ));
+                }
+            }
+        }
+    }
+    assert!(
+        references > 60,
+        "found only {references} section references"
+    );
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
