@@ -647,9 +647,7 @@ fn every_physics_reference_names_a_section_of_docs_physics() {
                 .replace("\n", " ")
                 .replace("//!", "")
                 .replace("///", "");
-            let end = after
-                .find(|c| c == ')' || c == ':' || c == ',')
-                .unwrap_or(after.len());
+            let end = after.find([')', ':', ',']).unwrap_or(after.len());
             let window = &after[..end];
             for part in window.split('§').skip(1) {
                 let number: String = part
