@@ -55,7 +55,8 @@ pub struct RunArgs {
     /// Output directory.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// No progress output.
+    /// Print nothing but errors and why a run stopped early: no progress, no scene line, no
+    /// summary table (summary.json is still written).
     #[arg(long)]
     pub quiet: bool,
     /// Override any scene key: `--set table.key=value` (repeatable).

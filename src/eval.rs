@@ -287,7 +287,7 @@ mod tests {
             assert!((a.1 - b.1).abs() <= 1e-9 * (1.0 + b.1.abs()), "{a:?} {b:?}");
         }
         let nu = g.outputs.0.iter().find(|(n, _)| *n == "nu").unwrap().1;
-        // EQUATIONS.md §9: rolling would need nu = 0.8355 at t = 0.
+        // docs/physics.md §11: rolling would need nu = 0.8355 at t = 0.
         assert!((nu - 0.8355).abs() < 5e-4, "{nu}");
     }
 

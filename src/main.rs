@@ -8,6 +8,7 @@ use std::sync::Arc;
 use clap::Parser;
 use eulerdisk::cli::{backend, Cli, Command, EvalArgs, RunArgs};
 use eulerdisk::eval::{evaluate, parse_params, parse_state};
+use eulerdisk::run::provenance::Provenance;
 use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use eulerdisk::scene::{self, BUILTIN};
 
@@ -67,7 +68,11 @@ fn eval(args: &EvalArgs) -> ExitCode {
 }
 
 fn run(args: RunArgs) -> ExitCode {
-    let scene = match args.overrides().and_then(|o| scene::load(&args.scene, &o)) {
+    let loaded = args.overrides().and_then(|o| {
+        let scene = scene::load(&args.scene, &o)?;
+        Ok((scene, o))
+    });
+    let (scene, overrides) = match loaded {
         Ok(s) => s,
         Err(err) => {
             eprintln!("error: {err}");
@@ -101,6 +106,7 @@ fn run(args: RunArgs) -> ExitCode {
         progress,
         backend: backend(args.reference),
         figures: !args.no_figures,
+        provenance: Provenance::new(&scene, &args.scene, &overrides),
     };
     if !args.quiet {
         eprintln!(
@@ -125,19 +131,28 @@ fn run(args: RunArgs) -> ExitCode {
                     args.out.display()
                 );
             }
+            let s = &report.summary;
             match report.ending {
-                Ending::Completed => ExitCode::SUCCESS,
+                Ending::Completed => {
+                    if s.stop_reason != "end_time" {
+                        eprintln!(
+                            "stopped early at t = {} s of {} s ({}): {}",
+                            s.t_end, scene.file.run.t_end, s.stop_reason, s.stop_detail
+                        );
+                    }
+                    ExitCode::SUCCESS
+                }
                 Ending::Interrupted => {
                     eprintln!(
                         "interrupted at t = {} s: the files hold the run up to then",
-                        report.summary.t_end
+                        s.t_end
                     );
                     ExitCode::from(EXIT_INTERRUPTED)
                 }
                 Ending::Failed => {
                     eprintln!(
-                        "the run failed at t = {} s ({}); the files hold the run up to then",
-                        report.summary.t_end, report.summary.stop_reason
+                        "the run failed at t = {} s ({}): {}\nthe files hold the run up to then",
+                        s.t_end, s.stop_reason, s.stop_detail
                     );
                     ExitCode::from(EXIT_FAILED)
                 }

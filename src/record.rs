@@ -72,10 +72,10 @@ pub struct StopRecord {
 /// Integrator work.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Work {
-    /// Accepted steps.
-    pub steps: u64,
-    /// Right-hand-side evaluations.
-    pub rhs_evals: u64,
+    /// Accepted steps; `None` when the simulation was abandoned before it reported them.
+    pub steps: Option<u64>,
+    /// Right-hand-side evaluations; `None` as for `steps`.
+    pub rhs_evals: Option<u64>,
     /// Wall-clock time (s).
     pub wall_s: f64,
 }

@@ -62,7 +62,7 @@ fn rolling_prints_every_name() {
     for key in ["N", "T", "nu", "energy"] {
         assert!(v["outputs"][key].as_f64().unwrap().is_finite(), "{key}");
     }
-    // EQUATIONS.md §9: rolling would need nu = 0.8355, N/mg = 0.4345 at the paper's start.
+    // docs/physics.md §11: rolling would need nu = 0.8355, N/mg = 0.4345 at the paper's start.
     let nu = v["outputs"]["nu"].as_f64().unwrap();
     assert!((nu - 0.8355).abs() < 5e-4, "{nu}");
     let n = v["outputs"]["N"].as_f64().unwrap() / (0.4387 * 9.81);

@@ -8,6 +8,7 @@ use std::sync::atomic::AtomicBool;
 use eulerdisk::eval::Backend;
 use eulerdisk::quantity::Quantity;
 use eulerdisk::run::model::{choose, RunModel};
+use eulerdisk::run::provenance::Provenance;
 use eulerdisk::run::{run_scene, ProgressStyle, RunOptions, RunReport};
 use eulerdisk::scene::{self, Override};
 
@@ -25,6 +26,7 @@ fn short_run(scene: &scene::Scene, figures: bool) -> (tempfile::TempDir, RunRepo
         progress: ProgressStyle::Quiet,
         backend: Backend::Generated,
         figures,
+        provenance: Provenance::new(scene, &scene.name, &[]),
     };
     let report = run_scene(scene, &opts, &AtomicBool::new(false)).unwrap();
     (dir, report)

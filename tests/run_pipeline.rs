@@ -6,27 +6,31 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use eulerdisk::eval::Backend;
+use eulerdisk::run::provenance::Provenance;
 use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use eulerdisk::scene::{self, Override};
 
 fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
-    let scene = scene::load("tangent-toy", &[Override::new("run", "t_end", t_end)]).unwrap();
-    run_in_tempdir(&scene, backend, &AtomicBool::new(false))
+    let overrides = [Override::new("run", "t_end", t_end)];
+    run_in_tempdir(&overrides, backend, &AtomicBool::new(false))
 }
 
+/// Runs the paper's scene with `overrides` into a temporary directory.
 fn run_in_tempdir(
-    scene: &scene::Scene,
+    overrides: &[Override],
     backend: Backend,
     interrupt: &AtomicBool,
 ) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
+    let scene = scene::load("tangent-toy", overrides).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let opts = RunOptions {
         out_dir: dir.path().to_path_buf(),
         progress: ProgressStyle::Quiet,
         backend,
         figures: false,
+        provenance: Provenance::new(&scene, "tangent-toy", overrides),
     };
-    let report = run_scene(scene, &opts, interrupt).unwrap();
+    let report = run_scene(&scene, &opts, interrupt).unwrap();
     (dir, report)
 }
 
@@ -67,15 +71,11 @@ fn generated_and_reference_runs_agree() {
 /// time; a replay samples it, and the trajectory still ends at the stop.
 #[test]
 fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
-    let scene = scene::load(
-        "tangent-toy",
-        &[
-            Override::new("run", "t_end", 30.0),
-            Override::new("run", "slip_sign", "paper"),
-        ],
-    )
-    .unwrap();
-    let (_dir, report) = run_in_tempdir(&scene, Backend::Generated, &AtomicBool::new(false));
+    let overrides = [
+        Override::new("run", "t_end", 30.0),
+        Override::new("run", "slip_sign", "paper"),
+    ];
+    let (_dir, report) = run_in_tempdir(&overrides, Backend::Generated, &AtomicBool::new(false));
     let s = &report.summary;
     assert_eq!(s.stop_reason, "contact_lost");
     assert!((s.t_end - 18.159).abs() < 1e-3, "{}", s.t_end);
@@ -95,14 +95,13 @@ fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
 /// up to then, long before the 100 s would have taken.
 #[test]
 fn an_interrupt_stops_the_simulation_and_keeps_its_work() {
-    let scene = scene::load("tangent-toy", &[]).unwrap();
     let interrupt = AtomicBool::new(false);
     let (_dir, report) = std::thread::scope(|scope| {
         scope.spawn(|| {
             std::thread::sleep(Duration::from_millis(100));
             interrupt.store(true, Ordering::SeqCst);
         });
-        run_in_tempdir(&scene, Backend::Generated, &interrupt)
+        run_in_tempdir(&[], Backend::Generated, &interrupt)
     });
     assert_eq!(report.ending, Ending::Interrupted);
     let s = &report.summary;

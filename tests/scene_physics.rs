@@ -1,4 +1,4 @@
-//! The shipped scenes do what their descriptions say, checked against EQUATIONS.md §7.
+//! The shipped scenes do what their descriptions say, checked against docs/physics.md §9.
 
 use std::sync::atomic::AtomicBool;
 

@@ -98,6 +98,12 @@ fn each_rule_names_its_key() {
         "run.sample_rate",
         "samples",
     );
+    // A long run at the default rate blames the duration the user set, and says what to change.
+    expect_key(
+        with_override("run.t_end=1e12"),
+        "run.t_end",
+        "shorten `run.t_end` to at most 5000 s",
+    );
     expect_key(
         with_override("initial.Z=0.02"),
         "initial.Z",

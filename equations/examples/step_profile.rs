@@ -14,7 +14,7 @@
 //!
 //! ```text
 //! cargo run --release -p equations --example step_profile -- \
-//!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors] [pi-gustafsson|pi-hairer|integral]
+//!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors] [pi-gustafsson|pi-hairer|integral] [dopri5|dop853] [physical|regularised]
 //! ```
 
 use equations::hybrid::{
@@ -78,7 +78,13 @@ fn band(edges: &[f64], value: f64) -> usize {
 /// The name of state component `i` in both modes of the Cartesian chart ("V_X/u_X" where
 /// they differ).
 fn component_name(i: usize) -> String {
-    let (r, s) = (rolling::STATE_NAMES[i], sliding_cartesian::STATE_NAMES[i]);
+    // One past the states: the clock of a run in regularised time.
+    let (Some(r), Some(s)) = (
+        rolling::STATE_NAMES.get(i),
+        sliding_cartesian::STATE_NAMES.get(i),
+    ) else {
+        return "clock".to_string();
+    };
     if r == s {
         r.to_string()
     } else {
@@ -142,6 +148,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(c) = args.get(6) {
         config.step_control = c.parse()?;
+    }
+    if args.get(7).map(String::as_str) == Some("dop853") {
+        config.integrator = equations::hybrid::IntegratorChoice::Dop853;
+    }
+    if let Some(t) = args.get(8) {
+        config.time = t.parse()?;
     }
     config.limiting_component = LimitingComponent::Tracked;
     let models = GeneratedModels::generated(params, SlipChart::Cartesian)?;

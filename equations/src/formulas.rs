@@ -3,7 +3,7 @@
 //! These are the numbers a reader can check by hand: the normal force of eqs. (13)–(16), the
 //! energy balance, the steady motions and the rolling-consistent initial velocities (Box 2).
 //! The tests hold every model to them, so they are written directly from the paper and
-//! EQUATIONS.md (§3, §5, §7), not derived from any model in this crate.
+//! docs/physics.md (§3, §5, §8, §9), not derived from any model in this crate.
 
 use crate::DiskParams;
 use nalgebra::Vector3;
@@ -206,7 +206,7 @@ mod tests {
 
     #[test]
     fn spinning_in_place_matches_the_table() {
-        // EQUATIONS.md §7: |p| = 44.0, 102, 187 rad/s at θ0 = 0.57, 0.1, 0.03.
+        // docs/physics.md §9: |p| = 44.0, 102, 187 rad/s at θ0 = 0.57, 0.1, 0.03.
         let p = DiskParams::paper();
         for (theta0, expected, tol) in [(0.57, 44.0, 0.05), (0.1, 102.3, 0.05), (0.03, 186.7, 0.05)]
         {
@@ -224,7 +224,7 @@ mod tests {
         let p = DiskParams::paper();
         let n2 = upright_stability_threshold(&p);
         assert!((n2 - p.g / (3.0 * p.a)).abs() < 1e-12 * n2);
-        // EQUATIONS.md §7: n > 9.33 rad/s for the paper's disk.
+        // docs/physics.md §9: n > 9.33 rad/s for the paper's disk.
         assert!((n2.sqrt() - 9.33).abs() < 5e-3);
     }
 

@@ -1,24 +1,25 @@
-//! The hybrid disk: rolling and sliding joined by the paper's transition rules (EQUATIONS.md §6),
-//! run on the generic hybrid driver of `model-runtime`.
+//! The hybrid disk: rolling and sliding joined by the paper's transition rules (docs/physics.md
+//! §7), run on the generic hybrid driver of `model-runtime`.
 //!
 //! # Why the transitions look the way they do
 //!
 //! * **Onset of sliding.** When rolling would need `T ≥ μ_st N` the disk starts to slide from
-//!   `v_C = 0` in the *consistent* direction `α0` (§6.1, [`onset`]). The Cartesian chart cannot
-//!   represent the direction of a zero slip, so the first `2δ / v̇_C` seconds (δ = the stick
-//!   threshold, ~1e-9 s of motion) are bridged by an exact linear segment along the derivative
-//!   at `(u = 0, α0)`: the slip leaves the origin along `e_s(α0)` and the sliding model takes
-//!   over at `|u| = 2δ`. The bridge is a mode of its own whose right-hand side is that constant
-//!   derivative and whose only guard is the time it ends, so the generic driver integrates and
-//!   times it exactly; its error is `O(s²)` in the step `s ≈ 5e-10 s`, far below any tolerance.
+//!   `v_C = 0` in the *consistent* direction `α0` (docs/physics.md §7.1, [`onset`]). The Cartesian
+//!   chart cannot represent the direction of a zero slip, so the first `2δ / v̇_C` seconds (δ = the
+//!   stick threshold, ~1e-9 s of motion) are bridged by an exact linear segment along the
+//!   derivative at `(u = 0, α0)`: the slip leaves the origin along `e_s(α0)` and the sliding model
+//!   takes over at `|u| = 2δ`. The bridge is a mode of its own whose right-hand side is that
+//!   constant derivative and whose only guard is the time it ends, so the generic driver integrates
+//!   and times it exactly; its error is `O(s²)` in the step `s ≈ 5e-10 s`, far below any tolerance.
 //! * **End of sliding.** `|u|` touches zero without changing sign, and the sliding field is
 //!   discontinuous there, so the guard is `|u| − δ` (downward; in the polar chart, where `v_C`
 //!   is signed and smooth through zero, `±v_C − δ` with the sign the slip had when the segment
 //!   started); at that crossing a second
 //!   bridge follows the derivative for the remaining `s = −u·u̇/|u̇|²` to the exact zero of the
-//!   slip. There the rolling equations decide (§6.2): rolling if `T_r < μ_st N_r` and `N_r > 0`,
-//!   otherwise sliding restarts with a new consistent `α0` ([`SlipSign::Physical`]) or goes on
-//!   through zero with `α` fixed and a signed slip speed ([`SlipSign::Paper`], polar chart only).
+//!   slip. There the rolling equations decide (docs/physics.md §7.2): rolling if `T_r < μ_st N_r`
+//!   and `N_r > 0`, otherwise sliding restarts with a new consistent `α0` ([`SlipSign::Physical`])
+//!   or goes on through zero with `α` fixed and a signed slip speed ([`SlipSign::Paper`], polar
+//!   chart only).
 //! * **Stops.** Contact lost (`N` falls through zero, either mode), the inclination reaching the
 //!   configured floor, chattering (too many transitions in a short window), or the end time.
 //!
@@ -101,7 +102,7 @@ pub enum IntegratorChoice {
 /// How the slip speed is read when it reaches zero and static friction cannot hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SlipSign {
-    /// `v_C ≥ 0` (EQUATIONS.md §6.5): sliding restarts from zero slip in a new consistent
+    /// `v_C ≥ 0` (docs/physics.md §7.4): sliding restarts from zero slip in a new consistent
     /// direction, so friction always opposes the slip.
     Physical,
     /// The paper's signed slip speed: `v_C` passes through zero with `α` held fixed, after which
@@ -251,7 +252,7 @@ pub struct InitialState {
 }
 
 impl InitialState {
-    /// The paper's start (EQUATIONS.md §9): centre above the origin at rest, `ψ = φ = 0`,
+    /// The paper's start (docs/physics.md §11): centre above the origin at rest, `ψ = φ = 0`,
     /// `θ0 = π/2 − 1`, `Ω = (1, 0, 0)` rad/s, on the rolling constraints.
     pub fn paper(params: &crate::DiskParams) -> Self {
         let theta0 = std::f64::consts::FRAC_PI_2 - 1.0;

@@ -2,7 +2,7 @@
 //!
 //! Rolling and sliding integrate different 12-vectors: rolling carries the centre's horizontal
 //! velocity `(V_X, V_Y)`, sliding carries the slip of the contact particle instead, either in the
-//! paper's polar form `(v_C, α)` or in the Cartesian form `u = v_C e_s` (EQUATIONS.md §6.4).
+//! paper's polar form `(v_C, α)` or in the Cartesian form `u = v_C e_s` (docs/physics.md §6).
 //! Everything that has to compare or report states across modes (guards, transition maps,
 //! constraint projection, samples) goes through one *physical* view — the rolling variables plus
 //! the slip — so that each conversion is written once. The contact force is recovered from the
@@ -205,7 +205,7 @@ impl PhysicalState {
         Vector3::new(self.y[V_X], self.y[V_Y], self.y[V_Z])
     }
 
-    /// Total mechanical energy (EQUATIONS.md §7).
+    /// Total mechanical energy (docs/physics.md §8).
     pub fn energy(&self, p: &DiskParams) -> f64 {
         formulas::total_energy(p, &self.centre_velocity(), &body_rates(&self.y), self.y[Z])
     }
@@ -359,7 +359,8 @@ impl ContactForce {
         self.r_y.atan2(self.r_x)
     }
 
-    /// Whether static friction can hold the contact: `N > 0` and `T < mu_st N` (§6.2).
+    /// Whether static friction can hold the contact: `N > 0` and `T < mu_st N` (docs/physics.md
+    /// §7.2).
     pub fn admits_rolling(&self, mu_st: f64) -> bool {
         self.normal > 0.0 && self.friction() < mu_st * self.normal
     }

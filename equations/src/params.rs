@@ -154,7 +154,7 @@ mod tests {
     fn paper_values_are_valid_and_match_the_table() {
         let p = DiskParams::paper();
         assert_eq!(p.validate(), Ok(()));
-        // EQUATIONS.md §9 prints A and C to seven digits.
+        // docs/physics.md §11 prints A and C to seven digits.
         assert!((p.A() - 1.546420e-4).abs() < 5e-11);
         assert!((p.C() - 3.092840e-4).abs() < 5e-11);
         assert_eq!(p.k_F(), 0.0);

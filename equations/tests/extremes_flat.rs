@@ -1,8 +1,8 @@
 //! A nearly flat disk, θ0 = 1e-2, 1e-4, 1e-6 rad, started rolling and sliding.
 //!
-//! Near `sin θ = 0` two things blow up (EQUATIONS.md §8): the precession rate `ψ̇ = −Ω_x / sin θ`
-//! and the normal force, `N/mg = α1 + α2 / sin θ` (eqs. 13–16). Two families of starts show both
-//! ends of what the program must do there:
+//! Near `sin θ = 0` two things blow up (docs/physics.md §10): the precession rate
+//! `ψ̇ = −Ω_x / sin θ` and the normal force, `N/mg = α1 + α2 / sin θ` (eqs. 13–16). Two
+//! families of starts show both ends of what the program must do there:
 //!
 //! * **Spinning flat** (`Ω_x = 1` rad/s): `N/mg` at the start must follow the paper's closed
 //!   forms, and so grow like `1/sin θ`: `sin θ · N/mg` tends to `α2(0)`. The term
@@ -14,8 +14,8 @@
 //!   `κ = m g a / (A + m a²)` while rolling, so the run must stop with "inclination reached 0"
 //!   (at the floor θ = 1e-9 rad of the default settings) at the time this scalar equation
 //!   gives, computed here independently (and, for the sliding start whose slip lies along the
-//!   disk's plane, from the sliding `θ` equation of §4, which is closed when `Ω_x = Ω_z = 0`
-//!   and `sin(α − ψ) = 0`).
+//!   disk's plane, from the sliding `θ` equation of docs/physics.md §4.2, which is closed
+//!   when `Ω_x = Ω_z = 0` and `sin(α − ψ) = 0`).
 
 mod common;
 
@@ -199,9 +199,9 @@ fn falls_flat(start: Start, theta0: f64, rtol: f64) {
     let p = DiskParams::paper();
     let (m, a, g) = (p.m, p.a, p.g);
     let ma2 = m * a * a;
-    // Rolling with Ω_x = Ω_z = 0 (EQUATIONS.md §3): Ω̇_y = −m g a cos θ / (A + m a²).
+    // Rolling with Ω_x = Ω_z = 0 (docs/physics.md §3.2): Ω̇_y = −m g a cos θ / (A + m a²).
     let rolling = |th: f64, _om: f64| -m * g * a * th.cos() / (p.A() + ma2);
-    // Sliding with the slip along E_X (α = π, ψ = 0: K = −1, S = 0), §4 step 3.
+    // Sliding with the slip along E_X (α = π, ψ = 0: K = −1, S = 0), docs/physics.md §4.2 line 3.
     let sliding = |th: f64, om: f64| {
         let (s, c) = th.sin_cos();
         let k = p.mu_d * -s + c;

@@ -1,13 +1,13 @@
-//! Friction at its limits, from the paper's start (EQUATIONS.md §9).
+//! Friction at its limits, from the paper's start (docs/physics.md §11).
 //!
 //! * **No friction** (`μ_d = μ_st = 0`): the contact force is vertical, so the centre's horizontal
 //!   velocity keeps its initial value, zero: X and Y stay where they were, the centre moves only
-//!   vertically. Friction does no work and there is no air, so the energy is conserved (§7),
-//!   in every mode, to the accumulated integration error.
+//!   vertically. Friction does no work and there is no air, so the energy is conserved
+//!   (docs/physics.md §8), in every mode, to the accumulated integration error.
 //! * **Equal coefficients** (`μ_st = μ_d`): friction is continuous across the transitions, so
-//!   the rules of §6 must hold (`ν ≤ μ_st` in rolling to the located event, `ν = μ_d` in
-//!   sliding, the energy never rises) — until the friction limit, where the slip cannot start
-//!   at first order and the run must stop with a typed reason, not integrate on.
+//!   the rules of docs/physics.md §7 must hold (`ν ≤ μ_st` in rolling to the located event,
+//!   `ν = μ_d` in sliding, the energy never rises) — until the friction limit, where the slip
+//!   cannot start at first order and the run must stop with a typed reason, not integrate on.
 //! * **Unlimited static friction** (`μ_st = 1e6`): the disk never slides, so the hybrid run must
 //!   agree with a plain integration of the rolling model alone (no guards, no driver) to the
 //!   integration tolerance.

@@ -1,5 +1,5 @@
-//! A long horizon: the paper's scene (EQUATIONS.md §9, the paper's DP5 at rtol 1e-8, atol 1e-10)
-//! run to `T_END` s or until it stops.
+//! A long horizon: the paper's scene (docs/physics.md §11, the paper's DP5 at rtol 1e-8, atol
+//! 1e-10) run to `T_END` s or until it stops.
 //!
 //! Nothing of a run is kept unless the observer keeps it, so memory must not grow with the
 //! horizon: the peak resident set (`VmHWM` of `/proc/self/status`) after the first 100 s and

@@ -1,13 +1,13 @@
 //! Vanishing slip: sliding starts with slip speeds from 1e-3 down to 1e-12 m/s, in both slip
 //! charts.
 //!
-//! The polar chart carries `α̇ = w / v_C` (EQUATIONS.md §4, step 7), singular as `v_C → 0`. The
-//! driver must never integrate into that singularity: the stick event (`v_C` falls to the stick
+//! The polar chart carries `α̇ = w / v_C` (docs/physics.md §4.2, line 7), singular as `v_C → 0`.
+//! The driver must never integrate into that singularity: the stick event (`v_C` falls to the stick
 //! threshold δ = 1e-9 m/s) fires first and a bridge carries the slip to zero exactly, so every
 //! step the integrator takes has `v_C ≥ δ` and a finite `α̇`; a start below δ is decided at
-//! once, as rolling. At zero slip the rule of §6.2 decides: roll if the rolling equations
-//! need `T_r / N_r < μ_st` (with `N_r > 0`), otherwise slide on from zero slip. That rule is
-//! evaluated here independently, with the hand-written rolling reference at the state where
+//! once, as rolling. At zero slip the rule of docs/physics.md §7.2 decides: roll if the rolling
+//! equations need `T_r / N_r < μ_st` (with `N_r > 0`), otherwise slide on from zero slip. That rule
+//! is evaluated here independently, with the hand-written rolling reference at the state where
 //! the event fired, and the run's decision must agree.
 //!
 //! Two starts at θ0 = 0.57, each with a slip that friction brakes to zero: spinning in place (no
@@ -16,7 +16,7 @@
 //! slips pass exactly through zero: spinning in place the slip decays along its own
 //! direction, and the fall is planar (`Ω_x = Ω_z = 0`, slip along the disk's plane). A start
 //! that precesses (the paper's, `Ω_x = 1`) turns the slip aside by ~3e-8 m/s as it passes: a
-//! near miss of zero (§6.4 b), which is not a stick.
+//! near miss of zero (docs/physics.md §6), which is not a stick.
 
 mod common;
 
@@ -34,7 +34,8 @@ fn slip_speeds() -> impl Iterator<Item = f64> {
     (3..=12).map(|k| 10f64.powi(-k))
 }
 
-/// The rule of §6.2 at a state, by the reference: `(T_r / N_r, N_r)` and whether it rolls.
+/// The rule of docs/physics.md §7.2 at a state, by the reference: `(T_r / N_r, N_r)` and whether it
+/// rolls.
 struct RollingNeed {
     ratio: f64,
     normal: f64,

@@ -2,15 +2,16 @@
 //!
 //! Fast rates make the step sizes shrink (the methods resolve the fastest rotation, so the
 //! step count grows about in proportion to `|Ω|`), and nothing else may change: the run must
-//! finish, and the energy, exactly conserved in rolling with `μ_a = 0` (EQUATIONS.md §7), may
+//! finish, and the energy, exactly conserved in rolling with `μ_a = 0` (docs/physics.md §8), may
 //! drift only by the accumulated integration error, `2 (rtol + atol)` per step at most (see
 //! [`common::extreme::accumulated_error_bound`]).
 //!
-//! The states are steady circles of §7 with a nudge `Ω_y = 0.1` rad/s, so that the disk nutates
-//! rather than sitting on an exact solution: a fast precession (`Ω_x = ∓|Ω|`, `p = |Ω| / sin θ0`)
-//! and a fast roller (`Ω_z = ±|Ω|` on a wide circle, the small root `p` of the steady-circle
-//! condition). Static friction is made unlimited (`μ_st = 1e6`) so that the disk rolls
-//! throughout, which is the regime whose energy is conserved.
+//! The states are steady circles of docs/physics.md §9 with a nudge `Ω_y = 0.1` rad/s, so that
+//! the disk nutates rather than sitting on an exact solution: a fast precession
+//! (`Ω_x = ∓|Ω|`, `p = |Ω| / sin θ0`) and a fast roller (`Ω_z = ±|Ω|` on a wide circle, the
+//! small root `p` of the steady-circle condition). Static friction is made unlimited
+//! (`μ_st = 1e6`) so that the disk rolls throughout, which is the regime whose energy is
+//! conserved.
 
 mod common;
 
@@ -35,7 +36,8 @@ const NUDGE: f64 = 0.1;
 
 /// The precession rate of a steady circle at `THETA0` with spin `omega_z` that tends to zero
 /// with the gravity term: the small root of
-/// `A sin θ cos θ p² − (C + m a²) Ω_z sin θ p − m g a cos θ = 0` (§7), without cancellation.
+/// `A sin θ cos θ p² − (C + m a²) Ω_z sin θ p − m g a cos θ = 0` (docs/physics.md §9), without
+/// cancellation.
 fn slow_precession(p: &DiskParams, omega_z: f64) -> f64 {
     let (s, c) = THETA0.sin_cos();
     let quad = p.A() * s * c;

@@ -1,4 +1,4 @@
-//! Tolerances at their extremes, on the paper's scene (EQUATIONS.md §9).
+//! Tolerances at their extremes, on the paper's scene (docs/physics.md §11).
 //!
 //! * **rtol = 1e-14**, near round-off: DP5 cannot meet it everywhere; what it must not do is
 //!   hang. The work is bounded by a step budget and a short horizon (the first stick, at

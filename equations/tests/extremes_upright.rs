@@ -1,7 +1,7 @@
 //! The upright disk, θ = π/2: at rest, and rolling with a spin just below and just above the
-//! stability threshold of EQUATIONS.md §7.
+//! stability threshold of docs/physics.md §9.
 //!
-//! Why these expectations (δ = θ − π/2, rolling, `μ_a = 0`, EQUATIONS.md §3):
+//! Why these expectations (δ = θ − π/2, rolling, `μ_a = 0`, docs/physics.md §3.2):
 //!
 //! * **At rest** (`Ω = 0`): `Ω̇_x = Ω̇_z = 0`, so `δ̈ = Ω̇_y = −m g a cos θ / (A + m a²) = κ sin δ`
 //!   with `κ = m g a / (A + m a²) = 4g / (5a)`. Linearised, `δ(t) = δ0 cosh(λ t)`, `λ = √κ`
@@ -15,8 +15,8 @@
 //!   `sin θ = 0` on both sides).
 //! * **Rolling** with spin `n` and a nudge `Ω_y(0) = ε`: to first order `Ω_x = −(C/A) n δ`,
 //!   `Ω_z = n`, and `δ̈ = (4/5)(g/a − 3 n²) δ`, the characteristic polynomial
-//!   `λ² (5aλ² + 12an² − 4g)` of §7. Below `n_c = √(g / 3a)` (9.33 rad/s) δ grows like
-//!   `(ε/λ) sinh λt` with `λ² = (4g − 12an²)/(5a)`: the disk leaves upright (and, beyond the
+//!   `λ² (5aλ² + 12an² − 4g)` of docs/physics.md §9. Below `n_c = √(g / 3a)` (9.33 rad/s) δ grows
+//!   like `(ε/λ) sinh λt` with `λ² = (4g − 12an²)/(5a)`: the disk leaves upright (and, beyond the
 //!   linear range, settles on a tilted circle). Above, it wobbles as
 //!   `(ε/ω) sin ωt`, `ω² = (12an² − 4g)/(5a)`, and keeps rolling; the frequency is measured from
 //!   the upward zero crossings of `Ω_y` (each period exactly, whatever the mean of the wobble).

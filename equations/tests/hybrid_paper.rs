@@ -63,14 +63,14 @@ fn the_paper_scene_slides_from_the_start_along_minus_x() {
     let Trigger::InitialFriction { ratio } = first.trigger else {
         panic!("{first:?}")
     };
-    // EQUATIONS.md §9: rolling would need nu = 0.8355 > mu_st = 0.2.
+    // docs/physics.md §11: rolling would need nu = 0.8355 > mu_st = 0.2.
     assert!((ratio - 0.8355).abs() < 5e-5, "{ratio}");
     // By symmetry the consistent direction is exactly pi (friction along -E_X).
     assert_eq!(first.slip_direction, Some(PI));
     assert_eq!(out.stop, StopReason::EndTime);
     assert_eq!(out.last.mode, Mode::Sliding);
     assert_eq!(out.transitions, 0);
-    // The slip grows along +E_X at about 4.239 m/s² (EQUATIONS.md §9).
+    // The slip grows along +E_X at about 4.239 m/s² (docs/physics.md §11).
     let u = out.last.state.slip.vector();
     assert!(u[0] > 0.0 && u[1].abs() < 1e-3 * u[0], "{u:?}");
     assert!((u[0] / 1e-4 - 4.239).abs() < 5e-3, "{}", u[0] / 1e-4);
@@ -404,7 +404,7 @@ fn the_physical_reading_never_gains_energy_and_the_papers_reading_does() {
 #[test]
 fn sliding_restarts_keep_the_sequence_consistent() {
     // At tight tolerances the slip of the paper's disk reaches zero where static friction cannot
-    // hold about 150 times between 10 s and 30 s (EQUATIONS.md §6.2, second case): sliding
+    // hold about 150 times between 10 s and 30 s (docs/physics.md §7.3): sliding
     // restarts from zero slip in a new consistent direction.
     let mu_st = DiskParams::paper().mu_st;
     let config = DiskConfig {

@@ -222,8 +222,9 @@ fn losing_contact_stops_the_run() {
     );
     assert!(out.last.force.normal < 0.0);
     // Tipped *up* fast: the rim must pull the centre down harder as θ grows. Rolling would
-    // need N < 0 (so the disk slides, §6.2), sliding starts with N = A/β0 (1 − a Ω_y² sin θ / g)
-    // ≈ 0.1 A/β0 mg > 0, and N falls through zero as the disk rises.
+    // need N < 0 (so the disk slides, docs/physics.md §7.2), sliding starts with
+    // N = A/β0 (1 − a Ω_y² sin θ / g) ≈ 0.1 A/β0 mg > 0, and N falls through zero as the disk
+    // rises.
     let theta0: f64 = 1.0;
     let tip = (0.9 * p.g / (p.a * theta0.sin())).sqrt();
     let y = rolling_state(&p, 0.0, theta0, [0.0, tip, 0.0]);

@@ -1,4 +1,4 @@
-//! Physical invariants of every implementation: the energy balance (EQUATIONS.md §7), the
+//! Physical invariants of every implementation: the energy balance (docs/physics.md §8), the
 //! steady motions, and `ν = μ_d` while sliding. Written once, run on each model family.
 
 mod common;

@@ -1,7 +1,8 @@
-//! Linearised motion about the steady motions of EQUATIONS.md §7, from the generated
-//! Jacobian: the nutation frequencies of spinning in place (the table of §7) and the upright
-//! stability threshold `n² > g/(3a)` with its characteristic polynomial `λ² (5aλ² + 12an² - 4g)`.
-//! With `μ_a = 0` the subsystem `(θ, Ω_x, Ω_y, Ω_z)` is closed, so its 4×4 block carries them.
+//! Linearised motion about the steady motions of docs/physics.md §9, from the generated
+//! Jacobian: the nutation frequencies of spinning in place (the table of docs/physics.md §9) and
+//! the upright stability threshold `n² > g/(3a)` with its characteristic polynomial `λ² (5aλ² +
+//! 12an² - 4g)`. With `μ_a = 0` the subsystem `(θ, Ω_x, Ω_y, Ω_z)` is closed, so its 4×4 block
+//! carries them.
 
 mod common;
 
@@ -37,7 +38,7 @@ fn spinning_in_place(p: &DiskParams, theta0: f64) -> [f64; 12] {
 
 #[test]
 fn nutation_about_spinning_in_place_matches_the_table() {
-    // EQUATIONS.md §7: θ0, |p|, nutation ω (rad/s), for the paper's disk.
+    // docs/physics.md §9: θ0, |p|, nutation ω (rad/s), for the paper's disk.
     let table = [
         (0.57, 44.0, 35.7),
         (0.30, 59.5, 46.7),

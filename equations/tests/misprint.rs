@@ -1,5 +1,5 @@
 //! The sign printed in the paper's Box 3, eq. (8), `+μ_d m a sin(α-ψ) V̇_Z + C Ω̇_z = …`, is a
-//! misprint (EQUATIONS.md §10): with it, sliding would not lose energy to friction. This model
+//! misprint (docs/physics.md §12): with it, sliding would not lose energy to friction. This model
 //! is Box 3 with the printed sign; the same energy test that the real models pass must fail on
 //! it, and it must disagree with the reference. Both checks can therefore fail.
 

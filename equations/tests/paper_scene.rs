@@ -1,4 +1,4 @@
-//! The paper's scene at t = 0 (EQUATIONS.md §9): rolling would need ν = 0.8355 with
+//! The paper's scene at t = 0 (docs/physics.md §11): rolling would need ν = 0.8355 with
 //! N/mg = 0.4345, more than μ_st allows, so the disk slides from the start with
 //! α0 = π and v̇_C(0) = 4.239 m/s².
 

@@ -1,5 +1,5 @@
 //! The reference (vector Newton–Euler, numeric LU) against the reduced explicit forms of
-//! EQUATIONS.md at random states: two independent roads to the same derivatives.
+//! docs/physics.md (§3.2, §4.2) at random states: two independent roads to the same derivatives.
 
 mod common;
 

@@ -88,7 +88,7 @@ fn zero_slip_is_singular_in_the_slip_charts() {
     assert!(onset.along.is_finite() && onset.across.is_finite());
 }
 
-/// The Painlevé regime (EQUATIONS.md §8): `β0 = A + m a² cos θ (μ_d cos(α - ψ) sin θ + cos θ)`
+/// The Painlevé regime (docs/physics.md §10): `β0 = A + m a² cos θ (μ_d cos(α - ψ) sin θ + cos θ)`
 /// can vanish once `μ_d ≥ √5/2`; with `μ_d = 3` and `cos(α - ψ) = -1`,
 /// `β0(θ) / m a² = 1/4 + cos²θ - 3 sin θ cos θ`: -3/4 at π/4, 1/4 at π/2.
 fn painleve_disk() -> DiskParams {

@@ -29,16 +29,20 @@ pub struct Summary {
     pub model_reason: String,
     /// Mode at the start (after the initial decision).
     pub start_mode: Option<ModeName>,
-    /// Why the run ended.
+    /// Why the run ended, as a word (`end_time`, `contact_lost`, `error`, ...).
     pub stop_reason: String,
+    /// Why the run ended, in full: the error, the event and its numbers (empty at the end
+    /// time).
+    pub stop_detail: String,
     /// Time the run ended (s).
     pub t_end: f64,
     /// Mode decisions during the run (the initial one not counted).
     pub transitions: usize,
-    /// Accepted integrator steps.
-    pub steps: u64,
-    /// Right-hand-side evaluations.
-    pub rhs_evals: u64,
+    /// Accepted integrator steps (`null` when the simulation was abandoned, see
+    /// `not_computed`).
+    pub steps: Option<u64>,
+    /// Right-hand-side evaluations (`null` as for `steps`).
+    pub rhs_evals: Option<u64>,
     /// Wall-clock time (s).
     pub wall_s: f64,
     /// Period of θ in the first simulated second (s).
@@ -70,13 +74,18 @@ pub struct Summary {
     pub energy_drift_rel: Option<f64>,
     /// Largest constraint drift before projection (SI units).
     pub constraint_drift_max: Option<f64>,
-    /// Keys written as `null` because the models that ran do not compute them, with the reason.
+    /// Keys written as `null` because the models that ran do not compute them or the run was
+    /// abandoned before they were reported, with the reason.
     pub not_computed: BTreeMap<&'static str, String>,
     /// How many samples were kept, and where.
     pub samples: SampleCounts,
     /// Where the wall time went: simulation (with the trajectory streamed meanwhile),
     /// outputs, analysis, figures.
     pub timings: Timings,
+    /// Whether the scene is the paper's (its disk, friction, air and start), so that the
+    /// printed comparison shows the paper's values beside ours. Set by the caller, who knows
+    /// the scene; `false` from [`Summary::of`].
+    pub compared_with_paper: bool,
 }
 
 /// One line of the printed comparison.
@@ -149,6 +158,22 @@ impl Summary {
                 not_computed.insert(key, reason);
             }
         }
+        // An abandoned simulation (interrupted, failed, stopped in a forbidden mode) does not
+        // hand back its counters: say so rather than write zeros.
+        let abandoned = |what: &str| {
+            let how = data.stop.as_ref().map_or("unknown", |s| s.reason.as_str());
+            format!("the simulation was abandoned at its stop ({how}) before it reported {what}")
+        };
+        if data.work.steps.is_none() {
+            not_computed.insert("steps", abandoned("its step count"));
+        }
+        if data.work.rhs_evals.is_none() {
+            not_computed.insert("rhs_evals", abandoned("its evaluation count"));
+        }
+        if data.constraint_drift_max.is_none() && !not_computed.contains_key("constraint_drift_max")
+        {
+            not_computed.insert("constraint_drift_max", abandoned("the drift"));
+        }
         let computes = |key| !not_computed.contains_key(key);
         Summary {
             scene: scene.to_string(),
@@ -159,6 +184,10 @@ impl Summary {
                 .stop
                 .as_ref()
                 .map_or("unknown".to_string(), |x| x.reason.clone()),
+            stop_detail: data
+                .stop
+                .as_ref()
+                .map_or(String::new(), |x| x.detail.clone()),
             t_end: t_stop,
             transitions: data
                 .events
@@ -203,16 +232,28 @@ impl Summary {
                 last_second: data.last_second.len(),
             },
             timings: Timings::default(),
+            compared_with_paper: false,
         }
     }
 
-    /// Our values beside the paper's (Saje & Zupan, section 4), in summary order.
+    /// Our values beside the paper's (Saje & Zupan, section 4), in summary order. The paper's
+    /// values are given only when [`Summary::compared_with_paper`]: another scene is not the
+    /// paper's run.
     pub fn comparison(&self) -> Vec<ComparisonRow> {
         let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4e}"));
-        let row = |key, ours: String, paper| ComparisonRow { key, ours, paper };
-        let maybe = |key: &'static str, v: Option<f64>| match self.not_computed.get(key) {
+        let paper_scene = self.compared_with_paper;
+        let row = |key, ours: String, paper: Option<&'static str>| ComparisonRow {
+            key,
+            ours,
+            paper: paper.filter(|_| paper_scene),
+        };
+        let unless_missing = |key: &'static str, ours: String| match self.not_computed.get(key) {
             Some(reason) => row(key, format!("null ({reason})"), None),
-            None => row(key, num(v), None),
+            None => row(key, ours, None),
+        };
+        let maybe = |key: &'static str, v: Option<f64>| unless_missing(key, num(v));
+        let count = |key: &'static str, v: Option<u64>| {
+            unless_missing(key, v.map_or("-".to_string(), |v| v.to_string()))
         };
         vec![
             row("model", self.model.clone(), None),
@@ -221,11 +262,19 @@ impl Summary {
                 self.start_mode.map_or("-".into(), |m| m.to_string()),
                 Some("sliding"),
             ),
-            row("stop_reason", self.stop_reason.clone(), None),
+            row(
+                "stop_reason",
+                self.stop_reason.clone(),
+                Some("end_time (contact kept)"),
+            ),
             row("t_end", format!("{}", self.t_end), Some("100")),
-            row("transitions", self.transitions.to_string(), None),
-            row("steps", self.steps.to_string(), None),
-            row("rhs_evals", self.rhs_evals.to_string(), None),
+            row(
+                "transitions",
+                self.transitions.to_string(),
+                Some("over 6000 (an independent run)"),
+            ),
+            count("steps", self.steps),
+            count("rhs_evals", self.rhs_evals),
             row("wall_s", format!("{:.3}", self.wall_s), None),
             row(
                 "theta_period_first_s",
@@ -264,19 +313,18 @@ impl Summary {
         ]
     }
 
-    /// The comparison as an aligned text table.
+    /// The comparison as an aligned text table; the paper's column only for the paper's scene.
     pub fn table(&self) -> String {
         let rows = self.comparison();
         let w = rows.iter().map(|r| r.key.len()).max().unwrap_or(0);
         let wo = rows.iter().map(|r| r.ours.len()).max().unwrap_or(0).max(4);
-        let mut out = format!("{:<w$}  {:>wo$}  {}\n", "quantity", "ours", "paper");
-        for r in rows {
-            out.push_str(&format!(
-                "{:<w$}  {:>wo$}  {}\n",
-                r.key,
-                r.ours,
-                r.paper.unwrap_or("")
-            ));
+        let line = |key: &str, ours: &str, paper: Option<&str>| match paper {
+            Some(paper) if self.compared_with_paper => format!("{key:<w$}  {ours:>wo$}  {paper}\n"),
+            _ => format!("{key:<w$}  {ours:>wo$}\n"),
+        };
+        let mut out = line("quantity", "ours", Some("paper"));
+        for r in &rows {
+            out.push_str(&line(r.key, &r.ours, Some(r.paper.unwrap_or(""))));
         }
         out
     }

@@ -119,8 +119,8 @@ impl SyntheticRun {
                 detail: String::new(),
             }),
             work: Work {
-                steps: 10,
-                rhs_evals: 100,
+                steps: Some(10),
+                rhs_evals: Some(100),
                 wall_s: 0.5,
             },
             constraint_drift_max: Some(1e-12),

@@ -4,13 +4,22 @@
 //! sometimes with a second y axis. Describing a figure as data ([`Chart`]) and drawing it
 //! with one generic function keeps the ten figures consistent and each one a few lines.
 //! Text is drawn with the font shipped in `assets/` (no system font lookup).
+//!
+//! Lines are drawn in the order the chart lists them, so a figure decides what lies on top
+//! (Fig. 8 puts the force spikes over θ). The legend has its own strip above the plot
+//! (`figures/legend.rs`), and a chart with nothing to draw says so in the picture
+//! ([`Chart::empty_note`]) instead of showing an empty box.
 
+use std::ops::Range;
 use std::path::Path;
 use std::sync::OnceLock;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use super::axes::{data_range, padded_range, tick_label, usable_span};
+use super::legend;
 use crate::output::atomic::{produce_atomic, write_bytes_atomic, WriteError};
 
 /// The shipped font (DejaVu Sans, Bitstream Vera licence, see `assets/`).
@@ -124,12 +133,91 @@ pub struct Chart {
     pub y_label: String,
     /// Right y-axis label, when a line uses it.
     pub y2_label: Option<String>,
-    /// Logarithmic left axis.
+    /// Logarithmic left axis, if the data span a decade ([`Chart::log_scales`]).
     pub log_y: bool,
-    /// Logarithmic x axis (for a quantity spanning decades, like θ in Fig. 9).
+    /// Logarithmic x axis (for a quantity spanning decades, like θ in Fig. 9), as for `log_y`.
     pub log_x: bool,
-    /// The lines.
+    /// The lines, drawn in this order (later ones on top).
     pub lines: Vec<Line>,
+    /// The x range to show (a time axis: the time the figure covers); `None` for the extent
+    /// of the data.
+    pub x_range: Option<Range<f64>>,
+    /// What the picture says when no data line has a point to draw (why it is empty).
+    pub empty_note: String,
+}
+
+impl Chart {
+    /// A chart of `lines` against time on linear axes, covering the data's time span, with a
+    /// generic note for when it is empty.
+    pub fn over_time(stem: &str, title: String, y_label: &str, lines: Vec<Line>) -> Chart {
+        Chart {
+            stem: stem.to_string(),
+            title,
+            x_label: "time t (s)".to_string(),
+            y_label: y_label.to_string(),
+            y2_label: None,
+            log_y: false,
+            log_x: false,
+            lines,
+            x_range: None,
+            empty_note: "no samples to show".to_string(),
+        }
+    }
+
+    /// The points of `line` this chart can draw: finite, and positive on a logarithmic axis.
+    pub fn drawable(&self, line: &Line) -> Vec<(f64, f64)> {
+        let log_y = self.log_y && line.axis == Axis::Left;
+        line.points
+            .iter()
+            .copied()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .filter(|p| (!self.log_x || p.0 > 0.0) && (!log_y || p.1 > 0.0))
+            .collect()
+    }
+
+    /// Whether no data line (reference lines, drawn [`Stroke::Thin`], do not count) has a
+    /// point to draw.
+    pub fn is_empty(&self) -> bool {
+        self.lines
+            .iter()
+            .filter(|l| l.stroke != Stroke::Thin)
+            .all(|l| self.drawable(l).is_empty())
+    }
+
+    /// Whether the x and the left y axis are drawn logarithmic: asked for, and the drawable
+    /// values span at least a decade (or there are none). Over less than a decade a logarithmic
+    /// axis carries one tick label or none, so a short run's data get a linear one.
+    pub fn log_scales(&self) -> (bool, bool) {
+        let spans_decades = |values: &mut dyn Iterator<Item = f64>| {
+            let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+            !lo.is_finite() || hi >= LOG_MIN_RATIO * lo
+        };
+        let mut xs = self.xs();
+        let mut ys =
+            series_of(self, Axis::Left).flat_map(|l| self.drawable(l).into_iter().map(|p| p.1));
+        (
+            self.log_x && spans_decades(&mut xs),
+            self.log_y && spans_decades(&mut ys),
+        )
+    }
+
+    /// The x values of every drawable point.
+    fn xs(&self) -> impl Iterator<Item = f64> + '_ {
+        self.lines
+            .iter()
+            .flat_map(|l| self.drawable(l).into_iter().map(|p| p.0))
+    }
+
+    /// The x range drawn: the chart's own (a time span) or the extent of the drawable points.
+    pub fn x_axis(&self) -> Range<f64> {
+        let xs = || self.xs();
+        match (&self.x_range, self.log_scales().0) {
+            (Some(r), false) => usable_span(r.start, r.end),
+            (Some(r), true) if r.start > 0.0 => usable_span(r.start, r.end),
+            (_, true) => padded_range(xs(), true),
+            (None, false) => data_range(xs()).unwrap_or(0.0..1.0),
+        }
+    }
 }
 
 /// The colours used by the figures (colour-blind safe, after Okabe & Ito).
@@ -177,129 +265,108 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
     out
 }
 
-/// The range of the finite values of `values`, padded by 5% (or by 1 when flat).
-fn padded_range(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> {
-    let (lo, hi) = values
-        .filter(|v| v.is_finite() && (!log || *v > 0.0))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-            (l.min(v), h.max(v))
-        });
-    if !lo.is_finite() {
-        return if log { 1e-6..1.0 } else { 0.0..1.0 };
-    }
-    if log {
-        return lo / 1.5..hi * 1.5;
-    }
-    let pad = if hi > lo {
-        0.05 * (hi - lo)
-    } else {
-        1.0f64.max(hi.abs() * 0.1)
-    };
-    lo - pad..hi + pad
-}
-
-/// A tick label: exponent notation on a logarithmic axis and for extreme magnitudes, the
-/// shortest plain form otherwise (no `0.30000000000000004`).
-pub fn tick_label(v: f64, log: bool) -> String {
-    let a = v.abs();
-    if v == 0.0 {
-        "0".to_string()
-    } else if log || !(1e-3..1e5).contains(&a) {
-        let text = format!("{v:.1e}");
-        text.replace(".0e", "e")
-    } else {
-        let text = format!("{v:.6}");
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    }
-}
-
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 fn series_of(chart: &Chart, axis: Axis) -> impl Iterator<Item = &Line> {
     chart.lines.iter().filter(move |l| l.axis == axis)
 }
 
+/// A logarithmic axis needs its values to span at least this ratio (one decade).
+const LOG_MIN_RATIO: f64 = 10.0;
+
+/// Left edge of the plotting area inside the chart's area (margin plus y label area).
+const PLOT_LEFT: i32 = MARGIN as i32 + Y_LABEL_AREA as i32;
+const MARGIN: u32 = 20;
+const Y_LABEL_AREA: u32 = 100;
+
 fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> DrawResult<DB> {
     root.fill(&WHITE)?;
-    let xs = chart
-        .lines
-        .iter()
-        .flat_map(|l| l.points.iter().map(|p| p.0));
-    let x_range = if chart.log_x {
-        padded_range(xs, true)
-    } else {
-        let r = padded_range(xs, false);
-        let span = r.end - r.start;
-        // Time axes start and end at the data: remove the padding on x.
-        r.start + span / 22.0..r.end - span / 22.0
-    };
+    let body = root.margin(12, 0, 0, 0).titled(
+        &chart.title,
+        (FAMILY, 30).into_font().style(FontStyle::Bold),
+    )?;
+    let (legend_strip, plot) = body.split_vertically(legend::HEIGHT);
+    legend::draw(&legend_strip, &chart.lines, PLOT_LEFT)?;
+    let x_range = chart.x_axis();
+    let (log_x, log_y) = chart.log_scales();
     let left = padded_range(
-        series_of(chart, Axis::Left).flat_map(|l| l.points.iter().map(|p| p.1)),
-        chart.log_y,
+        series_of(chart, Axis::Left).flat_map(|l| chart.drawable(l).into_iter().map(|p| p.1)),
+        log_y,
+    );
+    let described = |label: &str, log: bool| {
+        if log {
+            format!("{label}, logarithmic")
+        } else {
+            label.to_string()
+        }
+    };
+    let (x_desc, y_desc) = (
+        described(&chart.x_label, log_x),
+        described(&chart.y_label, log_y),
     );
     let right = padded_range(
-        series_of(chart, Axis::Right).flat_map(|l| l.points.iter().map(|p| p.1)),
+        series_of(chart, Axis::Right).flat_map(|l| chart.drawable(l).into_iter().map(|p| p.1)),
         false,
     );
+    let (x_span, left_span, right_span) = (
+        x_range.end - x_range.start,
+        left.end - left.start,
+        right.end - right.start,
+    );
     let has_right = series_of(chart, Axis::Right).next().is_some();
-    let mut builder = ChartBuilder::on(root);
+    let mut builder = ChartBuilder::on(&plot);
     builder
-        .caption(
-            &chart.title,
-            (FAMILY, 30).into_font().style(FontStyle::Bold),
-        )
-        .margin(20)
-        .margin_right(if has_right { 20 } else { 45 })
+        .margin(MARGIN)
+        .margin_top(8)
+        .margin_right(if has_right { MARGIN } else { 45 })
         .x_label_area_size(60)
-        .y_label_area_size(100)
-        .right_y_label_area_size(if has_right { 100 } else { 0 });
+        .y_label_area_size(Y_LABEL_AREA)
+        .right_y_label_area_size(if has_right { Y_LABEL_AREA } else { 0 });
     let label_font = (FAMILY, 22).into_font();
     let tick_font = (FAMILY, 18).into_font();
     macro_rules! line_elements {
         ($line:expr, $ctx:ident . $method:ident) => {{
             let line: &Line = $line;
-            let finite: Vec<(f64, f64)> = line
-                .points
-                .iter()
-                .copied()
-                .filter(|p| p.0.is_finite() && p.1.is_finite())
-                .filter(|p| (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0))
-                .collect();
             let max = if line.stroke == Stroke::Cloud {
                 4 * MAX_POINTS
             } else {
                 MAX_POINTS
             };
-            let points = decimate(&finite, max);
+            let points = decimate(&chart.drawable(line), max);
             let color = line.color;
-            let anno = match line.stroke {
+            match line.stroke {
                 // Width 1: wider polylines are drawn with mitred joins, which spike far out of
                 // the plot where a dense series reverses (every peak of N).
-                Stroke::Line => $ctx.$method(LineSeries::new(points, color.stroke_width(1)))?,
-                Stroke::Thin => $ctx.$method(LineSeries::new(points, color.mix(0.6)))?,
-                Stroke::Dots => $ctx.$method(
-                    points
-                        .into_iter()
-                        .map(move |p| Circle::new(p, 3, color.filled())),
-                )?,
-                Stroke::Cloud => $ctx.$method(
-                    points
-                        .into_iter()
-                        .map(move |p| Circle::new(p, 1, color.mix(0.5).filled())),
-                )?,
-            };
-            anno.label(line.label.as_str()).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
-            });
+                Stroke::Line => {
+                    $ctx.$method(LineSeries::new(points, color.stroke_width(1)))?;
+                }
+                Stroke::Thin => {
+                    $ctx.$method(LineSeries::new(points, color.mix(0.6)))?;
+                }
+                Stroke::Dots => {
+                    $ctx.$method(
+                        points
+                            .into_iter()
+                            .map(move |p| Circle::new(p, 3, color.filled())),
+                    )?;
+                }
+                Stroke::Cloud => {
+                    $ctx.$method(
+                        points
+                            .into_iter()
+                            .map(move |p| Circle::new(p, 1, color.mix(0.5).filled())),
+                    )?;
+                }
+            }
         }};
     }
     macro_rules! mesh {
         ($ctx:expr) => {
             $ctx.configure_mesh()
-                .x_label_formatter(&|v: &f64| tick_label(*v, chart.log_x))
-                .y_label_formatter(&|v: &f64| tick_label(*v, chart.log_y))
-                .x_desc(chart.x_label.as_str())
-                .y_desc(chart.y_label.as_str())
+                .x_label_formatter(&|v: &f64| tick_label(*v, log_x, x_span))
+                .y_label_formatter(&|v: &f64| tick_label(*v, log_y, left_span))
+                .x_desc(x_desc.as_str())
+                .y_desc(y_desc.as_str())
                 .axis_desc_style(label_font.clone())
                 .label_style(tick_font.clone())
                 .light_line_style(RGBColor(235, 235, 235))
@@ -307,48 +374,42 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
                 .draw()?
         };
     }
-    macro_rules! legend {
-        ($ctx:expr) => {
-            $ctx.configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .label_font((FAMILY, 20).into_font())
-                .background_style(WHITE.mix(0.85))
-                .border_style(RGBColor(160, 160, 160))
-                .draw()?
-        };
-    }
     macro_rules! finish {
         ($ctx:expr, $x:expr) => {{
             let ctx = $ctx;
-            if has_right {
+            let area = if has_right {
                 // The secondary axis must take the right label area before the primary
                 // mesh is drawn, or the primary labels are drawn there too.
                 let mut ctx = ctx.set_secondary_coord($x, right.clone());
                 mesh!(ctx);
-                for line in series_of(chart, Axis::Left) {
-                    line_elements!(line, ctx.draw_series);
-                }
                 ctx.configure_secondary_axes()
+                    .y_label_formatter(&|v: &f64| tick_label(*v, false, right_span))
                     .y_desc(chart.y2_label.as_deref().unwrap_or(""))
                     .axis_desc_style(label_font.clone())
                     .label_style(tick_font.clone())
                     .draw()?;
-                for line in series_of(chart, Axis::Right) {
-                    line_elements!(line, ctx.draw_secondary_series);
+                for line in &chart.lines {
+                    match line.axis {
+                        Axis::Left => line_elements!(line, ctx.draw_series),
+                        Axis::Right => line_elements!(line, ctx.draw_secondary_series),
+                    }
                 }
-                legend!(ctx);
+                ctx.plotting_area().get_pixel_range()
             } else {
                 let mut ctx = ctx;
                 mesh!(ctx);
-                for line in series_of(chart, Axis::Left) {
+                for line in &chart.lines {
                     line_elements!(line, ctx.draw_series);
                 }
-                legend!(ctx);
+                ctx.plotting_area().get_pixel_range()
+            };
+            if chart.is_empty() {
+                draw_empty_note(root, &chart.empty_note, area)?;
             }
         }};
     }
     let x = || x_range.clone();
-    match (chart.log_x, chart.log_y) {
+    match (log_x, log_y) {
         (false, false) => finish!(builder.build_cartesian_2d(x(), left)?, x()),
         (false, true) => finish!(builder.build_cartesian_2d(x(), left.log_scale())?, x()),
         (true, false) => finish!(
@@ -361,6 +422,20 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
         ),
     }
     root.present()
+}
+
+/// Writes `note` in the middle of the plotting area `(xs, ys)` (pixels of `root`).
+fn draw_empty_note<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    note: &str,
+    (xs, ys): (Range<i32>, Range<i32>),
+) -> DrawResult<DB> {
+    let style = (FAMILY, 26)
+        .into_font()
+        .color(&RGBColor(90, 90, 90))
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    let centre = ((xs.start + xs.end) / 2, (ys.start + ys.end) / 2);
+    root.draw_text(note, &style, centre)
 }
 
 /// Draws `chart` to `dir/<stem>.png` and `dir/<stem>.svg`, each written atomically.
@@ -387,16 +462,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn tick_labels_are_short() {
-        assert_eq!(tick_label(9.999999999e-6, true), "1e-5");
-        assert_eq!(tick_label(3e-5, true), "3e-5");
-        assert_eq!(tick_label(0.30000000000000004, false), "0.3");
-        assert_eq!(tick_label(1400.0, false), "1400");
-        assert_eq!(tick_label(2.5e6, false), "2.5e6");
-        assert_eq!(tick_label(0.0, false), "0");
-    }
-
-    #[test]
     fn decimation_keeps_peaks_and_order() {
         let points: Vec<(f64, f64)> = (0..100_000)
             .map(|i| {
@@ -416,5 +481,79 @@ mod tests {
         assert!(d.windows(2).all(|w| w[0].0 < w[1].0));
         let min = d.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
         assert!(min < -0.9999);
+    }
+
+    fn chart_of(lines: Vec<Line>, log_y: bool) -> Chart {
+        let mut c = Chart::over_time("t", "test".into(), "y (1)", lines);
+        c.log_y = log_y;
+        c
+    }
+
+    #[test]
+    fn a_chart_is_empty_when_no_data_line_can_be_drawn() {
+        let zeros = Line::new("z", vec![(0.0, 0.0), (1.0, 0.0)], colors::BLUE);
+        // Zeros are data on a linear axis, nothing on a logarithmic one.
+        assert!(!chart_of(vec![zeros.clone()], false).is_empty());
+        assert!(chart_of(vec![zeros.clone()], true).is_empty());
+        // Non-finite points never count; reference lines do not make a chart non-empty.
+        let nan = Line::new(
+            "n",
+            vec![(0.0, f64::NAN), (f64::INFINITY, 1.0)],
+            colors::RED,
+        );
+        let reference = Line::new("μ", vec![(0.0, 0.2), (1.0, 0.2)], colors::RED).thin();
+        assert!(chart_of(vec![nan, reference], false).is_empty());
+        assert!(chart_of(Vec::new(), false).is_empty());
+    }
+
+    #[test]
+    fn the_x_axis_is_the_charts_time_span_or_the_datas() {
+        let line = Line::new("y", vec![(0.25, 1.0), (0.75, 2.0)], colors::BLUE);
+        let mut c = chart_of(vec![line], false);
+        assert_eq!(c.x_axis(), 0.25..0.75);
+        c.x_range = Some(0.0..2.0);
+        assert_eq!(c.x_axis(), 0.0..2.0);
+        // A reversed span (a run shorter than the window) still gives a usable axis.
+        c.x_range = Some(1.0..0.5);
+        assert_eq!(c.x_axis(), 0.5..1.5);
+        c.lines.clear();
+        c.x_range = None;
+        assert_eq!(c.x_axis(), 0.0..1.0);
+    }
+
+    #[test]
+    fn a_logarithmic_axis_needs_a_decade_of_data() {
+        let narrow = Line::new("n", vec![(0.0, 0.1), (1.0, 0.15)], colors::BLUE);
+        let wide = Line::new("w", vec![(0.0, 1e-4), (1.0, 0.15)], colors::BLUE);
+        assert_eq!(
+            chart_of(vec![narrow.clone()], true).log_scales(),
+            (false, false)
+        );
+        assert_eq!(chart_of(vec![wide], true).log_scales(), (false, true));
+        // Not asked for, never logarithmic; no data, as asked.
+        assert_eq!(chart_of(vec![narrow], false).log_scales(), (false, false));
+        assert_eq!(chart_of(Vec::new(), true).log_scales(), (false, true));
+        // A narrow logarithmic x axis falls back to the data's extent.
+        let mut c = chart_of(
+            vec![Line::new("x", vec![(0.2, 1.0), (0.5, 2.0)], colors::BLUE)],
+            false,
+        );
+        c.log_x = true;
+        assert_eq!(c.log_scales(), (false, false));
+        assert_eq!(c.x_axis(), 0.2..0.5);
+    }
+
+    #[test]
+    fn an_empty_chart_is_drawn_with_its_note() {
+        let mut c = chart_of(Vec::new(), true);
+        c.empty_note = "nothing here: a test".into();
+        let dir = tempfile::tempdir().unwrap();
+        render(&c, dir.path()).unwrap();
+        let svg = std::fs::read_to_string(dir.path().join("t.svg")).unwrap();
+        assert!(
+            svg.contains("nothing here: a test"),
+            "the note is in the picture"
+        );
+        assert!(std::fs::metadata(dir.path().join("t.png")).unwrap().len() > 1000);
     }
 }

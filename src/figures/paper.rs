@@ -2,12 +2,15 @@
 //!
 //! Each figure is built as a [`Chart`] from the recorded samples: two time windows (the first
 //! and the last simulated second, sampled finely) and the whole run (per-oscillation
-//! envelopes, so 100 s of a 150 s⁻¹ oscillation stay readable).
+//! envelopes, so 100 s of a 150 s⁻¹ oscillation stay readable). Every time axis spans the
+//! time its figure covers, and a figure that has nothing to show on a scene (no nutation, no
+//! sliding, a run shorter than a second) says why in the picture.
 
 use std::path::Path;
 
 use equations::params::DiskParams;
 
+use super::axes::time_range_label;
 use super::chart::{colors, render, Chart, Line};
 use crate::analysis::oscillation::{cycle_extremes, upward_crossings, CycleExtremes, Series};
 use crate::output::atomic::WriteError;
@@ -25,6 +28,26 @@ pub const FIGURE_QUANTITIES: [Quantity; 6] = [
     Quantity::NOverMg,
 ];
 
+/// The file stems of the figures, in the order [`paper_charts`] builds them: the files a run
+/// writes (and owns: a rerun clears them first).
+pub const FIGURE_STEMS: [&str; 15] = [
+    "fig01a_theta",
+    "fig03a_theta_dot",
+    "fig05a_nu",
+    "fig06a_slip_speed",
+    "fig08a_normal_force",
+    "fig01b_theta",
+    "fig03b_theta_dot",
+    "fig05b_nu",
+    "fig06b_slip_speed",
+    "fig08b_normal_force",
+    "fig02_theta_envelope",
+    "fig04_theta_dot_over_psi_dot",
+    "fig07_slip_speed_envelope",
+    "fig09_normal_force_vs_theta",
+    "fig10_normal_force_last_second",
+];
+
 /// A time window of the run with its samples.
 struct Window<'a> {
     /// `a` (first second) or `b` (last second), as in the paper's panels.
@@ -34,10 +57,17 @@ struct Window<'a> {
     samples: &'a [Sample],
 }
 
+impl Window<'_> {
+    /// The time the window covers, from its first to its last sample.
+    fn span(&self) -> Option<std::ops::Range<f64>> {
+        Some(self.samples.first()?.t..self.samples.last()?.t)
+    }
+}
+
 fn windows(data: &RunData) -> [Window<'_>; 2] {
     let span = |s: &[Sample]| match (s.first(), s.last()) {
-        (Some(a), Some(b)) => format!("[{:.4}, {:.4}] s", a.t, b.t),
-        _ => "(empty)".to_string(),
+        (Some(a), Some(b)) => time_range_label(a.t, b.t),
+        _ => "(no samples)".to_string(),
     };
     let first: &[Sample] = if data.first_second.is_empty() {
         let t0 = data.samples.first().map_or(0.0, |s| s.t);
@@ -92,27 +122,25 @@ fn per_cycle(samples: &[Sample], f: impl Fn(&Sample) -> f64) -> Vec<CycleExtreme
 pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     let mg = p.m * p.g;
     let all = &data.samples;
+    let t_start = all.first().map_or(0.0, |s| s.t);
     let t_end = all.last().map_or(0.0, |s| s.t);
-    let chart = |stem: &str, title: String, y_label: &str, lines: Vec<Line>| Chart {
-        stem: stem.to_string(),
-        title,
-        x_label: "time t (s)".to_string(),
-        y_label: y_label.to_string(),
-        y2_label: None,
-        log_y: false,
-        log_x: false,
-        lines,
-    };
+    let whole = time_range_label(t_start, t_end);
+    let after_one = time_range_label(t_start + 1.0, t_end);
+    let chart = Chart::over_time;
     let mut charts = Vec::new();
     for w in windows(data) {
         let s = w.samples;
-        charts.push(chart(
+        let window = |mut c: Chart| {
+            c.x_range = w.span();
+            c
+        };
+        charts.push(window(chart(
             &format!("fig01{}_theta", w.panel),
             format!("Fig. 1{}: inclination θ, {}", w.panel, w.label),
             "θ (rad)",
             vec![Line::new("θ", points(s, |x| x.state.theta), colors::BLUE)],
-        ));
-        charts.push(chart(
+        )));
+        charts.push(window(chart(
             &format!("fig03{}_theta_dot", w.panel),
             format!("Fig. 3{}: nutation rate dθ/dt, {}", w.panel, w.label),
             "dθ/dt (rad/s)",
@@ -121,8 +149,8 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
                 points(s, |x| x.state.omega_y),
                 colors::BLUE,
             )],
-        ));
-        charts.push(chart(
+        )));
+        charts.push(window(chart(
             &format!("fig05{}_nu", w.panel),
             format!("Fig. 5{}: friction ratio ν = T/N, {}", w.panel, w.label),
             "ν = T/N (1)",
@@ -131,73 +159,106 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
                 Line::new("μ_st", points(s, |_| p.mu_st), colors::RED).thin(),
                 Line::new("ν", points(s, |x| x.forces.nu), colors::BLUE),
             ],
-        ));
-        charts.push(chart(
+        )));
+        charts.push(window(chart(
             &format!("fig06{}_slip_speed", w.panel),
             format!("Fig. 6{}: slip speed v_C, {}", w.panel, w.label),
             "v_C (m/s)",
             vec![Line::new("v_C", points(s, |x| x.slip.v_c), colors::BLUE)],
-        ));
-        let mut fig8 = chart(
+        )));
+        // θ first, so that the force spikes are drawn over it.
+        let mut fig8 = window(chart(
             &format!("fig08{}_normal_force", w.panel),
             format!("Fig. 8{}: N/mg and θ, {}", w.panel, w.label),
             "N/mg (1)",
             vec![
-                Line::new("N/mg", points(s, |x| x.forces.normal / mg), colors::RED),
                 Line::new("θ", points(s, |x| x.state.theta), colors::BLUE).right(),
+                Line::new("N/mg", points(s, |x| x.forces.normal / mg), colors::RED),
             ],
-        );
+        ));
         fig8.y2_label = Some("θ (rad)".to_string());
         charts.push(fig8);
     }
 
+    let whole_run = |mut c: Chart, empty: &str| {
+        c.x_range = Some(t_start..t_end);
+        c.empty_note = empty.to_string();
+        c
+    };
+    let after_1s: Vec<Sample> = all
+        .iter()
+        .filter(|s| s.t >= t_start + 1.0)
+        .copied()
+        .collect();
+    let from_one_second = |mut c: Chart, empty: &str| {
+        c.x_range = Some(t_start + 1.0..t_end);
+        c.empty_note = if after_1s.is_empty() {
+            "the run ends before its first second is over".to_string()
+        } else {
+            empty.to_string()
+        };
+        c
+    };
+
     let theta_cycles = per_cycle(all, |x| x.state.theta);
-    charts.push(chart(
-        "fig02_theta_envelope",
-        format!("Fig. 2: envelopes of θ per oscillation, [0, {t_end:.1}] s"),
-        "θ (rad)",
-        vec![
-            Line::new(
-                "max θ",
-                theta_cycles.iter().map(|c| (c.t_max, c.max)).collect(),
-                colors::RED,
-            ),
-            Line::new(
-                "min θ",
-                theta_cycles.iter().map(|c| (c.t_min, c.min)).collect(),
-                colors::BLUE,
-            ),
-        ],
+    charts.push(whole_run(
+        chart(
+            "fig02_theta_envelope",
+            format!("Fig. 2: envelopes of θ per oscillation, {whole}"),
+            "θ (rad)",
+            vec![
+                Line::new(
+                    "max θ",
+                    theta_cycles.iter().map(|c| (c.t_max, c.max)).collect(),
+                    colors::RED,
+                ),
+                Line::new(
+                    "min θ",
+                    theta_cycles.iter().map(|c| (c.t_min, c.min)).collect(),
+                    colors::BLUE,
+                ),
+            ],
+        ),
+        "θ completes no oscillation: no envelope to draw",
     ));
 
-    let after_1s: Vec<Sample> = all.iter().filter(|s| s.t >= 1.0).copied().collect();
-    let mut fig4 = chart(
-        "fig04_theta_dot_over_psi_dot",
-        format!("Fig. 4: |dθ/dt ÷ dψ/dt|, [1, {t_end:.1}] s"),
-        "|dθ/dt ÷ dψ/dt| (1)",
-        vec![Line::new(
-            "|dθ/dt ÷ dψ/dt|",
-            points(&after_1s, |x| (x.state.omega_y / x.state.psi_dot()).abs()),
-            colors::BLUE,
-        )],
+    let mut fig4 = from_one_second(
+        chart(
+            "fig04_theta_dot_over_psi_dot",
+            format!("Fig. 4: |dθ/dt ÷ dψ/dt|, {after_one}"),
+            "|dθ/dt ÷ dψ/dt| (1)",
+            vec![Line::new(
+                "|dθ/dt ÷ dψ/dt|",
+                points(&after_1s, |x| (x.state.omega_y / x.state.psi_dot()).abs()),
+                colors::BLUE,
+            )],
+        ),
+        "dθ/dt is zero throughout (no nutation): nothing to show on a logarithmic axis",
     );
     fig4.log_y = true;
     charts.push(fig4);
 
     let slip_cycles = per_cycle(all, |x| x.slip.v_c);
-    let mut fig7 = chart(
-        "fig07_slip_speed_envelope",
-        format!("Fig. 7: largest slip speed per oscillation, [0, {t_end:.1}] s"),
-        "max v_C (m/s)",
-        vec![Line::new(
-            "max v_C per oscillation",
-            slip_cycles
-                .iter()
-                .filter(|c| c.max > 0.0)
-                .map(|c| (c.t_max, c.max))
-                .collect(),
-            colors::BLUE,
-        )],
+    let mut fig7 = whole_run(
+        chart(
+            "fig07_slip_speed_envelope",
+            format!("Fig. 7: largest slip speed per oscillation, {whole}"),
+            "max v_C (m/s)",
+            vec![Line::new(
+                "max v_C per oscillation",
+                slip_cycles
+                    .iter()
+                    .filter(|c| c.max > 0.0)
+                    .map(|c| (c.t_max, c.max))
+                    .collect(),
+                colors::BLUE,
+            )],
+        ),
+        if slip_cycles.is_empty() {
+            "θ completes no oscillation: no per-oscillation maximum to draw"
+        } else {
+            "the disk does not slide in any full oscillation"
+        },
     );
     fig7.log_y = true;
     charts.push(fig7);
@@ -209,36 +270,41 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             .min(after_1s.len().saturating_sub(1));
         after_1s.get(i).map_or(f64::NAN, |s| s.state.theta)
     };
-    let mut fig9 = chart(
-        "fig09_normal_force_vs_theta",
-        format!("Fig. 9: N/mg against θ and its envelope, [1, {t_end:.1}] s"),
-        "N/mg (1)",
-        vec![
-            Line::new(
-                "N/mg against θ",
-                after_1s
-                    .iter()
-                    .map(|x| (x.state.theta, x.forces.normal / mg))
-                    .collect(),
-                colors::BLUE,
-            )
-            .cloud(),
-            Line::new(
-                "envelope: largest N/mg per oscillation",
-                normal_cycles
-                    .iter()
-                    .map(|c| (theta_at(c.t_max), c.max))
-                    .collect(),
-                colors::RED,
-            )
-            .dots(),
-        ],
+    let mut fig9 = from_one_second(
+        chart(
+            "fig09_normal_force_vs_theta",
+            format!("Fig. 9: N/mg against θ and its envelope, {after_one}"),
+            "N/mg (1)",
+            vec![
+                Line::new(
+                    "N/mg against θ",
+                    after_1s
+                        .iter()
+                        .map(|x| (x.state.theta, x.forces.normal / mg))
+                        .collect(),
+                    colors::BLUE,
+                )
+                .cloud(),
+                Line::new(
+                    "envelope: largest N/mg per oscillation",
+                    normal_cycles
+                        .iter()
+                        .map(|c| (theta_at(c.t_max), c.max))
+                        .collect(),
+                    colors::RED,
+                )
+                .dots(),
+            ],
+        ),
+        "N/mg is nowhere positive: nothing to show on logarithmic axes",
     );
+    // Its x axis is θ, not time.
+    fig9.x_range = None;
     // θ spans three decades after the first second (0.5 down to ~1e-4 rad) and the peaks of N
     // all happen below 0.01 rad: on a linear axis they crowd into the first pixel column.
     fig9.log_y = true;
     fig9.log_x = true;
-    fig9.x_label = "θ (rad, logarithmic)".to_string();
+    fig9.x_label = "θ (rad)".to_string();
     charts.push(fig9);
 
     let [_, last] = windows(data);
@@ -263,7 +329,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             )
         },
     );
-    charts.push(chart(
+    let mut fig10 = chart(
         "fig10_normal_force_last_second",
         format!("Fig. 10: N/mg in the last second, {every}"),
         "N/mg (1)",
@@ -272,7 +338,9 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             points(last.samples, |x| x.forces.normal / mg),
             colors::RED,
         )],
-    ));
+    );
+    fig10.x_range = last.span();
+    charts.push(fig10);
     charts
 }
 

@@ -11,8 +11,10 @@
 
 pub mod collect;
 pub mod model;
+pub mod owned;
 pub mod plan;
 pub mod progress;
+pub mod provenance;
 pub mod simulation;
 
 use std::path::{Path, PathBuf};
@@ -33,6 +35,7 @@ use collect::{Collector, TrajectoryFile};
 use model::ModelChoice;
 use plan::SamplePlan;
 use progress::Progress;
+use provenance::{is_papers_scene, Provenance};
 use simulation::{Message, Outcome};
 
 /// How a run reports while it runs.
@@ -57,6 +60,9 @@ pub struct RunOptions {
     pub backend: Backend,
     /// Whether to draw the figures.
     pub figures: bool,
+    /// How the run is produced (program, scene source, overrides, settings), for
+    /// `summary.json`.
+    pub provenance: Provenance,
 }
 
 /// How a run ended, for the exit code.
@@ -108,6 +114,9 @@ pub fn run_scene(
         path: opts.out_dir.clone(),
         source,
     })?;
+    // Files an earlier run left here go first (module `owned`): the new ones, the trajectory
+    // among them, are being written from the start.
+    owned::clear_owned(&opts.out_dir)?;
     let started = Instant::now();
     let choice = model::choose(scene, opts.backend, opts.figures);
     let plan = SamplePlan::new(0.0, scene.file.run.t_end, scene.file.run.sample_rate);
@@ -147,8 +156,8 @@ pub fn run_scene(
         timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
     }
     data.work = Work {
-        steps: outcome.as_ref().map_or(0, |o| o.steps),
-        rhs_evals: outcome.as_ref().map_or(0, |o| o.rhs_evals),
+        steps: outcome.as_ref().map(|o| o.steps),
+        rhs_evals: outcome.as_ref().map(|o| o.rhs_evals),
         wall_s: timings.simulation_s,
     };
     // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
@@ -260,6 +269,16 @@ fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
 
 /// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
 /// run, is committed here); returns the summary and the paths written.
+/// `summary.json`: the summary and how the run was produced.
+#[derive(serde::Serialize)]
+struct SummaryFile<'a> {
+    #[serde(flatten)]
+    summary: &'a Summary,
+    produced_by: &'a Provenance,
+}
+
+/// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
+/// run, is committed here); returns the summary and the paths written.
 pub fn write_outputs(
     scene: &Scene,
     data: &RunData,
@@ -311,8 +330,13 @@ pub fn write_outputs(
     timings.figures_s = lap(&mut clock);
     timings.total_s = clock;
     summary.timings = timings;
+    summary.compared_with_paper = is_papers_scene(scene);
     let path = dir.join("summary.json");
-    let json = serde_json::to_string_pretty(&summary).map_err(|e| WriteError {
+    let file = SummaryFile {
+        summary: &summary,
+        produced_by: &opts.provenance,
+    };
+    let json = serde_json::to_string_pretty(&file).map_err(|e| WriteError {
         path: path.clone(),
         source: std::io::Error::other(e),
     })?;

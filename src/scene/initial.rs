@@ -2,9 +2,9 @@
 //!
 //! A scene names only a consistent subset of the state; the height, the vertical velocity and
 //! (for a start without slip) the horizontal velocity follow from the constraints
-//! (EQUATIONS.md, Box 2). A value the scene does give must agree with its constraint, else
-//! the first step would start off the constraint manifold and every drift indicator would be
-//! meaningless; the issue says by how much it disagrees.
+//! (docs/physics.md §3.4, the paper's Box 2). A value the scene does give must agree with its
+//! constraint, else the first step would start off the constraint manifold and every drift
+//! indicator would be meaningless; the issue says by how much it disagrees.
 
 use std::f64::consts::PI;
 
@@ -234,7 +234,7 @@ mod tests {
         let s = ic.state;
         assert_eq!(s.z, A * 0.5f64.sin());
         assert_eq!(s.v_z, A * 0.3 * 0.5f64.cos());
-        // The contact particle is at rest: V + Omega x a e_x = 0 (EQUATIONS.md §1).
+        // The contact particle is at rest: V + Omega x a e_x = 0 (docs/physics.md §1).
         let (sp, cp) = s.psi.sin_cos();
         let vc_x = s.v_x - A * (s.omega_y * cp * s.theta.sin() + s.omega_z * sp);
         let vc_y = s.v_y - A * (s.omega_y * sp * s.theta.sin() - s.omega_z * cp);

@@ -104,6 +104,10 @@ pub enum Rule {
         samples: f64,
         /// The limit.
         limit: f64,
+        /// `run.t_end` (s).
+        t_end: f64,
+        /// `run.sample_rate` (1/s).
+        sample_rate: f64,
     },
 }
 
@@ -157,9 +161,20 @@ impl fmt::Display for Issue {
                 f,
                 "the initial state needs mode `{mode}` ({because}), which `modes.allowed` does not list"
             ),
-            Rule::TooManySamples { samples, limit } => write!(
+            Rule::TooManySamples {
+                samples,
+                limit,
+                t_end,
+                sample_rate,
+            } => write!(
                 f,
-                "would record {samples:.3e} samples (`run.t_end` × `run.sample_rate`), more than {limit:.0e}"
+                "would record {samples:.3e} samples ({} s × {} per s), more than {limit:.0e}: \
+                 shorten `run.t_end` to at most {} s (`--t-end`), or lower `run.sample_rate` \
+                 to at most {} per s (`--set run.sample_rate=...`)",
+                number(*t_end),
+                number(*sample_rate),
+                number(limit / sample_rate),
+                number(limit / t_end),
             ),
         }
     }

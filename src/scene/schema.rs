@@ -266,7 +266,7 @@ impl Default for SolverTable {
     }
 }
 
-/// Which reading of the slip speed's sign to use (EQUATIONS.md §6.5).
+/// Which reading of the slip speed's sign to use (docs/physics.md §7.4).
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum SlipSignRule {
@@ -290,7 +290,8 @@ pub struct RunTable {
     pub slip_sign: SlipSignRule,
 }
 
-fn default_sample_rate() -> f64 {
+/// The default of `run.sample_rate` (samples per second).
+pub(crate) fn default_sample_rate() -> f64 {
     1000.0
 }
 fn default_slip_sign() -> SlipSignRule {

@@ -125,11 +125,19 @@ pub fn validate(name: &str, file: SceneFile) -> Result<Scene, Vec<Issue>> {
     positive(&mut issues, "run.sample_rate", f.run.sample_rate);
     let samples = f.run.t_end * f.run.sample_rate;
     if samples.is_finite() && samples > MAX_SAMPLES {
+        // Blame the key that left its usual value: a raised rate, else the duration.
+        let key = if f.run.sample_rate > super::schema::default_sample_rate() {
+            "run.sample_rate"
+        } else {
+            "run.t_end"
+        };
         issues.push(Issue {
-            key: "run.sample_rate".into(),
+            key: key.into(),
             rule: Rule::TooManySamples {
                 samples,
                 limit: MAX_SAMPLES,
+                t_end: f.run.t_end,
+                sample_rate: f.run.sample_rate,
             },
         });
     }

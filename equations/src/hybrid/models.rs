@@ -234,9 +234,9 @@ impl PrunedModels {
 }
 
 /// Slip speed at which the sliding model is probed to read the contact acceleration "at zero
-/// slip". The accelerations contain no `1/v_C` (EQUATIONS.md §4): the speed enters only through
-/// the air drag, `k_F v_C`, so at `1e-30` m/s the probe differs from the limit `v_C → 0` by far
-/// less than round-off, while `v_C²` (a pivot of the Cartesian chart) stays a normal number.
+/// slip". The accelerations contain no `1/v_C` (docs/physics.md §4.2): the speed enters only
+/// through the air drag, `k_F v_C`, so at `1e-30` m/s the probe differs from the limit `v_C → 0` by
+/// far less than round-off, while `v_C²` (a pivot of the Cartesian chart) stays a normal number.
 pub const PROBE_SLIP_SPEED: f64 = 1e-30;
 
 impl<R: Model<DIM>, S: Model<DIM>> DiskModels<R, S> {

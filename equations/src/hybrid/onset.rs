@@ -1,4 +1,4 @@
-//! The consistent slip direction at the onset of sliding (EQUATIONS.md §6.1).
+//! The consistent slip direction at the onset of sliding (docs/physics.md §7.1).
 //!
 //! At `v_C = 0` the sliding equations leave the friction direction `α` free, but only a few
 //! directions are consistent: those where the contact particle's acceleration is parallel to the
@@ -79,7 +79,7 @@ const SCAN_STEP: f64 = PI / 90.0;
 /// `μ_st − μ_d` below ~1e-10, and a bridge to the stick threshold would last seconds.
 const DEGENERATE_GROWTH: f64 = 1e-9;
 
-/// Finds the consistent slip direction nearest `guess` (EQUATIONS.md §6.1).
+/// Finds the consistent slip direction nearest `guess` (docs/physics.md §7.1).
 ///
 /// `accel(α)` must return the contact acceleration at zero slip with friction direction `α`.
 /// If `w(guess)` already vanishes to round-off (e.g. by symmetry) `guess` is returned as is.

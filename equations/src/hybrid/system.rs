@@ -1,4 +1,4 @@
-//! The disk as a [`HybridSystem`]: phases, guards and the transition maps of EQUATIONS.md §6.
+//! The disk as a [`HybridSystem`]: phases, guards and the transition maps of docs/physics.md §7.
 //!
 //! Besides rolling and sliding there is a third phase, the *bridge*: a short segment with a
 //! constant derivative that carries the slip exactly between zero and the stick threshold,

@@ -1,4 +1,4 @@
-//! Box 1 of the paper: the rolling disk (EQUATIONS.md §3, rows R1–R12).
+//! Box 1 of the paper: the rolling disk (docs/physics.md §3.1, rows R1–R12).
 //!
 //! The contact force is eliminated with the linear-momentum balance and the no-slip
 //! conditions are written in differential form, exactly as the paper does; the compiler

@@ -1,5 +1,5 @@
 //! Box 3 of the paper: the sliding disk in the polar slip variables `(v_C, alpha)`
-//! (EQUATIONS.md §4, rows S1–S12, with the sign of row 8 corrected).
+//! (docs/physics.md §4.1, rows S1–S12, with the sign of row 8 corrected: §12).
 //!
 //! `alpha` is the direction of the friction force; the slip velocity of the contact point is
 //! `-v_C (cos alpha, sin alpha)`. The chart is singular at `v_C = 0` (the coefficient of

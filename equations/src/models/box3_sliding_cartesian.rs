@@ -1,4 +1,4 @@
-//! Box 3 of the paper in the Cartesian slip chart of EQUATIONS.md §6.4.
+//! Box 3 of the paper in the Cartesian slip chart of docs/physics.md §6.
 //!
 //! The states carry the slip velocity `u = (u_X, u_Y) = v_C e_s` of the contact point; the
 //! rows are Box 3's, unchanged: `v_C` and `alpha` become expressions of `u`, and the compiler's

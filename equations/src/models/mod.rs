@@ -1,6 +1,6 @@
 //! The paper's models in the equation DSL, compiled to explicit Rust at build time.
 //!
-//! Each file reads like its box in the paper (row labels R1–R12, S1–S12); EQUATIONS.md lists
+//! Each file reads like its box in the paper (row labels R1–R12, S1–S12); docs/physics.md §12 lists
 //! where the printed boxes were damaged and what was restored. The emitted modules implement
 //! `model_runtime::Model<12>` and `WithOutputs`, with the same state and output order as the
 //! hand-written reference in `crate::reference`, which the tests hold them to.

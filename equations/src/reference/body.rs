@@ -256,7 +256,7 @@ pub(crate) fn solve_rows(
 mod tests {
     use super::*;
 
-    /// The frame of EQUATIONS.md §1, written out component by component.
+    /// The frame of docs/physics.md §1, written out component by component.
     fn printed_frame(psi: f64, theta: f64) -> [Vector3<f64>; 3] {
         let (sp, cp) = psi.sin_cos();
         let (st, ct) = theta.sin_cos();
@@ -295,7 +295,7 @@ mod tests {
 
     #[test]
     fn rim_velocity_is_the_printed_one() {
-        // EQUATIONS.md §1: Ω × a e_x = -a (Ω_y e_z - Ω_z e_y).
+        // docs/physics.md §1: Ω × a e_x = -a (Ω_y e_z - Ω_z e_y).
         let mut y = [0.0; DIM];
         y[idx::PSI] = 0.8;
         y[idx::THETA] = 0.4;

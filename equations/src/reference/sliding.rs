@@ -118,7 +118,7 @@ pub struct SlidingOutputs {
 }
 
 /// Acceleration of the contact particle along and across the slip direction: regular even at
-/// `v_C = 0`, where the polar chart is singular (EQUATIONS.md §4 steps 6–7).
+/// `v_C = 0`, where the polar chart is singular (docs/physics.md §4.2, lines 6–7).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlipAcceleration {
     /// Along `e_s`: `v̇_C` (m/s²).
@@ -214,7 +214,7 @@ impl<C: SlipChart> SlidingReference<C> {
 
     /// The contact particle's acceleration along and across the slip direction `alpha`, with
     /// the slip speed taken as `slip_speed` (zero allowed): what sliding onset needs to pick a
-    /// consistent friction direction (EQUATIONS.md §6.1). The chart's slip states in `y` are
+    /// consistent friction direction (docs/physics.md §7.1). The chart's slip states in `y` are
     /// ignored.
     pub fn slip_acceleration(
         &self,

@@ -1,4 +1,4 @@
-//! The sliding disk in the Cartesian slip chart `u = v_C e_s = (u_X, u_Y)` (EQUATIONS.md §6.4).
+//! The sliding disk in the Cartesian slip chart `u = v_C e_s = (u_X, u_Y)` (docs/physics.md §6).
 //!
 //! The same physics as the polar chart, but the slip rate is simply `(u̇_X, u̇_Y)`: nothing
 //! turns infinitely fast when the slip vector passes near the origin. Only the friction

@@ -79,7 +79,7 @@ pub enum Chart {
     SlidingCartesian,
 }
 
-/// Total energy (EQUATIONS.md §7) as a function of the state in `chart`, with the centre's
+/// Total energy (docs/physics.md §8) as a function of the state in `chart`, with the centre's
 /// horizontal velocity from the secondary formulas in sliding.
 #[allow(non_snake_case)]
 pub fn energy<T: Scalar>(p: &equations::DiskParams, chart: Chart, y: &[T; 12]) -> T {

@@ -1,4 +1,4 @@
-//! The reduced explicit forms of EQUATIONS.md (§3 for rolling, §4 steps 1–8 for sliding),
+//! The reduced explicit forms of docs/physics.md (§3.2 for rolling, §4.2 lines 1–8 for sliding),
 //! transcribed as printed: a third implementation, independent of the reference's vector
 //! assembly and of the generated code's symbolic solve.
 
@@ -58,7 +58,7 @@ pub struct Explicit<T> {
     pub v_y: T,
 }
 
-/// EQUATIONS.md §3, reduced explicit form, then R4–R6 and the secondary outputs.
+/// docs/physics.md §3.2, reduced explicit form, then R4–R6 and the secondary outputs.
 #[allow(non_snake_case)]
 pub fn rolling<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> Explicit<T> {
     let q = lift::<T>(p);
@@ -103,7 +103,7 @@ pub struct SlidingExplicit<T> {
     pub w: T,
 }
 
-/// EQUATIONS.md §4, steps 1–8 (polar chart), with `w` kept apart.
+/// docs/physics.md §4.2, lines 1–8 (polar chart), with `w` kept apart.
 #[allow(non_snake_case)]
 pub fn sliding<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> SlidingExplicit<T> {
     let q = lift::<T>(p);
@@ -115,7 +115,7 @@ pub fn sliding<T: Scalar>(p: &DiskParams, y: &[f64; 12]) -> SlidingExplicit<T> {
     let k = q.mu_d * K * s + c;
     let V_X = -v_C * alpha.cos() + q.a * (Oy * cp * s + Oz * sp);
     let V_Y = -v_C * alpha.sin() + q.a * (Oy * sp * s - Oz * cp);
-    // §2: the normal velocity of the centre while sliding.
+    // docs/physics.md §4.1: the normal velocity of the centre while sliding.
     let v_z = -v_C * s * K + q.a * Oy * s * s + V_Z * c;
     let air = q.k_F * (v_z - q.w_z);
     // 1.

@@ -211,7 +211,7 @@ impl DiskObserver for Watch {
 
 /// A bound on what the integration error can do to a quantity that the exact solution keeps
 /// fixed: the drift of the constraints imposed only in differential form (m or m/s) and the
-/// relative change of the energy in pure rolling (EQUATIONS.md §7). Every accepted step adds
+/// relative change of the energy in pure rolling (docs/physics.md §8). Every accepted step adds
 /// a local error of at most `atol + rtol |y|` per component; the drift indicators combine a
 /// few components of size ≤ 1 (SI units, for these disks), the energy is quadratic in the
 /// rates (a factor 2 on their relative error), and errors add up at worst linearly over the

@@ -1,5 +1,5 @@
 //! The natural scale of each derivative: how far rounding can move it in any solve of the
-//! paper's implicit system (EQUATIONS.md §3 rows R1–R12, §4 rows S1–S12).
+//! paper's implicit system (docs/physics.md §3.1 rows R1–R12, §4.1 rows S1–S12).
 //!
 //! Why this scale: the reference (by LU) and the generated code (by symbolic elimination) both
 //! solve `M ẏ = f`. A solve that is exact for rows perturbed by ε relative to the size of
@@ -68,7 +68,7 @@ pub fn rolling(p: &DiskParams, y: &[f64; 12], dy: &[f64; 12]) -> [f64; 12] {
     let (a, m, g) = (p.a, p.m, p.g);
     let (ai, ci, kf, km) = (p.A(), p.C(), p.k_F(), p.k_M());
     let v_z_size = ((V_X * cp).abs() + (V_Y * sp).abs()) * s.abs() + (V_Z * c).abs();
-    // Frame vectors (columns) in spatial components, EQUATIONS.md §1.
+    // Frame vectors (columns) in spatial components, docs/physics.md §1.
     let frame = nalgebra::Matrix3::new(cp * c, -sp, cp * s, sp * c, cp, sp * s, -s, 0.0, c);
     let accel = frame.transpose() * nalgebra::Vector3::new(dy[3], dy[4], dy[5]);
     let mut frame_dy = *dy;
