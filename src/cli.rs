@@ -1,4 +1,4 @@
-//! The command line: `eulerdisk [run [SCENE]] | eval | scenes`.
+//! The command line: `eulerdisk [run [SCENE]] | eval | scenes | sound | sweep`.
 //!
 //! Flags map onto scene keys (`--rtol` is `--set solver.rtol=...`) so every value from the
 //! command line passes the same validation as the scene file.
@@ -32,7 +32,17 @@ pub enum Command {
     /// Simulate a scene and hear its rattle: a WAV of the normal-force peaks, their rate
     /// against the paper's, and a spectrogram.
     Sound(crate::sound::args::SoundArgs),
+    /// Run many scenes at once: axes over any scene key, a table of their summaries, figures;
+    /// resumable, and shardable over a cluster's job array (`sweep merge` joins the shards).
+    Sweep(crate::sweep::args::SweepArgs),
 }
+
+/// Exit code of a rejected input (bad scene, bad sweep file, bad JSON, singular state).
+pub const EXIT_INPUT: u8 = 2;
+/// Exit code of a failed run (simulation error, output not writable, incomplete merge).
+pub const EXIT_FAILED: u8 = 1;
+/// Exit code of an interrupted run (128 + SIGINT, as shells report it).
+pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// `eulerdisk run`.
 #[derive(Debug, Args, Default)]

@@ -29,6 +29,7 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run(args),
         Some(Command::Eval(args)) => eval(&args),
         Some(Command::Sound(args)) => eulerdisk::sound::args::command(&args),
+        Some(Command::Sweep(args)) => eulerdisk::sweep::args::command(&args),
         Some(Command::Scenes) => {
             for (name, text) in BUILTIN {
                 let description = scene::parse(name, text, &[])
