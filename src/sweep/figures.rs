@@ -36,11 +36,12 @@ fn slug(key: &str) -> String {
         .collect()
 }
 
-/// Whether values spread over enough decades to want a logarithmic axis.
+/// Whether values spread over enough decades to want a logarithmic axis (zeros, such as the
+/// reference run's own error, are left out; a negative value rules it out).
 fn wants_log(values: impl Iterator<Item = f64>, decades: f64) -> bool {
     let (mut lo, mut hi, mut any) = (f64::INFINITY, 0.0f64, false);
-    for v in values.filter(|v| v.is_finite()) {
-        if v <= 0.0 {
+    for v in values.filter(|v| v.is_finite() && *v != 0.0) {
+        if v < 0.0 {
             return false;
         }
         any = true;
@@ -268,7 +269,11 @@ impl Figure for HeatMap {
             .margin(20)
             .x_label_area_size(70)
             .y_label_area_size(110)
-            .build_cartesian_2d((0..nx).into_segmented(), (0..ny).into_segmented())?;
+            // A segmented range `0..n` has a segment for n too: the last index is n - 1.
+            .build_cartesian_2d(
+                (0..nx.saturating_sub(1)).into_segmented(),
+                (0..ny.saturating_sub(1)).into_segmented(),
+            )?;
         let label = |names: &[String], v: &SegmentValue<usize>| match v {
             SegmentValue::CenterOf(i) => names.get(*i).cloned().unwrap_or_default(),
             _ => String::new(),

@@ -96,14 +96,28 @@ pub fn scalar_entries(summary: &Summary) -> serde_json::Map<String, serde_json::
     }
 }
 
-/// The summary's scalar keys, in the summary's order.
+/// The summary's scalar keys: those of the printed comparison in its order, then the rest
+/// by name.
 pub fn summary_keys() -> Vec<String> {
     let empty = Summary::of(
         "",
         &RunData::default(),
         &equations::params::DiskParams::paper(),
     );
-    scalar_entries(&empty).keys().cloned().collect()
+    let scalar = scalar_entries(&empty);
+    let mut keys: Vec<String> = empty
+        .comparison()
+        .iter()
+        .map(|r| r.key.to_string())
+        .filter(|k| scalar.contains_key(k))
+        .collect();
+    let rest: Vec<String> = scalar
+        .keys()
+        .filter(|k| !keys.contains(k))
+        .cloned()
+        .collect();
+    keys.extend(rest);
+    keys
 }
 
 /// A JSON scalar as a CSV field (numbers so that they parse back to the same bits).
