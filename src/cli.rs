@@ -3,11 +3,15 @@
 //! Flags map onto scene keys (`--rtol` is `--set solver.rtol=...`) so every value from the
 //! command line passes the same validation as the scene file.
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::eval::Backend;
+use crate::run::ProgressStyle;
 use crate::scene::schema::ModeName;
 use crate::scene::{Override, SceneError, DEFAULT_SCENE};
 
@@ -135,6 +139,36 @@ pub struct EvalArgs {
     /// Parameters as a JSON object (m, a, g, mu_d, mu_st, mu_a, w_z; missing: the paper's).
     #[arg(long)]
     pub params: Option<String>,
+}
+
+/// How a command reports progress: nothing when `quiet`, a bar on a terminal, lines otherwise.
+pub fn progress_style(quiet: bool) -> ProgressStyle {
+    if quiet {
+        ProgressStyle::Quiet
+    } else if std::io::stderr().is_terminal() {
+        ProgressStyle::Bar
+    } else {
+        ProgressStyle::Lines
+    }
+}
+
+/// Installs the Ctrl-C handler of a long command: the first Ctrl-C sets the returned flag and
+/// prints `message` (what happens now); a second one exits at once with
+/// [`EXIT_INTERRUPTED`] (complete files are already in place, partial ones only ever exist
+/// under temporary names).
+pub fn interrupt_on_ctrl_c(message: &'static str) -> Arc<AtomicBool> {
+    let interrupt = Arc::new(AtomicBool::new(false));
+    let flag = interrupt.clone();
+    let installed = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+        eprintln!("\ninterrupted: {message} (Ctrl-C again to quit now)");
+    });
+    if let Err(err) = installed {
+        eprintln!("warning: Ctrl-C will not save partial results: {err}");
+    }
+    interrupt
 }
 
 /// The models the CLI runs unless `--reference` is given: the one line to switch.

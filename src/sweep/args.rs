@@ -1,11 +1,8 @@
 //! The `sweep` subcommand: `eulerdisk sweep SWEEP [--out DIR] [--shard i/n|auto] [--jobs N]`
 //! and `eulerdisk sweep merge DIR... [--out DIR]`.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 
 use clap::{Args, Subcommand};
 
@@ -15,8 +12,7 @@ use super::merge::merge;
 use super::run_sweep;
 use super::shard::Shard;
 use super::spec::{self, BUILTIN};
-use crate::cli::{EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED};
-use crate::run::ProgressStyle;
+use crate::cli::{interrupt_on_ctrl_c, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED};
 
 /// `eulerdisk sweep`.
 #[derive(Debug, Args)]
@@ -132,26 +128,10 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
         .jobs
         .or(d.file.jobs)
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let progress = if args.quiet {
-        ProgressStyle::Quiet
-    } else if std::io::stderr().is_terminal() {
-        ProgressStyle::Bar
-    } else {
-        ProgressStyle::Lines
-    };
-    let interrupt = Arc::new(AtomicBool::new(false));
-    {
-        let flag = interrupt.clone();
-        let installed = ctrlc::set_handler(move || {
-            if flag.swap(true, Ordering::SeqCst) {
-                std::process::exit(i32::from(EXIT_INTERRUPTED));
-            }
-            eprintln!("\ninterrupted: finished runs are kept; running the sweep again resumes it (Ctrl-C again to quit now)");
-        });
-        if let Err(err) = installed {
-            eprintln!("warning: Ctrl-C will stop the sweep without tidying up: {err}");
-        }
-    }
+    let progress = progress_style(args.quiet);
+    let interrupt = interrupt_on_ctrl_c(
+        "finished runs are kept; running the same command again resumes the sweep",
+    );
     if !args.quiet {
         eprintln!(
             "sweep `{}`: {} points{}, {jobs} workers, base scene `{}`, output in {}",

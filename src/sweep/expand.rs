@@ -11,8 +11,9 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::axes::{self, as_number, AxisIssue, AxisValues};
-use super::row::{axis_field, summary_keys, ERROR_PREFIX, FIXED_COLUMNS, TIMING_COLUMNS};
+use super::row::{summary_keys, ERROR_PREFIX, FIXED_COLUMNS, TIMING_COLUMNS};
 use super::spec::{Combine, LoadedSweep, SpecError, SweepFile};
+use crate::output::tables::number;
 use crate::scene::{self, Override, Scene, SceneError};
 
 /// Most points a sweep may have.
@@ -245,7 +246,10 @@ pub fn run_arguments(d: &Definition, values: &[toml::Value]) -> Vec<String> {
     let base = base_overrides(&d.file, &d.cli_sets).unwrap_or_default();
     point_overrides(&base, &d.axes, values)
         .iter()
-        .map(|o| format!("{}={}", o.path(), axis_field(&o.value)))
+        .map(|o| match &o.value {
+            toml::Value::Float(f) => format!("{}={}", o.path(), number(*f)),
+            v => format!("{}={v}", o.path()),
+        })
         .collect()
 }
 
