@@ -547,3 +547,36 @@ fn builtin_sweeps_validate_and_record_their_definition() {
     assert_eq!(m.definition, plan.definition);
     assert_eq!(m.shard, Some(shard));
 }
+
+#[test]
+fn shard_auto_takes_its_share_from_the_job_array() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let status = Command::new(BIN)
+        .args([
+            "sweep",
+            "paper-friction",
+            "--quiet",
+            "--jobs",
+            "2",
+            "--shard",
+            "auto",
+            "--set",
+            "run.t_end=0.05",
+            "--out",
+        ])
+        .arg(&out)
+        .env("SLURM_ARRAY_TASK_ID", "2")
+        .env("SLURM_ARRAY_TASK_MIN", "1")
+        .env("SLURM_ARRAY_TASK_COUNT", "6")
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let shard_dir = out.join("shard-1-of-6");
+    let names: Vec<String> = row_files(&shard_dir)
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["r000001.json", "r000007.json"]);
+    assert!(!shard_dir.join(".scratch").exists());
+}

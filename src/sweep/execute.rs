@@ -19,7 +19,7 @@ use super::expand::{Plan, PointId};
 use super::row::{scalar_entries, Row, Status};
 use super::run_point::{process_cpu_s, run_point};
 use super::shard::Shard;
-use super::store::{Store, StoreError};
+use super::store::{Store, StoreError, SCRATCH_DIR};
 use crate::run::{Ending, ProgressStyle};
 
 /// How often `sweep.csv` is rebuilt while runs finish, at most.
@@ -200,6 +200,8 @@ pub fn execute(
         done.store(true, Ordering::SeqCst);
     });
     progress.finish();
+    // The scratch folder of runs that keep nothing, once empty.
+    let _ = std::fs::remove_dir(store.dir().join(SCRATCH_DIR));
     store.write_table(d, rows.values())?;
     if let Some(e) = first_error {
         return Err(e.into());
