@@ -531,6 +531,13 @@ fn builtin_sweeps_validate_and_record_their_definition() {
         let p = plan(&spec::load(name).unwrap(), &["run.t_end=0.1".to_string()]).unwrap();
         assert!(p.definition.points.len() >= 9, "{name}");
     }
+    // A `--set` that every point's axis value replaces does not reject the sweep.
+    let p = plan(
+        &spec::load("speed-accuracy").unwrap(),
+        &["solver.rtol=3".to_string()],
+    )
+    .unwrap();
+    assert_eq!(p.scenes[0].file.solver.rtol, 1e-4);
     // The definition written first is the one read back.
     let tmp = tempfile::tempdir().unwrap();
     let plan = plan(
