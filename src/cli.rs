@@ -1,13 +1,17 @@
-//! The command line: `eulerdisk [run [SCENE]] | eval | scenes`.
+//! The command line: `eulerdisk [run [SCENE]] | eval | scenes | sound | sweep`.
 //!
 //! Flags map onto scene keys (`--rtol` is `--set solver.rtol=...`) so every value from the
 //! command line passes the same validation as the scene file.
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::eval::Backend;
+use crate::run::ProgressStyle;
 use crate::scene::schema::ModeName;
 use crate::scene::{Override, SceneError, DEFAULT_SCENE};
 
@@ -32,7 +36,17 @@ pub enum Command {
     /// Simulate a scene and hear its rattle: a WAV of the normal-force peaks, their rate
     /// against the paper's, and a spectrogram.
     Sound(crate::sound::args::SoundArgs),
+    /// Run many scenes at once: axes over any scene key, a table of their summaries, figures;
+    /// resumable, and shardable over a cluster's job array (`sweep merge` joins the shards).
+    Sweep(crate::sweep::args::SweepArgs),
 }
+
+/// Exit code of a rejected input (bad scene, bad sweep file, bad JSON, singular state).
+pub const EXIT_INPUT: u8 = 2;
+/// Exit code of a failed run (simulation error, output not writable, incomplete merge).
+pub const EXIT_FAILED: u8 = 1;
+/// Exit code of an interrupted run (128 + SIGINT, as shells report it).
+pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// `eulerdisk run`.
 #[derive(Debug, Args, Default)]
@@ -126,6 +140,36 @@ pub struct EvalArgs {
     /// Parameters as a JSON object (m, a, g, mu_d, mu_st, mu_a, w_z; missing: the paper's).
     #[arg(long)]
     pub params: Option<String>,
+}
+
+/// How a command reports progress: nothing when `quiet`, a bar on a terminal, lines otherwise.
+pub fn progress_style(quiet: bool) -> ProgressStyle {
+    if quiet {
+        ProgressStyle::Quiet
+    } else if std::io::stderr().is_terminal() {
+        ProgressStyle::Bar
+    } else {
+        ProgressStyle::Lines
+    }
+}
+
+/// Installs the Ctrl-C handler of a long command: the first Ctrl-C sets the returned flag and
+/// prints `message` (what happens now); a second one exits at once with
+/// [`EXIT_INTERRUPTED`] (complete files are already in place, partial ones only ever exist
+/// under temporary names).
+pub fn interrupt_on_ctrl_c(message: &'static str) -> Arc<AtomicBool> {
+    let interrupt = Arc::new(AtomicBool::new(false));
+    let flag = interrupt.clone();
+    let installed = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+        eprintln!("\ninterrupted: {message} (Ctrl-C again to quit now)");
+    });
+    if let Err(err) = installed {
+        eprintln!("warning: Ctrl-C will not save partial results: {err}");
+    }
+    interrupt
 }
 
 /// The models the CLI runs unless `--reference` is given: the one line to switch.

@@ -17,3 +17,4 @@ pub mod run;
 pub mod sample;
 pub mod scene;
 pub mod sound;
+pub mod sweep;

@@ -1,23 +1,16 @@
 //! `eulerdisk`: see `eulerdisk --help`. With no arguments it runs the paper's scene.
 
-use std::io::IsTerminal;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 
 use clap::Parser;
-use eulerdisk::cli::{backend, Cli, Command, EvalArgs, RunArgs};
+use eulerdisk::cli::{
+    backend, interrupt_on_ctrl_c, progress_style, Cli, Command, EvalArgs, RunArgs, EXIT_FAILED,
+    EXIT_INPUT, EXIT_INTERRUPTED,
+};
 use eulerdisk::eval::{evaluate, parse_params, parse_state};
 use eulerdisk::run::provenance::Provenance;
-use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
+use eulerdisk::run::{run_scene, Ending, RunOptions};
 use eulerdisk::scene::{self, BUILTIN};
-
-/// Exit code of a rejected input (bad scene, bad JSON, singular state).
-const EXIT_INPUT: u8 = 2;
-/// Exit code of a failed run (simulation error, output not writable).
-const EXIT_FAILED: u8 = 1;
-/// Exit code of an interrupted run (128 + SIGINT, as shells report it).
-const EXIT_INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -30,6 +23,7 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run(args),
         Some(Command::Eval(args)) => eval(&args),
         Some(Command::Sound(args)) => eulerdisk::sound::args::command(&args),
+        Some(Command::Sweep(args)) => eulerdisk::sweep::args::command(&args),
         Some(Command::Scenes) => {
             for (name, text) in BUILTIN {
                 let description = scene::parse(name, text, &[])
@@ -79,28 +73,8 @@ fn run(args: RunArgs) -> ExitCode {
             return ExitCode::from(EXIT_INPUT);
         }
     };
-    let interrupt = Arc::new(AtomicBool::new(false));
-    {
-        let flag = interrupt.clone();
-        let installed = ctrlc::set_handler(move || {
-            if flag.swap(true, Ordering::SeqCst) {
-                // Second Ctrl-C: leave at once; complete files are already in place and
-                // partial ones only ever exist under temporary names.
-                std::process::exit(i32::from(EXIT_INTERRUPTED));
-            }
-            eprintln!("\ninterrupted: writing what is complete (Ctrl-C again to quit now)");
-        });
-        if let Err(err) = installed {
-            eprintln!("warning: Ctrl-C will not save partial results: {err}");
-        }
-    }
-    let progress = if args.quiet {
-        ProgressStyle::Quiet
-    } else if std::io::stderr().is_terminal() {
-        ProgressStyle::Bar
-    } else {
-        ProgressStyle::Lines
-    };
+    let interrupt = interrupt_on_ctrl_c("writing what is complete");
+    let progress = progress_style(args.quiet);
     let opts = RunOptions {
         out_dir: args.out.clone(),
         progress,

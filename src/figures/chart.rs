@@ -265,7 +265,8 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
     out
 }
 
-type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+/// What drawing on a backend returns.
+pub type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 fn series_of(chart: &Chart, axis: Axis) -> impl Iterator<Item = &Line> {
     chart.lines.iter().filter(move |l| l.axis == axis)
@@ -438,23 +439,41 @@ fn draw_empty_note<DB: DrawingBackend>(
     root.draw_text(note, &style, centre)
 }
 
-/// Draws `chart` to `dir/<stem>.png` and `dir/<stem>.svg`, each written atomically.
-pub fn render(chart: &Chart, dir: &Path) -> Result<(), WriteError> {
+/// A figure that draws itself on any plotters backend, so one [`render`] writes every kind
+/// (line charts, the sweeps' heat maps) to PNG and SVG alike.
+pub trait Figure {
+    /// File name without extension.
+    fn stem(&self) -> &str;
+    /// Draws the figure on `root`.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB>;
+}
+
+impl Figure for Chart {
+    fn stem(&self) -> &str {
+        &self.stem
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        draw_on(root, self)
+    }
+}
+
+/// Draws `figure` to `dir/<stem>.png` and `dir/<stem>.svg`, each written atomically.
+pub fn render<F: Figure>(figure: &F, dir: &Path) -> Result<(), WriteError> {
     register_font();
-    let png = dir.join(format!("{}.png", chart.stem));
+    let png = dir.join(format!("{}.png", figure.stem()));
     produce_atomic(&png, |tmp| {
         let root = BitMapBackend::new(tmp, SIZE).into_drawing_area();
-        draw_on(&root, chart).map_err(|e| e.to_string())
+        figure.draw(&root).map_err(|e| e.to_string())
     })?;
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        draw_on(&root, chart).map_err(|e| WriteError {
-            path: dir.join(format!("{}.svg", chart.stem)),
+        figure.draw(&root).map_err(|e| WriteError {
+            path: dir.join(format!("{}.svg", figure.stem())),
             source: std::io::Error::other(e.to_string()),
         })?;
     }
-    write_bytes_atomic(&dir.join(format!("{}.svg", chart.stem)), svg.as_bytes())
+    write_bytes_atomic(&dir.join(format!("{}.svg", figure.stem())), svg.as_bytes())
 }
 
 #[cfg(test)]

@@ -102,8 +102,36 @@ pub fn write_events<W: Write>(w: &mut W, events: &[EventRow], stop: &StopRecord)
     )
 }
 
+/// The stop row of an `events.csv` text (its last row, as [`write_events`] writes it): the
+/// reason and its details; `None` when the last row is not a stop row.
+pub fn read_stop_row(events_csv: &str) -> Option<(String, String)> {
+    let last = events_csv.lines().rev().find(|l| !l.trim().is_empty())?;
+    let fields = split_fields(last);
+    (fields.len() == 7 && fields[2] == "stop").then(|| (fields[3].clone(), fields[5].clone()))
+}
+
+/// Splits one CSV line into its fields, undoing [`quoted`].
+pub fn split_fields(line: &str) -> Vec<String> {
+    let mut fields = vec![String::new()];
+    let mut in_quotes = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        let field = fields.last_mut().expect("never empty");
+        match (c, in_quotes) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            ('"', _) => in_quotes = !in_quotes,
+            (',', false) => fields.push(String::new()),
+            _ => field.push(c),
+        }
+    }
+    fields
+}
+
 /// Quotes a CSV field when it needs it.
-fn quoted(text: &str) -> String {
+pub fn quoted(text: &str) -> String {
     if text.contains([',', '"', '\n']) {
         format!("\"{}\"", text.replace('"', "\"\"").replace('\n', " "))
     } else {
@@ -146,6 +174,15 @@ mod tests {
         assert_eq!(
             text.lines().nth(1).unwrap(),
             "1,rolling,stop,error,,\"a, b\","
+        );
+        assert_eq!(
+            read_stop_row(&text),
+            Some(("error".to_string(), "a, b".to_string()))
+        );
+        let tricky = "say \"x\", then y";
+        assert_eq!(
+            split_fields(&format!("1,{}", quoted(tricky))),
+            ["1", tricky]
         );
     }
 }

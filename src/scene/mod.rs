@@ -122,6 +122,9 @@ impl SceneError {
     }
 }
 
+/// What a key of an override must look like.
+const KEY_SHAPE: &str = "the key must be `table.key`, e.g. `friction.mu_d`";
+
 /// A command-line override `table.key=value`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Override {
@@ -144,28 +147,38 @@ impl Override {
         let (path, text) = spec
             .split_once('=')
             .ok_or_else(|| bad("expected `table.key=value`"))?;
-        let (table, key) = path
-            .trim()
-            .split_once('.')
-            .ok_or_else(|| bad("the key must be `table.key`, e.g. `friction.mu_d`"))?;
-        let is_name = |s: &str| {
-            !s.is_empty()
-                && s.chars()
-                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-        };
-        if !is_name(table) || !is_name(key) {
-            return Err(bad("the key must be `table.key`, e.g. `friction.mu_d`"));
-        }
         let text = text.trim();
         let value = match toml::from_str::<toml::Table>(&format!("v = {text}")) {
             Ok(mut t) => t.remove("v").ok_or_else(|| bad("no value"))?,
             Err(_) => toml::Value::String(text.to_string()),
         };
-        Ok(Override {
-            table: table.to_string(),
-            key: key.to_string(),
-            value,
-        })
+        Override::at(path.trim(), value).map_err(|_| bad(KEY_SHAPE))
+    }
+
+    /// An override of the key at `path` (`table.key`, as in `--set`) with `value`; a path
+    /// that is not of that shape is an error naming it.
+    pub fn at(path: &str, value: toml::Value) -> Result<Override, SceneError> {
+        let is_name = |s: &str| {
+            !s.is_empty()
+                && s.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        };
+        match path.split_once('.') {
+            Some((table, key)) if is_name(table) && is_name(key) => Ok(Override {
+                table: table.to_string(),
+                key: key.to_string(),
+                value,
+            }),
+            _ => Err(SceneError::Override {
+                spec: path.to_string(),
+                problem: KEY_SHAPE.to_string(),
+            }),
+        }
+    }
+
+    /// The key's path, `table.key`.
+    pub fn path(&self) -> String {
+        format!("{}.{}", self.table, self.key)
     }
 
     /// An override for a key from a dedicated flag (`--rtol` -> `solver.rtol`).
@@ -243,6 +256,18 @@ pub fn parse(name: &str, text: &str, overrides: &[Override]) -> Result<Scene, Sc
 /// Turns a typed-deserialisation error into one naming the key: the path serde was at, plus
 /// the field named in "missing field `x`" / "unknown field `x`" messages.
 fn key_error(name: &str, e: serde_path_to_error::Error<toml::de::Error>) -> SceneError {
+    let (key, message) = error_key(&e);
+    SceneError::Key {
+        name: name.to_string(),
+        key,
+        message,
+    }
+}
+
+/// The key a typed-deserialisation error is about (`table.key`, or `table.field` for a
+/// missing or unknown field) and the deserialiser's message; shared by every TOML file the
+/// program reads (scenes, sweeps).
+pub fn error_key(e: &serde_path_to_error::Error<toml::de::Error>) -> (String, String) {
     let path = e.path().to_string();
     let message = e.inner().message().trim_end().to_string();
     let field = ["missing field `", "unknown field `"]
@@ -260,11 +285,7 @@ fn key_error(name: &str, e: serde_path_to_error::Error<toml::de::Error>) -> Scen
         }
         _ => base,
     };
-    SceneError::Key {
-        name: name.to_string(),
-        key,
-        message,
-    }
+    (key, message)
 }
 
 /// Loads a scene by file path or built-in name and applies the overrides.

@@ -10,13 +10,8 @@ use clap::Args;
 use super::peaks::PeakRule;
 use super::render::{Compression, RenderOptions, Ring};
 use super::{sound_scene, SoundOptions};
-use crate::cli::{backend, RunArgs};
+use crate::cli::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT};
 use crate::scene;
-
-/// Exit code of a rejected input (bad scene or setting).
-const EXIT_INPUT: u8 = 2;
-/// Exit code of a failed run.
-const EXIT_FAILED: u8 = 1;
 
 /// `eulerdisk sound`.
 #[derive(Debug, Args)]

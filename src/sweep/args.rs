@@ -1,0 +1,217 @@
+//! The `sweep` subcommand: `eulerdisk sweep SWEEP [--out DIR] [--shard i/n|auto] [--jobs N]`
+//! and `eulerdisk sweep merge DIR... [--out DIR]`.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Subcommand};
+
+use super::execute::ExecOptions;
+use super::expand::{plan, run_arguments};
+use super::merge::merge;
+use super::run_sweep;
+use super::shard::Shard;
+use super::spec::{self, BUILTIN};
+use crate::cli::{interrupt_on_ctrl_c, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED};
+
+/// `eulerdisk sweep`.
+#[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct SweepArgs {
+    /// `merge`, or nothing to run a sweep.
+    #[command(subcommand)]
+    pub command: Option<SweepCommand>,
+    /// A sweep file, or the name of a built-in sweep (`speed-accuracy`, `paper-friction`).
+    #[arg(required = true)]
+    pub sweep: Option<String>,
+    /// Output folder (a shard writes into `shard-I-of-N` inside it).
+    #[arg(long, default_value = "out/sweep")]
+    pub out: PathBuf,
+    /// Run only shard `i/n` of the points (0 ≤ i < n); `auto` takes it from a Slurm job array
+    /// or, as `auto/n`, from a Kubernetes Indexed Job.
+    #[arg(long, value_name = "i/n|auto|auto/n")]
+    pub shard: Option<String>,
+    /// Runs at once (default: the number of cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Override a scene key of every point before the axes: `--set table.key=value`.
+    #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Validate every point and list them; run nothing.
+    #[arg(long)]
+    pub dry_run: bool,
+    /// No progress output.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// The subcommands of `sweep`.
+#[derive(Debug, Subcommand)]
+pub enum SweepCommand {
+    /// Join sweep folders (shards) into one; lists missing and duplicated runs.
+    Merge(MergeArgs),
+    /// List the built-in sweeps.
+    List,
+}
+
+/// `eulerdisk sweep merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Sweep folders, or folders holding them (`out/sweep` for its `shard-*` folders).
+    #[arg(required = true)]
+    pub dirs: Vec<PathBuf>,
+    /// The merged folder.
+    #[arg(long, default_value = "out/sweep")]
+    pub out: PathBuf,
+}
+
+/// Runs `eulerdisk sweep ...`; returns the exit code.
+pub fn command(args: &SweepArgs) -> ExitCode {
+    match &args.command {
+        Some(SweepCommand::Merge(m)) => merge_command(m),
+        Some(SweepCommand::List) => {
+            for (name, text) in BUILTIN {
+                let description = spec::parse(name, text)
+                    .ok()
+                    .and_then(|s| s.description)
+                    .unwrap_or_default();
+                println!("{name:<20} {description}");
+            }
+            ExitCode::SUCCESS
+        }
+        None => sweep_command(args),
+    }
+}
+
+fn input_error(err: impl std::fmt::Display) -> ExitCode {
+    eprintln!("error: {err}");
+    ExitCode::from(EXIT_INPUT)
+}
+
+fn sweep_command(args: &SweepArgs) -> ExitCode {
+    let name = args.sweep.as_deref().unwrap_or_default();
+    let loaded = match spec::load(name) {
+        Ok(l) => l,
+        Err(e) => return input_error(e),
+    };
+    let shard = match args
+        .shard
+        .as_deref()
+        .map(|s| Shard::parse(s, |k| std::env::var(k).ok()))
+    {
+        Some(Err(e)) => return input_error(e),
+        Some(Ok(s)) => Some(s),
+        None => None,
+    };
+    if args.jobs == Some(0) {
+        return input_error("--jobs must be at least 1");
+    }
+    let plan = match plan(&loaded, &args.set) {
+        Ok(p) => p,
+        Err(e) => return input_error(e),
+    };
+    let d = &plan.definition;
+    if args.dry_run {
+        for (i, values) in d.points.iter().enumerate() {
+            if Shard::selects(shard, i) {
+                let sets = run_arguments(d, values).join(" --set ");
+                println!(
+                    "{} run {} --set {sets}",
+                    super::expand::PointId(i).name(),
+                    d.scene_name
+                );
+            }
+        }
+        return ExitCode::SUCCESS;
+    }
+    let jobs = args
+        .jobs
+        .or(d.file.jobs)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let progress = progress_style(args.quiet);
+    let interrupt = interrupt_on_ctrl_c(
+        "finished runs are kept; running the same command again resumes the sweep",
+    );
+    if !args.quiet {
+        eprintln!(
+            "sweep `{}`: {} points{}, {jobs} workers, base scene `{}`, output in {}",
+            d.name,
+            d.points.len(),
+            shard.map_or(String::new(), |s| format!(
+                " (shard {}/{})",
+                s.index, s.count
+            )),
+            d.scene_name,
+            super::sweep_dir(&args.out, shard).display()
+        );
+    }
+    let opts = ExecOptions {
+        jobs,
+        progress,
+        shard,
+    };
+    match run_sweep(&plan, &args.out, &opts, &interrupt) {
+        Ok(report) => {
+            let e = report.exec;
+            if !args.quiet {
+                println!(
+                    "{} of {} runs done now ({} failed or timed out), {} already done; table in {}",
+                    e.ran,
+                    e.points,
+                    e.failed,
+                    e.skipped,
+                    report.dir.join(super::store::TABLE_FILE).display()
+                );
+            }
+            if e.interrupted {
+                eprintln!(
+                    "interrupted: {} runs still to do; run the same command again to resume",
+                    e.points - e.ran - e.skipped
+                );
+                ExitCode::from(EXIT_INTERRUPTED)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(EXIT_FAILED)
+        }
+    }
+}
+
+fn merge_command(args: &MergeArgs) -> ExitCode {
+    let report = match merge(&args.dirs, &args.out) {
+        Ok((_, _, report)) => report,
+        Err(e) => return input_error(e),
+    };
+    println!(
+        "merged {} rows of {} points from {} folders into {}",
+        report.rows,
+        report.points,
+        report.inputs.len(),
+        args.out.display()
+    );
+    if !report.missing.is_empty() {
+        let names: Vec<String> = report.missing.iter().map(|p| p.name()).collect();
+        println!("missing ({}): {}", names.len(), names.join(" "));
+    }
+    for d in &report.duplicates {
+        let dirs: Vec<String> = d.dirs.iter().map(|p| p.display().to_string()).collect();
+        println!(
+            "duplicated: {} in {} ({})",
+            d.point.name(),
+            dirs.join(", "),
+            if d.agree {
+                "same numbers"
+            } else {
+                "DIFFERENT numbers: the first is kept"
+            }
+        );
+    }
+    if report.complete() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    }
+}

@@ -1,0 +1,589 @@
+//! `eulerdisk sweep`: rows identical to `run`, sharding + merging, resuming, kills, failures
+//! and bad sweep files. Every sweep here is short (t_end well under a second of simulated
+//! time) so the file stays fast on two cores.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant};
+
+use eulerdisk::output::tables::split_fields;
+use eulerdisk::run::{run_scene, ProgressStyle};
+use eulerdisk::scene::{self, Override};
+use eulerdisk::sweep::execute::{ExecOptions, ExecReport};
+use eulerdisk::sweep::expand::{plan, run_arguments, Plan, PlanError};
+use eulerdisk::sweep::merge::merge;
+use eulerdisk::sweep::row::{scalar_entries, Row, Status, TIMING_COLUMNS};
+use eulerdisk::sweep::run_point::run_options;
+use eulerdisk::sweep::shard::Shard;
+use eulerdisk::sweep::spec::{self, Keep, LoadedSweep};
+use eulerdisk::sweep::store::{read_manifest, read_rows, ROWS_DIR, TABLE_FILE};
+use eulerdisk::sweep::{run_sweep, sweep_dir};
+
+const BIN: &str = env!("CARGO_BIN_EXE_eulerdisk");
+
+/// Six points: mu_d x integrator, 0.3 s of the paper's scene each.
+const SMALL: &str = r#"
+scene = "tangent-toy-pruned"
+[set]
+run.t_end = 0.3
+[[axis]]
+key = "friction.mu_d"
+values = [0.1, 0.115, 0.13]
+[[axis]]
+key = "solver.integrator"
+values = ["dopri5", "dop853"]
+[error]
+against = "friction.mu_d"
+keys = ["transitions", "n_over_mg_max"]
+[figures]
+keys = ["n_over_mg_max", "err_n_over_mg_max"]
+"#;
+
+fn sweep_file(dir: &Path, text: &str) -> LoadedSweep {
+    let path = dir.join("s.toml");
+    fs::write(&path, text).unwrap();
+    spec::load(path.to_str().unwrap()).unwrap()
+}
+
+fn small_plan(dir: &Path) -> Plan {
+    plan(&sweep_file(dir, SMALL), &[]).unwrap()
+}
+
+fn opts(jobs: usize, shard: Option<Shard>) -> ExecOptions {
+    ExecOptions {
+        jobs,
+        progress: ProgressStyle::Quiet,
+        shard,
+    }
+}
+
+fn go(plan: &Plan, out: &Path, jobs: usize, shard: Option<Shard>) -> ExecReport {
+    run_sweep(plan, out, &opts(jobs, shard), &AtomicBool::new(false))
+        .unwrap()
+        .exec
+}
+
+/// `sweep.csv` with the timing columns blanked: what must not depend on how it was run.
+fn untimed_table(dir: &Path) -> Vec<Vec<String>> {
+    let text = fs::read_to_string(dir.join(TABLE_FILE)).unwrap();
+    let mut lines = text.lines();
+    let header = split_fields(lines.next().unwrap());
+    let timing: Vec<usize> = header
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| TIMING_COLUMNS.contains(&h.as_str()))
+        .map(|(i, _)| i)
+        .collect();
+    std::iter::once(header.clone())
+        .chain(lines.map(|l| {
+            let mut f = split_fields(l);
+            assert_eq!(
+                f.len(),
+                header.len(),
+                "a row with the wrong number of fields: {l}"
+            );
+            for &i in &timing {
+                f[i].clear();
+            }
+            f
+        }))
+        .collect()
+}
+
+fn without_timing(
+    mut summary: serde_json::Map<String, serde_json::Value>,
+) -> serde_json::Map<String, serde_json::Value> {
+    for k in TIMING_COLUMNS {
+        summary.remove(*k);
+    }
+    summary
+}
+
+#[test]
+fn each_row_is_the_run_of_its_point_bit_for_bit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = small_plan(tmp.path());
+    let out = tmp.path().join("out");
+    assert_eq!(go(&plan, &out, 2, None).ran, 6);
+    let rows = read_rows(&out, &plan.definition).unwrap();
+    let d = &plan.definition;
+    // Every point against the library's `run` of the same scene and overrides ...
+    for (point, row) in &rows {
+        let sets = run_arguments(d, &d.points[*point]);
+        let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        let scene = scene::load(&d.scene_name, &overrides).unwrap();
+        let dir = tmp.path().join(format!("lib{point}"));
+        let report = run_scene(
+            &scene,
+            &run_options(&scene, &dir, Keep::None),
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(row.status, Status::Completed);
+        assert_eq!(
+            without_timing(row.summary.clone()),
+            without_timing(scalar_entries(&report.summary)),
+            "point {point}"
+        );
+    }
+    // ... and one point against the command `eulerdisk run` itself, through summary.json.
+    let point = 3;
+    let run_dir = tmp.path().join("cli");
+    let mut cmd = Command::new(BIN);
+    cmd.args(["run", &d.scene_name, "--quiet", "--no-figures", "--out"])
+        .arg(&run_dir);
+    for s in run_arguments(d, &d.points[point]) {
+        cmd.args(["--set", &s]);
+    }
+    assert!(cmd.status().unwrap().success());
+    let json: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(run_dir.join("summary.json")).unwrap()).unwrap();
+    let row = &rows[&point];
+    let mut compared = 0;
+    for (k, v) in json.as_object().unwrap() {
+        if let Some(mine) = row
+            .summary
+            .get(k)
+            .filter(|_| !TIMING_COLUMNS.contains(&k.as_str()))
+        {
+            assert_eq!(mine, v, "key {k}");
+            compared += 1;
+        }
+    }
+    assert!(compared >= 15, "{compared}");
+    assert!(row.summary["transitions"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn sharded_and_merged_equals_unsharded_row_for_row() {
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = small_plan(tmp.path());
+    let whole = tmp.path().join("whole");
+    go(&plan, &whole, 2, None);
+    let sharded = tmp.path().join("sharded");
+    let mut ran = 0;
+    for index in 0..4 {
+        let r = go(&plan, &sharded, 1, Some(Shard { index, count: 4 }));
+        assert_eq!(r.points, if index < 2 { 2 } else { 1 });
+        ran += r.ran;
+        // A shard's folder holds its own points only.
+        let shard_dir = sweep_dir(&sharded, Some(Shard { index, count: 4 }));
+        assert!(read_rows(&shard_dir, &plan.definition)
+            .unwrap()
+            .keys()
+            .all(|p| p % 4 == index));
+    }
+    assert_eq!(ran, 6);
+    let merged = tmp.path().join("merged");
+    let (_, rows, report) = merge(std::slice::from_ref(&sharded), &merged).unwrap();
+    assert!(report.complete(), "{report:?}");
+    assert_eq!((report.inputs.len(), rows.len()), (4, 6));
+    let table = untimed_table(&merged);
+    assert_eq!(table.len(), 7);
+    assert_eq!(table, untimed_table(&whole));
+    assert!(merged.join("sweep_n_over_mg_max_map.png").is_file());
+
+    // A lost shard is listed as missing; a shard given twice as a duplicate that agrees.
+    let lost = sweep_dir(&sharded, Some(Shard { index: 1, count: 4 }));
+    let copy = tmp.path().join("copy-of-0");
+    copy_dir(
+        &sweep_dir(&sharded, Some(Shard { index: 0, count: 4 })),
+        &copy,
+    );
+    fs::remove_dir_all(&lost).unwrap();
+    let (_, _, report) = merge(&[sharded.clone(), copy], &tmp.path().join("m2")).unwrap();
+    let missing: Vec<usize> = report.missing.iter().map(|p| p.0).collect();
+    assert_eq!(missing, [1, 5]);
+    let dups: Vec<(usize, bool)> = report
+        .duplicates
+        .iter()
+        .map(|d| (d.point.0, d.agree))
+        .collect();
+    assert_eq!(dups, [(0, true), (4, true)]);
+    assert!(!report.complete());
+    // The command says so, and fails.
+    let out = Command::new(BIN)
+        .args(["sweep", "merge"])
+        .arg(&sharded)
+        .arg("--out")
+        .arg(tmp.path().join("m3"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.contains("missing (2): r000001 r000005"), "{text}");
+}
+
+fn copy_dir(from: &Path, to: &Path) {
+    fs::create_dir_all(to).unwrap();
+    for e in fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.file_type().unwrap().is_dir() {
+            copy_dir(&e.path(), &to.join(e.file_name()));
+        } else {
+            fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
+/// Every file in the rows folder (temporary ones included), sorted.
+fn all_row_files(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = fs::read_dir(dir.join(ROWS_DIR))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    v.sort();
+    v
+}
+
+fn is_partial(p: &Path) -> bool {
+    p.file_name()
+        .unwrap()
+        .to_string_lossy()
+        .starts_with(".partial")
+}
+
+/// The finished row files.
+fn row_files(dir: &Path) -> Vec<PathBuf> {
+    all_row_files(dir)
+        .into_iter()
+        .filter(|p| !is_partial(p))
+        .collect()
+}
+
+#[test]
+fn resume_runs_only_the_points_without_a_row() {
+    let tmp = tempfile::tempdir().unwrap();
+    let small = small_plan(tmp.path());
+    let plan = &small;
+    let out = tmp.path().join("out");
+    let first = go(plan, &out, 2, None);
+    assert_eq!((first.ran, first.skipped), (6, 0));
+    let before: Vec<(PathBuf, Vec<u8>)> = row_files(&out)
+        .into_iter()
+        .map(|p| (p.clone(), fs::read(&p).unwrap()))
+        .collect();
+    let table = untimed_table(&out);
+    // Nothing to do: nothing runs, nothing changes.
+    let again = go(plan, &out, 2, None);
+    assert_eq!((again.ran, again.skipped), (0, 6));
+    // Two rows lost: exactly those two run again; the others keep their files, timing included.
+    fs::remove_file(&before[1].0).unwrap();
+    fs::remove_file(&before[4].0).unwrap();
+    let resumed = go(plan, &out, 2, None);
+    assert_eq!(
+        (resumed.ran, resumed.skipped, resumed.interrupted),
+        (2, 4, false)
+    );
+    for (i, (path, bytes)) in before.iter().enumerate() {
+        if i != 1 && i != 4 {
+            assert_eq!(&fs::read(path).unwrap(), bytes, "{}", path.display());
+        }
+    }
+    assert_eq!(untimed_table(&out), table);
+    // Another sweep is refused in the same folder instead of being mixed in.
+    let other =
+        eulerdisk::sweep::expand::plan(&sweep_file(tmp.path(), &SMALL.replace("0.3", "0.2")), &[])
+            .unwrap();
+    let err = run_sweep(&other, &out, &opts(1, None), &AtomicBool::new(false)).unwrap_err();
+    assert!(err.to_string().contains("another sweep"), "{err}");
+}
+
+#[test]
+fn a_killed_sweep_leaves_whole_rows_and_resumes() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Twelve runs of 0.2 s, one at a time, so the kill lands in the middle.
+    let text = SMALL.replace("0.3", "0.2").replace(
+        "values = [0.1, 0.115, 0.13]",
+        "values = [0.1, 0.105, 0.11, 0.115, 0.12, 0.13]",
+    );
+    let loaded = sweep_file(tmp.path(), &text);
+    let out = tmp.path().join("out");
+    let mut child = Command::new(BIN)
+        .args(["sweep", "--quiet", "--jobs", "1", "--out"])
+        .arg(&out)
+        .arg(tmp.path().join("s.toml"))
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while (!out.join(ROWS_DIR).is_dir() || row_files(&out).len() < 3)
+        && started.elapsed() < Duration::from_secs(120)
+    {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap(); // SIGKILL: no handler runs
+    child.wait().unwrap();
+    let plan = plan(&loaded, &[]).unwrap();
+    let kept = read_rows(&out, &plan.definition).unwrap();
+    assert!(
+        kept.len() >= 3 && kept.len() < 12,
+        "{} rows: the kill should land mid-sweep",
+        kept.len()
+    );
+    for row in kept.values() {
+        assert!(row.summary.contains_key("transitions"));
+    }
+    // Every line of the table that was on disk at the kill is whole.
+    if out.join(TABLE_FILE).is_file() {
+        untimed_table(&out);
+    }
+    // A half-written row file (what a kill during a write leaves) is removed on resume.
+    fs::write(
+        out.join(ROWS_DIR).join(".partial-1-r000011.json"),
+        b"{\"point\":11,\"val",
+    )
+    .unwrap();
+    let resumed = go(&plan, &out, 2, None);
+    assert_eq!(resumed.skipped, kept.len());
+    assert_eq!(resumed.ran + resumed.skipped, 12);
+    assert!(!all_row_files(&out).iter().any(|p| is_partial(p)));
+    let fresh = tmp.path().join("fresh");
+    go(&plan, &fresh, 2, None);
+    assert_eq!(untimed_table(&out), untimed_table(&fresh));
+}
+
+#[test]
+fn failing_and_slow_runs_are_rows_with_their_reason() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Sliding only: the disk soon wants to roll, which the scene forbids (a failed run).
+    // 100 s: stopped by the timeout. 0.05 s: completes.
+    let text = r#"
+scene = "tangent-toy-pruned"
+combine = "zip"
+timeout_s = 0.4
+keep = "events"
+[set]
+solver.integrator = "dopri5"
+[[axis]]
+key = "modes.allowed"
+values = [["sliding"], ["rolling", "sliding"], ["rolling", "sliding"]]
+[[axis]]
+key = "run.t_end"
+values = [1.0, 100.0, 0.05]
+"#;
+    let plan = plan(&sweep_file(tmp.path(), text), &[]).unwrap();
+    let out = tmp.path().join("out");
+    let report = go(&plan, &out, 2, None);
+    assert_eq!((report.ran, report.failed), (3, 2));
+    let rows = read_rows(&out, &plan.definition).unwrap();
+    let r: Vec<&Row> = rows.values().collect();
+    assert_eq!(
+        (r[0].status, r[0].stop_reason.as_str()),
+        (Status::Failed, "mode_not_allowed")
+    );
+    assert!(
+        r[0].stop_detail.contains("modes.allowed"),
+        "{}",
+        r[0].stop_detail
+    );
+    assert_eq!(
+        (r[1].status, r[1].stop_reason.as_str()),
+        (Status::Timeout, "timeout")
+    );
+    assert!(
+        r[1].stop_detail.contains("timeout_s = 0.4"),
+        "{}",
+        r[1].stop_detail
+    );
+    assert_eq!(
+        (r[2].status, r[2].stop_reason.as_str()),
+        (Status::Completed, "end_time")
+    );
+    // `keep = "events"` keeps the summary and the events, not the trajectory.
+    let run2 = out.join("runs").join("r000002");
+    assert!(run2.join("events.csv").is_file() && run2.join("summary.json").is_file());
+    assert!(!run2.join("trajectory.csv").exists());
+    let table = fs::read_to_string(out.join(TABLE_FILE)).unwrap();
+    assert!(
+        table.contains("r000001,\"[\"\"rolling\"\", \"\"sliding\"\"]\",100,timeout,timeout"),
+        "{table}"
+    );
+}
+
+/// A sweep file with `axis` tables replaced; the key and the word its error must name.
+fn rejected(text: &str) -> PlanError {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("bad.toml");
+    fs::write(&path, text).unwrap();
+    match spec::load(path.to_str().unwrap()) {
+        Err(e) => PlanError::Spec(e),
+        Ok(l) => plan(&l, &[]).map(|_| ()).unwrap_err(),
+    }
+}
+
+#[test]
+fn bad_sweep_files_are_rejected_by_key_and_value() {
+    let base = "scene = \"tangent-toy\"\n";
+    let axis = |key: &str, gen: &str| format!("{base}[[axis]]\nkey = \"{key}\"\n{gen}\n");
+    let cases: Vec<(String, &str, &str)> = vec![
+        (format!("{base}axes = 3\n"), "axes", "unknown field"),
+        (
+            axis("friction.mu", "values = [0.1]"),
+            "friction.mu",
+            "unknown field",
+        ),
+        (
+            axis("friction.mu_st", "values = [0.3, 0.1]"),
+            "friction.mu_st",
+            "got 0.1",
+        ),
+        (
+            axis(
+                "initial.theta",
+                "linspace = { from = 1.0, to = 4.0, num = 2 }",
+            ),
+            "initial.theta",
+            "4",
+        ),
+        (
+            axis("solver.integrator", "values = [\"euler\"]"),
+            "solver.integrator",
+            "euler",
+        ),
+        (
+            axis(
+                "solver.rtol",
+                "logspace = { from = 0.0, to = 1e-6, num = 3 }",
+            ),
+            "axis[0].logspace.from",
+            "got 0",
+        ),
+        (axis("mu_d", "values = [0.1]"), "axis[0].key", "mu_d"),
+        (
+            axis(
+                "friction.mu_d",
+                "linspace = { from = 0.1, to = 0.2, num = -1 }",
+            ),
+            "axis[0].linspace.num",
+            "-1",
+        ),
+        (
+            format!("{}keys = [\"transitionz\"]\n", base),
+            "keys",
+            "transitionz",
+        ),
+        (format!("{}timeout_s = -1.0\n", base), "timeout_s", "-1"),
+        (
+            format!(
+                "{}combine = \"zip\"\n{}",
+                base,
+                &axis("friction.mu_d", "values = [0.1, 0.11]")[base.len()..]
+            ) + "[[axis]]\nkey = \"friction.mu_st\"\nvalues = [0.2]\n",
+            "axis[1]",
+            "equally long",
+        ),
+        (
+            axis("friction.mu_d", "values = [0.1]")
+                + "[error]\nagainst = \"solver.rtol\"\nkeys = [\"transitions\"]\n",
+            "error.against",
+            "solver.rtol",
+        ),
+        (
+            axis("friction.mu_d", "values = [0.1]") + "[figures]\nkeys = [\"speed\"]\n",
+            "figures.keys",
+            "speed",
+        ),
+        (
+            format!("{base}[set]\nfriction.mu_d = -1.0\n"),
+            "friction.mu_d",
+            "-1",
+        ),
+    ];
+    for (text, key, word) in cases {
+        let err = rejected(&text);
+        let message = err.to_string();
+        assert!(
+            err.keys().iter().any(|k| k == key),
+            "expected key `{key}` in {:?}: {message}\n{text}",
+            err.keys()
+        );
+        assert!(
+            message.contains(word),
+            "expected `{word}` in: {message}\n{text}"
+        );
+    }
+    // A bad point names its values and its number; nothing is written by the command.
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("bad.toml");
+    fs::write(&path, axis("friction.mu_st", "values = [0.3, 0.1]")).unwrap();
+    let out = tmp.path().join("out");
+    let o = Command::new(BIN)
+        .arg("sweep")
+        .arg(&path)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("point 1 (friction.mu_st = 0.1)"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn builtin_sweeps_validate_and_record_their_definition() {
+    for (name, _) in spec::BUILTIN {
+        let p = plan(&spec::load(name).unwrap(), &["run.t_end=0.1".to_string()]).unwrap();
+        assert!(p.definition.points.len() >= 9, "{name}");
+    }
+    // A `--set` that every point's axis value replaces does not reject the sweep.
+    let p = plan(
+        &spec::load("speed-accuracy").unwrap(),
+        &["solver.rtol=3".to_string()],
+    )
+    .unwrap();
+    assert_eq!(p.scenes[0].file.solver.rtol, 1e-4);
+    // The definition written first is the one read back.
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = plan(
+        &spec::load("paper-friction").unwrap(),
+        &["run.t_end=0.05".to_string()],
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let shard = Shard { index: 0, count: 6 };
+    assert_eq!(go(&plan, &out, 2, Some(shard)).ran, 2);
+    let m = read_manifest(&sweep_dir(&out, Some(shard)))
+        .unwrap()
+        .unwrap();
+    assert_eq!(m.definition, plan.definition);
+    assert_eq!(m.shard, Some(shard));
+}
+
+#[test]
+fn shard_auto_takes_its_share_from_the_job_array() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let status = Command::new(BIN)
+        .args([
+            "sweep",
+            "paper-friction",
+            "--quiet",
+            "--jobs",
+            "2",
+            "--shard",
+            "auto",
+            "--set",
+            "run.t_end=0.05",
+            "--out",
+        ])
+        .arg(&out)
+        .env("SLURM_ARRAY_TASK_ID", "2")
+        .env("SLURM_ARRAY_TASK_MIN", "1")
+        .env("SLURM_ARRAY_TASK_COUNT", "6")
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let shard_dir = out.join("shard-1-of-6");
+    let names: Vec<String> = row_files(&shard_dir)
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["r000001.json", "r000007.json"]);
+    assert!(!shard_dir.join(".scratch").exists());
+}
