@@ -80,6 +80,7 @@ fn run(args: RunArgs) -> ExitCode {
         progress,
         backend: backend(args.reference),
         figures: !args.no_figures,
+        trajectory: true,
         provenance: Provenance::new(&scene, &args.scene, &overrides),
     };
     if !args.quiet {

@@ -26,6 +26,7 @@ fn short_run(scene: &scene::Scene, figures: bool) -> (tempfile::TempDir, RunRepo
         progress: ProgressStyle::Quiet,
         backend: Backend::Generated,
         figures,
+        trajectory: true,
         provenance: Provenance::new(scene, &scene.name, &[]),
     };
     let report = run_scene(scene, &opts, &AtomicBool::new(false)).unwrap();

@@ -28,6 +28,7 @@ fn run_in_tempdir(
         progress: ProgressStyle::Quiet,
         backend,
         figures: false,
+        trajectory: true,
         provenance: Provenance::new(&scene, "tangent-toy", overrides),
     };
     let report = run_scene(&scene, &opts, interrupt).unwrap();

@@ -60,6 +60,9 @@ pub struct RunOptions {
     pub backend: Backend,
     /// Whether to draw the figures.
     pub figures: bool,
+    /// Whether to write `trajectory.csv` (a sweep that keeps only summaries does not: the
+    /// samples are still collected for the summary).
+    pub trajectory: bool,
     /// How the run is produced (program, scene source, overrides, settings), for
     /// `summary.json`.
     pub provenance: Provenance,
@@ -120,20 +123,18 @@ pub fn run_scene(
     let started = Instant::now();
     let choice = model::choose(scene, opts.backend, opts.figures);
     let plan = SamplePlan::new(0.0, scene.file.run.t_end, scene.file.run.sample_rate);
-    let file = TrajectoryFile::create(
-        &opts.out_dir.join("trajectory.csv"),
-        &scene.quantities,
-        scene.params,
-    )?;
+    let file = opts
+        .trajectory
+        .then(|| {
+            TrajectoryFile::create(
+                &opts.out_dir.join("trajectory.csv"),
+                &scene.quantities,
+                scene.params,
+            )
+        })
+        .transpose()?;
     let mut progress = Progress::new(opts.progress, scene.file.run.t_end);
-    let recorded = record(
-        scene,
-        &choice,
-        plan.clone(),
-        interrupt,
-        &mut progress,
-        Some(file),
-    );
+    let recorded = record(scene, &choice, plan.clone(), interrupt, &mut progress, file);
     progress.finish();
     let Recorded {
         mut data,
@@ -298,17 +299,23 @@ pub fn write_outputs(
     let mut files = Vec::new();
     let path = dir.join("trajectory.csv");
     match trajectory {
-        Some(file) => file.commit()?,
-        None => write_atomic(&path, |w| {
-            crate::output::tables::write_trajectory(
-                w,
-                &scene.quantities,
-                &data.samples,
-                &scene.params,
-            )
-        })?,
+        Some(file) => {
+            file.commit()?;
+            files.push(path);
+        }
+        None if opts.trajectory => {
+            write_atomic(&path, |w| {
+                crate::output::tables::write_trajectory(
+                    w,
+                    &scene.quantities,
+                    &data.samples,
+                    &scene.params,
+                )
+            })?;
+            files.push(path);
+        }
+        None => {}
     }
-    files.push(path);
     let stop = data.stop.clone().unwrap_or(StopRecord {
         t: data.samples.last().map_or(0.0, |s| s.t),
         mode: data.samples.last().map_or(ModeName::Rolling, |s| s.mode),

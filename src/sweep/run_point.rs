@@ -40,6 +40,7 @@ pub fn run_options(scene: &Scene, dir: &Path, keep: Keep) -> RunOptions {
         progress: ProgressStyle::Quiet,
         backend: DEFAULT_BACKEND,
         figures: keep == Keep::All,
+        trajectory: keep.files().contains(&"trajectory.csv"),
         provenance: Provenance::new(scene, &scene.name, &[]),
     }
 }
