@@ -428,6 +428,21 @@ impl<S: Stepper<N>, const N: usize> DenseStep<'_, S, N> {
                 .interpolate((t - self.t0) / (self.t1 - self.t0), out);
         }
     }
+
+    /// Component `i` of [`DenseStep::at`], interpolating that component only.
+    pub fn component_at(&self, t: f64, i: usize) -> f64 {
+        if t <= self.t0 {
+            self.y0[i]
+        } else if t >= self.t1 {
+            self.y1[i]
+        } else {
+            let mut out = [f64::NAN; N];
+            let theta = (t - self.t0) / (self.t1 - self.t0);
+            self.stepper
+                .interpolate_components(theta, &Components::of(&[i]), &mut out);
+            out[i]
+        }
+    }
 }
 
 /// The end of a plain integration.

@@ -8,6 +8,14 @@ use std::ops::ControlFlow;
 pub trait Interpolant<const N: usize> {
     /// The interpolated state at `t` inside the step (clamped to it; end points exact).
     fn at(&self, t: f64, out: &mut [f64; N]);
+
+    /// Component `i` of [`Interpolant::at`] alone (the same value; a root search on one
+    /// component need not interpolate the others).
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        let mut out = [0.0; N];
+        self.at(t, &mut out);
+        out[i]
+    }
 }
 
 impl<S: crate::stepper::Stepper<N>, const N: usize> Interpolant<N>
@@ -15,6 +23,10 @@ impl<S: crate::stepper::Stepper<N>, const N: usize> Interpolant<N>
 {
     fn at(&self, t: f64, out: &mut [f64; N]) {
         crate::integrator::DenseStep::at(self, t, out)
+    }
+
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        crate::integrator::DenseStep::component_at(self, t, i)
     }
 }
 

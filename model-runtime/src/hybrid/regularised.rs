@@ -405,9 +405,7 @@ where
                 step.t0
             } else {
                 let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
-                    let mut z = [0.0; M];
-                    dense.at(tau, &mut z);
-                    Ok(z[N] - target)
+                    Ok(dense.component_at(tau, N) - target)
                 };
                 find_crossing(step.t0, t0 - ts, step.t1, t1 - ts, -1.0, clock)
                     .unwrap_or_else(|never| match never {})
