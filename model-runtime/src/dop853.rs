@@ -371,6 +371,10 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         which.fill(out, |i| self.value(s, i));
     }
 
+    fn interpolate_component(&self, s: f64, i: usize) -> f64 {
+        self.value(s, i)
+    }
+
     fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
         Components::ALL.fill(out, |i| self.rate(s, h, i));
     }

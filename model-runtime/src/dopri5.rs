@@ -150,6 +150,10 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         which.fill(out, |i| self.value(s, i));
     }
 
+    fn interpolate_component(&self, s: f64, i: usize) -> f64 {
+        self.value(s, i)
+    }
+
     fn interpolate_derivative_components(
         &self,
         s: f64,

@@ -436,11 +436,8 @@ impl<S: Stepper<N>, const N: usize> DenseStep<'_, S, N> {
         } else if t >= self.t1 {
             self.y1[i]
         } else {
-            let mut out = [f64::NAN; N];
-            let theta = (t - self.t0) / (self.t1 - self.t0);
             self.stepper
-                .interpolate_components(theta, &Components::of(&[i]), &mut out);
-            out[i]
+                .interpolate_component((t - self.t0) / (self.t1 - self.t0), i)
         }
     }
 }

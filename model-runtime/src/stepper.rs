@@ -261,6 +261,14 @@ pub trait Stepper<const N: usize> {
         which.copy(&full, out);
     }
 
+    /// Component `i` of [`Stepper::interpolate`] (the same bits). The default interpolates
+    /// every component; methods evaluated component by component override it.
+    fn interpolate_component(&self, theta: f64, i: usize) -> f64 {
+        let mut full = [0.0; N];
+        self.interpolate(theta, &mut full);
+        full[i]
+    }
+
     /// [`Stepper::interpolate_derivative`] in the components `which` of `out` only; the others
     /// are left as they are. The default, like [`Stepper::interpolate_components`], computes
     /// every component and copies the chosen ones.

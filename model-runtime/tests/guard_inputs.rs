@@ -214,6 +214,10 @@ fn partial_is_full_where_chosen<S: Stepper<3>>(mut stepper: S, h: f64) {
         let (mut y, mut dy) = ([0.0; 3], [0.0; 3]);
         stepper.interpolate(theta, &mut y);
         stepper.interpolate_derivative(theta, h, &mut dy);
+        for (i, yi) in y.iter().enumerate() {
+            let single = stepper.interpolate_component(theta, i);
+            assert_eq!(single.to_bits(), yi.to_bits(), "{} {theta} #{i}", S::NAME);
+        }
         for set in SETS {
             let (mut ys, mut dys) = ([f64::NAN; 3], [f64::NAN; 3]);
             stepper.interpolate_components(theta, &set, &mut ys);
