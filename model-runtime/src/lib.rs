@@ -68,7 +68,7 @@ pub use hybrid::{
     StopReason, Transition,
 };
 pub use integrator::{integrate, DenseStep, Integrator, Solution};
-pub use model::{EvalError, Model, ModelInfo, OpCounts, WithOutputs};
+pub use model::{EvalError, Evaluation, Model, ModelInfo, OpCounts, WithOutputs};
 pub use observer::{
     Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
 };

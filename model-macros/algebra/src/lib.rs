@@ -61,6 +61,7 @@ pub mod simplify;
 pub mod solve;
 pub mod spec;
 pub mod structure;
+mod structure_messages;
 pub mod system;
 pub mod trig;
 pub mod variant;
