@@ -32,6 +32,25 @@ pub enum Command {
     /// Simulate a scene and hear its rattle: a WAV of the normal-force peaks, their rate
     /// against the paper's, and a spectrogram.
     Sound(crate::sound::args::SoundArgs),
+    /// Print a model's equations as the compiler solved them (`model show rolling`).
+    #[command(subcommand)]
+    Model(ModelCommand),
+}
+
+/// `eulerdisk model ...`.
+#[derive(Debug, Subcommand)]
+pub enum ModelCommand {
+    /// The solved explicit equations block by block, their pivots and the outputs (Markdown,
+    /// or LaTeX with `--format latex`); for `rolling` also N/mg at the paper's start beside
+    /// the paper's formula (13).
+    Show {
+        /// The model.
+        #[arg(value_enum)]
+        model: crate::model_show::ModelName,
+        /// Markdown (DSL syntax) or LaTeX.
+        #[arg(long, value_enum, default_value = "markdown")]
+        format: crate::model_show::Format,
+    },
 }
 
 /// `eulerdisk run`.

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use clap::Parser;
-use eulerdisk::cli::{backend, Cli, Command, EvalArgs, RunArgs};
+use eulerdisk::cli::{backend, Cli, Command, EvalArgs, ModelCommand, RunArgs};
 use eulerdisk::eval::{evaluate, parse_params, parse_state};
 use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use eulerdisk::scene::{self, BUILTIN};
@@ -29,6 +29,18 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => run(args),
         Some(Command::Eval(args)) => eval(&args),
         Some(Command::Sound(args)) => eulerdisk::sound::args::command(&args),
+        Some(Command::Model(ModelCommand::Show { model, format })) => {
+            match eulerdisk::model_show::show(model, format) {
+                Ok(text) => {
+                    print!("{text}");
+                    ExitCode::SUCCESS
+                }
+                Err(err) => {
+                    eprintln!("error: {err}");
+                    ExitCode::from(EXIT_FAILED)
+                }
+            }
+        }
         Some(Command::Scenes) => {
             for (name, text) in BUILTIN {
                 let description = scene::parse(name, text, &[])

@@ -97,6 +97,8 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
         None => quote! { ::core::option::Option::None },
     });
     let info = info(info_name, model);
+    let solved_markdown = &model.explanation.markdown;
+    let solved_latex = &model.explanation.latex;
     let default_values = default_values(model);
     let default_impl = default_impl(default_values.as_deref());
     let named = named_items(
@@ -138,6 +140,11 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
             /// Parameter defaults (`None` where the model gives none), in index order.
             pub const PARAM_DEFAULTS: [::core::option::Option<f64>; N_PARAMS] = [#(#defaults),*];
             const MODEL_NAME: &str = #info_name;
+            /// The solved equations as the compiler derived them, block by block with their
+            /// pivots, then the outputs (Markdown, DSL syntax).
+            pub const SOLVED_MARKDOWN: &str = #solved_markdown;
+            /// The same equations as a LaTeX `align*` environment.
+            pub const SOLVED_LATEX: &str = #solved_latex;
             #info
             /// The model with its parameter values.
             #[derive(Clone, Debug, PartialEq)]

@@ -12,6 +12,7 @@
 use crate::ast::ModelAst;
 use crate::emit::emit;
 use crate::validate::RESERVED_MODULES;
+use model_algebra::explain::Explanation;
 use model_algebra::program::{CompiledModel, Program};
 use proc_macro2::TokenStream;
 use std::collections::BTreeSet;
@@ -48,6 +49,7 @@ fn stub(ast: &ModelAst) -> CompiledModel {
         pivots: Vec::new(),
         numeric_blocks: Vec::new(),
         variants: Vec::new(),
+        explanation: Explanation::default(),
     };
     let variants = ast
         .variants

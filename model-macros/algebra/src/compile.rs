@@ -59,9 +59,12 @@ pub fn compile(
         states: (0..spec.states.len()).collect(),
         outputs: (0..spec.outputs.len()).collect(),
     };
+    // Printed before the emission adds the Jacobian's definitions to the system.
+    let explanation = crate::explain::explain(&solved, spec);
     let mut model = solved
         .emit(spec, &spec.name, &everything)
         .map_err(|u| vec![unbound(spec, u)])?;
+    model.explanation = explanation;
     let mut diags = Vec::new();
     for v in &spec.variants {
         match crate::variant::compile_variant(spec, v, options) {
@@ -277,6 +280,7 @@ impl Solved {
             pivots,
             numeric_blocks,
             variants: Vec::new(),
+            explanation: crate::explain::Explanation::default(),
         })
     }
 }

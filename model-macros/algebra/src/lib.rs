@@ -50,6 +50,7 @@ pub mod diff;
 mod display;
 pub mod eval;
 pub mod expand;
+pub mod explain;
 pub mod expr;
 pub mod jacobian;
 pub mod linear;
