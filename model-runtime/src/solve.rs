@@ -436,6 +436,7 @@ impl<const N: usize> Observer<N, (), usize> for Record<'_, N> {
                     let t = times[self.next];
                     let mut y = *step.y1;
                     if t < step.t1 {
+                        // Always present: `wants_dense` asks the driver for it in this case.
                         if let Some(dense) = step.dense {
                             dense.at(t, &mut y);
                         }
