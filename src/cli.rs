@@ -39,6 +39,25 @@ pub enum Command {
     /// Run many scenes at once: axes over any scene key, a table of their summaries, figures;
     /// resumable, and shardable over a cluster's job array (`sweep merge` joins the shards).
     Sweep(crate::sweep::args::SweepArgs),
+    /// Print a model's equations as the compiler solved them (`model show rolling`).
+    #[command(subcommand)]
+    Model(ModelCommand),
+}
+
+/// `eulerdisk model ...`.
+#[derive(Debug, Subcommand)]
+pub enum ModelCommand {
+    /// The solved explicit equations block by block, their pivots and the outputs (Markdown,
+    /// or LaTeX with `--format latex`); for `rolling` also N/mg at the paper's start beside
+    /// the paper's formula (13).
+    Show {
+        /// The model.
+        #[arg(value_enum)]
+        model: crate::model_show::ModelName,
+        /// Markdown (DSL syntax) or LaTeX.
+        #[arg(long, value_enum, default_value = "markdown")]
+        format: crate::model_show::Format,
+    },
 }
 
 /// Exit code of a rejected input (bad scene, bad sweep file, bad JSON, singular state).

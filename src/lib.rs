@@ -9,6 +9,7 @@ pub mod analysis;
 pub mod cli;
 pub mod eval;
 pub mod figures;
+pub mod model_show;
 pub mod named_numbers;
 pub mod output;
 pub mod quantity;

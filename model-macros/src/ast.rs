@@ -4,7 +4,7 @@
 //! say "unknown function `sine`" or "`m` is a parameter" with the user's own words; every node
 //! carries a [`NodeId`] whose source range lives in [`Spans`].
 
-use crate::span::{SpanRange, Spans};
+use crate::span::Spans;
 use model_algebra::spec::{BinOp, Named, NodeId};
 use std::collections::BTreeMap;
 
@@ -65,8 +65,9 @@ impl Expr {
 pub struct Equation {
     /// The label and its token, when one was written.
     pub label: Option<Named<()>>,
-    /// The `=` token.
-    pub eq_id: NodeId,
+    /// The whole equation, label included (diagnostics about the equation as a whole point
+    /// here).
+    pub id: NodeId,
     /// Left-hand side.
     pub lhs: Expr,
     /// Right-hand side.
@@ -88,13 +89,6 @@ pub struct Variant {
     pub fix: Vec<Named<f64>>,
 }
 
-/// A section keyword and where it was written (for diagnostics about the section as a whole).
-#[derive(Clone, Copy, Debug)]
-pub struct Section {
-    /// The keyword's span.
-    pub keyword: SpanRange,
-}
-
 /// A whole `model!` invocation as written.
 #[derive(Clone, Debug)]
 pub struct ModelAst {
@@ -110,8 +104,6 @@ pub struct ModelAst {
     pub states: Vec<Named<()>>,
     /// Named intermediate expressions.
     pub lets: Vec<Named<Expr>>,
-    /// The `equations` keyword, if the section was written.
-    pub equations_section: Option<Section>,
     /// The equations.
     pub equations: Vec<Equation>,
     /// Outputs, in order.
@@ -125,4 +117,24 @@ pub struct ModelAst {
     pub docs: BTreeMap<String, Vec<syn::Attribute>>,
     /// Source ranges of every node.
     pub spans: Spans,
+}
+
+impl ModelAst {
+    /// A model with this header and nothing declared yet.
+    pub fn empty(attrs: Vec<syn::Attribute>, vis: syn::Visibility, name: syn::Ident) -> Self {
+        ModelAst {
+            attrs,
+            vis,
+            name,
+            params: Vec::new(),
+            states: Vec::new(),
+            lets: Vec::new(),
+            equations: Vec::new(),
+            outputs: Vec::new(),
+            variants: Vec::new(),
+            options: Vec::new(),
+            docs: BTreeMap::new(),
+            spans: Spans::default(),
+        }
+    }
 }

@@ -5,11 +5,11 @@
 //! the expansion, and the lints that generated straight-line code trips are allowed on the module.
 
 use crate::ast::ModelAst;
+use crate::emit_named::{named_items, ItemDocs};
 use crate::emit_program::{constant, statements, zero_unstored};
 use model_algebra::program::{CompiledModel, Program, Target};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::BTreeMap;
 
 /// Emits the whole expansion of a compiled model.
 pub fn emit(ast: &ModelAst, compiled: &CompiledModel) -> TokenStream {
@@ -49,9 +49,6 @@ pub fn emit(ast: &ModelAst, compiled: &CompiledModel) -> TokenStream {
     };
     module(&header, compiled, variants)
 }
-
-/// Doc comments written on parameters, states and outputs, by name.
-type ItemDocs = BTreeMap<String, Vec<syn::Attribute>>;
 
 /// What names and documents an emitted module, beside the compiled model itself.
 struct Header<'a> {
@@ -100,7 +97,17 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
         None => quote! { ::core::option::Option::None },
     });
     let info = info(info_name, model);
-    let default_impl = default_impl(model);
+    let solved_markdown = &model.explanation.markdown;
+    let solved_latex = &model.explanation.latex;
+    let default_values = default_values(model);
+    let default_impl = default_impl(default_values.as_deref());
+    let named = named_items(
+        &param_names,
+        default_values.as_deref(),
+        &state_refs,
+        &output_refs,
+        item_docs,
+    );
     let model_impl = model_impl(model);
     let outputs_impl = outputs_impl(model);
     quote! {
@@ -133,6 +140,11 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
             /// Parameter defaults (`None` where the model gives none), in index order.
             pub const PARAM_DEFAULTS: [::core::option::Option<f64>; N_PARAMS] = [#(#defaults),*];
             const MODEL_NAME: &str = #info_name;
+            /// The solved equations as the compiler derived them, block by block with their
+            /// pivots, then the outputs (Markdown, DSL syntax).
+            pub const SOLVED_MARKDOWN: &str = #solved_markdown;
+            /// The same equations as a LaTeX `align*` environment.
+            pub const SOLVED_LATEX: &str = #solved_latex;
             #info
             /// The model with its parameter values.
             #[derive(Clone, Debug, PartialEq)]
@@ -147,6 +159,7 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
                 }
             }
             #default_impl
+            #named
             #model_impl
             #outputs_impl
             #nested
@@ -209,13 +222,17 @@ fn ops(program: &Program) -> TokenStream {
     }
 }
 
-fn default_impl(model: &CompiledModel) -> TokenStream {
-    let Some(values) = model
+/// Every parameter's default as a literal, when every parameter has one.
+fn default_values(model: &CompiledModel) -> Option<Vec<TokenStream>> {
+    model
         .params
         .iter()
         .map(|(_, default)| default.map(constant))
-        .collect::<Option<Vec<_>>>()
-    else {
+        .collect()
+}
+
+fn default_impl(values: Option<&[TokenStream]>) -> TokenStream {
+    let Some(values) = values else {
         return TokenStream::new();
     };
     quote! {

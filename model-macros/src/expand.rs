@@ -4,12 +4,13 @@
 //! the time of each stage to stderr (expansion runs inside rustc, so this is the only place the
 //! cost of the equation compiler can be seen).
 
+use crate::ast::ModelAst;
 use crate::compile::compile;
 use crate::emit::emit;
-use crate::parse::parse_model;
+use crate::parse::parse_model_recovering;
+use crate::placeholder::placeholder;
 use crate::validate::validate;
 use proc_macro2::TokenStream;
-use quote::quote;
 use std::time::{Duration, Instant};
 use syn::parse::{ParseStream, Parser};
 use syn::Token;
@@ -78,12 +79,18 @@ fn millis(duration: Duration) -> f64 {
 /// Expands and reports how long each stage took.
 pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
     let mut timing = Timing::default();
-    let placeholder = placeholder(tokens.clone());
-    let ast = match timing.stage("parse", || parse_model(tokens)) {
-        Ok(ast) => ast,
-        Err(error) => return (failure(error, placeholder), timing),
+    let parsed = timing.stage("parse", || parse_model_recovering(tokens.clone()));
+    let Some(ast) = parsed.model else {
+        let error = parsed.errors.unwrap_or_else(|| {
+            syn::Error::new(proc_macro2::Span::call_site(), "expected `mod NAME { .. }`")
+        });
+        let placeholder = header(tokens).map_or_else(TokenStream::new, |ast| placeholder(&ast));
+        return (failure(error, placeholder), timing);
     };
     timing.model = ast.name.to_string();
+    if let Some(error) = parsed.errors {
+        return (failure(error, placeholder(&ast)), timing);
+    }
     let compiled = timing
         .stage("validate", || validate(&ast))
         .and_then(|model| timing.stage("compile", || compile(&model, &ast.spans)));
@@ -92,7 +99,7 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
             let output = timing.stage("emit", || emit(&ast, &compiled));
             (output, timing)
         }
-        Err(error) => (failure(error, placeholder), timing),
+        Err(error) => (failure(error, placeholder(&ast)), timing),
     }
 }
 
@@ -102,24 +109,16 @@ fn failure(error: syn::Error, placeholder: TokenStream) -> TokenStream {
     output
 }
 
-/// A module of the model's name holding a placeholder `Model` type, so that code using the model
-/// reports nothing more than the model's own errors. Empty if even the header is unreadable.
-fn placeholder(tokens: TokenStream) -> TokenStream {
+/// The header `mod NAME` of an invocation whose body could not be read, as an empty model (so
+/// the placeholder still defines the module); `None` if even the header is unreadable.
+fn header(tokens: TokenStream) -> Option<ModelAst> {
     let header = |input: ParseStream| {
-        input.call(syn::Attribute::parse_outer)?;
+        let attrs = input.call(syn::Attribute::parse_outer)?;
         let vis: syn::Visibility = input.parse()?;
         input.parse::<Token![mod]>()?;
         let name: syn::Ident = input.parse()?;
         input.parse::<TokenStream>()?;
-        Ok((vis, name))
+        Ok(ModelAst::empty(attrs, vis, name))
     };
-    match header.parse2(tokens) {
-        Ok((vis, name)) => quote! {
-            #[allow(missing_docs)]
-            #vis mod #name {
-                pub struct Model;
-            }
-        },
-        Err(_) => TokenStream::new(),
-    }
+    header.parse2(tokens).ok()
 }

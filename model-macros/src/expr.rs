@@ -32,7 +32,14 @@ fn parse_product(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
     let mut lhs = parse_unary(input, spans)?;
     loop {
         let op = if input.peek(Token![*]) {
-            input.parse::<Token![*]>()?;
+            let star: Token![*] = input.parse()?;
+            if input.peek(Token![*]) {
+                let second: Token![*] = input.parse()?;
+                let range = SpanRange::single(star.span).to(SpanRange::single(second.span));
+                return Err(range.error(
+                    "`**` is not an operator of the DSL: write a power with `^`, e.g. `x^2`",
+                ));
+            }
             BinOp::Mul
         } else if input.peek(Token![/]) {
             input.parse::<Token![/]>()?;
@@ -57,6 +64,9 @@ fn parse_unary(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
 
 fn parse_power(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
     let base = parse_atom(input, spans)?;
+    if input.peek(Token![.]) {
+        return Err(method_call(input, &base));
+    }
     if input.peek(Token![^]) {
         input.parse::<Token![^]>()?;
         // The exponent may be negated and is itself a power: right-associative.
@@ -109,6 +119,37 @@ fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
     Err(input.error("expected a number, a name, `(` or `-`"))
 }
 
+/// The error for `x.sin()`: the DSL has functions, not methods (Rust's spelling is a natural
+/// slip when the model is written inside Rust code).
+fn method_call(input: ParseStream, receiver: &Expr) -> syn::Error {
+    let dot = match input.parse::<Token![.]>() {
+        Ok(dot) => dot,
+        Err(error) => return error,
+    };
+    let mut range = SpanRange::single(dot.span);
+    let mut name = None;
+    if let Ok(method) = input.parse::<syn::Ident>() {
+        range = range.to(SpanRange::single(method.span()));
+        name = Some(method.to_string());
+    }
+    if input.peek(token::Paren) {
+        if let Ok(group) = input.parse::<proc_macro2::Group>() {
+            range = range.to(SpanRange::single(group.span_close()));
+        }
+    }
+    let receiver = match receiver {
+        Expr::Name(_, name) => name.clone(),
+        Expr::Num(_, value) => value.to_string(),
+        _ => "x".to_string(),
+    };
+    match name {
+        Some(name) => range.error(format!(
+            "method syntax is not supported: write `{name}({receiver})`, not `{receiver}.{name}()`"
+        )),
+        None => range.error("`.` is not an operator of the DSL"),
+    }
+}
+
 /// Parses an unsuffixed numeric literal (integer or float) as `f64`.
 pub fn parse_number(input: ParseStream) -> syn::Result<(f64, proc_macro2::Span)> {
     let lit: syn::Lit = input.parse()?;
@@ -131,6 +172,26 @@ pub fn parse_number(input: ParseStream) -> syn::Result<(f64, proc_macro2::Span)>
         ));
     }
     Ok((value, lit.span()))
+}
+
+/// Parses a parameter's default: `NUMBER` or `-NUMBER`. Anything else is parsed as an
+/// expression only to be refused under its whole extent (`w = 2*pi`): a default is a literal.
+pub fn parse_default(input: ParseStream) -> syn::Result<f64> {
+    let mut scratch = Spans::default();
+    let expr = parse_expr(input, &mut scratch)?;
+    match &expr {
+        Expr::Num(_, value) => return Ok(*value),
+        Expr::Neg(_, inner) => {
+            if let Expr::Num(_, value) = **inner {
+                return Ok(-value);
+            }
+        }
+        _ => {}
+    }
+    Err(range_of(&scratch, &expr).error(
+        "a parameter's default must be a number literal (e.g. `w = 6.283185307179586`), \
+         not an expression; a derived quantity can be a `let` of the parameters",
+    ))
 }
 
 /// Parses `NUMBER` or `-NUMBER`.

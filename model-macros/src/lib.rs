@@ -4,12 +4,14 @@
 mod ast;
 mod compile;
 mod emit;
+mod emit_named;
 mod emit_program;
 mod expand;
 mod expr;
 mod names;
 mod options;
 mod parse;
+mod placeholder;
 mod span;
 mod validate;
 

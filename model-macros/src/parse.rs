@@ -3,8 +3,8 @@
 //! Parsing recovers at statement and section boundaries (`;` and `{..}`), so one typo does not
 //! hide the next: every syntax error of the invocation is collected and reported together.
 
-use crate::ast::{Equation, ModelAst, Section, Variant};
-use crate::expr::{parse_expr, parse_signed_number};
+use crate::ast::{Equation, ModelAst, Variant};
+use crate::expr::{parse_default, parse_expr, parse_signed_number, range_of};
 use crate::span::{Errors, SpanRange, Spans};
 use model_algebra::spec::Named;
 use proc_macro2::{TokenStream, TokenTree};
@@ -13,19 +13,44 @@ use syn::parse::{ParseStream, Parser};
 use syn::{token, Token};
 
 /// Parses a whole `model!` invocation; `Err` carries every syntax error found.
+#[cfg(test)]
 pub fn parse_model(tokens: TokenStream) -> syn::Result<ModelAst> {
+    let parsed = parse_model_recovering(tokens);
+    match parsed.errors {
+        None => parsed.model.ok_or_else(|| {
+            syn::Error::new(proc_macro2::Span::call_site(), "expected `mod NAME { .. }`")
+        }),
+        Some(errors) => Err(errors),
+    }
+}
+
+/// What parsing recovered: the model as far as it could be read, and every syntax error.
+pub struct Parsed {
+    /// The model, with the statements that failed to parse left out; `None` if even the
+    /// header `mod NAME { .. }` is unreadable.
+    pub model: Option<ModelAst>,
+    /// Every syntax error, combined.
+    pub errors: Option<syn::Error>,
+}
+
+/// Parses as much as can be read: after an error the placeholder emitted in the model's place
+/// still declares every name that did parse, so code using them reports nothing more.
+pub fn parse_model_recovering(tokens: TokenStream) -> Parsed {
     let mut errors = Errors::default();
     let parsed = (|input: ParseStream| parse_module(input, &mut errors)).parse2(tokens);
-    match parsed {
-        Ok(model) => errors.finish().map(|()| model),
-        Err(error) => Err(match errors.finish() {
-            Ok(()) => error,
-            Err(mut earlier) => {
-                earlier.combine(error);
-                earlier
-            }
-        }),
-    }
+    let (model, fatal) = match parsed {
+        Ok(model) => (Some(model), None),
+        Err(error) => (None, Some(error)),
+    };
+    let errors = match (errors.finish(), fatal) {
+        (Ok(()), fatal) => fatal,
+        (Err(mut earlier), Some(fatal)) => {
+            earlier.combine(fatal);
+            Some(earlier)
+        }
+        (Err(earlier), None) => Some(earlier),
+    };
+    Parsed { model, errors }
 }
 
 /// Sections seen so far (each may be written once).
@@ -33,6 +58,7 @@ pub fn parse_model(tokens: TokenStream) -> syn::Result<ModelAst> {
 struct Seen {
     params: Option<SpanRange>,
     states: Option<SpanRange>,
+    equations: Option<SpanRange>,
     outputs: Option<SpanRange>,
     options: Option<SpanRange>,
 }
@@ -50,21 +76,7 @@ fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst
             input.error("one `model!` holds exactly one module: unexpected tokens after it")
         );
     }
-    let mut model = ModelAst {
-        attrs,
-        vis,
-        name,
-        params: Vec::new(),
-        states: Vec::new(),
-        lets: Vec::new(),
-        equations_section: None,
-        equations: Vec::new(),
-        outputs: Vec::new(),
-        variants: Vec::new(),
-        options: Vec::new(),
-        docs: BTreeMap::new(),
-        spans: Spans::default(),
-    };
+    let mut model = ModelAst::empty(attrs, vis, name);
     let mut seen = Seen::default();
     while !body.is_empty() {
         if let Err(error) = parse_item(&body, &mut model, &mut seen, errors) {
@@ -106,41 +118,38 @@ fn parse_item(
             no_docs_here(&attrs, "`params`", errors);
             once(&mut seen.params, range, "params", errors);
             let content = braced(input)?;
+            // A default that is not a literal is reported without losing the parameter.
+            let mut bad_defaults = Vec::new();
             recover_section(&content, errors, |input| {
-                model.params = parse_list(input, |input| {
+                parse_list(input, &mut model.params, |input| {
                     let name = parse_documented_name(input, &mut model.spans, &mut model.docs)?;
                     let default = if input.peek(Token![=]) {
                         input.parse::<Token![=]>()?;
-                        Some(parse_signed_number(input)?)
+                        Some(parse_default(input).unwrap_or_else(|error| {
+                            bad_defaults.push(error);
+                            0.0
+                        }))
                     } else {
                         None
                     };
                     Ok(with_value(name, default))
-                })?;
-                Ok(())
+                })
             });
+            bad_defaults.into_iter().for_each(|error| errors.push(error));
         }
         "states" => {
             no_docs_here(&attrs, "`states`", errors);
             once(&mut seen.states, range, "states", errors);
             let content = braced(input)?;
             recover_section(&content, errors, |input| {
-                model.states = parse_list(input, |input| {
+                parse_list(input, &mut model.states, |input| {
                     parse_documented_name(input, &mut model.spans, &mut model.docs)
-                })?;
-                Ok(())
+                })
             });
         }
         "equations" => {
             no_docs_here(&attrs, "`equations`", errors);
-            if model.equations_section.is_some() {
-                errors.at(
-                    range,
-                    "`equations` is written twice: put all equations in one section",
-                );
-            } else {
-                model.equations_section = Some(Section { keyword: range });
-            }
+            once(&mut seen.equations, range, "equations", errors);
             let content = braced(input)?;
             while !content.is_empty() {
                 recover_statement(&content, errors, |input| {
@@ -172,12 +181,11 @@ fn parse_item(
             once(&mut seen.options, range, "options", errors);
             let content = braced(input)?;
             recover_section(&content, errors, |input| {
-                model.options = parse_list(input, |input| {
+                parse_list(input, &mut model.options, |input| {
                     let name = parse_name(input, &mut model.spans)?;
                     input.parse::<Token![=]>()?;
                     Ok(with_value(name, parse_signed_number(input)?))
-                })?;
-                Ok(())
+                })
             });
         }
         "variant" => {
@@ -215,15 +223,17 @@ fn parse_variant(
             let inner = braced(&content)?;
             match keyword.to_string().as_str() {
                 "keep" if keep.is_none() => {
-                    keep = Some(parse_list(&inner, |input| parse_name(input, spans))?);
+                    let kept = keep.insert(Vec::new());
+                    parse_list(&inner, kept, |input| parse_name(input, spans))?;
                 }
                 "fix" if fix.is_none() => {
-                    fix = Some(parse_list(&inner, |input| {
+                    let fixed = fix.insert(Vec::new());
+                    parse_list(&inner, fixed, |input| {
                         let name = parse_name(input, spans)?;
                         input.parse::<Token![=]>()?;
                         let value = parse_signed_number(input)?;
                         Ok(with_value(name, value))
-                    })?);
+                    })?;
                 }
                 "keep" | "fix" => {
                     return Err(syn::Error::new(
@@ -278,15 +288,27 @@ fn parse_equation(input: ParseStream, spans: &mut Spans) -> syn::Result<Equation
         None
     };
     let lhs = parse_expr(input, spans)?;
-    let eq: Token![=] = input
-        .parse()
+    if input.peek(Token![==]) {
+        let eqeq: Token![==] = input.parse()?;
+        return Err(syn::Error::new_spanned(
+            eqeq,
+            "`==` is not an equation sign here: an equation reads `lhs = rhs;` with a single `=`",
+        ));
+    }
+    input
+        .parse::<Token![=]>()
         .map_err(|_| input.error("expected `=`: an equation reads `lhs = rhs;`"))?;
-    let eq_id = spans.push(SpanRange::single(eq.span));
     let rhs = parse_expr(input, spans)?;
     input.parse::<Token![;]>()?;
+    let start = match &label {
+        Some(label) => spans.get(label.id),
+        None => spans.get(lhs.id()),
+    };
+    let end = range_of(spans, &rhs);
+    let id = spans.push(start.map_or(end, |start| start.to(end)));
     Ok(Equation {
         label,
-        eq_id,
+        id,
         lhs,
         rhs,
     })
@@ -331,12 +353,13 @@ fn with_value<T>(name: Named<()>, value: T) -> Named<T> {
     }
 }
 
-/// `item, item, ...` with an optional trailing comma, up to the end of `input`.
+/// `item, item, ...` with an optional trailing comma, up to the end of `input`, appended to
+/// `items` as they parse (so the items before an error are kept).
 fn parse_list<T>(
     input: ParseStream,
+    items: &mut Vec<T>,
     mut item: impl FnMut(ParseStream) -> syn::Result<T>,
-) -> syn::Result<Vec<T>> {
-    let mut items = Vec::new();
+) -> syn::Result<()> {
     while !input.is_empty() {
         items.push(item(input)?);
         if input.is_empty() {
@@ -344,7 +367,7 @@ fn parse_list<T>(
         }
         input.parse::<Token![,]>()?;
     }
-    Ok(items)
+    Ok(())
 }
 
 fn braced<'a>(input: ParseStream<'a>) -> syn::Result<syn::parse::ParseBuffer<'a>> {

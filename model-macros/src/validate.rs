@@ -5,7 +5,7 @@
 //! collected; the model is rejected once, with all of them.
 
 use crate::ast::{Call, Expr, ModelAst};
-use crate::names::{function_list, quoted, Decl, Kind, Names, DER};
+use crate::names::{function_list, Decl, Kind, Names, DER};
 use crate::options::compile_options;
 use crate::span::{Errors, SpanRange, Spans};
 use model_algebra::spec::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
@@ -13,7 +13,10 @@ use model_algebra::CompileOptions;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Module names the emitter uses inside every model, so a variant cannot take them.
-const RESERVED_MODULES: [&str; 4] = ["state", "param", "output", "Model"];
+/// Names of the items every model module emits, which a variant's module cannot take.
+pub const RESERVED_MODULES: [&str; 7] = [
+    "state", "param", "output", "Model", "Params", "State", "Outputs",
+];
 
 /// A model ready for the compiler.
 pub struct Validated {
@@ -39,7 +42,7 @@ pub fn validate(ast: &ModelAst) -> syn::Result<Validated> {
     let lets = validator.resolve_lets();
     let equations = validator.resolve_equations();
     let outputs = validator.resolve_outputs();
-    validator.check_counts();
+    validator.check_states();
     validator.check_labels();
     let variants = validator.check_variants();
     let options = compile_options(&ast.options, &ast.spans, &mut validator.errors);
@@ -289,10 +292,11 @@ impl<'a> Validator<'a> {
         for (k, equation) in ast.equations.iter().enumerate() {
             let lhs = self.resolve(&equation.lhs, Scope::Equation);
             let rhs = self.resolve(&equation.rhs, Scope::Equation);
-            let (label, id) = match &equation.label {
-                Some(label) => (label.name.clone(), label.id),
-                None => (format!("equation {}", k + 1), equation.eq_id),
+            let label = match &equation.label {
+                Some(label) => label.name.clone(),
+                None => format!("equation {}", k + 1),
             };
+            let id = equation.id;
             if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
                 equations.push(EquationSpec {
                     label,
@@ -453,30 +457,16 @@ impl<'a> Validator<'a> {
         Some(())
     }
 
-    fn check_counts(&mut self) {
-        let ast = self.ast;
-        let states = ast.states.len();
-        let equations = ast.equations.len();
-        let name_range = SpanRange::single(ast.name.span());
-        if states == 0 {
+    /// A model needs states; whether the equations match them one to one is the compiler's
+    /// structure analysis, which can name the state left without an equation or the equation
+    /// too many.
+    fn check_states(&mut self) {
+        if self.ast.states.is_empty() {
             self.errors.at(
-                name_range,
+                SpanRange::single(self.ast.name.span()),
                 "the model has no states: declare them in `states { .. }`",
             );
-            return;
         }
-        if equations == states {
-            return;
-        }
-        let state_names: Vec<&str> = ast.states.iter().map(|s| s.name.as_str()).collect();
-        let message = format!(
-            "{equations} equation{} for {states} state{} ({}): each state needs exactly one equation",
-            if equations == 1 { "" } else { "s" },
-            if states == 1 { "" } else { "s" },
-            quoted(&state_names)
-        );
-        let range = ast.equations_section.map_or(name_range, |s| s.keyword);
-        self.errors.at(range, message);
     }
 
     fn check_labels(&mut self) {

@@ -109,3 +109,64 @@ fn keeping_the_position_keeps_everything_it_depends_on() {
     cart_only::Model::default().rhs(0.0, &y, &mut b).unwrap();
     assert_same_derivatives(&a, &b, &cart::STATE_NAMES);
 }
+
+#[test]
+fn named_forms_follow_the_index_constants() {
+    // Distinct values, so a field wired to the wrong index cannot go unnoticed.
+    let params = cart::Params {
+        M: 1.0,
+        m: 2.0,
+        l: 3.0,
+        g: 4.0,
+        c: 5.0,
+    };
+    let array = params.to_array();
+    for (name, index) in [
+        ("M", cart::param::M),
+        ("m", cart::param::m),
+        ("l", cart::param::l),
+        ("g", cart::param::g),
+        ("c", cart::param::c),
+    ] {
+        assert_eq!(cart::PARAM_NAMES[index], name);
+        assert_eq!(array[index], (index + 1) as f64);
+    }
+    assert_eq!(cart::Params::from_array(&array), params);
+    assert_eq!(cart::Model::from(params).named_params(), params);
+    // `Default` is the DSL's values, the same as the model's.
+    assert_eq!(
+        cart::Params::default().to_array(),
+        cart::Model::default().params
+    );
+    let state = cart::State {
+        x: 1.0,
+        v: 2.0,
+        phi: 3.0,
+        omega: 4.0,
+    };
+    assert_eq!(state.to_array()[cart::state::phi], 3.0);
+    assert_eq!(cart::State::from(state.to_array()), state);
+}
+
+#[test]
+fn evaluate_returns_the_derivatives_and_the_outputs_of_the_separate_calls() {
+    let model = cart::Model::from_params(cart::Params {
+        c: 0.7,
+        ..Default::default()
+    });
+    let y = [0.1, -0.4, 0.9, 1.3];
+    let mut dy = [0.0; cart::N_STATES];
+    model.rhs(0.5, &y, &mut dy).unwrap();
+    let mut out = [0.0; cart::N_OUTPUTS];
+    model.outputs(0.5, &y, &dy, &mut out).unwrap();
+    let ev = model.evaluate(0.5, &y).unwrap();
+    assert_eq!(ev.der, dy);
+    assert_eq!(ev.outputs, out);
+    // With friction the power is the friction's: -c v^2.
+    assert_close(
+        cart::Outputs::from(ev.outputs).power,
+        -0.7 * 0.4 * 0.4,
+        1e-12,
+        "power with friction",
+    );
+}

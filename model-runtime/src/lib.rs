@@ -4,6 +4,8 @@
 //! * Methods, all behind one [`Stepper`] trait and allocation-free: [`Dopri5`] (5(4), dense
 //!   order 4), [`Dop853`] (8(5,3), dense order 7), [`Rodas4`] (stiff, uses the model's
 //!   Jacobian, dense order 3) and fixed-step [`Rk4`] (cubic Hermite dense output).
+//! * [`Problem`]: one call from a model to a [`Trajectory`] (times, states, outputs, located
+//!   events, statistics, stop reason), as `solve_ivp` does; see [`solve`].
 //! * [`Integrator`]: the shared adaptive loop (PI control, Hairer's initial step, typed
 //!   collapse detection); [`integrate`] for a plain run.
 //! * [`Tolerance`]: one mixed relative/absolute error norm for every method; components that
@@ -53,6 +55,8 @@ pub mod observer;
 pub mod rk4;
 pub mod rodas4;
 pub mod root;
+pub mod solution;
+pub mod solve;
 pub mod stats;
 pub mod stepper;
 mod tableau;
@@ -68,12 +72,14 @@ pub use hybrid::{
     StopReason, Transition,
 };
 pub use integrator::{integrate, DenseStep, Integrator, Solution};
-pub use model::{EvalError, Model, ModelInfo, OpCounts, WithOutputs};
+pub use model::{EvalError, Evaluation, Model, ModelInfo, OpCounts, WithOutputs};
 pub use observer::{
     Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
 };
 pub use rk4::Rk4;
 pub use rodas4::Rodas4;
+pub use solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
+pub use solve::{Event, Method, Output, Problem};
 pub use stats::{ComponentCounts, Stats};
 pub use stepper::{Components, StepEnd, StepStart, Stepper};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

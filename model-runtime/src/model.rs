@@ -135,4 +135,23 @@ pub trait WithOutputs<const N: usize, const M: usize>: Model<N> {
         dy: &[f64; N],
         out: &mut [f64; M],
     ) -> Result<(), EvalError>;
+
+    /// The derivatives and the outputs at `(t, y)` in one call.
+    fn evaluate(&self, t: f64, y: &[f64; N]) -> Result<Evaluation<N, M>, EvalError> {
+        let mut der = [0.0; N];
+        self.rhs(t, y, &mut der)?;
+        let mut outputs = [0.0; M];
+        self.outputs(t, y, &der, &mut outputs)?;
+        Ok(Evaluation { der, outputs })
+    }
+}
+
+/// The derivatives and the outputs of a model at one point ([`WithOutputs::evaluate`]); an
+/// emitted model names them with its `State::from(ev.der)` and `Outputs::from(ev.outputs)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Evaluation<const N: usize, const M: usize> {
+    /// `dy/dt`, indexed like the state.
+    pub der: [f64; N],
+    /// The outputs, in index order.
+    pub outputs: [f64; M],
 }

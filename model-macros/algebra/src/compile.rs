@@ -15,7 +15,8 @@ use crate::print::to_dsl;
 use crate::program::{CompiledModel, Operand, Program, Target};
 use crate::solve::{solve_block, BlockSystem, Sampler, SolveContext};
 use crate::spec::{Diagnostic, ModelSpec, NodeId};
-use crate::structure::{blocks, StructureError};
+use crate::structure::blocks;
+use crate::structure_messages::{derivatives, labels};
 use crate::system::{Pivot, System};
 use crate::trig::{self, Rewritten};
 
@@ -58,9 +59,12 @@ pub fn compile(
         states: (0..spec.states.len()).collect(),
         outputs: (0..spec.outputs.len()).collect(),
     };
+    // Printed before the emission adds the Jacobian's definitions to the system.
+    let explanation = crate::explain::explain(&solved, spec);
     let mut model = solved
         .emit(spec, &spec.name, &everything)
         .map_err(|u| vec![unbound(spec, u)])?;
+    model.explanation = explanation;
     let mut diags = Vec::new();
     for v in &spec.variants {
         match crate::variant::compile_variant(spec, v, options) {
@@ -121,22 +125,6 @@ impl Solved {
                 message: "the model has no states".into(),
             });
         }
-        if spec.equations.len() != n {
-            let id = spec
-                .equations
-                .get(n)
-                .map(|e| e.id)
-                .or(spec.states.last().map(|s| s.id))
-                .unwrap_or(NodeId(0));
-            diags.push(Diagnostic {
-                id,
-                message: format!(
-                    "{} equation(s) for {} state(s): there must be one equation per state",
-                    spec.equations.len(),
-                    n
-                ),
-            });
-        }
         let mut forms: Vec<Option<LinearForm>> = Vec::new();
         for (k, eq) in spec.equations.iter().enumerate() {
             let form = lower
@@ -161,6 +149,10 @@ impl Solved {
             return Err(diags);
         }
         let forms: Vec<LinearForm> = forms.into_iter().flatten().collect();
+        let algebraic = crate::structure_messages::algebraic_equations(spec, &forms);
+        if !algebraic.is_empty() {
+            return Err(algebraic);
+        }
         let outputs: Vec<ExprId> = outputs.into_iter().flatten().collect();
         let system = solve_all(&mut pool, spec, &forms, options)?;
         Ok(Solved {
@@ -288,6 +280,7 @@ impl Solved {
             pivots,
             numeric_blocks,
             variants: Vec::new(),
+            explanation: crate::explain::Explanation::default(),
         })
     }
 }
@@ -352,50 +345,8 @@ fn solve_all(
         .iter()
         .map(|f| f.coefficients.keys().copied().collect())
         .collect();
-    let names = |vars: &[usize]| -> String {
-        vars.iter()
-            .map(|&v| format!("der({})", spec.states[v].name))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let labels = |eqs: &[usize]| -> String {
-        eqs.iter()
-            .map(|&e| spec.equations[e].label.clone())
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let order = match blocks(&incidence, n) {
-        Ok(b) => b,
-        Err(StructureError::Unused(vars)) => {
-            return Err(vars
-                .iter()
-                .map(|&v| Diagnostic {
-                    id: spec.states[v].id,
-                    message: format!(
-                        "der({}) appears in no equation, so nothing determines it",
-                        spec.states[v].name
-                    ),
-                })
-                .collect())
-        }
-        Err(StructureError::Singular { equations, vars }) => {
-            return Err(vec![Diagnostic {
-                id: spec.equations[equations[0]].id,
-                message: format!(
-                    "structurally singular: equations {} cannot determine {} \
-                     ({} equations, {} derivatives)",
-                    labels(&equations),
-                    if vars.is_empty() {
-                        "any derivative".to_string()
-                    } else {
-                        names(&vars)
-                    },
-                    equations.len(),
-                    vars.len()
-                ),
-            }])
-        }
-    };
+    let order = blocks(&incidence, n)
+        .map_err(|error| crate::structure_messages::structure_error(spec, &error))?;
     let text = |pool: &Pool, e: ExprId| to_dsl(pool, e, &|s| symbol_name(spec, s));
     let param = |i: usize| spec.params.get(i).and_then(|p| p.value).unwrap_or(1.0);
     let sampler = Sampler {
@@ -448,8 +399,8 @@ fn solve_all(
                 id: spec.equations[block.equations[0]].id,
                 message: format!(
                     "equations {} are singular: their coefficients of {} cancel identically",
-                    labels(&block.equations),
-                    names(&singular.vars)
+                    labels(spec, &block.equations),
+                    derivatives(spec, &singular.vars)
                 ),
             }),
         }

@@ -1,9 +1,12 @@
-//! Expressions printed back in DSL syntax, with the user's names.
+//! Expressions printed back in DSL syntax, with the user's names, or as LaTeX.
 //!
 //! A pivot that vanishes at run time is reported as text (`sin(theta)`), so the user can
-//! recognise the singular configuration in their own notation.
+//! recognise the singular configuration in their own notation; the solved equations are printed
+//! in both notations so that a physicist can set them beside a paper's. One traversal serves
+//! both: the [`Notation`] decides only how each form is spelled.
 
 use crate::expr::{integer_exponent, ExprId, Node, Pool, Sym};
+use crate::spec::Func;
 
 /// Binding strength of the printed forms, loosest first.
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
@@ -15,10 +18,78 @@ enum Prec {
     Atom,
 }
 
+/// How the printed forms are spelled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Notation {
+    /// The DSL's own syntax: `a*b/(c*d)`, `x^2`, `sqrt(x)`, `sin(x)`.
+    Dsl,
+    /// LaTeX math: `\frac{a b}{c d}`, `x^{2}`, `\sqrt{x}`, `\sin\left(x\right)`.
+    Latex,
+}
+
+impl Notation {
+    fn paren(self, text: &str) -> String {
+        match self {
+            Notation::Dsl => format!("({text})"),
+            Notation::Latex => format!("\\left({text}\\right)"),
+        }
+    }
+
+    fn sqrt(self, text: &str) -> String {
+        match self {
+            Notation::Dsl => format!("sqrt({text})"),
+            Notation::Latex => format!("\\sqrt{{{text}}}"),
+        }
+    }
+
+    fn power(self, base: &str, exponent: &str) -> String {
+        match self {
+            Notation::Dsl => format!("{base}^{exponent}"),
+            Notation::Latex => format!("{{{base}}}^{{{exponent}}}"),
+        }
+    }
+
+    fn call(self, func: Func, args: &[String]) -> String {
+        match self {
+            Notation::Dsl => format!("{}({})", func.name(), args.join(", ")),
+            Notation::Latex => {
+                let name = match func {
+                    Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln => {
+                        format!("\\{}", func.name())
+                    }
+                    Func::Sqrt => return self.sqrt(&args.join(", ")),
+                    Func::Abs => return format!("\\left|{}\\right|", args.join(", ")),
+                    Func::Atan2 => "\\operatorname{atan2}".to_string(),
+                };
+                format!("{name}{}", self.paren(&args.join(", ")))
+            }
+        }
+    }
+
+    /// `num / den`, each a list of factors already printed.
+    fn quotient(self, num: &[String], den: &[String]) -> String {
+        let (times, group) = match self {
+            Notation::Dsl => ("*", Notation::Dsl),
+            Notation::Latex => (" ", Notation::Latex),
+        };
+        let top = num.join(times);
+        match (self, den.len()) {
+            (_, 0) => top,
+            (Notation::Dsl, 1) => format!("{top}/{}", den[0]),
+            (Notation::Dsl, _) => format!("{top}/{}", group.paren(&den.join(times))),
+            (Notation::Latex, _) => format!("\\frac{{{top}}}{{{}}}", den.join(times)),
+        }
+    }
+}
+
 /// Prints `id` in DSL syntax; `name` spells each symbol.
 pub fn to_dsl(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> String {
-    let (text, _) = print(pool, id, name);
-    text
+    print(Notation::Dsl, pool, id, name).0
+}
+
+/// Prints `id` as LaTeX math; `name` spells each symbol (in LaTeX, e.g. `\dot{\theta}`).
+pub fn to_latex(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> String {
+    print(Notation::Latex, pool, id, name).0
 }
 
 fn number(v: f64) -> String {
@@ -29,15 +100,17 @@ fn number(v: f64) -> String {
     }
 }
 
-fn wrap(text: (String, Prec), at_least: Prec) -> String {
+fn wrap(notation: Notation, text: (String, Prec), at_least: Prec) -> String {
     if text.1 >= at_least {
         text.0
     } else {
-        format!("({})", text.0)
+        notation.paren(&text.0)
     }
 }
 
-fn print(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, Prec) {
+type Name<'a> = &'a dyn Fn(Sym) -> String;
+
+fn print(n: Notation, pool: &Pool, id: ExprId, name: Name) -> (String, Prec) {
     match pool.node(id) {
         Node::Const(bits) => {
             let v = f64::from_bits(*bits);
@@ -48,7 +121,7 @@ fn print(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, Prec
         Node::Add(ts) => {
             let mut out = String::new();
             for (k, &t) in ts.iter().enumerate() {
-                let (c, negated) = negated_term(pool, t, name);
+                let (c, negated) = negated_term(n, pool, t, name);
                 match (k, negated) {
                     (0, true) => out.push_str(&format!("-{}", c)),
                     (0, false) => out.push_str(&c),
@@ -59,7 +132,7 @@ fn print(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, Prec
             (out, Prec::Sum)
         }
         Node::Mul(_) => {
-            let (text, negated) = product(pool, id, name);
+            let (text, negated) = product(n, pool, id, name);
             if negated {
                 (format!("-{text}"), Prec::Unary)
             } else {
@@ -69,25 +142,25 @@ fn print(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, Prec
         Node::Pow([b, e]) => {
             let ev = pool.as_const(*e);
             if ev == Some(0.5) {
-                return (format!("sqrt({})", print(pool, *b, name).0), Prec::Atom);
+                return (n.sqrt(&print(n, pool, *b, name).0), Prec::Atom);
             }
             if ev.is_some_and(|v| v < 0.0) {
-                let (text, _) = product(pool, id, name);
+                let (text, _) = product(n, pool, id, name);
                 return (text, Prec::Product);
             }
-            let base = wrap(print(pool, *b, name), Prec::Atom);
-            let exp = wrap(print(pool, *e, name), Prec::Power);
-            (format!("{base}^{exp}"), Prec::Power)
+            let base = wrap(n, print(n, pool, *b, name), Prec::Atom);
+            let exp = match n {
+                // LaTeX braces the exponent: no parentheses needed.
+                Notation::Latex => print(n, pool, *e, name).0,
+                Notation::Dsl => wrap(n, print(n, pool, *e, name), Prec::Power),
+            };
+            (n.power(&base, &exp), Prec::Power)
         }
-        Node::Call(f, [a]) => (
-            format!("{}({})", f.name(), print(pool, *a, name).0),
-            Prec::Atom,
-        ),
+        Node::Call(f, [a]) => (n.call(*f, &[print(n, pool, *a, name).0]), Prec::Atom),
         Node::Atan2([y, x]) => (
-            format!(
-                "atan2({}, {})",
-                print(pool, *y, name).0,
-                print(pool, *x, name).0
+            n.call(
+                Func::Atan2,
+                &[print(n, pool, *y, name).0, print(n, pool, *x, name).0],
             ),
             Prec::Atom,
         ),
@@ -95,16 +168,16 @@ fn print(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, Prec
 }
 
 /// A term of a sum printed without its sign, and whether it was negative.
-fn negated_term(pool: &Pool, t: ExprId, name: &dyn Fn(Sym) -> String) -> (String, bool) {
+fn negated_term(n: Notation, pool: &Pool, t: ExprId, name: Name) -> (String, bool) {
     match pool.node(t) {
         Node::Const(bits) if f64::from_bits(*bits) < 0.0 => (number(-f64::from_bits(*bits)), true),
-        Node::Mul(_) => product(pool, t, name),
-        _ => (wrap(print(pool, t, name), Prec::Product), false),
+        Node::Mul(_) => product(n, pool, t, name),
+        _ => (wrap(n, print(n, pool, t, name), Prec::Product), false),
     }
 }
 
 /// A product (or a lone negative power) as `c*a*b/(d*e)`, without its sign.
-fn product(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, bool) {
+fn product(n: Notation, pool: &Pool, id: ExprId, name: Name) -> (String, bool) {
     let factors: Vec<ExprId> = match pool.node(id) {
         Node::Mul(fs) => fs.to_vec(),
         _ => vec![id],
@@ -119,31 +192,25 @@ fn product(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> (String, bo
         }
         if let Node::Pow([b, e]) = pool.node(f) {
             if let Some(ev) = pool.as_const(*e).filter(|v| *v < 0.0) {
-                let base = wrap(print(pool, *b, name), Prec::Atom);
+                let base = wrap(n, print(n, pool, *b, name), Prec::Atom);
                 let text = match (ev, integer_exponent(-ev)) {
                     (_, Some(1)) => base,
-                    (_, Some(n)) => format!("{base}^{n}"),
-                    (-0.5, _) => format!("sqrt({})", print(pool, *b, name).0),
-                    (v, None) => format!("{base}^{}", number(-v)),
+                    (_, Some(k)) => n.power(&base, &k.to_string()),
+                    (-0.5, _) => n.sqrt(&print(n, pool, *b, name).0),
+                    (v, None) => n.power(&base, &number(-v)),
                 };
                 den.push(text);
                 continue;
             }
         }
-        num.push(wrap(print(pool, f, name), Prec::Unary));
+        num.push(wrap(n, print(n, pool, f, name), Prec::Unary));
     }
     let negated = coefficient < 0.0;
     let magnitude = coefficient.abs();
     if magnitude != 1.0 || num.is_empty() {
         num.insert(0, number(magnitude));
     }
-    let mut text = num.join("*");
-    match den.len() {
-        0 => {}
-        1 => text = format!("{text}/{}", den[0]),
-        _ => text = format!("{text}/({})", den.join("*")),
-    }
-    (text, negated)
+    (n.quotient(&num, &den), negated)
 }
 
 #[cfg(test)]
@@ -184,5 +251,27 @@ mod tests {
         let m = p.neg(a);
         let mm = p.mul2(m, s);
         assert_eq!(to_dsl(&p, mm, &names), "-p0*sin(theta)");
+    }
+
+    #[test]
+    fn prints_in_latex() {
+        let mut p = Pool::new();
+        let th = p.sym(Sym::State(0));
+        let a = p.sym(Sym::Param(0));
+        let s = p.call(Func::Sin, th);
+        assert_eq!(to_latex(&p, s, &names), "\\sin\\left(theta\\right)");
+        let q = p.div(a, s);
+        assert_eq!(
+            to_latex(&p, q, &names),
+            "\\frac{p0}{\\sin\\left(theta\\right)}"
+        );
+        let a2 = p.powf(a, 2.0);
+        let sum = p.add(&[ExprId::ONE, a2]);
+        let r = p.call(Func::Sqrt, sum);
+        assert_eq!(to_latex(&p, r, &names), "\\sqrt{1 + {p0}^{2}}");
+        let two = p.num(2.0);
+        let prod = p.mul(&[two, a2, th]);
+        let diff = p.sub(ExprId::ONE, prod);
+        assert_eq!(to_latex(&p, diff, &names), "1 - 2 theta {p0}^{2}");
     }
 }

@@ -178,4 +178,6 @@ pub struct CompiledModel {
     pub numeric_blocks: Vec<String>,
     /// The reduced variants, compiled.
     pub variants: Vec<CompiledModel>,
+    /// The solved equations, printed (Markdown and LaTeX).
+    pub explanation: crate::explain::Explanation,
 }

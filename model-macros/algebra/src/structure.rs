@@ -22,13 +22,19 @@ pub struct Block {
 pub enum StructureError {
     /// These derivatives appear in no equation.
     Unused(Vec<usize>),
-    /// These equations contain only the listed derivatives, which are fewer than the
-    /// equations.
+    /// No assignment of one derivative to each equation exists.
     Singular {
-        /// Equation indices.
+        /// An equation left over (when there are more equations than derivatives to share):
+        /// the one the message points at.
+        surplus: Option<usize>,
+        /// The equations involved, ascending: those that contain only `vars` (with a surplus),
+        /// or those the undetermined derivatives share.
         equations: Vec<usize>,
-        /// Derivative indices.
+        /// The derivatives `equations` contain, ascending.
         vars: Vec<usize>,
+        /// Every derivative that some maximum matching leaves without an equation, ascending
+        /// (empty when only equations are left over).
+        undetermined: Vec<usize>,
     },
 }
 
@@ -45,14 +51,22 @@ pub fn blocks(incidence: &[Vec<usize>], n_vars: usize) -> Result<Vec<Block>, Str
         return Err(StructureError::Unused(unused));
     }
     let matching = maximum_matching(incidence, n_vars);
+    let (undetermined, shared) = undetermined(incidence, &matching);
     if let Some(e) = (0..incidence.len()).find(|&e| matching.var_of_eq[e].is_none()) {
-        return Err(hall_set(incidence, &matching, e));
-    }
-    if incidence.len() != n_vars {
-        // More derivatives than equations, all of them used: report them all.
+        let (equations, vars) = hall_set(incidence, &matching, e);
         return Err(StructureError::Singular {
-            equations: (0..incidence.len()).collect(),
-            vars: (0..n_vars).collect(),
+            surplus: Some(e),
+            equations,
+            vars,
+            undetermined,
+        });
+    }
+    if !undetermined.is_empty() {
+        return Err(StructureError::Singular {
+            surplus: None,
+            equations: shared,
+            vars: undetermined.clone(),
+            undetermined,
         });
     }
     Ok(tarjan_blocks(incidence, &matching))
@@ -97,9 +111,38 @@ fn augment(incidence: &[Vec<usize>], m: &mut Matching, e: usize, visited: &mut [
     false
 }
 
+/// The derivatives reachable from an unmatched derivative by alternating paths (each can be
+/// the one left without an equation, by swapping along the path), and the equations on those
+/// paths, both ascending.
+fn undetermined(incidence: &[Vec<usize>], m: &Matching) -> (Vec<usize>, Vec<usize>) {
+    let mut vars: Vec<usize> = (0..m.eq_of_var.len())
+        .filter(|&v| m.eq_of_var[v].is_none())
+        .collect();
+    let mut eqs: Vec<usize> = Vec::new();
+    let mut k = 0;
+    while k < vars.len() {
+        let v = vars[k];
+        for (e, contained) in incidence.iter().enumerate() {
+            if !contained.contains(&v) || eqs.contains(&e) {
+                continue;
+            }
+            eqs.push(e);
+            if let Some(w) = m.var_of_eq[e] {
+                if !vars.contains(&w) {
+                    vars.push(w);
+                }
+            }
+        }
+        k += 1;
+    }
+    vars.sort_unstable();
+    eqs.sort_unstable();
+    (vars, eqs)
+}
+
 /// The equations reachable from the unmatched equation `start` by alternating paths, and the
 /// derivatives they contain (all matched, and one fewer than the equations at least).
-fn hall_set(incidence: &[Vec<usize>], m: &Matching, start: usize) -> StructureError {
+fn hall_set(incidence: &[Vec<usize>], m: &Matching, start: usize) -> (Vec<usize>, Vec<usize>) {
     let mut eqs = vec![start];
     let mut vars: Vec<usize> = Vec::new();
     let mut k = 0;
@@ -119,10 +162,7 @@ fn hall_set(incidence: &[Vec<usize>], m: &Matching, start: usize) -> StructureEr
     }
     eqs.sort_unstable();
     vars.sort_unstable();
-    StructureError::Singular {
-        equations: eqs,
-        vars,
-    }
+    (eqs, vars)
 }
 
 /// Tarjan's strongly connected components of "the equation matched to `v` contains `w`",
@@ -234,12 +274,35 @@ mod tests {
         // e0: x0 ; e1: x0 ; e2: x1, x2 (x1 used by e2 only, x2 used)
         let inc = vec![vec![0], vec![0], vec![1, 2]];
         match blocks(&inc, 3) {
-            Err(StructureError::Singular { equations, vars }) => {
+            Err(StructureError::Singular {
+                surplus,
+                equations,
+                vars,
+                undetermined,
+            }) => {
+                assert_eq!(surplus, Some(1));
                 assert_eq!(equations, vec![0, 1]);
                 assert_eq!(vars, vec![0]);
+                // e2 alone holds x1 and x2: either can be the one left over.
+                assert_eq!(undetermined, vec![1, 2]);
             }
             other => panic!("{other:?}"),
         }
+    }
+
+    #[test]
+    fn fewer_equations_leave_every_shared_derivative_undetermined() {
+        // e0: x0, x1 ; e1: x2 — x0 and x1 share one equation.
+        let inc = vec![vec![0, 1], vec![2]];
+        assert_eq!(
+            blocks(&inc, 3),
+            Err(StructureError::Singular {
+                surplus: None,
+                equations: vec![0],
+                vars: vec![0, 1],
+                undetermined: vec![0, 1],
+            })
+        );
     }
 
     #[test]

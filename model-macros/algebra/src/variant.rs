@@ -95,7 +95,8 @@ pub fn compile_variant(
         states: kept_states.into_iter().collect(),
         outputs: kept_outputs.into_iter().collect(),
     };
-    solved.emit(spec, &variant.name, &selection).map_err(|u| {
+    let explanation = crate::explain::explain(&solved, spec);
+    let mut model = solved.emit(spec, &variant.name, &selection).map_err(|u| {
         vec![Diagnostic {
             id: variant.id,
             message: format!(
@@ -103,7 +104,9 @@ pub fn compile_variant(
                 variant.name, u.0
             ),
         }]
-    })
+    })?;
+    model.explanation = explanation;
+    Ok(model)
 }
 
 #[cfg(test)]

@@ -92,6 +92,7 @@ fn compiled() -> CompiledModel {
         pivots: vec!["sin(a)".into()],
         numeric_blocks: vec!["der(a), der(b)".into()],
         variants: Vec::new(),
+        explanation: Default::default(),
     }
 }
 

@@ -50,12 +50,6 @@ rejects! {
     der_of_time_is_fine_but_nested_der_is_not: {
         states { x } let v = der(x); equations { der(v) + der(t) = 0; }
     } => ["nested `der`"];
-    more_equations_than_states: {
-        states { x } equations { der(x) = 1; der(x) = 2; }
-    } => ["2 equations for 1 state (`x`): each state needs exactly one equation"];
-    fewer_equations_than_states: {
-        states { x, y } equations { der(x) = 1; }
-    } => ["1 equation for 2 states (`x`, `y`)"];
     no_states: {
         params { k }
     } => ["the model has no states"];

@@ -3,7 +3,7 @@ model_macros::model! {
         states { x, y }
         equations {
             der(x) = 1;
-            x = y;
+            2 * der(x) = y;
         }
     }
 }

@@ -53,7 +53,8 @@ impl Emitter<'_> {
 
     /// The sums of pivot `e` whose cancellation makes it singular: `e` itself if it is a sum,
     /// else the sums it is a product or positive power of (a cancelling denominator makes a
-    /// pivot large, not singular). Each comes with `Σ |term|` over the operands the emitted
+    /// pivot large, not singular); a sine, cosine or tangent counts as a sum of magnitude
+    /// `|argument|`, since at a root its argument has cancelled against a multiple of `π`. Each comes with `Σ |term|` over the operands the emitted
     /// sum adds; all of them are computed already, so the test costs one `abs` and one
     /// addition per term.
     fn sum_checks(&mut self, e: ExprId) -> Result<Vec<SumCheck>, Unbound> {
@@ -78,6 +79,25 @@ impl Emitter<'_> {
             }
             Node::Pow([base, k]) if self.pool.as_const(k).is_some_and(|k| k > 0.0) => {
                 self.sum_checks(base)?
+            }
+            Node::Call(func @ (Func::Sin | Func::Cos | Func::Tan), [arg]) => {
+                // Near a root `nπ` (or `π/2 + nπ`) a sine is `±sin(x - nπ)`: the argument has
+                // cancelled against the root, and what is left is the argument's rounding
+                // error, of order `eps * |x|`. So the sine is a sum whose magnitude is `|x|`,
+                // tested like any other: `sin(x)` at `x = π` (1.2e-16) is refused.
+                let value = self.operand(e)?;
+                let argument = self.operand(arg)?;
+                let magnitude = self.magnitude(&[argument]);
+                let mut checks = vec![SumCheck {
+                    sum: value,
+                    magnitude,
+                }];
+                if func != Func::Cos {
+                    // Near zero a sine or tangent is its argument: a cancelled argument is a
+                    // cancelled pivot.
+                    checks.extend(self.sum_checks(arg)?);
+                }
+                checks
             }
             _ => Vec::new(),
         })

@@ -60,10 +60,19 @@ rejected! {
         => "a product of two derivatives";
     second_derivative: "states x\n eq a: der(der(x)) = 1" => "only first derivatives";
     structurally_singular: "states x, y, z\n eq R4: der(x) = 1\n eq R5: 2*der(x) = y\n eq R6: der(y) + der(z) = 0"
-        => "structurally singular: equations R4, R5 cannot determine der(x)";
-    unused_derivative: "states x, y\n eq a: der(x) = y\n eq b: der(x) = 1" => "der(y) appears in no equation";
+        => "structurally singular: R4, R5 (2 equations) contain only der(x) (1 derivative), so `R5` is one equation too many, and nothing is left to determine one of der(y), der(z)";
+    unused_derivative: "states x, y\n eq a: der(x) = y\n eq b: der(x) = 1"
+        => "no equation contains der(y), so nothing determines `y`";
+    too_many_equations: "states x\n eq a: der(x) = 1\n eq b: der(x) = 2"
+        => "a, b (2 equations) contain only der(x) (1 derivative), so `b` is one equation too many";
+    too_few_equations_sharing: "states x, y, z\n eq a: der(x) = y\n eq b: der(y) + der(z) = 1"
+        => "too few equations: der(y), der(z) share 1 equation (b); add an equation for one of der(y), der(z)";
+    algebraic_equation: "states x, y\n eq a: der(x) = y\n eq b: x = y"
+        => "b contains no derivative: algebraic equations (constraints) are not supported";
+    cancelled_derivatives_leave_an_algebraic_equation: "states x\n eq a: der(x) - der(x) + x = 1"
+        => "a contains no derivative";
     no_states: "params m = 1" => "no states";
-    too_few_equations: "states x, y\n eq a: der(x) = y" => "1 equation(s) for 2 state(s)";
+    too_few_equations: "states x, y\n eq a: der(x) = y" => "nothing determines `y`";
     unknown_name: "states x\n eq a: der(x) = not_declared" => "unknown name";
     division_by_zero: "states x\n eq a: der(x) = x/0" => "division by zero";
     log_of_zero: "states x\n eq a: der(x) = x + ln(0)" => "not finite";
@@ -106,9 +115,17 @@ fn all_errors_of_a_model_are_reported_together() {
 }
 
 #[test]
-fn singular_block_names_its_equations() {
+fn singular_block_points_at_the_equation_too_many() {
     let (spec, diags) = diagnose(
         "states x, y, z\n eq R4: der(x) = 1\n eq R5: 2*der(x) = y\n eq R6: der(y) + der(z) = 0",
     );
-    assert_eq!(diags[0].id, spec.equations[0].id);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert_eq!(diags[0].id, spec.equations[1].id);
+}
+
+#[test]
+fn too_few_equations_point_at_a_state_without_one() {
+    let (spec, diags) = diagnose("states x, y, z\n eq a: der(x) = y\n eq b: der(y) + der(z) = 1");
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert_eq!(diags[0].id, spec.states[1].id);
 }

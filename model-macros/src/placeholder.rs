@@ -1,0 +1,78 @@
+//! What is emitted in place of a model with errors: the same module with the same public items
+//! (constants, index modules, `Model`, `new`, `Default`, the named structs, the trait
+//! implementations, one module per variant), built from whatever names parsed, with empty
+//! bodies.
+//!
+//! It exists so that the user sees the model's own errors and nothing else: code that uses
+//! `m::Model::default()`, `m::state::x` or `m::Params { .. }` still type-checks against the
+//! placeholder, and the bodies never run, because the crate does not compile. It is produced
+//! by the same emitter as a real model, from a compiled model whose programs are empty, so its
+//! items cannot drift from the real ones.
+
+use crate::ast::ModelAst;
+use crate::emit::emit;
+use crate::validate::RESERVED_MODULES;
+use model_algebra::explain::Explanation;
+use model_algebra::program::{CompiledModel, Program};
+use proc_macro2::TokenStream;
+use std::collections::BTreeSet;
+
+/// The placeholder module for a model that failed to parse, validate or compile.
+pub fn placeholder(ast: &ModelAst) -> TokenStream {
+    let mut ast = ast.clone();
+    ast.attrs.retain(|attr| attr.path().is_ident("doc"));
+    let mut variant_names = BTreeSet::new();
+    ast.variants.retain(|variant| {
+        let name = variant.name.to_string();
+        !RESERVED_MODULES.contains(&name.as_str()) && variant_names.insert(name)
+    });
+    for variant in &mut ast.variants {
+        variant.attrs.retain(|attr| attr.path().is_ident("doc"));
+    }
+    let stub = stub(&ast);
+    emit(&ast, &stub)
+}
+
+/// A compiled model with the declared names (each once) and no code.
+fn stub(ast: &ModelAst) -> CompiledModel {
+    let states = unique(ast.states.iter().map(|s| (s.name.clone(), ())));
+    let params = unique(ast.params.iter().map(|p| (p.name.clone(), p.value)));
+    let outputs = unique(ast.outputs.iter().map(|o| (o.name.clone(), ())));
+    let model = |name: String, params: Vec<(String, Option<f64>)>| CompiledModel {
+        name,
+        states: states.iter().map(|(name, ())| name.clone()).collect(),
+        params,
+        outputs: outputs.iter().map(|(name, ())| name.clone()).collect(),
+        rhs: Program::default(),
+        jacobian: Program::default(),
+        outputs_program: Program::default(),
+        pivots: Vec::new(),
+        numeric_blocks: Vec::new(),
+        variants: Vec::new(),
+        explanation: Explanation::default(),
+    };
+    let variants = ast
+        .variants
+        .iter()
+        .map(|variant| {
+            let fixed: BTreeSet<&str> = variant.fix.iter().map(|f| f.name.as_str()).collect();
+            let kept = params
+                .iter()
+                .filter(|(name, _)| !fixed.contains(name.as_str()))
+                .cloned()
+                .collect();
+            model(variant.name.to_string(), kept)
+        })
+        .collect();
+    let mut compiled = model(ast.name.to_string(), params.clone());
+    compiled.variants = variants;
+    compiled
+}
+
+/// The first declaration of each name, in order (a name declared twice is already an error).
+fn unique<T>(items: impl Iterator<Item = (String, T)>) -> Vec<(String, T)> {
+    let mut seen = BTreeSet::new();
+    items
+        .filter(|(name, _)| seen.insert(name.clone()))
+        .collect()
+}

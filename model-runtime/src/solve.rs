@@ -1,0 +1,451 @@
+//! One call from a model to a trajectory, in the spirit of scipy's `solve_ivp`: the model (with
+//! its parameters), the initial state, the time span and a few options in; times, states,
+//! outputs, located events, statistics and the reason it stopped out ([`Trajectory`]).
+//!
+//! ```
+//! use model_runtime::{Event, Method, Output, Problem, Termination};
+//! use model_runtime::{Direction, EvalError, Model, ModelInfo, OpCounts, WithOutputs};
+//!
+//! /// A ball thrown upwards: y = (height, velocity); output: its energy per unit mass.
+//! struct Ball;
+//! const ZERO: OpCounts = OpCounts { add: 0, mul: 0, div: 0, sqrt: 0, trig: 0, transcendental: 0 };
+//! static INFO: ModelInfo = ModelInfo {
+//!     name: "ball", state_names: &["h", "v"], param_names: &[], output_names: &["energy"],
+//!     rhs_ops: ZERO, jacobian_ops: ZERO, outputs_ops: ZERO, pivots: &[], numeric_blocks: &[],
+//! };
+//! impl Model<2> for Ball {
+//!     fn info(&self) -> &'static ModelInfo { &INFO }
+//!     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+//!         *dy = [y[1], -9.81];
+//!         Ok(())
+//!     }
+//! }
+//! impl WithOutputs<2, 1> for Ball {
+//!     fn outputs(&self, _t: f64, y: &[f64; 2], _dy: &[f64; 2], out: &mut [f64; 1])
+//!         -> Result<(), EvalError> {
+//!         out[0] = y[1] * y[1] / 2.0 + 9.81 * y[0];
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let sol = Problem::new(&Ball, [0.0, 10.0], (0.0, 5.0))
+//!     .method(Method::Dop853)
+//!     .tolerances(1e-10, 1e-12)
+//!     .output(Output::Times((0..=30).map(|k| 0.1 * k as f64).collect()))
+//!     .event(Event::new("apex", |_t, y, _dy| y[1]))
+//!     .event(Event::new("ground", |_t, y, _dy| y[0]).direction(Direction::Down).terminal())
+//!     .solve()
+//!     .unwrap();
+//! // The apex (v = 0) and the landing (h = 0, at 2 v0 / g) are located exactly.
+//! assert!((sol.events[0].t - 10.0 / 9.81).abs() < 1e-12);
+//! assert_eq!(sol.stop, Termination::Event { name: "ground".into() });
+//! assert!((sol.events[1].t - 20.0 / 9.81).abs() < 1e-12);
+//! assert!(sol.events[1].y[0].abs() < 1e-12); // the exact state at the landing
+//! assert_eq!(sol.t.len(), 21); // the requested times before the landing: 0, 0.1, ..., 2
+//! assert!(sol.column("energy").unwrap().iter().all(|e| (e - 50.0).abs() < 1e-9));
+//! ```
+//!
+//! It is built on the hybrid driver with a single mode ([`crate::hybrid`]): the events are its
+//! guards, located exactly on the dense output with the semantics documented in
+//! [`crate::events`]; a terminal event stops the run, any other restarts the integrator at the
+//! event state. Nothing about stepping or event location is re-implemented here.
+
+use crate::control::StepOptions;
+use crate::dop853::Dop853;
+use crate::dopri5::Dopri5;
+use crate::events::{Direction, EventHit, GuardSpec, InteriorChecks};
+use crate::hybrid::{
+    HybridError, HybridOptions, HybridSolver, HybridSystem, StopReason, Transition,
+};
+use crate::model::{EvalError, WithOutputs};
+use crate::observer::{Observer, StepView};
+use crate::rk4::Rk4;
+use crate::rodas4::Rodas4;
+use crate::solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
+use crate::stepper::Stepper;
+use crate::tolerance::Tolerance;
+
+/// The integration method.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum Method {
+    /// Dormand–Prince 5(4), dense order 4: the general-purpose default.
+    #[default]
+    Dopri5,
+    /// Dormand–Prince 8(5,3), dense order 7: for tight tolerances.
+    Dop853,
+    /// Rosenbrock 4(3), uses the model's Jacobian: for stiff models.
+    Rodas4,
+    /// Classical Runge–Kutta with this fixed step (no error control).
+    Rk4 {
+        /// The step size.
+        h: f64,
+    },
+}
+
+/// Where the trajectory is recorded.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum Output {
+    /// At the start and at the end of every accepted step (as `solve_ivp` without `t_eval`).
+    #[default]
+    Steps,
+    /// At these times, interpolated on each step's dense output (of the method's order); they
+    /// must be finite, non-decreasing and inside the time span.
+    Times(Vec<f64>),
+}
+
+/// The function of an event: `g(t, y, dy)`, whose zero crossings are the event.
+pub type EventFunction<const N: usize> = Box<dyn Fn(f64, &[f64; N], &[f64; N]) -> f64>;
+
+/// An event: a named scalar function of `(t, y, dy)` whose zero crossings are located exactly.
+///
+/// A non-terminal event restarts the integrator at the event state (a clean restart, as after
+/// any transition). Two events crossing at the very same time are reported once, for the one
+/// listed first ([`crate::events`]: the segment ends at the earliest event).
+pub struct Event<const N: usize> {
+    name: String,
+    function: EventFunction<N>,
+    direction: Direction,
+    terminal: bool,
+}
+
+impl<const N: usize> Event<N> {
+    /// An event firing on crossings of `function` through zero in either direction, not
+    /// terminal.
+    pub fn new(
+        name: impl Into<String>,
+        function: impl Fn(f64, &[f64; N], &[f64; N]) -> f64 + 'static,
+    ) -> Self {
+        Event {
+            name: name.into(),
+            function: Box::new(function),
+            direction: Direction::Both,
+            terminal: false,
+        }
+    }
+
+    /// Fires only on crossings in `direction`.
+    pub fn direction(mut self, direction: Direction) -> Self {
+        self.direction = direction;
+        self
+    }
+
+    /// Stops the run at the first crossing.
+    pub fn terminal(mut self) -> Self {
+        self.terminal = true;
+        self
+    }
+
+    /// The event's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl<const N: usize> std::fmt::Debug for Event<N> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Event")
+            .field("name", &self.name)
+            .field("direction", &self.direction)
+            .field("terminal", &self.terminal)
+            .finish_non_exhaustive()
+    }
+}
+
+/// An initial-value problem and how to solve it; [`Problem::solve`] runs it.
+#[derive(Debug)]
+pub struct Problem<'m, M, const N: usize> {
+    model: &'m M,
+    y0: [f64; N],
+    span: (f64, f64),
+    method: Method,
+    tolerance: Tolerance<N>,
+    output: Output,
+    events: Vec<Event<N>>,
+    step: StepOptions,
+    guard_checks: InteriorChecks,
+}
+
+impl<'m, M, const N: usize> Problem<'m, M, N> {
+    /// `model` (with its parameters) from `y0` over `span = (t0, t_end)`, with [`Method::Dopri5`]
+    /// at `rtol = 1e-6`, `atol = 1e-9`, recording every step.
+    pub fn new(model: &'m M, y0: [f64; N], span: (f64, f64)) -> Self {
+        Problem {
+            model,
+            y0,
+            span,
+            method: Method::default(),
+            tolerance: Tolerance::scalar(1e-6, 1e-9),
+            output: Output::default(),
+            events: Vec::new(),
+            step: StepOptions::default(),
+            guard_checks: InteriorChecks::default(),
+        }
+    }
+
+    /// The integration method.
+    pub fn method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
+
+    /// The same relative and absolute tolerance for every state.
+    pub fn tolerances(mut self, rtol: f64, atol: f64) -> Self {
+        self.tolerance = Tolerance::scalar(rtol, atol);
+        self
+    }
+
+    /// Full control of the error norm (per-state tolerances, vector groups).
+    pub fn tolerance(mut self, tolerance: Tolerance<N>) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Where the trajectory is recorded.
+    pub fn output(mut self, output: Output) -> Self {
+        self.output = output;
+        self
+    }
+
+    /// Adds an event (events listed first win ties).
+    pub fn event(mut self, event: Event<N>) -> Self {
+        self.events.push(event);
+        self
+    }
+
+    /// The budget of step attempts (accepted and rejected).
+    pub fn max_steps(mut self, max_steps: u64) -> Self {
+        self.step.max_steps = max_steps;
+        self
+    }
+
+    /// Step-size limits, initial step, step budget and control, all at once.
+    pub fn step_options(mut self, step: StepOptions) -> Self {
+        self.step = step;
+        self
+    }
+
+    /// Interior points of each step where the events are also checked (a sign change and back
+    /// within one step is otherwise invisible).
+    pub fn event_checks(mut self, checks: InteriorChecks) -> Self {
+        self.guard_checks = checks;
+        self
+    }
+
+    /// Integrates and records the trajectory.
+    pub fn solve<const K: usize>(self) -> Result<Trajectory<N, K>, SolveFailure>
+    where
+        M: WithOutputs<N, K>,
+    {
+        match self.method {
+            Method::Dopri5 => self.solve_with(Dopri5::new()),
+            Method::Dop853 => self.solve_with(Dop853::new()),
+            Method::Rodas4 => self.solve_with(Rodas4::new()),
+            Method::Rk4 { h } => self.solve_with(Rk4::new(h)),
+        }
+    }
+
+    fn solve_with<S: Stepper<N>, const K: usize>(
+        self,
+        stepper: S,
+    ) -> Result<Trajectory<N, K>, SolveFailure>
+    where
+        M: WithOutputs<N, K>,
+    {
+        let info = self.model.info();
+        let names: Vec<String> = self.events.iter().map(|e| e.name.clone()).collect();
+        let fail = |error: HybridError<()>| SolveFailure::from_hybrid(error, info, &names);
+        let (t0, t_end) = self.span;
+        if let Output::Times(times) = &self.output {
+            check_times(times, t0, t_end)?;
+        }
+        let options = HybridOptions {
+            step: self.step,
+            guard_checks: self.guard_checks,
+            ..HybridOptions::default()
+        };
+        let mut solver = HybridSolver::new(stepper, self.tolerance, options).map_err(|e| {
+            fail(HybridError::Solve {
+                mode: (),
+                error: e.into(),
+            })
+        })?;
+        let mut system = Single {
+            model: self.model,
+            guards: self
+                .events
+                .iter()
+                .enumerate()
+                .map(|(index, e)| GuardSpec {
+                    id: index,
+                    direction: e.direction,
+                })
+                .collect(),
+            events: &self.events,
+            located: Vec::new(),
+        };
+        let mut record = Record::new(&self.output, t0, self.y0);
+        let outcome = solver
+            .run(&mut system, (), t0, &self.y0, t_end, &mut record)
+            .map_err(fail)?;
+        let stop = match outcome.stop {
+            StopReason::EndTime => Termination::EndTime,
+            StopReason::User(index) => Termination::Event {
+                name: self.events[index].name.clone(),
+            },
+            StopReason::Observer => unreachable!("the trajectory's recorder never stops a run"),
+        };
+        Trajectory::build(
+            self.model,
+            record.t,
+            record.y,
+            system.located,
+            outcome.stats,
+            stop,
+        )
+    }
+}
+
+/// Output times must be finite, non-decreasing and inside the span.
+fn check_times(times: &[f64], t0: f64, t_end: f64) -> Result<(), SolveFailure> {
+    let mut previous = t0;
+    for (index, &t) in times.iter().enumerate() {
+        if !(t.is_finite() && t >= previous && t <= t_end) {
+            return Err(SolveFailure::OutputTime {
+                index,
+                t,
+                t0,
+                t_end,
+            });
+        }
+        previous = t;
+    }
+    Ok(())
+}
+
+/// The model as a hybrid system with one mode whose guards are the events.
+struct Single<'a, M, const N: usize> {
+    model: &'a M,
+    guards: Vec<GuardSpec<usize>>,
+    events: &'a [Event<N>],
+    located: Vec<LocatedEvent<N>>,
+}
+
+impl<M: crate::model::Model<N>, const N: usize> HybridSystem<N> for Single<'_, M, N> {
+    type Mode = ();
+    type Guard = usize;
+    type Stop = usize;
+
+    fn rhs(&self, _: (), t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+        self.model.rhs(t, y, dy)
+    }
+
+    fn jacobian(
+        &self,
+        _: (),
+        t: f64,
+        y: &[f64; N],
+        jac: &mut [[f64; N]; N],
+    ) -> Result<(), EvalError> {
+        self.model.jacobian(t, y, jac)
+    }
+
+    fn guards(&self, _: ()) -> &[GuardSpec<usize>] {
+        &self.guards
+    }
+
+    fn guard_values(
+        &self,
+        _: (),
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        for (value, event) in values.iter_mut().zip(self.events) {
+            *value = (event.function)(t, y, dy);
+        }
+        Ok(())
+    }
+
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<N, usize>,
+    ) -> Result<Transition<N, (), usize>, EvalError> {
+        let event = &self.events[hit.guard];
+        self.located.push(LocatedEvent {
+            name: event.name.clone(),
+            index: hit.guard,
+            t: hit.t,
+            y: hit.y,
+            der: hit.dy,
+            crossed: hit.direction,
+        });
+        Ok(if event.terminal {
+            Transition::Stop(hit.guard)
+        } else {
+            Transition::Continue { y: hit.y }
+        })
+    }
+}
+
+/// Collects the recorded points as the run streams its steps.
+struct Record<'o, const N: usize> {
+    output: &'o Output,
+    /// The next requested time not yet recorded ([`Output::Times`]).
+    next: usize,
+    t: Vec<f64>,
+    y: Vec<[f64; N]>,
+}
+
+impl<'o, const N: usize> Record<'o, N> {
+    fn new(output: &'o Output, t0: f64, y0: [f64; N]) -> Self {
+        let mut record = Record {
+            output,
+            next: 0,
+            t: Vec::new(),
+            y: Vec::new(),
+        };
+        match output {
+            Output::Steps => record.push(t0, y0),
+            Output::Times(times) => {
+                while record.next < times.len() && times[record.next] <= t0 {
+                    record.next += 1;
+                    record.push(t0, y0);
+                }
+            }
+        }
+        record
+    }
+
+    fn push(&mut self, t: f64, y: [f64; N]) {
+        self.t.push(t);
+        self.y.push(y);
+    }
+}
+
+impl<const N: usize> Observer<N, (), usize> for Record<'_, N> {
+    fn wants_dense(&self) -> bool {
+        matches!(self.output, Output::Times(_))
+    }
+
+    fn on_step(&mut self, step: &StepView<'_, N, ()>) {
+        match self.output {
+            Output::Steps => self.push(step.t1, *step.y1),
+            Output::Times(times) => {
+                while self.next < times.len() && times[self.next] <= step.t1 {
+                    let t = times[self.next];
+                    let mut y = *step.y1;
+                    if t < step.t1 {
+                        // Always present: `wants_dense` asks the driver for it in this case.
+                        if let Some(dense) = step.dense {
+                            dense.at(t, &mut y);
+                        }
+                    }
+                    self.push(t, y);
+                    self.next += 1;
+                }
+            }
+        }
+    }
+}
