@@ -112,6 +112,11 @@ impl Collector {
         self.data.events.push(e);
     }
 
+    /// Whether it writes `trajectory.csv` as the samples arrive.
+    pub fn writes_file(&self) -> bool {
+        self.file.is_some()
+    }
+
     /// The time of the latest sample.
     pub fn latest_t(&self) -> Option<f64> {
         self.latest.map(|s| s.t)

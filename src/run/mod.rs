@@ -209,19 +209,65 @@ pub fn record(
     if let Some(file) = file {
         collector = collector.writing(file);
     }
-    std::thread::scope(|scope| {
-        let rx = simulation::start(scope, scene, choice, plan, interrupt);
-        collect(&rx, &mut collector, progress)
+    let ended = if collector.writes_file() || progress.shows() {
+        // Two threads: the simulation on one, writing and progress on the other.
+        std::thread::scope(|scope| {
+            let rx = simulation::start(scope, scene, choice, plan, interrupt);
+            collect(&rx, &mut collector, progress)
+        })?
+    } else {
+        // Nothing to overlap (a sweep's quiet run without a trajectory): one thread, so that
+        // parallel runs each keep one core.
+        let mut inline = Inline {
+            collector: &mut collector,
+            error: None,
+        };
+        let result = simulation::simulate_into(scene, choice, plan, interrupt, &mut inline);
+        if let Some(e) = inline.error {
+            return Err(e);
+        }
+        match result {
+            Ok(o) => {
+                let stop = o.stop.clone();
+                (Some(o), stop)
+            }
+            Err(message) => (None, abandoned(&collector, "error", message)),
+        }
+    };
+    let (outcome, stop) = ended;
+    let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
+    data.stop = Some(stop);
+    Ok(Recorded {
+        data,
+        outcome,
+        file,
     })
-    .and_then(|(outcome, stop)| {
-        let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
-        data.stop = Some(stop);
-        Ok(Recorded {
-            data,
-            outcome,
-            file,
-        })
-    })
+}
+
+/// The simulation's stream taken straight into a collector on the same thread.
+struct Inline<'a> {
+    collector: &'a mut Collector,
+    error: Option<WriteError>,
+}
+
+impl simulation::Outlet for &mut Inline<'_> {
+    fn deliver(&mut self, m: Message) -> bool {
+        let written = match m {
+            Message::Samples(batch) => batch.into_iter().try_for_each(|s| self.collector.sample(s)),
+            Message::Event(e) => {
+                self.collector.event(e);
+                Ok(())
+            }
+            Message::Done(_) => Ok(()),
+        };
+        match written {
+            Ok(()) => true,
+            Err(e) => {
+                self.error = Some(e);
+                false
+            }
+        }
+    }
 }
 
 /// Receives the worker's stream into `collector` until the simulation ends. A write error

@@ -34,6 +34,11 @@ impl Progress {
         }
     }
 
+    /// Whether it shows anything (a quiet run's progress is not worth a thread).
+    pub fn shows(&self) -> bool {
+        self.style != ProgressStyle::Quiet
+    }
+
     /// The simulation reached `t`.
     pub fn update(&mut self, t: f64) {
         let fraction = (t / self.t_end).clamp(0.0, 1.0);

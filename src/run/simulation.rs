@@ -187,8 +187,21 @@ enum Halted {
     Forbidden { t: f64, mode: ModeName },
 }
 
-struct ChannelObserver<'a> {
-    tx: SyncSender<Message>,
+/// Where the simulation's stream goes: a channel to another thread, or straight into a
+/// collector on this one.
+pub trait Outlet {
+    /// Delivers `m`; false once the receiver is gone (the run then stops).
+    fn deliver(&mut self, m: Message) -> bool;
+}
+
+impl Outlet for SyncSender<Message> {
+    fn deliver(&mut self, m: Message) -> bool {
+        self.send(m).is_ok()
+    }
+}
+
+struct ChannelObserver<'a, O> {
+    tx: O,
     open: bool,
     plan: SamplePlan,
     batch: Vec<Sample>,
@@ -203,9 +216,9 @@ struct ChannelObserver<'a> {
     halted: Option<Halted>,
 }
 
-impl ChannelObserver<'_> {
+impl<O: Outlet> ChannelObserver<'_, O> {
     fn send(&mut self, m: Message) {
-        if self.open && self.tx.send(m).is_err() {
+        if self.open && !self.tx.deliver(m) {
             self.open = false;
         }
     }
@@ -218,7 +231,7 @@ impl ChannelObserver<'_> {
     }
 }
 
-impl DiskObserver for ChannelObserver<'_> {
+impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     fn wants_sample(&self, t: f64) -> bool {
         self.plan.wants(t)
     }
@@ -260,13 +273,13 @@ impl DiskObserver for ChannelObserver<'_> {
 }
 
 /// The worker's task: simulate and stream what is observed.
-struct Streamed<'a, 'b> {
+struct Streamed<'a, 'b, O> {
     config: &'a DiskConfig,
     initial: &'a InitialState,
-    observer: &'a mut ChannelObserver<'b>,
+    observer: &'a mut ChannelObserver<'b, O>,
 }
 
-impl ModelsTask for Streamed<'_, '_> {
+impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
     type Output = Result<Outcome, String>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
@@ -296,53 +309,62 @@ fn halted_record(halted: Halted, allowed: &[ModeName], stop: &StopRecord) -> Sto
     }
 }
 
-/// Starts the simulation of `scene` with the models of `choice` on a worker thread of
-/// `scope`, sampling what `plan` keeps; raising `stop` ends it at its next step. Returns the
-/// receiving end.
-pub fn start<'scope>(
-    scope: &'scope Scope<'scope, '_>,
+/// Runs the simulation of `scene` with the models of `choice` on this thread, delivering the
+/// samples `plan` keeps and the mode decisions to `outlet`; raising `stop` ends it at its next
+/// step.
+pub fn simulate_into<O: Outlet>(
     scene: &Scene,
     choice: &ModelChoice,
     plan: SamplePlan,
-    stop: &'scope AtomicBool,
-) -> Receiver<Message> {
-    let (tx, rx) = sync_channel(64);
+    stop: &AtomicBool,
+    outlet: O,
+) -> Result<Outcome, String> {
     let config = config_of(scene, plan.fine_rate());
-    let chart = chart_of(scene);
-    let params = scene.params;
     let initial = InitialState {
         t: 0.0,
         y: scene.initial.state.to_array(),
     };
-    let (model, frozen) = (choice.model, choice.frozen.clone());
-    let allowed = scene.file.modes.allowed.clone();
     let flush_every = scene.file.run.t_end / 200.0;
+    let mut observer = ChannelObserver {
+        tx: outlet,
+        open: true,
+        plan,
+        batch: Vec::with_capacity(BATCH),
+        flush_at: flush_every,
+        flush_every,
+        frozen: choice.frozen.clone(),
+        allowed: scene.file.modes.allowed.clone(),
+        stop,
+        halted: None,
+    };
+    let task = Streamed {
+        config: &config,
+        initial: &initial,
+        observer: &mut observer,
+    };
+    let result = with_models(choice.model, scene.params, chart_of(scene), task)
+        .unwrap_or_else(|e| Err(e.to_string()));
+    observer.flush();
+    result.map(|mut o| {
+        if let Some(h) = observer.halted {
+            o.stop = halted_record(h, &observer.allowed, &o.stop);
+        }
+        o
+    })
+}
+
+/// Starts [`simulate_into`] on a worker thread of `scope`, streaming through a bounded
+/// channel whose receiving end is returned; the last message is [`Message::Done`].
+pub fn start<'scope>(
+    scope: &'scope Scope<'scope, '_>,
+    scene: &'scope Scene,
+    choice: &'scope ModelChoice,
+    plan: SamplePlan,
+    stop: &'scope AtomicBool,
+) -> Receiver<Message> {
+    let (tx, rx) = sync_channel(64);
     scope.spawn(move || {
-        let mut observer = ChannelObserver {
-            tx: tx.clone(),
-            open: true,
-            plan,
-            batch: Vec::with_capacity(BATCH),
-            flush_at: flush_every,
-            flush_every,
-            frozen,
-            allowed,
-            stop,
-            halted: None,
-        };
-        let task = Streamed {
-            config: &config,
-            initial: &initial,
-            observer: &mut observer,
-        };
-        let result = with_models(model, params, chart, task).unwrap_or_else(|e| Err(e.to_string()));
-        observer.flush();
-        let result = result.map(|mut o| {
-            if let Some(h) = observer.halted {
-                o.stop = halted_record(h, &observer.allowed, &o.stop);
-            }
-            o
-        });
+        let result = simulate_into(scene, choice, plan, stop, tx.clone());
         let _ = tx.send(Message::Done(Box::new(result)));
     });
     rx

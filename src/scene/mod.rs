@@ -192,19 +192,31 @@ impl Override {
 }
 
 /// Finds the scene text: a readable file first, else a built-in scene by name.
+/// When `name_or_path` is an existing file: its name (the file stem) and text, or the path and
+/// the I/O error; `None` when it names no file (a built-in name, say). Scenes and sweeps are
+/// both given this way.
+pub fn read_file_by_path(
+    name_or_path: &str,
+) -> Option<Result<(String, String), (std::path::PathBuf, std::io::Error)>> {
+    let path = Path::new(name_or_path);
+    if !path.is_file() {
+        return None;
+    }
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| name_or_path.to_string());
+    Some(
+        std::fs::read_to_string(path)
+            .map(|text| (name, text))
+            .map_err(|source| (path.to_path_buf(), source)),
+    )
+}
+
 /// Returns (scene name, text).
 pub fn resolve(name_or_path: &str) -> Result<(String, String), SceneError> {
-    let path = Path::new(name_or_path);
-    if path.is_file() {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| name_or_path.to_string());
-        return Ok((name, text));
+    if let Some(read) = read_file_by_path(name_or_path) {
+        return read.map_err(|(path, source)| SceneError::Read { path, source });
     }
     let stem = name_or_path.strip_suffix(".toml").unwrap_or(name_or_path);
     let stem = stem.strip_prefix("scenes/").unwrap_or(stem);

@@ -229,17 +229,9 @@ pub struct LoadedSweep {
 
 /// Reads a sweep by file path or built-in name.
 pub fn load(name_or_path: &str) -> Result<LoadedSweep, SpecError> {
-    let path = Path::new(name_or_path);
-    if path.is_file() {
-        let text = std::fs::read_to_string(path).map_err(|source| SpecError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| name_or_path.to_string());
-        let folder = path.parent().map(Path::to_path_buf);
+    if let Some(read) = crate::scene::read_file_by_path(name_or_path) {
+        let (name, text) = read.map_err(|(path, source)| SpecError::Read { path, source })?;
+        let folder = Path::new(name_or_path).parent().map(Path::to_path_buf);
         return parse(&name, &text).map(|file| LoadedSweep { name, folder, file });
     }
     let stem = name_or_path.strip_suffix(".toml").unwrap_or(name_or_path);

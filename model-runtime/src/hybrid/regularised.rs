@@ -149,6 +149,26 @@ fn physical_rate<const N: usize, const M: usize>(dz: &[f64; M]) -> [f64; N] {
     std::array::from_fn(|i| dz[i] * per_s)
 }
 
+/// An event of the clocked run (dated in `τ`) as the inner system sees it: at physical time
+/// `t`, its state without the clock, its rate in physical time, the inner `guard`.
+fn physical_hit<G, const N: usize, const M: usize>(
+    hit: &EventHit<M, ClockGuard<G>>,
+    guard: G,
+    t: f64,
+) -> EventHit<N, G> {
+    EventHit {
+        guard,
+        index: hit.index,
+        t,
+        // The bracket's width in τ, converted at the clock's rate.
+        before: t - (hit.t - hit.before) * hit.dy[N],
+        y: head(&hit.y),
+        dy: physical_rate(&hit.dy),
+        value: hit.value,
+        direction: hit.direction,
+    }
+}
+
 impl<'a, H: TimeScale<N>, const N: usize, const M: usize> Regularised<'a, H, N, M> {
     const CLOCK_IS_LAST: () = assert!(M == N + 1, "the clocked state has one more component");
 
@@ -302,16 +322,7 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
         };
         let t = self.time_of(&hit.y);
         self.latest.set(t);
-        let physical = EventHit {
-            guard,
-            index: hit.index,
-            t,
-            before: t - (hit.t - hit.before) * hit.dy[N],
-            y: head(&hit.y),
-            dy: physical_rate(&hit.dy),
-            value: hit.value,
-            direction: hit.direction,
-        };
+        let physical = physical_hit(hit, guard, t);
         Ok(match self.inner.on_event(mode, &physical)? {
             Transition::Stop(r) => Transition::Stop(Clocked::Inner(r)),
             Transition::Switch { to, y } => {
@@ -434,20 +445,10 @@ where
         let ClockGuard::Inner(guard) = record.hit.guard else {
             return;
         };
-        let hit = &record.hit;
-        let t = self.t_seg + hit.y[N];
+        let t = self.t_seg + record.hit.y[N];
         self.t_seg = t;
         self.inner.on_transition(&TransitionRecord {
-            hit: EventHit {
-                guard,
-                index: hit.index,
-                t,
-                before: t - (hit.t - hit.before) * hit.dy[N],
-                y: head(&hit.y),
-                dy: physical_rate(&hit.dy),
-                value: hit.value,
-                direction: hit.direction,
-            },
+            hit: physical_hit(&record.hit, guard, t),
             from: record.from,
             kind: match record.kind {
                 TransitionKind::Switch { to } => TransitionKind::Switch { to },
