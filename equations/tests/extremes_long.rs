@@ -9,6 +9,8 @@
 //! between switches, not grow with the horizon: the largest drift after 100 s must stay within
 //! a small factor of the largest before.
 
+// It measures the peak memory of its process, so it keeps a test binary of its own.
+#[path = "suite/common/mod.rs"]
 mod common;
 
 use common::extreme::Watch;

@@ -1,0 +1,123 @@
+//! Bad input to the library's `simulate`, the layer under the CLI.
+//!
+//! The scene loader and the `eval` command are fuzzed at the CLI (`tests/scenes.rs`,
+//! `tests/cli_eval.rs`: random keys, types, NaN, ±inf, 1e400, random text) and the models at
+//! non-finite states (`singular.rs`); what had no test is the library entry point itself, which
+//! other programs call without those front ends. Any setting or initial component set to NaN,
+//! ±inf, zero, a negative or a huge number must give a typed error naming it, or a run whose
+//! every number is finite; never a panic or a hang (the work is bounded by a short horizon and
+//! a step budget).
+
+use crate::common::extreme::{dop853, models, Watch};
+use equations::hybrid::{simulate, DiskConfig, InitialState, SimError};
+use equations::DiskParams;
+use proptest::prelude::*;
+
+fn bad_number() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(0.0),
+        Just(-1.0),
+        Just(1e300),
+        Just(-1e300),
+        Just(1e-300),
+        -10.0..10.0f64,
+    ]
+}
+
+/// The configuration fields that take a number, by name.
+const FIELDS: [&str; 6] = [
+    "rtol",
+    "atol",
+    "t_end",
+    "stick_threshold",
+    "min_inclination",
+    "sample_rate",
+];
+
+fn with_field(mut c: DiskConfig, field: &str, v: f64) -> DiskConfig {
+    match field {
+        "rtol" => c.rtol = v,
+        "atol" => c.atol = v,
+        "t_end" => c.t_end = v,
+        "stick_threshold" => c.stick_threshold = v,
+        "min_inclination" => c.min_inclination = v,
+        "sample_rate" => c.sample_rate = Some(v),
+        _ => unreachable!(),
+    }
+    c
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn a_bad_setting_is_named_or_the_run_is_finite(
+        field in prop::sample::select(&FIELDS[..]),
+        value in bad_number(),
+    ) {
+        let p = DiskParams::paper();
+        let base = DiskConfig { max_steps: 20_000, sample_rate: Some(100.0), ..dop853(1e-8, 0.05) };
+        let config = with_field(base, field, value);
+        let mut watch = Watch::streaming();
+        match simulate(&models(p), &config, &InitialState::paper(&p), &mut watch) {
+            Ok(_) => prop_assert!(watch.first_non_finite.is_none(), "{field} = {value}"),
+            // A huge end time is named through the sample count it would need, a huge atol
+            // through the stick threshold that must stay above it.
+            Err(SimError::Config { name, .. }) => prop_assert!(
+                name.starts_with(field)
+                    || (field == "t_end" && name == "sample_rate")
+                    || (field == "atol" && name == "stick_threshold"),
+                "{field}: {name}"
+            ),
+            // Legal but unworkable values (rtol 1e-300, a stick threshold of 1e-300 m/s, a huge
+            // end time) end with a typed integration failure: a collapse or the step budget; a
+            // stick threshold of 1e300 m/s with a singular pivot (`|u|² = inf`) at the start.
+            Err(SimError::Solve { .. } | SimError::Transition { .. }) => {}
+            Err(e) => prop_assert!(false, "{field} = {value}: {e}"),
+        }
+    }
+
+    #[test]
+    fn a_bad_initial_component_is_named_or_the_run_is_finite(
+        component in 0usize..12,
+        value in bad_number(),
+    ) {
+        let p = DiskParams::paper();
+        let mut initial = InitialState::paper(&p);
+        initial.y[component] = value;
+        let config = DiskConfig { max_steps: 20_000, ..dop853(1e-8, 0.01) };
+        let mut watch = Watch::streaming();
+        match simulate(&models(p), &config, &initial, &mut watch) {
+            Ok(_) => prop_assert!(watch.first_non_finite.is_none(), "y[{component}] = {value}"),
+            Err(SimError::InitialState { component: c, .. }) => prop_assert_eq!(c, component),
+            // Huge rates: a typed integration failure (collapse, budget) is a named stop too.
+            Err(SimError::Solve { .. } | SimError::Transition { .. } | SimError::Onset { .. }) => {}
+            Err(e) => prop_assert!(false, "y[{component}] = {value}: {e}"),
+        }
+    }
+}
+
+/// Every sample is delivered, so 1e300 Hz over 0.05 s would ask for 5e298 samples and never
+/// end (it did, before the rate was bounded against the horizon).
+#[test]
+fn an_absurd_sample_rate_is_rejected_by_name() {
+    let p = DiskParams::paper();
+    let config = DiskConfig {
+        sample_rate: Some(1e300),
+        ..dop853(1e-8, 0.05)
+    };
+    let result = simulate(&models(p), &config, &InitialState::paper(&p), &mut ());
+    assert!(
+        matches!(
+            result,
+            Err(SimError::Config {
+                name: "sample_rate",
+                ..
+            })
+        ),
+        "{result:?}"
+    );
+}

@@ -1,0 +1,11 @@
+//! Every integration test of the equation compiler in one test binary, one module per former file: one
+//! link instead of one per file, which is most of a cold `cargo test`.
+
+mod cart_pendulum;
+mod cartesian_pendulum;
+mod common;
+mod dense_chain;
+mod rotating_hoop;
+mod solve;
+mod tiny_pivot;
+mod ui;

@@ -1,0 +1,12 @@
+//! Every integration test of the command line in one test binary, one module per former file: one
+//! link instead of one per file, which is most of a cold `cargo test`.
+
+mod cli_eval;
+mod cli_run;
+mod outputs;
+mod pruned_scene;
+mod run_pipeline;
+mod scene_physics;
+mod scenes;
+mod sound;
+mod sweep;
