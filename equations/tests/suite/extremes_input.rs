@@ -1,7 +1,7 @@
 //! Bad input to the library's `simulate`, the layer under the CLI.
 //!
-//! The scene loader and the `eval` command are fuzzed at the CLI (`tests/scenes.rs`,
-//! `tests/cli_eval.rs`: random keys, types, NaN, ±inf, 1e400, random text) and the models at
+//! The scene loader and the `eval` command are fuzzed at the CLI (`tests/suite/scenes.rs`,
+//! `tests/suite/cli_eval.rs`: random keys, types, NaN, ±inf, 1e400, random text) and the models at
 //! non-finite states (`singular.rs`); what had no test is the library entry point itself, which
 //! other programs call without those front ends. Any setting or initial component set to NaN,
 //! ±inf, zero, a negative or a huge number must give a typed error naming it, or a run whose
