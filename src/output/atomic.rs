@@ -73,11 +73,6 @@ impl AtomicFile {
         })
     }
 
-    /// The file's final path.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
     /// Where to write the content.
     pub fn writer(&mut self) -> &mut BufWriter<File> {
         self.writer

@@ -48,11 +48,6 @@ impl TrajectoryFile {
     pub fn commit(self) -> Result<(), WriteError> {
         self.file.commit()
     }
-
-    /// The file's final path.
-    pub fn path(&self) -> &std::path::Path {
-        self.file.path()
-    }
 }
 
 /// Collects a run's stream.
@@ -62,15 +57,6 @@ pub struct Collector {
     data: RunData,
     latest: Option<Sample>,
     file: Option<TrajectoryFile>,
-}
-
-/// A mode the scene does not allow was entered.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ForbiddenMode {
-    /// Time (s).
-    pub t: f64,
-    /// The mode.
-    pub mode: ModeName,
 }
 
 impl Collector {

@@ -224,11 +224,6 @@ impl<'a, H: TimeScale<N>, const N: usize, const M: usize> Regularised<'a, H, N, 
         self.latest.get()
     }
 
-    /// The inner system.
-    pub fn inner(&self) -> &H {
-        self.inner
-    }
-
     /// Tolerances for the clocked state: `tol` for the states (its vector groups kept), and
     /// `clock.0` (relative), `clock.1` (absolute) for the clock.
     pub fn tolerance(&self, tol: &Tolerance<N>, clock: (f64, f64)) -> Tolerance<M> {
