@@ -3,9 +3,59 @@
 //! Every way a run can fail carries the numbers that explain it (the time, the step size, the
 //! component that would not converge), so a caller can report the problem in the model's terms
 //! instead of reading a log. Nothing here panics and no failure is reported as a NaN state.
+//!
+//! A leaf of the crate: every other module reports through these types, and they depend on
+//! nothing else in it (a model's own failure, [`EvalError`], lives here for that reason).
 
-use crate::model::EvalError;
 use std::fmt;
+
+/// Why a model could not be evaluated at a state.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EvalError {
+    /// A pivot of the solve is zero, not finite, or cancelled to round-off at this state: the
+    /// implicit system is singular here (for the disk: `sin(theta)` at a flat disk, or the
+    /// sliding determinant).
+    SingularPivot {
+        /// The model's name.
+        model: &'static str,
+        /// The pivot as the user wrote it, e.g. `sin(theta)`.
+        pivot: &'static str,
+        /// Its value at the state (zero, infinite, NaN, or a remainder of cancellation small
+        /// against the terms it was summed from).
+        value: f64,
+    },
+    /// A computed quantity is not finite (overflow, or a non-finite input).
+    NonFinite {
+        /// The model's name.
+        model: &'static str,
+        /// The quantity's name (a state derivative as `der(x)`, or an output).
+        quantity: &'static str,
+        /// Its value.
+        value: f64,
+    },
+}
+
+impl fmt::Display for EvalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EvalError::SingularPivot {
+                model,
+                pivot,
+                value,
+            } => write!(
+                f,
+                "model `{model}` is singular here: pivot `{pivot}` = {value:e}"
+            ),
+            EvalError::NonFinite {
+                model,
+                quantity,
+                value,
+            } => write!(f, "model `{model}`: `{quantity}` is not finite ({value})"),
+        }
+    }
+}
+
+impl std::error::Error for EvalError {}
 
 /// Why a single-mode integration (or one segment of a hybrid run) failed.
 #[derive(Clone, Debug, PartialEq)]

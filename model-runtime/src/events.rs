@@ -1,60 +1,16 @@
 //! Guards, their semantics, and the search for the earliest crossing inside a step.
 //!
-//! # Guard semantics
-//!
-//! A guard is a scalar function `g(t, y, dy)` of the current mode. The driver evaluates all
-//! guards of the mode at the start of a segment and after every accepted step (where `dy` is
-//! already known), and tracks for each guard a *reference sign*: the sign of its last nonzero
-//! value.
-//!
-//! * **Crossing.** A guard with reference sign `-` crosses *up* in a step when its value at the
-//!   step end is `>= 0`; with reference sign `+` it crosses *down* when the value is `<= 0`.
-//!   A value exactly zero at a step end therefore counts as a crossing, located at (or before)
-//!   that end.
-//! * **Direction filter.** [`Direction::Up`] guards fire only on up-crossings,
-//!   [`Direction::Down`] only on down-crossings, [`Direction::Both`] on either. A filtered
-//!   crossing fires nothing but still updates the reference sign.
-//! * **Re-arming after a transition.** A guard exactly zero at the start of a segment
-//!   (typically because the transition put the state on that guard's surface) does not fire
-//!   there: it has no reference sign until it moves away from zero, and its first nonzero value
-//!   at a later check point decides what happens:
-//!   - if it left zero in a direction its filter *admits*, the new mode was entered on its own
-//!     switching surface heading out through it: that departure is an event, reported at the
-//!     last check point where the guard was still zero (normally the segment start, with the
-//!     exact start state). This is how an immediate switch back (or a sliding-mode relay that
-//!     must chatter) becomes visible instead of silently continuing in an inconsistent mode;
-//!   - otherwise the value becomes the reference sign and nothing fires.
-//!
-//!   Exceptions, where a departure is *quiet* (never fires; the guard fires again only after a
-//!   later genuine crossing): after [`crate::hybrid::Transition::Continue`], the guard that
-//!   just fired (a reset such as a bounce leaves the state on the surface and moves on; that
-//!   is not a new event); and at the start of a run, every guard (no transition led there: a
-//!   run may well start on a surface, e.g. an orbit started at its periapsis).
-//! * **Exact location.** A crossing is located on the step's dense output by a bracketing root
-//!   finder ([`crate::root`]) to a few ulps of `t`. The reported time is the first point found
-//!   on the *far* side of the crossing (or exactly on zero), so the event state is already
-//!   past the surface and a restart from it cannot detect the same crossing again.
-//! * **Several guards in one step.** The earliest crossing wins; equal times go to the guard
-//!   listed first. The others are not reported (the segment ends at the event).
-//! * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
-//!   [`crate::hybrid::HybridOptions::guard_checks`] to sample the guards at interior points of
-//!   each step on the dense output ([`InteriorChecks`]); a double crossing between two samples
-//!   still goes unseen. [`InteriorChecks::Screened`] samples cost no model evaluation: the
-//!   guards see the interpolant and its derivative, and only a sample that shows an admitted
-//!   crossing (or a non-finite value) is evaluated exactly, so estimates can trigger a check
-//!   but never decide an event or move a reference sign. An estimate interpolates only the
-//!   components the mode's guards declare they read ([`GuardInputs`]) and is NaN in all
-//!   others, so a guard that reads an undeclared one gets a non-finite estimate: an exact
-//!   check, never a wrong answer. Most steps need only two estimates:
-//!   with the exact end values they fit a cubic per guard, and when every cubic keeps its sign
-//!   with a margin, the other sample points are skipped. The same holds for an excursion shorter than a step right after a
-//!   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
-//!   point): the quiet guard's first nonzero value is already back on the near side.
+//! The guard semantics themselves are documented where users meet them, on
+//! [`GuardSpec`]; this module keeps one definition of what fires ([`GuardTracker`]) that the
+//! step-end checks, the interior checks and screening all share.
 
+mod direction;
 mod inputs;
 mod interior;
 mod quiet;
 
+pub(crate) use direction::crossing;
+pub use direction::{Crossed, Direction};
 pub use inputs::GuardInputs;
 pub(crate) use interior::cubic_keeps_sign;
 pub use interior::InteriorChecks;
@@ -69,37 +25,58 @@ pub(crate) enum Probe {
     Estimate,
 }
 
-/// Which crossings of zero fire a guard.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Direction {
-    /// From negative to non-negative.
-    Up,
-    /// From positive to non-positive.
-    Down,
-    /// Either.
-    Both,
-}
-
-/// The direction of an actual crossing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Crossed {
-    /// Negative before, non-negative at the event.
-    Up,
-    /// Positive before, non-positive at the event.
-    Down,
-}
-
-impl Direction {
-    /// Whether a crossing in direction `c` fires a guard with this filter.
-    pub fn admits(self, c: Crossed) -> bool {
-        matches!(
-            (self, c),
-            (Direction::Both, _) | (Direction::Up, Crossed::Up) | (Direction::Down, Crossed::Down)
-        )
-    }
-}
-
 /// One guard of a mode: an identifier chosen by the user and its direction filter.
+///
+/// # Semantics
+///
+/// A guard is a scalar function `g(t, y, dy)` of the current mode. The driver evaluates all
+/// guards of the mode at the start of a segment and after every accepted step (where `dy` is
+/// already known), and tracks for each guard a *reference sign*: the sign of its last nonzero
+/// value.
+///
+/// * **Crossing.** A guard with reference sign `-` crosses *up* in a step when its value at the
+///   step end is `>= 0`; with reference sign `+` it crosses *down* when the value is `<= 0`.
+///   A value exactly zero at a step end therefore counts as a crossing, located at (or before)
+///   that end.
+/// * **Direction filter.** [`Direction::Up`] guards fire only on up-crossings,
+///   [`Direction::Down`] only on down-crossings, [`Direction::Both`] on either. A filtered
+///   crossing fires nothing but still updates the reference sign.
+/// * **Re-arming after a transition.** A guard exactly zero at the start of a segment
+///   (typically because the transition put the state on that guard's surface) does not fire
+///   there: it has no reference sign until it moves away from zero, and its first nonzero value
+///   at a later check point decides what happens:
+///   - if it left zero in a direction its filter *admits*, the new mode was entered on its own
+///     switching surface heading out through it: that departure is an event, reported at the
+///     last check point where the guard was still zero (normally the segment start, with the
+///     exact start state). This is how an immediate switch back (or a sliding-mode relay that
+///     must chatter) becomes visible instead of silently continuing in an inconsistent mode;
+///   - otherwise the value becomes the reference sign and nothing fires.
+///
+///   Exceptions, where a departure is *quiet* (never fires; the guard fires again only after a
+///   later genuine crossing): after [`crate::Transition::Continue`], the guard that
+///   just fired (a reset such as a bounce leaves the state on the surface and moves on; that
+///   is not a new event); and at the start of a run, every guard (no transition led there: a
+///   run may well start on a surface, e.g. an orbit started at its periapsis).
+/// * **Exact location.** A crossing is located on the step's dense output by a bracketing root
+///   finder ([`crate::find_crossing`]) to a few ulps of `t`. The reported time is the first point found
+///   on the *far* side of the crossing (or exactly on zero), so the event state is already
+///   past the surface and a restart from it cannot detect the same crossing again.
+/// * **Several guards in one step.** The earliest crossing wins; equal times go to the guard
+///   listed first. The others are not reported (the segment ends at the event).
+/// * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
+///   [`crate::HybridOptions::guard_checks`] to sample the guards at interior points of
+///   each step on the dense output ([`InteriorChecks`]); a double crossing between two samples
+///   still goes unseen. [`InteriorChecks::Screened`] samples cost no model evaluation: the
+///   guards see the interpolant and its derivative, and only a sample that shows an admitted
+///   crossing (or a non-finite value) is evaluated exactly, so estimates can trigger a check
+///   but never decide an event or move a reference sign. An estimate interpolates only the
+///   components the mode's guards declare they read ([`GuardInputs`]) and is NaN in all
+///   others, so a guard that reads an undeclared one gets a non-finite estimate: an exact
+///   check, never a wrong answer. Most steps need only two estimates:
+///   with the exact end values they fit a cubic per guard, and when every cubic keeps its sign
+///   with a margin, the other sample points are skipped. The same holds for an excursion shorter than a step right after a
+///   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
+///   point): the quiet guard's first nonzero value is already back on the near side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct GuardSpec<G> {
     /// The user's name for the guard (typically a fieldless enum).
@@ -128,18 +105,6 @@ pub struct EventHit<const N: usize, G> {
     pub value: f64,
     /// How it crossed.
     pub direction: Crossed,
-}
-
-/// The crossing of a single reference sign by a new value, if any.
-#[inline]
-pub(crate) fn crossing(reference: f64, value: f64) -> Option<Crossed> {
-    if reference < 0.0 && value >= 0.0 {
-        Some(Crossed::Up)
-    } else if reference > 0.0 && value <= 0.0 {
-        Some(Crossed::Down)
-    } else {
-        None
-    }
 }
 
 /// Which guards' departures from zero are quiet at a segment start.

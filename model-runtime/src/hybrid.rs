@@ -3,63 +3,68 @@
 //! A hybrid system has a finite set of modes sharing one state dimension `N`. In each mode it
 //! has a right-hand side and a list of guards; when a guard fires, the system's transition map
 //! decides what happens: switch to another mode with a new state, restart the same mode from a
-//! reset state, or stop. The driver integrates one mode at a time with any [`Stepper`],
-//! locates the earliest guard crossing exactly (see [`crate::events`] for the semantics),
+//! reset state, or stop. The driver integrates one mode at a time with any [`crate::Stepper`],
+//! locates the earliest guard crossing exactly (see [`crate::GuardSpec`] for the semantics),
 //! applies the transition and restarts the integrator cleanly: no stage is reused across a
 //! transition (no first-same-as-last) and the initial step size is chosen afresh.
 //!
 //! The system is a trait with an enum-dispatch style (`fn rhs(&self, mode, ...)`), so the
 //! inner loop is monomorphised: no dynamic dispatch, no allocation per step.
 //!
-//! ```
-//! use model_runtime::hybrid::*;
-//! use model_runtime::{Dop853, Direction, EvalError, GuardSpec, EventHit, Tolerance};
-//!
-//! /// A ball bouncing on the ground with restitution 0.9: y = (height, velocity).
-//! struct Ball;
-//! const GROUND: [GuardSpec<&str>; 1] = [GuardSpec { id: "ground", direction: Direction::Down }];
-//! impl HybridSystem<2> for Ball {
-//!     type Mode = ();
-//!     type Guard = &'static str;
-//!     type Stop = ();
-//!     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
-//!         *dy = [y[1], -9.81];
-//!         Ok(())
-//!     }
-//!     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GROUND }
-//!     fn guard_values(&self, _: (), _t: f64, y: &[f64; 2], _dy: &[f64; 2], g: &mut [f64])
-//!         -> Result<(), EvalError> { g[0] = y[0]; Ok(()) }
-//!     fn on_event(&mut self, _: (), hit: &EventHit<2, &'static str>)
-//!         -> Result<Transition<2, (), ()>, EvalError> {
-//!         Ok(Transition::Continue { y: [0.0, -0.9 * hit.y[1]] })
-//!     }
-//! }
-//!
-//! let mut solver = HybridSolver::new(Dop853::new(), Tolerance::scalar(1e-10, 1e-12),
-//!                                    HybridOptions::default()).unwrap();
-//! let out = solver.run(&mut Ball, (), 0.0, &[1.0, 0.0], 2.0, &mut ()).unwrap();
-//! assert_eq!(out.stop, StopReason::EndTime);
-//! assert!(out.transitions >= 2);
-//! ```
+//! What a transition map decided beyond the next mode and state (which rule fired, with which
+//! numbers: what a caller logs) travels with the transition as the system's
+//! [`HybridSystem::Note`], and the driver hands it to [`crate::Observer::on_transition`] by value
+//! in the same record as the event. A system therefore needs no side channel between its
+//! transition map and the observer (both are borrowed by the driver for the whole run).
 
-pub mod regularised;
-mod run;
+// The children use this file's types; this file uses none of theirs (the crate root
+// re-exports them), so the module and its children form no import circle.
+pub(crate) mod physical_time;
+pub(crate) mod regularised;
+pub(crate) mod run;
 
 use crate::control::StepOptions;
-use crate::error::{InputError, SolveError};
-use crate::events::{EventHit, GuardInputs, GuardSpec, GuardTracker, InteriorChecks};
-use crate::integrator::Integrator;
-use crate::model::EvalError;
-use crate::observer::Observer;
+use crate::error::{EvalError, SolveError};
+use crate::events::{EventHit, GuardInputs, GuardSpec, InteriorChecks};
+use crate::jacobian::finite_difference_jacobian;
 use crate::stats::Stats;
-use crate::stepper::Stepper;
-use crate::tolerance::Tolerance;
-pub use regularised::{ClockGuard, Clocked, PhysicalTime, Regularised, TimeScale};
-use run::Run;
-use std::collections::VecDeque;
 use std::fmt::{self, Debug};
 
 /// A system with modes, guards and a transition map.
+///
+/// ```
+/// use model_runtime::{
+///     Dop853, Direction, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver,
+///     HybridSystem, StopReason, Tolerance, Transition,
+/// };
+///
+/// /// A ball bouncing on the ground with restitution 0.9: y = (height, velocity).
+/// struct Ball;
+/// const GROUND: [GuardSpec<&str>; 1] = [GuardSpec { id: "ground", direction: Direction::Down }];
+/// impl HybridSystem<2> for Ball {
+///     type Mode = ();
+///     type Guard = &'static str;
+///     type Stop = ();
+///     type Note = ();
+///     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+///         *dy = [y[1], -9.81];
+///         Ok(())
+///     }
+///     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GROUND }
+///     fn guard_values(&self, _: (), _t: f64, y: &[f64; 2], _dy: &[f64; 2], g: &mut [f64])
+///         -> Result<(), EvalError> { g[0] = y[0]; Ok(()) }
+///     fn on_event(&mut self, _: (), hit: &EventHit<2, &'static str>)
+///         -> Result<Transition<2, (), ()>, EvalError> {
+///         Ok(Transition::Continue { y: [0.0, -0.9 * hit.y[1]], note: () })
+///     }
+/// }
+///
+/// let mut solver = HybridSolver::new(Dop853::new(), Tolerance::scalar(1e-10, 1e-12),
+///                                    HybridOptions::default()).unwrap();
+/// let out = solver.run(&mut Ball, (), 0.0, &[1.0, 0.0], 2.0, &mut ()).unwrap();
+/// assert_eq!(out.stop, StopReason::EndTime);
+/// assert!(out.transitions >= 2);
+/// ```
 pub trait HybridSystem<const N: usize> {
     /// The modes (typically a fieldless enum).
     type Mode: Copy + PartialEq + Debug;
@@ -67,6 +72,10 @@ pub trait HybridSystem<const N: usize> {
     type Guard: Copy + PartialEq + Debug;
     /// Why the system asked to stop (user-defined).
     type Stop: Clone + Debug;
+    /// What a transition tells the observer besides the event and the states (user-defined;
+    /// `()` for nothing): it travels in [`Transition::Switch`] and [`Transition::Continue`]
+    /// and reaches [`crate::Observer::on_transition`] in the [`crate::TransitionRecord`].
+    type Note;
 
     /// `dy = f(t, y)` in `mode`.
     fn rhs(
@@ -110,7 +119,7 @@ pub trait HybridSystem<const N: usize> {
     /// (default: all). Screening estimates ([`InteriorChecks::Screened`]) interpolate only
     /// these and pass NaN in every other component; exact evaluations always get the full
     /// state. Declaring less than the guards read is safe but slow: the guard sees NaN, and a
-    /// non-finite estimate only asks for an exact evaluation ([`crate::events`]).
+    /// non-finite estimate only asks for an exact evaluation ([`crate::GuardSpec`]).
     fn guard_inputs(&self, _mode: Self::Mode) -> GuardInputs<N> {
         GuardInputs::ALL
     }
@@ -121,7 +130,7 @@ pub trait HybridSystem<const N: usize> {
         &mut self,
         mode: Self::Mode,
         hit: &EventHit<N, Self::Guard>,
-    ) -> Result<Transition<N, Self::Mode, Self::Stop>, EvalError>;
+    ) -> Result<TransitionOf<N, Self>, EvalError>;
 
     /// A step size to try first in a segment of `mode` starting at `(t, y)` (the run's start
     /// or a restart after a transition); `None` (the default) keeps the configured
@@ -142,47 +151,37 @@ pub trait HybridSystem<const N: usize> {
     }
 }
 
-/// What the transition map decided.
+/// What the transition map decided; `Nt` is the system's [`HybridSystem::Note`], handed to
+/// the observer with the applied transition.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Transition<const N: usize, Md, R> {
+pub enum Transition<const N: usize, Md, R, Nt = ()> {
     /// Continue in mode `to` from state `y`.
     Switch {
         /// The new mode.
         to: Md,
         /// The state it starts from.
         y: [f64; N],
+        /// What the observer is told about it.
+        note: Nt,
     },
     /// Restart the same mode from state `y` (e.g. after a velocity reset).
     Continue {
         /// The state it restarts from.
         y: [f64; N],
+        /// What the observer is told about it.
+        note: Nt,
     },
     /// End the run here.
     Stop(R),
 }
 
-/// Central-difference Jacobian of `f` at `y`.
-pub fn finite_difference_jacobian<const N: usize>(
-    mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), EvalError>,
-    y: &[f64; N],
-    jac: &mut [[f64; N]; N],
-) -> Result<(), EvalError> {
-    let mut yp = *y;
-    let mut fp = [0.0; N];
-    let mut fm = [0.0; N];
-    for j in 0..N {
-        let h = f64::EPSILON.cbrt() * y[j].abs().max(1.0);
-        yp[j] = y[j] + h;
-        f(&yp, &mut fp)?;
-        yp[j] = y[j] - h;
-        f(&yp, &mut fm)?;
-        yp[j] = y[j];
-        for i in 0..N {
-            jac[i][j] = (fp[i] - fm[i]) / (2.0 * h);
-        }
-    }
-    Ok(())
-}
+/// The [`Transition`] of a system `H`: its modes, stop reasons and notes.
+pub type TransitionOf<const N: usize, H> = Transition<
+    N,
+    <H as HybridSystem<N>>::Mode,
+    <H as HybridSystem<N>>::Stop,
+    <H as HybridSystem<N>>::Note,
+>;
 
 /// More than `max_transitions` transitions within any time window of width `window` is
 /// chattering: the run stops with [`HybridError::Chattering`] instead of looping.
@@ -211,7 +210,7 @@ pub struct HybridOptions {
     pub step: StepOptions,
     /// Chattering detection.
     pub chatter: ChatterLimit,
-    /// Samples per time unit delivered to [`Observer::on_sample`] at `t0 + k / rate`;
+    /// Samples per time unit delivered to [`crate::Observer::on_sample`] at `t0 + k / rate`;
     /// `None` for no samples.
     pub sample_rate: Option<f64>,
     /// Interior points of each step at which guards are also checked on the dense output
@@ -226,7 +225,7 @@ pub enum StopReason<R> {
     EndTime,
     /// The transition map asked to stop.
     User(R),
-    /// The observer asked to stop ([`Observer::proceed`]).
+    /// The observer asked to stop ([`crate::Observer::proceed`]).
     Observer,
 }
 
@@ -303,75 +302,8 @@ impl<Md: Debug> fmt::Display for HybridError<Md> {
 
 impl<Md: Debug> std::error::Error for HybridError<Md> {}
 
-/// The result of [`HybridSolver::run`] for a system `H`.
+/// The result of [`crate::HybridSolver::run`] for a system `H`.
 pub type HybridResult<const N: usize, H> = Result<
     HybridOutcome<N, <H as HybridSystem<N>>::Mode, <H as HybridSystem<N>>::Stop>,
     HybridError<<H as HybridSystem<N>>::Mode>,
 >;
-
-/// Runs hybrid systems with one stepper and one set of options.
-#[derive(Clone, Debug)]
-pub struct HybridSolver<S, const N: usize> {
-    integrator: Integrator<S, N>,
-    options: HybridOptions,
-}
-
-impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
-    /// A solver; the options are checked here.
-    pub fn new(stepper: S, tol: Tolerance<N>, options: HybridOptions) -> Result<Self, InputError> {
-        if let Some(rate) = options.sample_rate {
-            if !rate.is_finite() || rate <= 0.0 {
-                return Err(InputError::SampleRate { rate });
-            }
-        }
-        let c = options.chatter;
-        if c.max_transitions == 0 || c.window.is_nan() || c.window <= 0.0 {
-            return Err(InputError::ChatterLimit {
-                max_transitions: c.max_transitions,
-                window: c.window,
-            });
-        }
-        Ok(HybridSolver {
-            integrator: Integrator::new(stepper, tol, options.step)?,
-            options,
-        })
-    }
-
-    /// Integrates `sys` from `(t0, y0)` in `mode` until `t_end` or until the transition map
-    /// stops, streaming output to `observer`.
-    pub fn run<H, O>(
-        &mut self,
-        sys: &mut H,
-        mode: H::Mode,
-        t0: f64,
-        y0: &[f64; N],
-        t_end: f64,
-        observer: &mut O,
-    ) -> HybridResult<N, H>
-    where
-        H: HybridSystem<N>,
-        O: Observer<N, H::Mode, H::Guard>,
-    {
-        let input = |e: InputError| HybridError::Solve {
-            mode,
-            error: e.into(),
-        };
-        if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
-            return Err(input(InputError::TimeSpan { t0, t_end }));
-        }
-        self.integrator.reset_counters();
-        let mut run = Run {
-            it: &mut self.integrator,
-            opts: self.options,
-            tracker: GuardTracker::default(),
-            values: Vec::new(),
-            inputs: GuardInputs::ALL,
-            recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
-            next_sample: 0,
-            t_first: t0,
-            mode,
-            transitions: 0,
-        };
-        run.go(sys, t0, y0, t_end, observer)
-    }
-}

@@ -5,14 +5,46 @@
 //!   order 4), [`Dop853`] (8(5,3), dense order 7), [`Rodas4`] (stiff, uses the model's
 //!   Jacobian, dense order 3) and fixed-step [`Rk4`] (cubic Hermite dense output).
 //! * [`Problem`]: one call from a model to a [`Trajectory`] (times, states, outputs, located
-//!   events, statistics, stop reason), as `solve_ivp` does; see [`solve`].
+//!   events, statistics, stop reason), as `solve_ivp` does.
 //! * [`Integrator`]: the shared adaptive loop (PI control, Hairer's initial step, typed
 //!   collapse detection); [`integrate`] for a plain run.
 //! * [`Tolerance`]: one mixed relative/absolute error norm for every method; components that
 //!   form a vector can be scaled by the vector's length (frame-independent), and the component
 //!   that limits each step can be counted ([`Stats::limiting`]).
-//! * [`hybrid`]: modes, guards with exact crossing location ([`events`] documents the guard
-//!   semantics), transition maps, chattering detection, projection, streaming [`observer`]s.
+//! * Hybrid systems ([`HybridSystem`], run by [`HybridSolver`]): modes, guards with exact
+//!   crossing location (semantics at [`GuardSpec`]), transition maps with a typed note for the
+//!   observer, chattering detection, projection, streaming [`Observer`]s.
+//!
+//! # The API by theme
+//!
+//! Every public item is re-exported here, once, under one name; the modules are private, so a
+//! path such as `model_runtime::Tolerance` is the only one there is.
+//!
+//! * **The model contract** (what `model-macros` emits, what hand-written models implement):
+//!   [`Model`], [`WithOutputs`], [`Evaluation`], [`ModelInfo`], [`OpCounts`], [`EvalError`];
+//!   for emitted code only, [`solve_block`]; the default Jacobian, [`finite_difference_jacobian`].
+//! * **Methods**: the [`Stepper`] trait ([`StepStart`], [`StepEnd`], [`Components`], the
+//!   right-hand side it steps, [`Rhs`]) and its implementations [`Dopri5`], [`Dop853`],
+//!   [`Rodas4`], [`Rk4`].
+//! * **Error control and step control**: [`Tolerance`], [`VectorGroups`], [`ComponentGroup`],
+//!   [`LimitingComponent`], [`ErrorEstimate`]; [`StepOptions`], [`StepControl`].
+//! * **One model, one call**: [`Problem`] with [`Method`], [`Output`], [`Event`]
+//!   ([`EventFunction`]) gives a [`Trajectory`] ([`LocatedEvent`], [`Termination`],
+//!   [`SolveFailure`]); [`integrate`] gives a [`Solution`]; [`Integrator`] and [`DenseStep`] are
+//!   the loop underneath.
+//! * **Guards and events**: [`GuardSpec`], [`Direction`], [`Crossed`], [`EventHit`],
+//!   [`GuardInputs`], [`InteriorChecks`]; the bracketing root finder [`find_crossing`]
+//!   ([`Crossing`], [`converged_width`]).
+//! * **Hybrid systems**: [`HybridSystem`], [`Transition`] ([`TransitionOf`]), [`HybridSolver`], [`HybridOptions`],
+//!   [`ChatterLimit`], [`HybridOutcome`], [`HybridResult`], [`StopReason`], [`HybridError`].
+//! * **Regularised time** (a hybrid system integrated in `τ` with `dt = s dτ`):
+//!   [`TimeScale`], [`Regularised`], [`ClockGuard`], [`Clocked`], and the observer adaptor
+//!   [`PhysicalTime`].
+//! * **Streaming output**: [`Observer`], [`StepView`], [`Sample`], [`Interpolant`],
+//!   [`TransitionRecord`], [`TransitionKind`], [`Recorder`].
+//! * **Work and failures**: [`Stats`], [`ComponentCounts`]; [`SolveError`], [`InputError`],
+//!   [`GroupProblem`]; reading settings spelled as words, [`parse_word`] and
+//!   [`ParseSettingError`].
 //!
 //! ```
 //! use model_runtime::{integrate, Dop853, EvalError, Model, ModelInfo, OpCounts, StepOptions, Tolerance};
@@ -41,45 +73,52 @@
 // Numerical kernels index several arrays with one loop variable, as the formulas do.
 #![allow(clippy::needless_range_loop)]
 
-pub mod control;
-pub mod dop853;
-pub mod dopri5;
-pub mod error;
-pub mod events;
-pub mod hybrid;
-pub mod integrator;
-pub mod linalg;
+mod control;
+mod dop853;
+mod dopri5;
+mod error;
+mod events;
+mod hybrid;
+mod integrator;
+mod jacobian;
+mod linalg;
 mod lu;
-pub mod model;
-pub mod observer;
-pub mod rk4;
-pub mod rodas4;
-pub mod root;
-pub mod solution;
-pub mod solve;
-pub mod stats;
-pub mod stepper;
+mod model;
+mod observer;
+mod rk4;
+mod rodas4;
+mod root;
+mod solution;
+mod solve;
+mod stats;
+mod stepper;
 mod tableau;
-pub mod tolerance;
+mod tolerance;
 
 pub use control::{StepControl, StepOptions};
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
-pub use error::{parse_word, GroupProblem, InputError, ParseSettingError, SolveError};
+pub use error::{parse_word, EvalError, GroupProblem, InputError, ParseSettingError, SolveError};
 pub use events::{Crossed, Direction, EventHit, GuardInputs, GuardSpec, InteriorChecks};
+pub use hybrid::physical_time::PhysicalTime;
+pub use hybrid::regularised::{ClockGuard, Clocked, Regularised, TimeScale};
+pub use hybrid::run::HybridSolver;
 pub use hybrid::{
-    ChatterLimit, HybridError, HybridOptions, HybridOutcome, HybridSolver, HybridSystem,
-    StopReason, Transition,
+    ChatterLimit, HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem,
+    StopReason, Transition, TransitionOf,
 };
 pub use integrator::{integrate, DenseStep, Integrator, Solution};
-pub use model::{EvalError, Evaluation, Model, ModelInfo, OpCounts, WithOutputs};
+pub use jacobian::finite_difference_jacobian;
+pub use linalg::solve_block;
+pub use model::{Evaluation, Model, ModelInfo, OpCounts, WithOutputs};
 pub use observer::{
     Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
 };
 pub use rk4::Rk4;
 pub use rodas4::Rodas4;
+pub use root::{converged_width, find_crossing, Crossing};
 pub use solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
-pub use solve::{Event, Method, Output, Problem};
+pub use solve::{Event, EventFunction, Method, Output, Problem};
 pub use stats::{ComponentCounts, Stats};
-pub use stepper::{Components, StepEnd, StepStart, Stepper};
+pub use stepper::{Components, Rhs, StepEnd, StepStart, Stepper};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

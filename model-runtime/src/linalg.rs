@@ -4,7 +4,7 @@
 //! [`solve_block`] instead: Gaussian elimination with partial pivoting on a fixed-size array, so
 //! the emitted right-hand side still allocates nothing. It is public only for the emitted code.
 
-use crate::model::EvalError;
+use crate::error::EvalError;
 
 /// Solves `a x = b` by Gaussian elimination with partial pivoting.
 ///
@@ -14,7 +14,7 @@ use crate::model::EvalError;
 /// finiteness (the emitted code checks every derivative before returning).
 ///
 /// ```
-/// use model_runtime::linalg::solve_block;
+/// use model_runtime::solve_block;
 /// let x = solve_block([[2.0, 1.0], [1.0, 3.0]], [3.0, 5.0], "demo", "der(a), der(b)").unwrap();
 /// assert!((x[0] - 0.8).abs() < 1e-15 && (x[1] - 1.4).abs() < 1e-15);
 /// ```

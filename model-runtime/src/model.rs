@@ -5,7 +5,8 @@
 //! same traits, so every integrator, event locator and driver runs on either without change.
 //! States live in fixed-size arrays so that a step allocates nothing.
 
-use std::fmt;
+use crate::error::EvalError;
+use crate::jacobian::finite_difference_jacobian;
 
 /// Operation counts of one emitted function, after common-subexpression elimination.
 ///
@@ -59,54 +60,6 @@ pub struct ModelInfo {
     pub numeric_blocks: &'static [&'static str],
 }
 
-/// Why a model could not be evaluated at a state.
-#[derive(Clone, Debug, PartialEq)]
-pub enum EvalError {
-    /// A pivot of the solve is zero, not finite, or cancelled to round-off at this state: the
-    /// implicit system is singular here (for the disk: `sin(theta)` at a flat disk, or the
-    /// sliding determinant).
-    SingularPivot {
-        /// The model's name.
-        model: &'static str,
-        /// The pivot as the user wrote it, e.g. `sin(theta)`.
-        pivot: &'static str,
-        /// Its value at the state (zero, infinite, NaN, or a remainder of cancellation small
-        /// against the terms it was summed from).
-        value: f64,
-    },
-    /// A computed quantity is not finite (overflow, or a non-finite input).
-    NonFinite {
-        /// The model's name.
-        model: &'static str,
-        /// The quantity's name (a state derivative as `der(x)`, or an output).
-        quantity: &'static str,
-        /// Its value.
-        value: f64,
-    },
-}
-
-impl fmt::Display for EvalError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            EvalError::SingularPivot {
-                model,
-                pivot,
-                value,
-            } => write!(
-                f,
-                "model `{model}` is singular here: pivot `{pivot}` = {value:e}"
-            ),
-            EvalError::NonFinite {
-                model,
-                quantity,
-                value,
-            } => write!(f, "model `{model}`: `{quantity}` is not finite ({value})"),
-        }
-    }
-}
-
-impl std::error::Error for EvalError {}
-
 /// An explicit first-order system `dy/dt = f(t, y)` with a fixed number `N` of states.
 ///
 /// The parameters are part of the value implementing the trait.
@@ -120,7 +73,7 @@ pub trait Model<const N: usize> {
     /// The Jacobian `jac[i][j] = ∂f_i/∂y_j`. The default uses central finite differences;
     /// emitted models override it with the symbolic derivative of the solved system.
     fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
-        crate::hybrid::finite_difference_jacobian(|y, dy| self.rhs(t, y, dy), y, jac)
+        finite_difference_jacobian(|y, dy| self.rhs(t, y, dy), y, jac)
     }
 }
 

@@ -73,9 +73,10 @@ pub enum TransitionKind<Md> {
     Continue,
 }
 
-/// A transition as it was applied: which event triggered it and the state on both sides.
+/// A transition as it was applied: which event triggered it, the state on both sides, and what
+/// the system noted about it ([`crate::HybridSystem::Note`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TransitionRecord<const N: usize, Md, G> {
+pub struct TransitionRecord<const N: usize, Md, G, Nt = ()> {
     /// The event that triggered it.
     pub hit: EventHit<N, G>,
     /// The mode before.
@@ -84,10 +85,13 @@ pub struct TransitionRecord<const N: usize, Md, G> {
     pub kind: TransitionKind<Md>,
     /// The state the next segment starts from (after the transition map and projection).
     pub y_after: [f64; N],
+    /// The transition map's note, moved here from its [`crate::Transition`].
+    pub note: Nt,
 }
 
-/// Receives a run's output as it is produced. Every method has an empty default.
-pub trait Observer<const N: usize, Md, G> {
+/// Receives a run's output as it is produced. Every method has an empty default. `Nt` is the
+/// system's [`crate::HybridSystem::Note`].
+pub trait Observer<const N: usize, Md, G, Nt = ()> {
     /// Whether [`StepView::dense`] should be provided (building it may cost extra evaluations,
     /// e.g. three per step for DOP853).
     fn wants_dense(&self) -> bool {
@@ -109,26 +113,27 @@ pub trait Observer<const N: usize, Md, G> {
     fn proceed(&mut self) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
-    /// A transition (the event that caused it is in the record).
-    fn on_transition(&mut self, _record: &TransitionRecord<N, Md, G>) {}
+    /// A transition, handed over by value (the event that caused it and the system's note are
+    /// in the record). Called before the next segment starts.
+    fn on_transition(&mut self, _record: TransitionRecord<N, Md, G, Nt>) {}
 }
 
 /// The observer that ignores everything.
-impl<const N: usize, Md, G> Observer<N, Md, G> for () {}
+impl<const N: usize, Md, G, Nt> Observer<N, Md, G, Nt> for () {}
 
 /// An observer that keeps samples and transitions in memory: convenient for tests and short
 /// runs, not for long ones.
 #[derive(Clone, Debug, Default)]
-pub struct Recorder<const N: usize, Md, G> {
+pub struct Recorder<const N: usize, Md, G, Nt = ()> {
     /// Samples `(t, mode, y)`.
     pub samples: Vec<(f64, Md, [f64; N])>,
     /// Transitions in order.
-    pub transitions: Vec<TransitionRecord<N, Md, G>>,
+    pub transitions: Vec<TransitionRecord<N, Md, G, Nt>>,
     /// Number of accepted steps seen.
     pub steps: u64,
 }
 
-impl<const N: usize, Md, G> Recorder<N, Md, G> {
+impl<const N: usize, Md, G, Nt> Recorder<N, Md, G, Nt> {
     /// An empty recorder.
     pub fn new() -> Self {
         Recorder {
@@ -139,14 +144,14 @@ impl<const N: usize, Md, G> Recorder<N, Md, G> {
     }
 }
 
-impl<const N: usize, Md: Copy, G: Copy> Observer<N, Md, G> for Recorder<N, Md, G> {
+impl<const N: usize, Md: Copy, G, Nt> Observer<N, Md, G, Nt> for Recorder<N, Md, G, Nt> {
     fn on_step(&mut self, _step: &StepView<'_, N, Md>) {
         self.steps += 1;
     }
     fn on_sample(&mut self, s: &Sample<'_, N, Md>) {
         self.samples.push((s.t, s.mode, *s.y));
     }
-    fn on_transition(&mut self, r: &TransitionRecord<N, Md, G>) {
-        self.transitions.push(*r);
+    fn on_transition(&mut self, r: TransitionRecord<N, Md, G, Nt>) {
+        self.transitions.push(r);
     }
 }

@@ -1,11 +1,11 @@
-//! What [`crate::solve::Problem::solve`] returns: the recorded trajectory with the model's
+//! What [`crate::Problem::solve`] returns: the recorded trajectory with the model's
 //! names, the located events, the work done and why it stopped; or why it failed, in the
 //! model's terms (a state by its name, an event by its name), never by an index.
 
-use crate::error::{InputError, SolveError};
+use crate::error::{EvalError, InputError, SolveError};
 use crate::events::Crossed;
 use crate::hybrid::HybridError;
-use crate::model::{EvalError, ModelInfo, WithOutputs};
+use crate::model::{ModelInfo, WithOutputs};
 use crate::stats::Stats;
 use std::fmt;
 use std::io::{self, Write};

@@ -2,62 +2,19 @@
 //! its parameters), the initial state, the time span and a few options in; times, states,
 //! outputs, located events, statistics and the reason it stopped out ([`Trajectory`]).
 //!
-//! ```
-//! use model_runtime::{Event, Method, Output, Problem, Termination};
-//! use model_runtime::{Direction, EvalError, Model, ModelInfo, OpCounts, WithOutputs};
-//!
-//! /// A ball thrown upwards: y = (height, velocity); output: its energy per unit mass.
-//! struct Ball;
-//! const ZERO: OpCounts = OpCounts { add: 0, mul: 0, div: 0, sqrt: 0, trig: 0, transcendental: 0 };
-//! static INFO: ModelInfo = ModelInfo {
-//!     name: "ball", state_names: &["h", "v"], param_names: &[], output_names: &["energy"],
-//!     rhs_ops: ZERO, jacobian_ops: ZERO, outputs_ops: ZERO, pivots: &[], numeric_blocks: &[],
-//! };
-//! impl Model<2> for Ball {
-//!     fn info(&self) -> &'static ModelInfo { &INFO }
-//!     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
-//!         *dy = [y[1], -9.81];
-//!         Ok(())
-//!     }
-//! }
-//! impl WithOutputs<2, 1> for Ball {
-//!     fn outputs(&self, _t: f64, y: &[f64; 2], _dy: &[f64; 2], out: &mut [f64; 1])
-//!         -> Result<(), EvalError> {
-//!         out[0] = y[1] * y[1] / 2.0 + 9.81 * y[0];
-//!         Ok(())
-//!     }
-//! }
-//!
-//! let sol = Problem::new(&Ball, [0.0, 10.0], (0.0, 5.0))
-//!     .method(Method::Dop853)
-//!     .tolerances(1e-10, 1e-12)
-//!     .output(Output::Times((0..=30).map(|k| 0.1 * k as f64).collect()))
-//!     .event(Event::new("apex", |_t, y, _dy| y[1]))
-//!     .event(Event::new("ground", |_t, y, _dy| y[0]).direction(Direction::Down).terminal())
-//!     .solve()
-//!     .unwrap();
-//! // The apex (v = 0) and the landing (h = 0, at 2 v0 / g) are located exactly.
-//! assert!((sol.events[0].t - 10.0 / 9.81).abs() < 1e-12);
-//! assert_eq!(sol.stop, Termination::Event { name: "ground".into() });
-//! assert!((sol.events[1].t - 20.0 / 9.81).abs() < 1e-12);
-//! assert!(sol.events[1].y[0].abs() < 1e-12); // the exact state at the landing
-//! assert_eq!(sol.t.len(), 21); // the requested times before the landing: 0, 0.1, ..., 2
-//! assert!(sol.column("energy").unwrap().iter().all(|e| (e - 50.0).abs() < 1e-9));
-//! ```
-//!
-//! It is built on the hybrid driver with a single mode ([`crate::hybrid`]): the events are its
-//! guards, located exactly on the dense output with the semantics documented in
-//! [`crate::events`]; a terminal event stops the run, any other restarts the integrator at the
+//! It is built on the hybrid driver with a single mode ([`crate::HybridSolver`]): the events are its
+//! guards, located exactly on the dense output with the semantics documented at
+//! [`crate::GuardSpec`]; a terminal event stops the run, any other restarts the integrator at the
 //! event state. Nothing about stepping or event location is re-implemented here.
 
 use crate::control::StepOptions;
 use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
+use crate::error::EvalError;
 use crate::events::{Direction, EventHit, GuardSpec, InteriorChecks};
-use crate::hybrid::{
-    HybridError, HybridOptions, HybridSolver, HybridSystem, StopReason, Transition,
-};
-use crate::model::{EvalError, WithOutputs};
+use crate::hybrid::run::HybridSolver;
+use crate::hybrid::{HybridError, HybridOptions, HybridSystem, StopReason, Transition};
+use crate::model::{Model, WithOutputs};
 use crate::observer::{Observer, StepView};
 use crate::rk4::Rk4;
 use crate::rodas4::Rodas4;
@@ -100,7 +57,7 @@ pub type EventFunction<const N: usize> = Box<dyn Fn(f64, &[f64; N], &[f64; N]) -
 ///
 /// A non-terminal event restarts the integrator at the event state (a clean restart, as after
 /// any transition). Two events crossing at the very same time are reported once, for the one
-/// listed first ([`crate::events`]: the segment ends at the earliest event).
+/// listed first ([`crate::GuardSpec`]: the segment ends at the earliest event).
 pub struct Event<const N: usize> {
     name: String,
     function: EventFunction<N>,
@@ -152,6 +109,49 @@ impl<const N: usize> std::fmt::Debug for Event<N> {
 }
 
 /// An initial-value problem and how to solve it; [`Problem::solve`] runs it.
+///
+/// ```
+/// use model_runtime::{Event, Method, Output, Problem, Termination};
+/// use model_runtime::{Direction, EvalError, Model, ModelInfo, OpCounts, WithOutputs};
+///
+/// /// A ball thrown upwards: y = (height, velocity); output: its energy per unit mass.
+/// struct Ball;
+/// const ZERO: OpCounts = OpCounts { add: 0, mul: 0, div: 0, sqrt: 0, trig: 0, transcendental: 0 };
+/// static INFO: ModelInfo = ModelInfo {
+///     name: "ball", state_names: &["h", "v"], param_names: &[], output_names: &["energy"],
+///     rhs_ops: ZERO, jacobian_ops: ZERO, outputs_ops: ZERO, pivots: &[], numeric_blocks: &[],
+/// };
+/// impl Model<2> for Ball {
+///     fn info(&self) -> &'static ModelInfo { &INFO }
+///     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+///         *dy = [y[1], -9.81];
+///         Ok(())
+///     }
+/// }
+/// impl WithOutputs<2, 1> for Ball {
+///     fn outputs(&self, _t: f64, y: &[f64; 2], _dy: &[f64; 2], out: &mut [f64; 1])
+///         -> Result<(), EvalError> {
+///         out[0] = y[1] * y[1] / 2.0 + 9.81 * y[0];
+///         Ok(())
+///     }
+/// }
+///
+/// let sol = Problem::new(&Ball, [0.0, 10.0], (0.0, 5.0))
+///     .method(Method::Dop853)
+///     .tolerances(1e-10, 1e-12)
+///     .output(Output::Times((0..=30).map(|k| 0.1 * k as f64).collect()))
+///     .event(Event::new("apex", |_t, y, _dy| y[1]))
+///     .event(Event::new("ground", |_t, y, _dy| y[0]).direction(Direction::Down).terminal())
+///     .solve()
+///     .unwrap();
+/// // The apex (v = 0) and the landing (h = 0, at 2 v0 / g) are located exactly.
+/// assert!((sol.events[0].t - 10.0 / 9.81).abs() < 1e-12);
+/// assert_eq!(sol.stop, Termination::Event { name: "ground".into() });
+/// assert!((sol.events[1].t - 20.0 / 9.81).abs() < 1e-12);
+/// assert!(sol.events[1].y[0].abs() < 1e-12); // the exact state at the landing
+/// assert_eq!(sol.t.len(), 21); // the requested times before the landing: 0, 0.1, ..., 2
+/// assert!(sol.column("energy").unwrap().iter().all(|e| (e - 50.0).abs() < 1e-9));
+/// ```
 #[derive(Debug)]
 pub struct Problem<'m, M, const N: usize> {
     model: &'m M,
@@ -330,10 +330,11 @@ struct Single<'a, M, const N: usize> {
     located: Vec<LocatedEvent<N>>,
 }
 
-impl<M: crate::model::Model<N>, const N: usize> HybridSystem<N> for Single<'_, M, N> {
+impl<M: Model<N>, const N: usize> HybridSystem<N> for Single<'_, M, N> {
     type Mode = ();
     type Guard = usize;
     type Stop = usize;
+    type Note = ();
 
     fn rhs(&self, _: (), t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
         self.model.rhs(t, y, dy)
@@ -384,7 +385,7 @@ impl<M: crate::model::Model<N>, const N: usize> HybridSystem<N> for Single<'_, M
         Ok(if event.terminal {
             Transition::Stop(hit.guard)
         } else {
-            Transition::Continue { y: hit.y }
+            Transition::Continue { y: hit.y, note: () }
         })
     }
 }

@@ -18,7 +18,7 @@ pub struct Stats {
     /// Guard evaluations (each evaluates all guards of the current mode once).
     pub guard_evals: u64,
     /// Guard estimates from the dense output (no model evaluation; see
-    /// [`crate::events::InteriorChecks::Screened`]).
+    /// [`crate::InteriorChecks::Screened`]).
     pub guard_estimates: u64,
     /// Events located (guards that fired).
     pub events: u64,

@@ -5,8 +5,8 @@
 //! accepted one; step-size control, end times, events and observers live in the driver. All
 //! buffers are fixed-size arrays inside the stepper, so stepping allocates nothing.
 
-use crate::error::SolveError;
-use crate::model::{EvalError, Model};
+use crate::error::{EvalError, SolveError};
+use crate::model::Model;
 use crate::stats::Stats;
 use crate::tolerance::{ErrorEstimate, Tolerance};
 

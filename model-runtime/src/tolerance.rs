@@ -14,7 +14,7 @@
 //! on request ([`Tolerance::tracking_limiting`]) it is also determined for accepted steps, so a
 //! driver can count which component limits the step size.
 
-pub mod groups;
+mod groups;
 
 use crate::error::InputError;
 pub use groups::{ComponentGroup, VectorGroups};

@@ -1,6 +1,6 @@
 //! What a mode's guards read, so that screening interpolates only that.
 //!
-//! A screening estimate (see the module docs of [`crate::events`]) evaluates the guards on the
+//! A screening estimate (see [`crate::GuardSpec`]) evaluates the guards on the
 //! dense output and its derivative. Interpolating every component of both costs as much as
 //! the rest of the estimate when the guards read a handful of them, and estimates outnumber
 //! steps several times over. A system therefore declares, per mode, which components of the

@@ -1,5 +1,5 @@
 //! Where inside a step the guards are looked at, and the cheap test that lets a screened step
-//! skip most of its sample points (see the module docs of [`crate::events`]).
+//! skip most of its sample points (see [`crate::GuardSpec`]).
 
 use crate::error::ParseSettingError;
 

@@ -6,7 +6,7 @@
 //! change only when a reference sign does, so the answer is kept ready as an interval and the
 //! question becomes two comparisons.
 
-use super::{Crossed, Direction};
+use super::direction::{Crossed, Direction};
 
 /// The finite values that neither cross a guard's reference sign in a direction its filter
 /// admits nor, while it is pending, depart from zero in a way that fires: a closed interval,

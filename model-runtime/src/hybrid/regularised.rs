@@ -19,59 +19,16 @@
 //!   `t − t_end`, so the run ends at the physical end time located like any event;
 //! * a transition of `H` restarts the clock at zero for the next segment.
 //!
-//! [`PhysicalTime`] turns what the driver reports in `τ` back into physical time for an
+//! [`crate::PhysicalTime`] turns what the driver reports in `τ` back into physical time for an
 //! observer of `H`: samples at `t_first + k / rate` (found on each step's dense output as the
 //! roots of the clock), steps and transitions with physical times and derivatives. The
 //! driver's own sampling must stay off (its grid would be in `τ`).
-//!
-//! ```
-//! use model_runtime::hybrid::*;
-//! use model_runtime::{Dop853, Direction, EvalError, GuardSpec, EventHit, Recorder, Tolerance};
-//!
-//! /// y' = -1, stopped when y reaches 0.45 (at t = 0.55), integrated with s = y.
-//! struct Drain;
-//! const GUARDS: [GuardSpec<&str>; 1] = [GuardSpec { id: "half", direction: Direction::Down }];
-//! impl HybridSystem<1> for Drain {
-//!     type Mode = ();
-//!     type Guard = &'static str;
-//!     type Stop = f64;
-//!     fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
-//!         dy[0] = -1.0;
-//!         Ok(())
-//!     }
-//!     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GUARDS }
-//!     fn guard_values(&self, _: (), _t: f64, y: &[f64; 1], _dy: &[f64; 1], g: &mut [f64])
-//!         -> Result<(), EvalError> { g[0] = y[0] - 0.45; Ok(()) }
-//!     fn on_event(&mut self, _: (), hit: &EventHit<1, &'static str>)
-//!         -> Result<Transition<1, (), f64>, EvalError> { Ok(Transition::Stop(hit.t)) }
-//! }
-//! impl TimeScale<1> for Drain {
-//!     fn time_scale(&self, _: (), y: &[f64; 1]) -> f64 { y[0] }
-//! }
-//!
-//! let mut sys = Drain;
-//! let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 10.0);
-//! let tol = clocked.tolerance(&Tolerance::scalar(1e-10, 1e-12), (1e-10, 1e-12));
-//! let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
-//! let mut seen = Recorder::new();
-//! let mut observer = PhysicalTime::<_, 1, 2>::new(&mut seen, 0.0, Some(10.0));
-//! let out = solver.run(&mut clocked, (), 0.0, &Regularised::<Drain, 1, 2>::start(&[1.0]),
-//!                      f64::MAX, &mut observer).unwrap();
-//! let StopReason::User(Clocked::Inner(t)) = out.stop else { panic!() };
-//! assert!((t - 0.55).abs() < 1e-9);
-//! // Samples at t = 0, 0.1, ..., 0.5 in physical time: y = 1 - t.
-//! assert_eq!(seen.samples.len(), 6);
-//! assert!((seen.samples[3].2[0] - 0.7).abs() < 1e-9);
-//! ```
 
 use super::{HybridSystem, Transition};
-use crate::events::{EventHit, GuardInputs, GuardSpec};
-use crate::model::EvalError;
-use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
-use crate::root::find_crossing;
+use crate::error::EvalError;
+use crate::events::{Direction, EventHit, GuardInputs, GuardSpec};
 use crate::stepper::Components;
-use crate::tolerance::Tolerance;
-use crate::Direction;
+use crate::tolerance::{LimitingComponent, Tolerance};
 
 /// A hybrid system's time transformation `dt = s dτ`, per mode.
 pub trait TimeScale<const N: usize>: HybridSystem<N> {
@@ -100,6 +57,54 @@ pub enum Clocked<R> {
 }
 
 /// A system `H` in `N` states, integrated in `τ` with the clock as state `N` (`M = N + 1`).
+///
+/// Its right-hand side is `dz/dτ = (s f, s)`; its guards are `H`'s in physical terms plus the
+/// end time; a transition of `H` restarts the clock. [`crate::PhysicalTime`] feeds an observer
+/// of `H` from the run (the driver's own sampling must stay off: its grid would be in `τ`).
+///
+/// ```
+/// use model_runtime::{
+///     Clocked, Dop853, Direction, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver,
+///     HybridSystem, PhysicalTime, Recorder, Regularised, StopReason, TimeScale, Tolerance,
+///     Transition,
+/// };
+///
+/// /// y' = -1, stopped when y reaches 0.45 (at t = 0.55), integrated with s = y.
+/// struct Drain;
+/// const GUARDS: [GuardSpec<&str>; 1] = [GuardSpec { id: "half", direction: Direction::Down }];
+/// impl HybridSystem<1> for Drain {
+///     type Mode = ();
+///     type Guard = &'static str;
+///     type Stop = f64;
+///     type Note = ();
+///     fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
+///         dy[0] = -1.0;
+///         Ok(())
+///     }
+///     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GUARDS }
+///     fn guard_values(&self, _: (), _t: f64, y: &[f64; 1], _dy: &[f64; 1], g: &mut [f64])
+///         -> Result<(), EvalError> { g[0] = y[0] - 0.45; Ok(()) }
+///     fn on_event(&mut self, _: (), hit: &EventHit<1, &'static str>)
+///         -> Result<Transition<1, (), f64>, EvalError> { Ok(Transition::Stop(hit.t)) }
+/// }
+/// impl TimeScale<1> for Drain {
+///     fn time_scale(&self, _: (), y: &[f64; 1]) -> f64 { y[0] }
+/// }
+///
+/// let mut sys = Drain;
+/// let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 10.0);
+/// let tol = clocked.tolerance(&Tolerance::scalar(1e-10, 1e-12), (1e-10, 1e-12));
+/// let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+/// let mut seen = Recorder::new();
+/// let mut observer = PhysicalTime::<_, 1, 2>::new(&mut seen, 0.0, Some(10.0));
+/// let out = solver.run(&mut clocked, (), 0.0, &Regularised::<Drain, 1, 2>::start(&[1.0]),
+///                      f64::MAX, &mut observer).unwrap();
+/// let StopReason::User(Clocked::Inner(t)) = out.stop else { panic!() };
+/// assert!((t - 0.55).abs() < 1e-9);
+/// // Samples at t = 0, 0.1, ..., 0.5 in physical time: y = 1 - t.
+/// assert_eq!(seen.samples.len(), 6);
+/// assert!((seen.samples[3].2[0] - 0.7).abs() < 1e-9);
+/// ```
 pub struct Regularised<'a, H: HybridSystem<N>, const N: usize, const M: usize> {
     inner: &'a mut H,
     /// Physical time at the start of the current segment.
@@ -116,7 +121,7 @@ type ModeGuards<Md, G> = (Md, Vec<GuardSpec<ClockGuard<G>>>);
 
 /// The first `N` components of `z`.
 #[inline]
-fn head<const N: usize, const M: usize>(z: &[f64; M]) -> [f64; N] {
+pub(super) fn head<const N: usize, const M: usize>(z: &[f64; M]) -> [f64; N] {
     std::array::from_fn(|i| z[i])
 }
 
@@ -144,14 +149,14 @@ fn with_clock<const N: usize, const M: usize>(y: &[f64; N], c: f64) -> [f64; M] 
 
 /// The physical rate `dy/dt` from the rate in `τ`, whose clock component is `s`.
 #[inline]
-fn physical_rate<const N: usize, const M: usize>(dz: &[f64; M]) -> [f64; N] {
+pub(super) fn physical_rate<const N: usize, const M: usize>(dz: &[f64; M]) -> [f64; N] {
     let per_s = 1.0 / dz[N];
     std::array::from_fn(|i| dz[i] * per_s)
 }
 
 /// An event of the clocked run (dated in `τ`) as the inner system sees it: at physical time
 /// `t`, its state without the clock, its rate in physical time, the inner `guard`.
-fn physical_hit<G, const N: usize, const M: usize>(
+pub(super) fn physical_hit<G, const N: usize, const M: usize>(
     hit: &EventHit<M, ClockGuard<G>>,
     guard: G,
     t: f64,
@@ -236,8 +241,8 @@ impl<'a, H: TimeScale<N>, const N: usize, const M: usize> Regularised<'a, H, N, 
                 .expect("a group valid for N states is valid for N + 1");
         }
         match tol.limiting() {
-            crate::tolerance::LimitingComponent::Tracked => out.tracking_limiting(),
-            crate::tolerance::LimitingComponent::Untracked => out,
+            LimitingComponent::Tracked => out.tracking_limiting(),
+            LimitingComponent::Untracked => out,
         }
     }
 
@@ -254,6 +259,7 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
     type Mode = H::Mode;
     type Guard = ClockGuard<H::Guard>;
     type Stop = Clocked<H::Stop>;
+    type Note = H::Note;
 
     #[inline]
     fn rhs(
@@ -311,7 +317,7 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
         &mut self,
         mode: H::Mode,
         hit: &EventHit<M, Self::Guard>,
-    ) -> Result<Transition<M, H::Mode, Self::Stop>, EvalError> {
+    ) -> Result<Transition<M, H::Mode, Self::Stop, H::Note>, EvalError> {
         let ClockGuard::Inner(guard) = hit.guard else {
             return Ok(Transition::Stop(Clocked::EndTime));
         };
@@ -320,17 +326,19 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
         let physical = physical_hit(hit, guard, t);
         Ok(match self.inner.on_event(mode, &physical)? {
             Transition::Stop(r) => Transition::Stop(Clocked::Inner(r)),
-            Transition::Switch { to, y } => {
+            Transition::Switch { to, y, note } => {
                 self.t_seg = t;
                 Transition::Switch {
                     to,
                     y: with_clock(&y, 0.0),
+                    note,
                 }
             }
-            Transition::Continue { y } => {
+            Transition::Continue { y, note } => {
                 self.t_seg = t;
                 Transition::Continue {
                     y: with_clock(&y, 0.0),
+                    note,
                 }
             }
         })
@@ -351,118 +359,15 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
     }
 }
 
-/// An observer of `H` (in physical time) fed by a run of [`Regularised`] (in `τ`).
-pub struct PhysicalTime<'o, O, const N: usize, const M: usize> {
-    inner: &'o mut O,
-    rate: Option<f64>,
-    t_first: f64,
-    next_sample: u64,
-    t_seg: f64,
-}
-
-impl<'o, O, const N: usize, const M: usize> PhysicalTime<'o, O, N, M> {
-    /// Feeds `inner`, with samples at `t0 + k / rate` (none for `None`) for a run starting at
-    /// physical time `t0`.
-    pub fn new(inner: &'o mut O, t0: f64, rate: Option<f64>) -> Self {
-        PhysicalTime {
-            inner,
-            rate,
-            t_first: t0,
-            next_sample: 0,
-            t_seg: t0,
-        }
-    }
-
-    fn sample_time(&self) -> Option<f64> {
-        self.rate
-            .map(|r| self.t_first + self.next_sample as f64 / r)
-    }
-}
-
-impl<O, Md, G, const N: usize, const M: usize> Observer<M, Md, ClockGuard<G>>
-    for PhysicalTime<'_, O, N, M>
-where
-    O: Observer<N, Md, G>,
-    Md: Copy,
-    G: Copy,
-{
-    fn wants_dense(&self) -> bool {
-        self.rate.is_some()
-    }
-
-    fn on_step(&mut self, step: &StepView<'_, M, Md>) {
-        let (t0, t1) = (self.t_seg + step.y0[N], self.t_seg + step.y1[N]);
-        // Round-off in the located end of a run leaves its clock an ulp or so short of a
-        // sample due exactly there.
-        let slack = 8.0 * f64::EPSILON * t1.abs().max(1.0);
-        let mut z = [0.0; M];
-        while let (Some(ts), Some(dense)) = (self.sample_time(), step.dense) {
-            if ts > t1 + slack {
-                break;
-            }
-            self.next_sample += 1;
-            if !self.inner.wants_sample(ts) {
-                continue;
-            }
-            let target = ts - self.t_seg;
-            let tau = if ts >= t1 {
-                step.t1
-            } else if ts <= t0 {
-                step.t0
-            } else {
-                let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
-                    Ok(dense.component_at(tau, N) - target)
-                };
-                find_crossing(step.t0, t0 - ts, step.t1, t1 - ts, -1.0, clock)
-                    .unwrap_or_else(|never| match never {})
-                    .t
-            };
-            dense.at(tau, &mut z);
-            self.inner.on_sample(&Sample {
-                t: ts,
-                mode: step.mode,
-                y: &head(&z),
-            });
-        }
-        let (y0, y1) = (head(step.y0), head(step.y1));
-        self.inner.on_step(&StepView {
-            mode: step.mode,
-            t0,
-            t1,
-            y0: &y0,
-            y1: &y1,
-            f0: &physical_rate(step.f0),
-            dense: None,
-        });
-    }
-
-    fn on_transition(&mut self, record: &TransitionRecord<M, Md, ClockGuard<G>>) {
-        let ClockGuard::Inner(guard) = record.hit.guard else {
-            return;
-        };
-        let t = self.t_seg + record.hit.y[N];
-        self.t_seg = t;
-        self.inner.on_transition(&TransitionRecord {
-            hit: physical_hit(&record.hit, guard, t),
-            from: record.from,
-            kind: match record.kind {
-                TransitionKind::Switch { to } => TransitionKind::Switch { to },
-                TransitionKind::Continue => TransitionKind::Continue,
-            },
-            y_after: head(&record.y_after),
-        });
-    }
-
-    fn proceed(&mut self) -> std::ops::ControlFlow<()> {
-        self.inner.proceed()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hybrid::{HybridOptions, HybridSolver, StopReason};
-    use crate::{Dop853, Dopri5, Recorder};
+    use crate::dop853::Dop853;
+    use crate::dopri5::Dopri5;
+    use crate::hybrid::physical_time::PhysicalTime;
+    use crate::hybrid::run::HybridSolver;
+    use crate::hybrid::{HybridOptions, StopReason};
+    use crate::observer::{Observer, Recorder, Sample};
 
     /// `y' = -1/(2y)`: `y = sqrt(1 - t)`, whose derivative blows up as `y → 0` (at `t = 1`);
     /// the guard fires at `y = Y_STOP`, i.e. `t = 1 - Y_STOP²`. With `s = y` the clocked field
@@ -478,6 +383,7 @@ mod tests {
         type Mode = ();
         type Guard = &'static str;
         type Stop = f64;
+        type Note = ();
         fn rhs(&self, _: (), _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
             dy[0] = -0.5 / y[0];
             Ok(())

@@ -1,15 +1,85 @@
-//! One run of the hybrid driver: the loop that steps, looks for guard crossings, hands output
-//! to the observer and applies transitions. Split from the API so that the API reads alone.
+//! The hybrid driver: [`HybridSolver`] and one run of it, the loop that steps, looks for guard
+//! crossings, hands output to the observer and applies transitions. Split from the system's
+//! contract (the parent module) so that the contract reads alone.
 
-use super::{HybridError, HybridOptions, HybridOutcome, HybridSystem, StopReason, Transition};
-use crate::error::SolveError;
+use super::{
+    HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
+};
+use crate::error::{at, EvalError, InputError, SolveError};
 use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
-use crate::model::EvalError;
-use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
-use crate::stepper::{Rhs, Stepper};
+use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::stepper::{eval, Rhs, Stepper};
+use crate::tolerance::Tolerance;
 use std::collections::VecDeque;
 use std::fmt::Debug;
+
+/// Runs hybrid systems with one stepper and one set of options.
+#[derive(Clone, Debug)]
+pub struct HybridSolver<S, const N: usize> {
+    integrator: Integrator<S, N>,
+    options: HybridOptions,
+}
+
+impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
+    /// A solver; the options are checked here.
+    pub fn new(stepper: S, tol: Tolerance<N>, options: HybridOptions) -> Result<Self, InputError> {
+        if let Some(rate) = options.sample_rate {
+            if !rate.is_finite() || rate <= 0.0 {
+                return Err(InputError::SampleRate { rate });
+            }
+        }
+        let c = options.chatter;
+        if c.max_transitions == 0 || c.window.is_nan() || c.window <= 0.0 {
+            return Err(InputError::ChatterLimit {
+                max_transitions: c.max_transitions,
+                window: c.window,
+            });
+        }
+        Ok(HybridSolver {
+            integrator: Integrator::new(stepper, tol, options.step)?,
+            options,
+        })
+    }
+
+    /// Integrates `sys` from `(t0, y0)` in `mode` until `t_end` or until the transition map
+    /// stops, streaming output to `observer`.
+    pub fn run<H, O>(
+        &mut self,
+        sys: &mut H,
+        mode: H::Mode,
+        t0: f64,
+        y0: &[f64; N],
+        t_end: f64,
+        observer: &mut O,
+    ) -> HybridResult<N, H>
+    where
+        H: HybridSystem<N>,
+        O: Observer<N, H::Mode, H::Guard, H::Note>,
+    {
+        let input = |e: InputError| HybridError::Solve {
+            mode,
+            error: e.into(),
+        };
+        if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+            return Err(input(InputError::TimeSpan { t0, t_end }));
+        }
+        self.integrator.reset_counters();
+        let mut run = Run {
+            it: &mut self.integrator,
+            opts: self.options,
+            tracker: GuardTracker::default(),
+            values: Vec::new(),
+            inputs: GuardInputs::ALL,
+            recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
+            next_sample: 0,
+            t_first: t0,
+            mode,
+            transitions: 0,
+        };
+        run.go(sys, t0, y0, t_end, observer)
+    }
+}
 
 /// The system in one mode, as the stepper sees it.
 pub(super) struct InMode<'a, H, Md> {
@@ -61,7 +131,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     ) -> Result<HybridOutcome<N, Md, H::Stop>, HybridError<Md>>
     where
         H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
+        O: Observer<N, Md, H::Guard, H::Note>,
     {
         self.start_segment(sys, t0, y0, Quiet::All)?;
         self.emit_samples(sys, t0, obs)?;
@@ -92,7 +162,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     fn finish_step<H, O>(&mut self, sys: &H, obs: &mut O) -> Result<(), HybridError<Md>>
     where
         H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
+        O: Observer<N, Md, H::Guard, H::Note>,
     {
         let t1 = self.it.t();
         self.emit_samples(sys, t1, obs)?;
@@ -127,8 +197,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         self.it
             .interpolate(&m, found.t, &mut y)
             .map_err(|e| self.solve_err(e))?;
-        crate::stepper::eval(&m, found.t, &y, &mut dy, self.it.stats_mut())
-            .map_err(|e| self.solve_err(e))?;
+        eval(&m, found.t, &y, &mut dy, self.it.stats_mut()).map_err(|e| self.solve_err(e))?;
         self.guards_at(sys, found.t, &y, &dy)?;
         self.it.stats_mut().events += 1;
         Ok(EventHit {
@@ -153,7 +222,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     ) -> Result<Option<HybridOutcome<N, Md, H::Stop>>, HybridError<Md>>
     where
         H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
+        O: Observer<N, Md, H::Guard, H::Note>,
     {
         let from = self.mode;
         let transition = sys
@@ -163,15 +232,15 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
                 t: hit.t,
                 source,
             })?;
-        let (to, kind, mut y_after) = match transition {
+        let (to, kind, mut y_after, note) = match transition {
             Transition::Stop(reason) => {
                 let mut out = self.outcome(StopReason::User(reason));
                 out.t = hit.t;
                 out.y = hit.y;
                 return Ok(Some(out));
             }
-            Transition::Switch { to, y } => (to, TransitionKind::Switch { to }, y),
-            Transition::Continue { y } => (from, TransitionKind::Continue, y),
+            Transition::Switch { to, y, note } => (to, TransitionKind::Switch { to }, y, note),
+            Transition::Continue { y, note } => (from, TransitionKind::Continue, y, note),
         };
         if let Some(component) = y_after.iter().position(|v| !v.is_finite()) {
             return Err(self.solve_err(SolveError::TransitionState {
@@ -188,13 +257,16 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             TransitionKind::Continue => Quiet::Guard(hit.index),
             TransitionKind::Switch { .. } => Quiet::None,
         };
-        self.start_segment(sys, hit.t, &y_after, quiet)?;
-        obs.on_transition(&TransitionRecord {
+        // The observer hears of the transition before the next segment starts, so that a
+        // restart that fails there still follows the decision that led to it.
+        obs.on_transition(TransitionRecord {
             hit,
             from,
             kind,
             y_after,
+            note,
         });
+        self.start_segment(sys, hit.t, &y_after, quiet)?;
         Ok(None)
     }
 
@@ -212,7 +284,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         let (t0, t1) = (self.it.t_prev(), self.it.t());
         self.it.stats_mut().guard_evals += 1;
         sys.guard_values(self.mode, t1, self.it.y(), self.it.f(), &mut self.values)
-            .map_err(crate::error::at(t1))?;
+            .map_err(at(t1))?;
         check_finite(t1, &self.values)?;
         let it = &mut *self.it;
         let inputs = &self.inputs;
@@ -230,7 +302,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
                 let (y, dy) = match probe {
                     Probe::Exact => {
                         it.interpolate(&m, t, &mut y)?;
-                        crate::stepper::eval(&m, t, &y, &mut dy, it.stats_mut())?;
+                        eval(&m, t, &y, &mut dy, it.stats_mut())?;
                         it.stats_mut().guard_evals += 1;
                         (&y, &dy)
                     }
@@ -247,8 +319,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
                         (&y_est, &dy_est)
                     }
                 };
-                sys.guard_values(m.mode, t, y, dy, out)
-                    .map_err(crate::error::at(t))?;
+                sys.guard_values(m.mode, t, y, dy, out).map_err(at(t))?;
                 match probe {
                     Probe::Exact => check_finite(t, out),
                     // A non-finite estimate only asks for the exact check.
@@ -310,7 +381,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         self.it.stats_mut().guard_evals += 1;
         let r = sys
             .guard_values(self.mode, t, y, dy, &mut self.values)
-            .map_err(crate::error::at(t))
+            .map_err(at(t))
             .and_then(|()| check_finite(t, &self.values));
         r.map_err(|e| self.solve_err(e))
     }
@@ -319,7 +390,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     fn emit_samples<H, O>(&mut self, sys: &H, t_hi: f64, obs: &mut O) -> Result<(), HybridError<Md>>
     where
         H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
+        O: Observer<N, Md, H::Guard, H::Note>,
     {
         let Some(rate) = self.opts.sample_rate else {
             return Ok(());
@@ -359,7 +430,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     ) -> Result<(), HybridError<Md>>
     where
         H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard>,
+        O: Observer<N, Md, H::Guard, H::Note>,
     {
         if obs.wants_dense() {
             let m = InMode {
@@ -378,9 +449,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             y1: y1.unwrap_or(it.y()),
             f0: it.f_prev(),
             dense: if obs.wants_dense() {
-                dense
-                    .as_ref()
-                    .map(|d| d as &dyn crate::observer::Interpolant<N>)
+                dense.as_ref().map(|d| d as &dyn Interpolant<N>)
             } else {
                 None
             },

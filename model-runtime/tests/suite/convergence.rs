@@ -227,6 +227,7 @@ impl<M: model_runtime::Model<4>> model_runtime::HybridSystem<4> for Plain<M> {
     type Mode = ();
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(
         &self,
         _: (),

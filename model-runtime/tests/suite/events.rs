@@ -24,6 +24,7 @@ impl HybridSystem<2> for Ball {
     type Mode = ();
     type Guard = BallGuard;
     type Stop = ();
+    type Note = ();
     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
         *dy = [y[1], -G];
         Ok(())
@@ -59,6 +60,7 @@ impl HybridSystem<2> for Ball {
     ) -> Result<Transition<2, (), ()>, EvalError> {
         Ok(Transition::Continue {
             y: [0.0, -RESTITUTION * hit.y[1]],
+            note: (),
         })
     }
 }
@@ -191,6 +193,7 @@ impl HybridSystem<1> for Relay {
     type Mode = Side;
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(&self, m: Side, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
         dy[0] = if m == Side::Positive { -1.0 } else { 1.0 };
         Ok(())
@@ -223,7 +226,11 @@ impl HybridSystem<1> for Relay {
         } else {
             Side::Positive
         };
-        Ok(Transition::Switch { to, y: hit.y })
+        Ok(Transition::Switch {
+            to,
+            y: hit.y,
+            note: (),
+        })
     }
 }
 

@@ -43,6 +43,7 @@ impl HybridSystem<3> for Declared {
     type Mode = ();
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(&self, _: (), t: f64, y: &[f64; 3], dy: &mut [f64; 3]) -> Result<(), EvalError> {
         Forced.rhs(t, y, dy)
     }
@@ -85,7 +86,7 @@ impl HybridSystem<3> for Declared {
         hit: &EventHit<3, ()>,
     ) -> Result<Transition<3, (), ()>, EvalError> {
         self.events.push(hit.t);
-        Ok(Transition::Continue { y: hit.y })
+        Ok(Transition::Continue { y: hit.y, note: () })
     }
 }
 

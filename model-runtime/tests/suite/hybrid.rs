@@ -48,6 +48,7 @@ impl HybridSystem<2> for StickSlip {
     type Mode = Phase;
     type Guard = Why;
     type Stop = (Phase, f64);
+    type Note = ();
     fn rhs(&self, m: Phase, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
         // y = (position, speed)
         *dy = match m {
@@ -92,6 +93,7 @@ impl HybridSystem<2> for StickSlip {
             Phase::Stick => Transition::Switch {
                 to: Phase::Slide,
                 y: [hit.y[0], 0.0],
+                note: (),
             },
             Phase::Slide => Transition::Stop((m, hit.t)),
         })
@@ -202,6 +204,7 @@ impl HybridSystem<2> for Circle {
     type Mode = ();
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
         *dy = [-y[1], y[0]];
         Ok(())
@@ -333,7 +336,10 @@ fn broken() -> impl HybridSystem<1, Mode = (), Guard = (), Stop = ()> {
     OneGuard {
         model: common::Ramp,
         guard: |y: &[f64; 1], _: &[f64; 1]| y[0] - 1.0,
-        on_event: |_: &EventHit<1, ()>| Transition::Continue { y: [f64::NAN] },
+        on_event: |_: &EventHit<1, ()>| Transition::Continue {
+            y: [f64::NAN],
+            note: (),
+        },
     }
 }
 
@@ -366,6 +372,7 @@ impl HybridSystem<2> for Hinted {
     type Mode = Phase;
     type Guard = Why;
     type Stop = (Phase, f64);
+    type Note = ();
     fn rhs(&self, m: Phase, t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
         self.0.rhs(m, t, y, dy)
     }
@@ -407,7 +414,7 @@ impl model_runtime::Observer<2, Phase, Why> for FirstSteps {
             self.expect_first = false;
         }
     }
-    fn on_transition(&mut self, _: &model_runtime::TransitionRecord<2, Phase, Why>) {
+    fn on_transition(&mut self, _: model_runtime::TransitionRecord<2, Phase, Why>) {
         self.expect_first = true;
     }
 }

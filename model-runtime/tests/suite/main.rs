@@ -9,5 +9,6 @@ mod guard_inputs;
 mod hybrid;
 mod long_runs;
 mod norm;
+mod notes;
 mod properties;
 mod stiff;

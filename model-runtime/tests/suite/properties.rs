@@ -20,6 +20,7 @@ impl HybridSystem<2> for Ball {
     type Mode = ();
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
         *dy = [y[1], -self.g];
         Ok(())
@@ -45,6 +46,7 @@ impl HybridSystem<2> for Ball {
     ) -> Result<Transition<2, (), ()>, EvalError> {
         Ok(Transition::Continue {
             y: [0.0, -self.e * hit.y[1]],
+            note: (),
         })
     }
 }
@@ -139,6 +141,7 @@ impl HybridSystem<2> for Level {
     type Mode = ();
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
         *dy = [y[1], -y[0]];
         Ok(())
@@ -162,7 +165,7 @@ impl HybridSystem<2> for Level {
         _: (),
         hit: &EventHit<2, ()>,
     ) -> Result<Transition<2, (), ()>, EvalError> {
-        Ok(Transition::Continue { y: hit.y })
+        Ok(Transition::Continue { y: hit.y, note: () })
     }
 }
 

@@ -203,7 +203,7 @@ pub type EventMap<const N: usize> = fn(&EventHit<N, ()>) -> Transition<N, (), ()
 
 /// Restarts in place: events that leave the solution unchanged.
 pub fn continue_in_place<const N: usize>(hit: &EventHit<N, ()>) -> Transition<N, (), ()> {
-    Transition::Continue { y: hit.y }
+    Transition::Continue { y: hit.y, note: () }
 }
 
 /// Stops the run.
@@ -238,6 +238,7 @@ where
     type Mode = ();
     type Guard = ();
     type Stop = ();
+    type Note = ();
     fn rhs(&self, _: (), t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
         self.model.rhs(t, y, dy)
     }
@@ -278,6 +279,7 @@ impl<G: Fn(usize, f64) -> f64> HybridSystem<1> for ClockGuards<G> {
     type Mode = ();
     type Guard = usize;
     type Stop = usize;
+    type Note = ();
     fn rhs(&self, _: (), _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
         dy[0] = 1.0;
         Ok(())

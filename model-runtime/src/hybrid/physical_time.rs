@@ -1,0 +1,117 @@
+//! The observer side of regularised time: [`PhysicalTime`] turns what the driver reports in
+//! `τ` for a [`crate::Regularised`] system back into physical time for an observer of the inner
+//! system — samples on the physical grid (the roots of the clock on each step's dense output),
+//! steps and transitions with physical times and rates, the transition's note passed on.
+//! Apart from the system so that each file holds one side of the transformation.
+
+use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
+use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::root::find_crossing;
+
+/// An observer of `H` (in physical time) fed by a run of [`crate::Regularised`] (in `τ`).
+pub struct PhysicalTime<'o, O, const N: usize, const M: usize> {
+    inner: &'o mut O,
+    rate: Option<f64>,
+    t_first: f64,
+    next_sample: u64,
+    t_seg: f64,
+}
+
+impl<'o, O, const N: usize, const M: usize> PhysicalTime<'o, O, N, M> {
+    /// Feeds `inner`, with samples at `t0 + k / rate` (none for `None`) for a run starting at
+    /// physical time `t0`.
+    pub fn new(inner: &'o mut O, t0: f64, rate: Option<f64>) -> Self {
+        PhysicalTime {
+            inner,
+            rate,
+            t_first: t0,
+            next_sample: 0,
+            t_seg: t0,
+        }
+    }
+
+    fn sample_time(&self) -> Option<f64> {
+        self.rate
+            .map(|r| self.t_first + self.next_sample as f64 / r)
+    }
+}
+
+impl<O, Md, G, Nt, const N: usize, const M: usize> Observer<M, Md, ClockGuard<G>, Nt>
+    for PhysicalTime<'_, O, N, M>
+where
+    O: Observer<N, Md, G, Nt>,
+    Md: Copy,
+    G: Copy,
+{
+    fn wants_dense(&self) -> bool {
+        self.rate.is_some()
+    }
+
+    fn on_step(&mut self, step: &StepView<'_, M, Md>) {
+        let (t0, t1) = (self.t_seg + step.y0[N], self.t_seg + step.y1[N]);
+        // Round-off in the located end of a run leaves its clock an ulp or so short of a
+        // sample due exactly there.
+        let slack = 8.0 * f64::EPSILON * t1.abs().max(1.0);
+        let mut z = [0.0; M];
+        while let (Some(ts), Some(dense)) = (self.sample_time(), step.dense) {
+            if ts > t1 + slack {
+                break;
+            }
+            self.next_sample += 1;
+            if !self.inner.wants_sample(ts) {
+                continue;
+            }
+            let target = ts - self.t_seg;
+            let tau = if ts >= t1 {
+                step.t1
+            } else if ts <= t0 {
+                step.t0
+            } else {
+                let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
+                    Ok(dense.component_at(tau, N) - target)
+                };
+                find_crossing(step.t0, t0 - ts, step.t1, t1 - ts, -1.0, clock)
+                    .unwrap_or_else(|never| match never {})
+                    .t
+            };
+            dense.at(tau, &mut z);
+            self.inner.on_sample(&Sample {
+                t: ts,
+                mode: step.mode,
+                y: &head(&z),
+            });
+        }
+        let (y0, y1) = (head(step.y0), head(step.y1));
+        self.inner.on_step(&StepView {
+            mode: step.mode,
+            t0,
+            t1,
+            y0: &y0,
+            y1: &y1,
+            f0: &physical_rate(step.f0),
+            dense: None,
+        });
+    }
+
+    fn on_transition(&mut self, record: TransitionRecord<M, Md, ClockGuard<G>, Nt>) {
+        let ClockGuard::Inner(guard) = record.hit.guard else {
+            return;
+        };
+        let t = self.t_seg + record.hit.y[N];
+        self.t_seg = t;
+        self.inner.on_transition(TransitionRecord {
+            hit: physical_hit(&record.hit, guard, t),
+            from: record.from,
+            kind: match record.kind {
+                TransitionKind::Switch { to } => TransitionKind::Switch { to },
+                TransitionKind::Continue => TransitionKind::Continue,
+            },
+            y_after: head(&record.y_after),
+            note: record.note,
+        });
+    }
+
+    fn proceed(&mut self) -> std::ops::ControlFlow<()> {
+        self.inner.proceed()
+    }
+}
