@@ -71,15 +71,13 @@ pub use system::DiskGuard;
 
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, SlipChart, DIM};
 use crate::ParamError;
-use model_runtime::error::{parse_word, ParseSettingError, SolveError};
-use model_runtime::stats::Stats;
-use model_runtime::EvalError;
 /// Where a step's interior is searched for guard crossings (re-exported from the runtime).
 pub use model_runtime::InteriorChecks;
 /// Whether a run counts the component that limits each step (re-exported from the runtime).
 pub use model_runtime::LimitingComponent;
 /// The gains of the step-size controller (re-exported from the runtime).
 pub use model_runtime::StepControl;
+use model_runtime::{parse_word, EvalError, ParseSettingError, SolveError, Stats};
 use std::f64::consts::FRAC_PI_2;
 use std::ops::{ControlFlow, Range};
 
@@ -117,7 +115,7 @@ pub enum SlipSign {
 /// run; there `Ω_z` is ~70 times smaller than `|Ω|`, so with [`ErrorNorm::Components`] its
 /// own scale `atol + rtol |Ω_z|` is the tightest: it limits 59% of the paper run's steps.
 /// [`ErrorNorm::Vectors`] scales each component of a vector by the vector's length
-/// (`model_runtime::tolerance` gives the exact rule), which no choice of frame changes.
+/// (`model_runtime::Tolerance` gives the exact rule), which no choice of frame changes.
 ///
 /// Fewer steps are not the same as less work for the same answer. On the paper's 100 s run at
 /// `rtol = 1e-8` the vector norm takes 13% fewer steps (685 k) and misses more sliding
@@ -184,7 +182,7 @@ impl ErrorNorm {
 /// Most of the steps of a rattling run are spent where the right-hand side is not smooth:
 /// the friction direction `u/|u|` of a slip about to stick or just started, and the bounce at
 /// the nutation minima where `θ` nearly vanishes and `ψ̇ ∝ 1/sin θ`. [`TimeVariable::Regularised`]
-/// integrates in `τ` with `dt = s dτ` (`model_runtime::hybrid::regularised`), where
+/// integrates in `τ` with `dt = s dτ` (`model_runtime::Regularised`), where
 /// `s = S_θ S_u`, `S_θ = θ̃/(θ̃ + θ_c)` with `θ̃ = min(θ, π − θ)` and `θ_c` =
 /// [`TimeVariable::THETA_SCALE`], and, while sliding, `S_u = |u|/(|u| + u_c)` with `u_c` =
 /// [`TimeVariable::SLIP_SCALE`] (1 while rolling and on a bridge). The scaled field

@@ -106,7 +106,7 @@ fn statement(out: &mut String, stmt: &Stmt) {
             let result = list(result.iter().map(|tmp| format!("t{tmp}")));
             writeln!(
                 out,
-                "let [{result}] = ::model_runtime::linalg::solve_block::<{n}>([{}], [{}], MODEL_NAME, {text:?})?;",
+                "let [{result}] = ::model_runtime::solve_block::<{n}>([{}], [{}], MODEL_NAME, {text:?})?;",
                 rows.join(", "),
                 list(rhs.iter().map(operand)),
             )

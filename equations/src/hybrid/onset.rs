@@ -8,7 +8,7 @@
 //! the caller supplies `α ↦ (v̇_C, w)` and receives the root nearest the direction of the
 //! friction that rolling needed.
 
-use model_runtime::root::find_crossing;
+use model_runtime::find_crossing;
 use model_runtime::EvalError;
 use std::f64::consts::PI;
 

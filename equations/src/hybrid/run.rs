@@ -2,19 +2,18 @@
 //! the integrator, and turning the driver's raw phase states into disk samples for the caller.
 
 use super::models::DiskModels;
-use super::system::{DiskSystem, Halt, Phase, Shared};
+use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
 use super::{
     DiskConfig, DiskObserver, DiskSample, InitialState, IntegratorChoice, RunOutcome, SimError,
-    SlipSign, StopReason, TimeVariable, Trigger,
+    SlipSign, StopReason, TimeVariable, TransitionRecord, Trigger,
 };
 use crate::modes::layout::THETA;
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
-use model_runtime::hybrid::ChatterLimit as DriverChatter;
-use model_runtime::hybrid::{Clocked, PhysicalTime, Regularised};
+use model_runtime::ChatterLimit as DriverChatter;
 use model_runtime::{
-    Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
-    LimitingComponent, Model, Observer, Rk4, Rodas4, Sample, StepOptions, StepView, Stepper,
-    Tolerance, TransitionRecord,
+    Clocked, Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
+    LimitingComponent, Model, Observer, PhysicalTime, Regularised, Rk4, Rodas4, Sample,
+    StepOptions, StepView, Stepper, Tolerance,
 };
 
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
@@ -184,11 +183,17 @@ where
     S: Model<DIM>,
     O: DiskObserver,
 {
-    let shared = Shared::default();
-    let mut system = DiskSystem::new(models, config, &shared);
-    let (phase, y0) = initial_phase(&mut system, &shared, models, config, initial)?;
-    drain(&shared, observer);
-    let first = sample_at(models, &shared, initial.t, phase, &y0).map_err(|source| {
+    let mut system = DiskSystem::new(models, config);
+    let (start, decision) = initial_phase(&mut system, models, config, initial)?;
+    if let Some(record) = decision {
+        observer.on_transition(&record);
+    }
+    let Entry {
+        phase,
+        y: y0,
+        bridge,
+    } = start;
+    let first = sample_at(models, bridge, initial.t, phase, &y0).map_err(|source| {
         SimError::Transition {
             mode: phase.mode(),
             t: initial.t,
@@ -230,7 +235,7 @@ where
     let tolerance = config.tolerance(models.chart).map_err(input_error)?;
     let mut adaptor = Adaptor {
         models,
-        shared: &shared,
+        bridge,
         user: observer,
         failure: None,
     };
@@ -287,8 +292,8 @@ where
                         | model_runtime::StopReason::User(Clocked::EndTime) => {
                             model_runtime::StopReason::EndTime
                         }
-                        model_runtime::StopReason::User(Clocked::Inner(halt)) => {
-                            model_runtime::StopReason::User(halt)
+                        model_runtime::StopReason::User(Clocked::Inner(halted)) => {
+                            model_runtime::StopReason::User(halted)
                         }
                         model_runtime::StopReason::Observer => model_runtime::StopReason::Observer,
                     },
@@ -298,7 +303,26 @@ where
         }
     };
     let failure = adaptor.failure.take();
-    drain(&shared, observer);
+    if let Ok(Ended {
+        stop:
+            model_runtime::StopReason::User(Halted {
+                decision: Some(record),
+                ..
+            }),
+        ..
+    }) = &ended
+    {
+        // The decision just before a stop: no segment followed it to carry it. A stop on a
+        // bridge is sampled in the direction just decided, where the run found it must stop.
+        adaptor.user.on_transition(record);
+        if let Some(direction) = record.slip_direction {
+            adaptor.bridge = Some(Slip {
+                speed: 0.0,
+                direction,
+            });
+        }
+    }
+    let bridge = adaptor.bridge;
     let out = ended.map_err(|e| match e {
         HybridError::Solve { mode, error } => SimError::Solve {
             mode: mode.mode(),
@@ -323,12 +347,12 @@ where
     let stop = match out.stop {
         model_runtime::StopReason::EndTime => StopReason::EndTime,
         model_runtime::StopReason::Observer => StopReason::Requested { t: out.t },
-        model_runtime::StopReason::User(Halt::Stop(reason)) => reason,
-        model_runtime::StopReason::User(Halt::Onset { t, source }) => {
-            return Err(SimError::Onset { t, source })
-        }
+        model_runtime::StopReason::User(Halted { halt, .. }) => match halt {
+            Halt::Stop(reason) => reason,
+            Halt::Onset { t, source } => return Err(SimError::Onset { t, source }),
+        },
     };
-    let last = sample_at(models, &shared, out.t, out.phase, &out.y).map_err(|source| {
+    let last = sample_at(models, bridge, out.t, out.phase, &out.y).map_err(|source| {
         SimError::Transition {
             mode: out.phase.mode(),
             t: out.t,
@@ -349,7 +373,7 @@ struct Ended {
     t: f64,
     y: [f64; DIM],
     phase: Phase,
-    stop: model_runtime::StopReason<Halt>,
+    stop: model_runtime::StopReason<Halted>,
     stats: model_runtime::Stats,
 }
 
@@ -394,24 +418,21 @@ impl DiskConfig {
     }
 }
 
-/// The phase and state the driver starts from (see [`simulate`]).
+/// Where the driver starts (see [`simulate`]), and the initial mode decision if one was made.
 fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     system: &mut DiskSystem<'_, R, S>,
-    shared: &Shared,
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
-) -> Result<(Phase, [f64; DIM]), SimError> {
+) -> Result<(Entry, Option<TransitionRecord>), SimError> {
     let t = initial.t;
     let given = PhysicalState::from_rolling(&initial.y, 0.0);
     let slip = given.velocity_slip(&models.params);
     let mut state = given;
     if slip[0].hypot(slip[1]) > config.stick_threshold {
         state.project(&models.params, Mode::Sliding);
-        return Ok((
-            Phase::Sliding,
-            state.sliding_vector(models.chart, Slip::from_vector(slip)),
-        ));
+        let y = state.sliding_vector(models.chart, Slip::from_vector(slip));
+        return Ok((undecided(Phase::Sliding, y), None));
     }
     state.project(&models.params, Mode::Rolling);
     let eval_error = |source| SimError::Transition {
@@ -421,7 +442,7 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     };
     let force = system.rolling_force(t, &state).map_err(eval_error)?;
     if force.admits_rolling(models.params.mu_st) {
-        return Ok((Phase::Rolling, state.rolling_vector()));
+        return Ok((undecided(Phase::Rolling, state.rolling_vector()), None));
     }
     let drift = given.residuals(&models.params, Mode::Rolling);
     let trigger = Trigger::InitialFriction {
@@ -438,37 +459,45 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
             false,
         )
         .map_err(eval_error)?;
-    match start {
-        Ok(start) => Ok(start),
+    let decision = start.decision;
+    match start.next {
+        Ok(entry) => Ok((entry, decision)),
         Err(Halt::Onset { t, source }) => Err(SimError::Onset { t, source }),
-        // Sliding would need the floor to pull: start on the bridge at zero slip, where
-        // `run_with` sees N <= 0 in the first sample and stops at once.
+        // Sliding would need the floor to pull: start on the bridge at zero slip in the
+        // direction decided, where `run_with` sees N <= 0 in the first sample and stops at once.
         Err(Halt::Stop(_)) => {
-            let direction = shared
-                .bridge_slip
-                .get()
-                .map_or(force.direction(), |s| s.direction);
+            let direction = decision
+                .and_then(|d| d.slip_direction)
+                .unwrap_or(force.direction());
             let zero = Slip {
                 speed: 0.0,
                 direction,
             };
-            Ok((Phase::Bridge, state.sliding_vector(models.chart, zero)))
+            let y = state.sliding_vector(models.chart, zero);
+            let entry = Entry {
+                phase: Phase::Bridge,
+                y,
+                bridge: Some(zero),
+            };
+            Ok((entry, decision))
         }
     }
 }
 
-/// Forwards the mode decisions made so far to the caller's observer.
-fn drain<O: DiskObserver>(shared: &Shared, observer: &mut O) {
-    let mut records = shared.records.borrow_mut();
-    while let Some(record) = records.pop_front() {
-        observer.on_transition(&record);
+/// A start in `phase` at `y` that no decision led to (and no bridge).
+fn undecided(phase: Phase, y: [f64; DIM]) -> Entry {
+    Entry {
+        phase,
+        y,
+        bridge: None,
     }
 }
 
-/// The disk at `(t, y)` in `phase`, with its contact force (one model evaluation).
+/// The disk at `(t, y)` in `phase`, with its contact force (one model evaluation); on a
+/// bridge, `bridge` is the slip it started from.
 pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
     models: &DiskModels<R, S>,
-    shared: &Shared,
+    bridge: Option<Slip>,
     t: f64,
     phase: Phase,
     y: &[f64; DIM],
@@ -490,7 +519,7 @@ pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
             // Within ~1e-9 s of zero slip: the direction is the bridge's, the force the one at
             // zero slip in that direction.
             let mut state = models.sliding_state(y);
-            if let Some(slip) = shared.bridge_slip.get() {
+            if let Some(slip) = bridge {
                 state.slip.direction = slip.direction;
             }
             let (_, dy) = models.probe_onset(t, &state, state.slip.direction)?;
@@ -511,13 +540,14 @@ pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
 /// Turns the driver's output into disk samples and decisions for the caller.
 struct Adaptor<'a, R, S, O> {
     models: &'a DiskModels<R, S>,
-    shared: &'a Shared,
+    /// The slip the current bridge started from (from the note of the transition into it).
+    bridge: Option<Slip>,
     user: &'a mut O,
     /// The first model failure while sampling (reported after the run).
     failure: Option<(f64, Phase, EvalError)>,
 }
 
-impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::DiskGuard>
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::DiskGuard, DiskNote>
     for Adaptor<'_, R, S, O>
 {
     fn wants_sample(&self, t: f64) -> bool {
@@ -529,7 +559,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
     }
 
     fn on_sample(&mut self, s: &Sample<'_, DIM, Phase>) {
-        match sample_at(self.models, self.shared, s.t, s.mode, s.y) {
+        match sample_at(self.models, self.bridge, s.t, s.mode, s.y) {
             Ok(sample) => self.user.on_sample(&sample),
             Err(e) => {
                 if self.failure.is_none() {
@@ -543,7 +573,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
         if !self.user.wants_steps() {
             return;
         }
-        match sample_at(self.models, self.shared, step.t1, step.mode, step.y1) {
+        match sample_at(self.models, self.bridge, step.t1, step.mode, step.y1) {
             Ok(sample) => self.user.on_step(&sample),
             Err(e) => {
                 if self.failure.is_none() {
@@ -553,7 +583,16 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
         }
     }
 
-    fn on_transition(&mut self, _record: &TransitionRecord<DIM, Phase, super::DiskGuard>) {
-        drain(self.shared, self.user);
+    fn on_transition(
+        &mut self,
+        record: model_runtime::TransitionRecord<DIM, Phase, super::DiskGuard, DiskNote>,
+    ) {
+        let DiskNote { decision, bridge } = record.note;
+        if bridge.is_some() {
+            self.bridge = bridge;
+        }
+        if let Some(decision) = decision {
+            self.user.on_transition(&decision);
+        }
     }
 }

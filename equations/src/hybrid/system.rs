@@ -11,18 +11,18 @@ use super::onset::{consistent_slip_direction, OnsetError};
 use super::{DiskConfig, SlipSign, StopReason, TimeVariable, TransitionRecord, Trigger};
 use crate::modes::layout::{THETA, U_X, U_Y, V_C};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
-use model_runtime::hybrid::TimeScale;
 use model_runtime::{
-    Direction, EvalError, EventHit, GuardInputs, GuardSpec, HybridSystem, Model, Transition,
+    Direction, EvalError, EventHit, GuardInputs, GuardSpec, HybridSystem, Model, TimeScale,
+    Transition,
 };
-use std::cell::{Cell, RefCell};
+use std::cell::Cell;
 use std::collections::VecDeque;
 
 mod bridge;
 mod inputs;
 
-pub(crate) use bridge::BridgeStart;
-use bridge::{into_bridge, AfterBridge, BridgePlan};
+use bridge::{AfterBridge, BridgePlan};
+pub(crate) use bridge::{BridgeStart, Entry};
 
 /// What the integrator is doing: one of the two modes, or a bridge between zero slip and the
 /// stick threshold (part of sliding).
@@ -87,13 +87,60 @@ pub(crate) enum Halt {
     Onset { t: f64, source: OnsetError },
 }
 
-/// Output shared between the system (which makes the decisions) and the observer adaptor
-/// (which streams them): the driver holds both mutably, so they meet in cells.
-#[derive(Debug, Default)]
-pub(crate) struct Shared {
-    pub records: RefCell<VecDeque<TransitionRecord>>,
-    /// Slip at the start of the current bridge (its direction labels bridge samples).
-    pub bridge_slip: Cell<Option<Slip>>,
+/// The disk's stop: why, and the mode decision taken just before it (a start of sliding that
+/// turns out impossible was still decided, and the observer hears of it).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Halted {
+    pub halt: Halt,
+    pub decision: Option<TransitionRecord>,
+}
+
+impl Halted {
+    /// A stop with no decision before it.
+    fn plain(reason: StopReason) -> Self {
+        Halted {
+            halt: Halt::Stop(reason),
+            decision: None,
+        }
+    }
+}
+
+/// What a transition of the disk tells the observer (its [`HybridSystem::Note`], carried by
+/// the driver with the transition): the mode decision, if the transition made one, and, when it
+/// enters a bridge, the slip the bridge starts from, whose direction labels the bridge's
+/// samples (at zero slip a Cartesian state cannot carry it).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct DiskNote {
+    pub decision: Option<TransitionRecord>,
+    pub bridge: Option<Slip>,
+}
+
+/// A transition of the disk.
+type DiskTransition = Transition<DIM, Phase, Halted, DiskNote>;
+
+/// A mode decision that starts sliding, and where it leads: the next segment, or a stop.
+pub(crate) struct SlidingStart {
+    pub decision: Option<TransitionRecord>,
+    pub next: BridgeStart,
+}
+
+impl SlidingStart {
+    /// The driver's transition into the planned start (or the stop when there is none), with
+    /// the decision as its note.
+    fn into_transition(self) -> DiskTransition {
+        let decision = self.decision;
+        match self.next {
+            Ok(entry) => Transition::Switch {
+                to: entry.phase,
+                y: entry.y,
+                note: DiskNote {
+                    decision,
+                    bridge: entry.bridge,
+                },
+            },
+            Err(halt) => Transition::Stop(Halted { halt, decision }),
+        }
+    }
 }
 
 /// The settings the transition maps need.
@@ -111,7 +158,6 @@ pub(crate) struct DiskSystem<'a, R, S> {
     models: &'a DiskModels<R, S>,
     settings: Settings,
     bridge: BridgePlan,
-    shared: &'a Shared,
     /// Event-driven mode decisions so far.
     pub transitions: u64,
     recent: VecDeque<f64>,
@@ -121,11 +167,7 @@ pub(crate) struct DiskSystem<'a, R, S> {
 }
 
 impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
-    pub(crate) fn new(
-        models: &'a DiskModels<R, S>,
-        config: &DiskConfig,
-        shared: &'a Shared,
-    ) -> Self {
+    pub(crate) fn new(models: &'a DiskModels<R, S>, config: &DiskConfig) -> Self {
         DiskSystem {
             models,
             settings: Settings {
@@ -141,7 +183,6 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                 slope: [0.0; DIM],
                 then: AfterBridge::StickDecision,
             },
-            shared,
             transitions: 0,
             recent: VecDeque::new(),
             max_drift: Cell::new(ConstraintResiduals::default()),
@@ -184,11 +225,12 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         Ok(ContactForce::rolling(&self.models.params, state, &dy))
     }
 
-    fn record(&mut self, record: TransitionRecord, counted: bool) {
+    /// A mode decision, counted in [`Self::transitions`] when `counted`.
+    fn decide(&mut self, record: TransitionRecord, counted: bool) -> Option<TransitionRecord> {
         if counted {
             self.transitions += 1;
         }
-        self.shared.records.borrow_mut().push_back(record);
+        Some(record)
     }
 
     /// Counts a mode decision; true when the chattering limit is exceeded.
@@ -216,15 +258,20 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         trigger: Trigger,
         drift: ConstraintResiduals,
         counted: bool,
-    ) -> Result<BridgeStart, EvalError> {
+    ) -> Result<SlidingStart, EvalError> {
         let models = self.models;
         let probe = |alpha| models.probe_onset(t, &state, alpha).map(|(acc, _)| acc);
         let onset = match consistent_slip_direction(guess, probe) {
             Ok(onset) => onset,
             Err(OnsetError::Model { source, .. }) => return Err(source),
-            Err(source) => return Ok(Err(Halt::Onset { t, source })),
+            Err(source) => {
+                return Ok(SlidingStart {
+                    decision: None,
+                    next: Err(Halt::Onset { t, source }),
+                })
+            }
         };
-        self.record(
+        let decision = self.decide(
             TransitionRecord {
                 t,
                 from,
@@ -236,15 +283,13 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             },
             counted,
         );
-        self.bridge_into_sliding(t, &state, onset.direction, onset.acceleration.along)
+        let next =
+            self.bridge_into_sliding(t, &state, onset.direction, onset.acceleration.along)?;
+        Ok(SlidingStart { decision, next })
     }
 
     /// At the exact zero of the slip: roll if static friction can hold, else slide on.
-    fn decide_at_stop(
-        &mut self,
-        t: f64,
-        y: &[f64; DIM],
-    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
+    fn decide_at_stop(&mut self, t: f64, y: &[f64; DIM]) -> Result<DiskTransition, EvalError> {
         let before = self.models.sliding_state(y);
         let drift = before.residuals(&self.models.params, Mode::Sliding);
         self.note_drift(drift);
@@ -262,7 +307,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
         }
         if force.admits_rolling(self.models.params.mu_st) {
             state.slip.direction = force.direction();
-            self.record(
+            let decision = self.decide(
                 TransitionRecord {
                     t,
                     from: Mode::Sliding,
@@ -277,6 +322,10 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             return Ok(Transition::Switch {
                 to: Phase::Rolling,
                 y: state.rolling_vector(),
+                note: DiskNote {
+                    decision,
+                    bridge: None,
+                },
             });
         }
         match self.settings.sign {
@@ -290,12 +339,12 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                     drift,
                     true,
                 )?;
-                Ok(into_bridge(start))
+                Ok(start.into_transition())
             }
             SlipSign::Paper => {
                 let direction = before.slip.direction;
                 let (acc, _) = self.models.probe_onset(t, &state, direction)?;
-                self.record(
+                let decision = self.decide(
                     TransitionRecord {
                         t,
                         from: Mode::Sliding,
@@ -307,14 +356,14 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                     },
                     true,
                 );
-                let start = self.bridge_into_sliding(t, &state, direction, acc.along)?;
-                Ok(into_bridge(start))
+                let next = self.bridge_into_sliding(t, &state, direction, acc.along)?;
+                Ok(SlidingStart { decision, next }.into_transition())
             }
         }
     }
 
-    fn chatter_stop(&self, t: f64) -> Transition<DIM, Phase, Halt> {
-        Transition::Stop(Halt::Stop(StopReason::Chattering {
+    fn chatter_stop(&self, t: f64) -> DiskTransition {
+        Transition::Stop(Halted::plain(StopReason::Chattering {
             t,
             transitions: self.recent.len(),
             window: self.settings.chatter_window,
@@ -334,7 +383,8 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
 impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
     type Mode = Phase;
     type Guard = DiskGuard;
-    type Stop = Halt;
+    type Stop = Halted;
+    type Note = DiskNote;
 
     #[inline]
     fn rhs(
@@ -422,13 +472,15 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
         &mut self,
         phase: Phase,
         hit: &EventHit<DIM, DiskGuard>,
-    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
+    ) -> Result<DiskTransition, EvalError> {
         match hit.guard {
-            DiskGuard::ContactLost => Ok(Transition::Stop(Halt::Stop(StopReason::ContactLost {
-                t: hit.t,
-                mode: phase.mode(),
-            }))),
-            DiskGuard::InclinationFloor => Ok(Transition::Stop(Halt::Stop(
+            DiskGuard::ContactLost => {
+                Ok(Transition::Stop(Halted::plain(StopReason::ContactLost {
+                    t: hit.t,
+                    mode: phase.mode(),
+                })))
+            }
+            DiskGuard::InclinationFloor => Ok(Transition::Stop(Halted::plain(
                 StopReason::InclinationReachedFloor {
                     t: hit.t,
                     theta: hit.y[THETA],
@@ -455,7 +507,7 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                     drift,
                     true,
                 )?;
-                Ok(into_bridge(start))
+                Ok(start.into_transition())
             }
             DiskGuard::SlipStops => self.bridge_to_stop(hit),
             DiskGuard::BridgeEnd => match self.bridge.then {
@@ -463,6 +515,7 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
                 AfterBridge::StartSliding { slip } => Ok(Transition::Switch {
                     to: Phase::Sliding,
                     y: self.start_sliding(&hit.y, slip),
+                    note: DiskNote::default(),
                 }),
             },
         }

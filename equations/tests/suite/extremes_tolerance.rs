@@ -28,7 +28,7 @@ use equations::hybrid::{
 use equations::modes::layout::THETA;
 use equations::modes::Mode;
 use equations::DiskParams;
-use model_runtime::error::SolveError;
+use model_runtime::SolveError;
 
 #[test]
 fn near_round_off_the_run_finishes_or_fails_typed_within_its_budget() {

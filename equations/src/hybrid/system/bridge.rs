@@ -3,7 +3,7 @@
 //! Planning it is the one place where a constant derivative stands in for the model, so its
 //! limits ([`MAX_BRIDGE`]) live here with it.
 
-use super::{DiskGuard, DiskSystem, Halt, Phase};
+use super::{DiskGuard, DiskNote, DiskSystem, DiskTransition, Halt, Phase};
 use crate::hybrid::onset::OnsetError;
 use crate::hybrid::StopReason;
 use crate::modes::layout::{ALPHA, U_X, U_Y, V_C};
@@ -36,18 +36,18 @@ pub(super) struct BridgePlan {
     pub(super) then: AfterBridge,
 }
 
+/// Where a segment starts: its phase and state, and on a bridge the slip it starts from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Entry {
+    pub phase: Phase,
+    pub y: [f64; DIM],
+    pub bridge: Option<Slip>,
+}
+
 /// Where sliding starts — the bridge's first state, or sliding proper when the bridge would
 /// be shorter than an ulp of `t` — or why the run must stop instead (no consistent direction,
 /// or a sliding disk that the floor would have to pull).
-pub(crate) type BridgeStart = Result<(Phase, [f64; DIM]), Halt>;
-
-/// The transition into a planned start (or the stop when there is none).
-pub(super) fn into_bridge(start: BridgeStart) -> Transition<DIM, Phase, Halt> {
-    match start {
-        Ok((to, y)) => Transition::Switch { to, y },
-        Err(halt) => Transition::Stop(halt),
-    }
-}
+pub(crate) type BridgeStart = Result<Entry, Halt>;
 
 impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
     /// Plans a bridge from zero slip to `|v_C| = 2δ` along `e_s(direction)`, the slip speed
@@ -66,15 +66,12 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
             }));
         }
         let (_, dy) = self.models.probe_onset(t, state, direction)?;
-        self.shared.bridge_slip.set(Some(Slip {
-            speed: 0.0,
-            direction,
-        }));
-        let mut start_state = *state;
-        start_state.slip = Slip {
+        let zero = Slip {
             speed: 0.0,
             direction,
         };
+        let mut start_state = *state;
+        start_state.slip = zero;
         let normal = ContactForce::sliding(&self.models.params, &start_state, &dy).normal;
         if normal <= 0.0 || normal.is_nan() {
             // Rolling was not admissible and sliding would need the floor to pull.
@@ -88,18 +85,16 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
             direction,
         };
         let duration = 2.0 * self.settings.stick / along.abs();
-        let start = state.sliding_vector(
-            self.models.chart,
-            Slip {
-                speed: 0.0,
-                direction,
-            },
-        );
+        let start = state.sliding_vector(self.models.chart, zero);
         let end = state.sliding_vector(self.models.chart, target);
         if t + duration <= t || duration > MAX_BRIDGE {
             // Shorter than an ulp of t (a bridge guard would start at exactly zero and never
             // arm), or too long to be a straight line ([`MAX_BRIDGE`]): sliding starts at once.
-            return Ok(Ok((Phase::Sliding, self.start_sliding(&end, target))));
+            return Ok(Ok(Entry {
+                phase: Phase::Sliding,
+                y: self.start_sliding(&end, target),
+                bridge: None,
+            }));
         }
         let mut slope = dy;
         for i in [U_X, U_Y] {
@@ -111,14 +106,18 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
             slope,
             then: AfterBridge::StartSliding { slip: target },
         };
-        Ok(Ok((Phase::Bridge, start)))
+        Ok(Ok(Entry {
+            phase: Phase::Bridge,
+            y: start,
+            bridge: Some(zero),
+        }))
     }
 
     /// The slip reached the stick threshold: bridge it to its exact zero.
     pub(super) fn bridge_to_stop(
         &mut self,
         hit: &EventHit<DIM, DiskGuard>,
-    ) -> Result<Transition<DIM, Phase, Halt>, EvalError> {
+    ) -> Result<DiskTransition, EvalError> {
         let (y, dy) = (&hit.y, &hit.dy);
         let duration = match self.models.chart {
             SlipChart::Cartesian => {
@@ -142,12 +141,13 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
             slope,
             then: AfterBridge::StickDecision,
         };
-        self.shared
-            .bridge_slip
-            .set(Some(self.models.sliding_state(y).slip));
         Ok(Transition::Switch {
             to: Phase::Bridge,
             y: *y,
+            note: DiskNote {
+                decision: None,
+                bridge: Some(self.models.sliding_state(y).slip),
+            },
         })
     }
 }

@@ -65,7 +65,7 @@ pub(super) const fn guard_inputs(phase: Phase, chart: SlipChart, air: bool) -> G
 
 #[cfg(test)]
 mod tests {
-    use super::super::{DiskSystem, Shared};
+    use super::super::DiskSystem;
     use super::*;
     use crate::hybrid::models::{DiskModels, GeneratedModels, PrunedModels};
     use crate::hybrid::DiskConfig;
@@ -117,8 +117,7 @@ mod tests {
         y: &[f64; DIM],
         dy: &[f64; DIM],
     ) -> Result<(), TestCaseError> {
-        let shared = Shared::default();
-        let system = DiskSystem::new(models, &DiskConfig::paper(), &shared);
+        let system = DiskSystem::new(models, &DiskConfig::paper());
         for phase in PHASES {
             let inputs = system.guard_inputs(phase);
             let full = values(&system, phase, y, dy);
