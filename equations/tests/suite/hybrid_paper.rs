@@ -496,3 +496,29 @@ fn slides_that_end_at_once_are_resolved_alike_by_both_integrators() {
         .collect();
     assert!(short.len() >= 5, "{short:?}");
 }
+
+#[test]
+fn every_decision_reaches_the_observer_once_and_in_order() {
+    // The decisions travel from the transition maps to the observer as the transitions' notes,
+    // in physical time and through the clocked system in regularised time alike.
+    for time in [TimeVariable::Physical, TimeVariable::Regularised] {
+        let config = DiskConfig {
+            t_end: 2.0,
+            time,
+            ..DiskConfig::paper()
+        };
+        let (out, rec) = run(&config, SlipChart::Cartesian);
+        assert_eq!(out.stop, StopReason::EndTime);
+        assert!(out.transitions >= 20, "{time:?}: {}", out.transitions);
+        // The initial decision is reported first and not counted; every counted one once.
+        assert!(matches!(
+            rec.transitions[0].trigger,
+            Trigger::InitialFriction { .. }
+        ));
+        assert_eq!(events(&rec).len() as u64, out.transitions, "{time:?}");
+        for pair in rec.transitions.windows(2) {
+            assert!(pair[0].t <= pair[1].t, "{time:?}: {pair:?}");
+            assert_eq!(pair[0].to, pair[1].from, "{time:?}: {pair:?}");
+        }
+    }
+}
