@@ -155,7 +155,7 @@ fn each_statement_kind_is_translated() {
         "if ! (t1 != 0.0 && t1 . is_finite ()) || t1 . abs () <= 1e-12_f64 * t2 { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"cos(a) - a\" , value : t1 }) ; }",
         "let t3 : f64 = (- 2.0_f64) . powi (3) ;",
         "let t4 : f64 = p [0] . sqrt () ;",
-        "let [t5 , t6] = :: model_runtime :: linalg :: solve_block ::< 2 > ([[t2 , 1.0_f64] , [1.0_f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\") ?;",
+        "let [t5 , t6] = :: model_runtime :: solve_block ::< 2 > ([[t2 , 1.0_f64] , [1.0_f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\") ?;",
         "dy [0] = t5 ;",
         "let t0 : f64 = dy [0] . atan2 (y [1]) ;",
         "jac [0] [0] = 0.0 ;",
