@@ -18,7 +18,10 @@
 //! # The API by theme
 //!
 //! Every public item is re-exported here, once, under one name; the modules are private, so a
-//! path such as `model_runtime::Tolerance` is the only one there is.
+//! path such as `model_runtime::Tolerance` is the only one there is. There is no
+//! sub-namespace: even regularised time, a layer over the hybrid driver, has names of its own
+//! that read well at the root, and a caller's imports then never depend on how the crate is
+//! split into files.
 //!
 //! * **The model contract** (what `model-macros` emits, what hand-written models implement):
 //!   [`Model`], [`WithOutputs`], [`Evaluation`], [`ModelInfo`], [`OpCounts`], [`EvalError`];
@@ -35,8 +38,9 @@
 //! * **Guards and events**: [`GuardSpec`], [`Direction`], [`Crossed`], [`EventHit`],
 //!   [`GuardInputs`], [`InteriorChecks`]; the bracketing root finder [`find_crossing`]
 //!   ([`Crossing`], [`converged_width`]).
-//! * **Hybrid systems**: [`HybridSystem`], [`Transition`] ([`TransitionOf`]), [`HybridSolver`], [`HybridOptions`],
-//!   [`ChatterLimit`], [`HybridOutcome`], [`HybridResult`], [`StopReason`], [`HybridError`].
+//! * **Hybrid systems**: [`HybridSystem`], [`Transition`] ([`TransitionOf`]), [`HybridSolver`],
+//!   [`HybridOptions`], [`ChatterLimit`], [`HybridOutcome`], [`HybridResult`], [`StopReason`],
+//!   [`HybridError`].
 //! * **Regularised time** (a hybrid system integrated in `τ` with `dt = s dτ`):
 //!   [`TimeScale`], [`Regularised`], [`ClockGuard`], [`Clocked`], and the observer adaptor
 //!   [`PhysicalTime`].
