@@ -4,12 +4,9 @@
 //! the time of each stage to stderr (expansion runs inside rustc, so this is the only place the
 //! cost of the equation compiler can be seen).
 
-use crate::ast::ModelAst;
-use crate::compile::compile;
 use crate::emit::emit;
-use crate::parse::parse_model_recovering;
 use crate::placeholder::placeholder;
-use crate::validate::validate;
+use model_dsl::{compile, parse_model_recovering, validate, ModelAst};
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 use syn::parse::{ParseStream, Parser};

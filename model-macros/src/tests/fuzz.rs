@@ -3,8 +3,7 @@
 //! diagnostic; mutated models also go through the whole expansion, compiler included.
 
 use crate::expand::expand_timed;
-use crate::parse::parse_model;
-use crate::validate::validate;
+use model_dsl::{parse_model, validate};
 use proc_macro2::TokenStream;
 use proptest::prelude::*;
 

@@ -2,7 +2,7 @@
 //! tokens.
 
 use crate::span::{Errors, Spans};
-use crate::validate::{range, Validated};
+use crate::validate::Validated;
 use model_algebra::program::CompiledModel;
 
 /// Compiles a validated model; a diagnostic of the compiler becomes an error under the tokens of
@@ -12,7 +12,7 @@ pub fn compile(model: &Validated, spans: &Spans) -> syn::Result<CompiledModel> {
     model_algebra::compile(spec, &model.options).map_err(|diagnostics| {
         let mut errors = Errors::default();
         for diagnostic in diagnostics {
-            errors.at(range(spans, diagnostic.id), diagnostic.message);
+            errors.at(spans.range(diagnostic.id), diagnostic.message);
         }
         match errors.finish() {
             Err(error) => error,

@@ -13,7 +13,6 @@ use syn::parse::{ParseStream, Parser};
 use syn::{token, Token};
 
 /// Parses a whole `model!` invocation; `Err` carries every syntax error found.
-#[cfg(test)]
 pub fn parse_model(tokens: TokenStream) -> syn::Result<ModelAst> {
     let parsed = parse_model_recovering(tokens);
     match parsed.errors {

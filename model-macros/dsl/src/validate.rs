@@ -7,7 +7,7 @@
 use crate::ast::{Call, Expr, ModelAst};
 use crate::names::{function_list, Decl, Kind, Names, DER};
 use crate::options::compile_options;
-use crate::span::{Errors, SpanRange, Spans};
+use crate::span::{Errors, SpanRange};
 use model_algebra::spec::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 use model_algebra::CompileOptions;
 use std::collections::{BTreeMap, BTreeSet};
@@ -96,7 +96,7 @@ struct Validator<'a> {
 
 impl<'a> Validator<'a> {
     fn range(&self, id: NodeId) -> SpanRange {
-        range(&self.ast.spans, id)
+        self.ast.spans.range(id)
     }
 
     fn check_item_docs(&mut self) {
@@ -542,11 +542,4 @@ impl<'a> Validator<'a> {
         }
         variants
     }
-}
-
-/// The source range of `id`, or the macro's call site for an id the table does not hold.
-pub fn range(spans: &Spans, id: NodeId) -> SpanRange {
-    spans
-        .get(id)
-        .unwrap_or_else(|| SpanRange::single(proc_macro2::Span::call_site()))
 }

@@ -73,6 +73,12 @@ impl Spans {
     pub fn get(&self, id: NodeId) -> Option<SpanRange> {
         self.ranges.get(id.0 as usize).copied()
     }
+
+    /// The range of `id`, or the macro's call site for an id this table never handed out.
+    pub fn range(&self, id: NodeId) -> SpanRange {
+        self.get(id)
+            .unwrap_or_else(|| SpanRange::single(Span::call_site()))
+    }
 }
 
 /// Gathers every error of one model before failing (serde_derive's `Ctxt`, without the drop
