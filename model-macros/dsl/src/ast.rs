@@ -4,6 +4,7 @@
 //! say "unknown function `sine`" or "`m` is a parameter" with the user's own words; every node
 //! carries a [`NodeId`] whose source range lives in [`Spans`].
 
+use crate::chart::Chart;
 use crate::span::Spans;
 use model_algebra::spec::{BinOp, Named, NodeId};
 use std::collections::BTreeMap;
@@ -110,6 +111,8 @@ pub struct ModelAst {
     pub outputs: Vec<Named<Expr>>,
     /// Reduced variants.
     pub variants: Vec<Variant>,
+    /// The model in other coordinates.
+    pub charts: Vec<Chart>,
     /// Compiler options (`options { name = value }`).
     pub options: Vec<Named<f64>>,
     /// Doc comments written on parameters, states and outputs, by name (they document the
@@ -132,6 +135,7 @@ impl ModelAst {
             equations: Vec::new(),
             outputs: Vec::new(),
             variants: Vec::new(),
+            charts: Vec::new(),
             options: Vec::new(),
             docs: BTreeMap::new(),
             spans: Spans::default(),

@@ -16,8 +16,8 @@
 //! use model_dsl::Source;
 //!
 //! let source = Source::new("decay.dsl", "mod decay { params { k = 0.5 } states { x } equations { der(x) = -k*x; } }");
-//! let model = source.compile().expect("compiles");
-//! assert_eq!(model.compiled.states, vec!["x"]);
+//! let models = source.compile().expect("compiles");
+//! assert_eq!(models[0].compiled.states, vec!["x"]);
 //!
 //! let typo = Source::new("typo.dsl", "mod decay { states { x } equations { der(x) = -kk*x; } }");
 //! let error = typo.compile().unwrap_err().to_string();
@@ -26,6 +26,7 @@
 #![warn(missing_docs)]
 
 mod ast;
+mod chart;
 mod compile;
 mod expr;
 mod names;
@@ -36,7 +37,8 @@ mod text;
 mod validate;
 
 pub use ast::{Call, Equation, Expr, ModelAst, Variant};
-pub use compile::compile;
+pub use chart::Chart;
+pub use compile::{compile, compile_all};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{Errors, SpanRange, Spans};
 pub use text::{Located, LocatedErrors, Source, TextModel};

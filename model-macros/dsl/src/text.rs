@@ -6,7 +6,7 @@
 //! `file:line:col: message` followed by the source line and a caret under that token — the
 //! form compilers and editors understand.
 
-use crate::compile::compile;
+use crate::compile::compile_all;
 use crate::parse::parse_model_recovering;
 use crate::validate::validate;
 use crate::ModelAst;
@@ -23,7 +23,7 @@ pub struct Source {
     pub text: String,
 }
 
-/// A model read from text and compiled.
+/// One model of a source (the model itself or one of its charts), compiled.
 #[derive(Clone, Debug)]
 pub struct TextModel {
     /// The model as written.
@@ -90,13 +90,20 @@ impl Source {
         }
     }
 
-    /// Parses, validates and compiles the model, as `model!` does; every error, located.
-    pub fn compile(&self) -> Result<TextModel, LocatedErrors> {
+    /// Parses, validates and compiles the model, as `model!` does: the model, then the model
+    /// in each of its charts; every error, located.
+    pub fn compile(&self) -> Result<Vec<TextModel>, LocatedErrors> {
         let ast = self.parse()?;
-        let compiled = validate(&ast)
-            .and_then(|model| compile(&model, &ast.spans))
-            .map_err(|errors| self.locate_all(errors))?;
-        Ok(TextModel { ast, compiled })
+        let validated = validate(&ast).map_err(|errors| self.locate_all(errors))?;
+        let compiled = compile_all(&validated).map_err(|errors| self.locate_all(errors))?;
+        Ok(validated
+            .into_iter()
+            .zip(compiled)
+            .map(|(model, compiled)| TextModel {
+                ast: model.ast,
+                compiled,
+            })
+            .collect())
     }
 
     /// Every error of a (combined) `syn::Error`, located in this source.

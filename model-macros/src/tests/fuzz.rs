@@ -23,6 +23,7 @@ const VALID: &str = "
             power = der(energy) * 0 + m * l^2 * omega * der(omega);
         }
         variant small { keep { omega } fix { m = 1 } }
+        chart scaled { states { w } replace { omega } let omega = 2*w; }
     }
 ";
 
@@ -39,6 +40,9 @@ const ALPHABET: &[&str] = &[
     "variant",
     "keep",
     "fix",
+    "chart",
+    "replace",
+    "after",
     "der",
     "sin",
     "atan2",

@@ -140,7 +140,7 @@ fn a_valid_model_resolves_to_the_spec() {
         }
     })
     .unwrap();
-    let spec = validate(&ast).unwrap().spec;
+    let spec = validate(&ast).unwrap().remove(0).spec;
     assert_eq!(spec.name, "pend");
     assert_eq!(spec.equations[0].label, "kin");
     assert_eq!(spec.equations[1].label, "equation 2");
