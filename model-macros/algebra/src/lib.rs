@@ -52,6 +52,7 @@ pub mod eval;
 pub mod expand;
 pub mod explain;
 pub mod expr;
+mod interpret;
 pub mod jacobian;
 pub mod linear;
 pub mod lower;
@@ -70,7 +71,5 @@ pub mod variant;
 pub use compile::{compile, CompileOptions, PIVOT_TOLERANCE};
 pub use eval::{EvalFailure, Inputs, Stores};
 
-#[cfg(test)]
-mod testing;
 #[cfg(test)]
 mod tests;

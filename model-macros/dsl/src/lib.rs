@@ -34,6 +34,7 @@ mod options;
 mod parse;
 mod span;
 mod text;
+mod unchecked;
 mod validate;
 
 pub use ast::{Call, Equation, Expr, ModelAst, Variant};
@@ -42,6 +43,7 @@ pub use compile::{compile, compile_all};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{Errors, SpanRange, Spans};
 pub use text::{Located, LocatedErrors, Source, TextModel};
+pub use unchecked::spec_unchecked;
 pub use validate::{validate, Validated, RESERVED_MODULES};
 
 #[cfg(test)]
