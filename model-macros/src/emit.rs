@@ -6,7 +6,7 @@
 
 use crate::emit_named::{named_items, ItemDocs};
 use crate::emit_program::{constant, statements, zero_unstored};
-use model_algebra::program::{CompiledModel, Program, Target};
+use model_algebra::{CompiledModel, Program, Target};
 use model_dsl::ModelAst;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};

@@ -10,8 +10,8 @@
 //! items cannot drift from the real ones.
 
 use crate::emit::emit;
-use model_algebra::explain::Explanation;
-use model_algebra::program::{CompiledModel, Program};
+use model_algebra::Explanation;
+use model_algebra::{CompiledModel, Program};
 use model_dsl::{ModelAst, RESERVED_MODULES};
 use proc_macro2::TokenStream;
 use std::collections::BTreeSet;

@@ -9,9 +9,10 @@
 
 use std::collections::BTreeSet;
 
-use crate::compile::{CompileOptions, Selection, Solved};
 use crate::expr::Sym;
+use crate::options::CompileOptions;
 use crate::program::CompiledModel;
+use crate::solved::{Selection, Solved};
 use crate::spec::{Diagnostic, ModelSpec, VariantSpec};
 
 /// Compiles one variant of `spec`.

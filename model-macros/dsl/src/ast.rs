@@ -4,9 +4,8 @@
 //! say "unknown function `sine`" or "`m` is a parameter" with the user's own words; every node
 //! carries a [`NodeId`] whose source range lives in [`Spans`].
 
-use crate::chart::Chart;
 use crate::span::Spans;
-use model_algebra::spec::{BinOp, Named, NodeId};
+use model_algebra::{BinOp, Named, NodeId};
 use std::collections::BTreeMap;
 
 /// An expression before name resolution.
@@ -88,6 +87,27 @@ pub struct Variant {
     pub keep: Vec<Named<()>>,
     /// Parameters fixed at compile time.
     pub fix: Vec<Named<f64>>,
+}
+
+/// `chart NAME { states { .. } replace { .. } let ..; outputs [after NAME] { .. } }`.
+#[derive(Clone, Debug)]
+pub struct Chart {
+    /// Doc comments written before `chart`.
+    pub attrs: Vec<syn::Attribute>,
+    /// The chart's module name.
+    pub name: syn::Ident,
+    /// The name's node.
+    pub id: NodeId,
+    /// The new states.
+    pub states: Vec<Named<()>>,
+    /// The model's states they replace.
+    pub replace: Vec<Named<()>>,
+    /// Lets placed before the model's, defining every replaced state.
+    pub lets: Vec<Named<Expr>>,
+    /// Outputs added to the model's.
+    pub outputs: Vec<Named<Expr>>,
+    /// The model's output after which `outputs` go (`None`: last).
+    pub after: Option<Named<()>>,
 }
 
 /// A whole `model!` invocation as written.

@@ -19,32 +19,11 @@
 //! replaced state keeps all the new ones; the chart's outputs (optional) go after the model's
 //! output named by `after`, or last.
 
-use crate::ast::{Expr, ModelAst};
+use crate::ast::{Chart, ModelAst};
 use crate::names::{Kind, Names};
 use crate::span::Errors;
-use model_algebra::spec::Named;
+use model_algebra::Named;
 use std::collections::BTreeSet;
-
-/// `chart NAME { states { .. } replace { .. } let ..; outputs [after NAME] { .. } }`.
-#[derive(Clone, Debug)]
-pub struct Chart {
-    /// Doc comments written before `chart`.
-    pub attrs: Vec<syn::Attribute>,
-    /// The chart's module name.
-    pub name: syn::Ident,
-    /// The name's node.
-    pub id: model_algebra::spec::NodeId,
-    /// The new states.
-    pub states: Vec<Named<()>>,
-    /// The model's states they replace.
-    pub replace: Vec<Named<()>>,
-    /// Lets placed before the model's, defining every replaced state.
-    pub lets: Vec<Named<Expr>>,
-    /// Outputs added to the model's.
-    pub outputs: Vec<Named<Expr>>,
-    /// The model's output after which `outputs` go (`None`: last).
-    pub after: Option<Named<()>>,
-}
 
 impl Chart {
     /// The model in this chart: a model of its own, with the chart's name, docs and states.

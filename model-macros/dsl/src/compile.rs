@@ -3,7 +3,7 @@
 
 use crate::span::Errors;
 use crate::validate::Validated;
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
 
 /// Compiles every model (a model and its charts), reporting the errors of all together.
 pub fn compile_all(models: &[Validated]) -> syn::Result<Vec<CompiledModel>> {

@@ -37,8 +37,7 @@ mod text;
 mod unchecked;
 mod validate;
 
-pub use ast::{Call, Equation, Expr, ModelAst, Variant};
-pub use chart::Chart;
+pub use ast::{Call, Chart, Equation, Expr, ModelAst, Variant};
 pub use compile::{compile, compile_all};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{Errors, SpanRange, Spans};

@@ -6,8 +6,8 @@
 //! (`0` restores the exact-zero test, e.g. for a model whose pivots cancel by design).
 
 use crate::span::{Errors, Spans};
-use model_algebra::spec::Named;
 use model_algebra::CompileOptions;
+use model_algebra::Named;
 
 /// The options a model may set, with what each means (for the "unknown option" message).
 const KNOWN: [(&str, &str); 2] = [

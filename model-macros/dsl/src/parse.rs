@@ -3,11 +3,10 @@
 //! Parsing recovers at statement and section boundaries (`;` and `{..}`), so one typo does not
 //! hide the next: every syntax error of the invocation is collected and reported together.
 
-use crate::ast::{Equation, ModelAst, Variant};
-use crate::chart::Chart;
+use crate::ast::{Chart, Equation, ModelAst, Variant};
 use crate::expr::{parse_default, parse_expr, parse_signed_number, range_of};
 use crate::span::{Errors, SpanRange, Spans};
-use model_algebra::spec::Named;
+use model_algebra::Named;
 use proc_macro2::{TokenStream, TokenTree};
 use std::collections::BTreeMap;
 use syn::parse::{ParseStream, Parser};

@@ -4,7 +4,7 @@
 //! node an id and records the source range here, so any diagnostic — found by the front end or by
 //! the compiler — can be drawn under the exact tokens the user wrote.
 
-use model_algebra::spec::NodeId;
+use model_algebra::NodeId;
 use proc_macro2::{Punct, Spacing, Span, TokenStream};
 use quote::{ToTokens, TokenStreamExt};
 

@@ -10,7 +10,7 @@ use crate::compile::compile_all;
 use crate::parse::parse_model_recovering;
 use crate::validate::validate;
 use crate::ModelAst;
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
 use proc_macro2::{Span, TokenStream};
 use std::fmt;
 

@@ -8,7 +8,7 @@
 
 use crate::ast::{Expr, ModelAst};
 use crate::names::DER;
-use model_algebra::spec::{Ast, EquationSpec, Func, ModelSpec, Named, VariantSpec};
+use model_algebra::{Ast, EquationSpec, Func, ModelSpec, Named, VariantSpec};
 
 /// Converts the model to the compiler's spec without checking it. Only a call of a function
 /// the DSL does not have (which the spec cannot express) is an error, at the function's name.

@@ -8,8 +8,8 @@ use crate::ast::{Call, Expr, ModelAst};
 use crate::names::{function_list, Decl, Kind, Names, DER};
 use crate::options::compile_options;
 use crate::span::{Errors, SpanRange};
-use model_algebra::spec::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 use model_algebra::CompileOptions;
+use model_algebra::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Module names the emitter uses inside every model, so a variant cannot take them.

@@ -2,8 +2,8 @@
 //! whole expansion is valid Rust.
 
 use crate::emit::emit;
-use model_algebra::program::{CompiledModel, Node, Operand, Program, Stmt, SumCheck, Target};
-use model_algebra::spec::Func;
+use model_algebra::Func;
+use model_algebra::{CompiledModel, Node, Operand, Program, Stmt, SumCheck, Target};
 use model_dsl::parse_model;
 use quote::quote;
 

@@ -6,9 +6,9 @@ use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 
 use super::props::{ast, eval_ast, ill_conditioned};
-use crate::compile::{compile, CompileOptions};
 use crate::eval::Inputs;
 use crate::spec::{Ast, BinOp, EquationSpec, ModelSpec, Named, NodeId};
+use crate::{compile, CompileOptions};
 
 /// Three states `x, y, w` (the trees read `x`, `y` and the parameter `z`).
 #[derive(Clone, Debug)]

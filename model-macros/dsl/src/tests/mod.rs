@@ -4,7 +4,7 @@ mod parse;
 mod validate;
 
 use crate::ast::Expr;
-use model_algebra::spec::BinOp;
+use model_algebra::BinOp;
 
 /// The expression fully parenthesised, to check precedence and associativity.
 pub fn show(expr: &Expr) -> String {

@@ -4,14 +4,14 @@
 //! `sin(atan2)`, the polar one by expanding `sin(alpha - psi)`), so agreement checks both.
 
 use crate::common::{charted, model, sliding};
-use model_algebra::compile::{compile, CompileOptions};
-use model_algebra::eval::{EvalFailure, Inputs};
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
+use model_algebra::{compile, CompileOptions};
+use model_algebra::{EvalFailure, Inputs};
 
 use crate::sliding_disk::{state, PARAMS};
 
 /// The sliding disk in its Cartesian chart, as the `equations` crate compiles it.
-pub fn cartesian() -> model_algebra::spec::ModelSpec {
+pub fn cartesian() -> model_algebra::ModelSpec {
     charted(&sliding(), "sliding_cartesian")
 }
 fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Result<Vec<f64>, EvalFailure> {

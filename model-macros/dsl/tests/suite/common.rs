@@ -1,6 +1,6 @@
 //! Models from DSL text, through the one front end.
 
-use model_algebra::spec::ModelSpec;
+use model_algebra::ModelSpec;
 use model_dsl::{spec_unchecked, validate, Source, Validated};
 
 /// The model `text` (`mod NAME { .. }`) and its charts, parsed and validated as `model!` does.

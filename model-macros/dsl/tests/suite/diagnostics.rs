@@ -1,8 +1,8 @@
 //! Malformed models: each gives diagnostics at the right node, never a panic.
 
 use crate::common::unchecked as model;
-use model_algebra::compile::{compile, CompileOptions};
-use model_algebra::spec::{Ast, Diagnostic, ModelSpec, NodeId};
+use model_algebra::{compile, CompileOptions};
+use model_algebra::{Ast, Diagnostic, ModelSpec, NodeId};
 
 fn diagnose(text: &str) -> (ModelSpec, Vec<Diagnostic>) {
     let spec = model(text);
@@ -91,7 +91,7 @@ fn nonlinear_diagnostic_points_at_the_operator() {
     let (spec, diags) =
         diagnose("mod m { states { x, y } equations { a: x*der(x)*der(y) = 1; b: der(y) = x; } }");
     let mul = node_in(&spec, 0, &|a| {
-        matches!(a, Ast::Bin(_, model_algebra::spec::BinOp::Mul, _, r) if matches!(**r, Ast::Der(..)))
+        matches!(a, Ast::Bin(_, model_algebra::BinOp::Mul, _, r) if matches!(**r, Ast::Der(..)))
             && matches!(a, Ast::Bin(_, _, l, _) if matches!(**l, Ast::Bin(..)))
     });
     assert_eq!(diags.len(), 1, "{diags:#?}");

@@ -1,9 +1,9 @@
 //! Small non-disk models compiled end to end and compared with hand-written derivatives.
 
 use crate::common::model;
-use model_algebra::compile::{compile, CompileOptions};
-use model_algebra::eval::Inputs;
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
+use model_algebra::Inputs;
+use model_algebra::{compile, CompileOptions};
 
 fn rhs(m: &CompiledModel, t: f64, y: &[f64], p: &[f64]) -> Vec<f64> {
     let stores = m

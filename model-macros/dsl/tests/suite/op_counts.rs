@@ -2,10 +2,10 @@
 //! elimination that starts to swell) fails here first.
 
 use crate::common::model;
-use model_algebra::compile::{compile, CompileOptions};
-use model_algebra::eval::Inputs;
-use model_algebra::program::{Ops, Program};
-use model_algebra::spec::ModelSpec;
+use model_algebra::Inputs;
+use model_algebra::ModelSpec;
+use model_algebra::{compile, CompileOptions};
+use model_algebra::{Ops, Program};
 
 /// `(add, mul, div, sqrt, trig, transcendental)`.
 fn counts(p: &Program) -> [u32; 6] {

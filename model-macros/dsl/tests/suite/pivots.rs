@@ -2,9 +2,9 @@
 //! that is merely small is not.
 
 use crate::common::model;
-use model_algebra::compile::{compile, CompileOptions, PIVOT_TOLERANCE};
-use model_algebra::eval::{EvalFailure, Inputs};
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
+use model_algebra::{compile, CompileOptions, PIVOT_TOLERANCE};
+use model_algebra::{EvalFailure, Inputs};
 
 const MODEL: &str = "
 mod m {

@@ -4,9 +4,9 @@
 use std::time::Instant;
 
 use crate::common::{model, rolling, with_variant};
-use model_algebra::compile::{compile, CompileOptions};
-use model_algebra::eval::Inputs;
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
+use model_algebra::Inputs;
+use model_algebra::{compile, CompileOptions};
 
 /// The rolling disk of the `equations` crate, with a variant that keeps only the spin.
 pub fn rolling_with_spin() -> String {
@@ -118,7 +118,7 @@ fn flat_disk_is_a_singular_pivot_everywhere() {
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
     let mut y = state();
     y[7] = 0.0;
-    let flat = |p: &model_algebra::program::Program, y: &[f64], params: &[f64]| {
+    let flat = |p: &model_algebra::Program, y: &[f64], params: &[f64]| {
         p.eval(&Inputs {
             t: 0.0,
             states: y,
@@ -126,7 +126,7 @@ fn flat_disk_is_a_singular_pivot_everywhere() {
             ders: &[],
         })
     };
-    let expected = Err(model_algebra::eval::EvalFailure::SingularPivot {
+    let expected = Err(model_algebra::EvalFailure::SingularPivot {
         text: "sin(theta)".into(),
         value: 0.0,
     });

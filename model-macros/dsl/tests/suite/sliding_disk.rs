@@ -5,9 +5,9 @@
 use std::time::Instant;
 
 use crate::common::{model, sliding};
-use model_algebra::compile::{compile, CompileOptions};
-use model_algebra::eval::Inputs;
-use model_algebra::program::CompiledModel;
+use model_algebra::CompiledModel;
+use model_algebra::Inputs;
+use model_algebra::{compile, CompileOptions};
 
 /// `m, a, g, mu_d, mu_st, mu_a, w_z`, with air drag on.
 pub const PARAMS: [f64; 7] = [0.4387, 0.03755, 9.81, 0.115, 0.2, 0.02, 0.1];
