@@ -273,3 +273,56 @@ impl WithOutputs<MAX_STATES, 0> for Interpreted<'_> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use equations::hybrid::InitialState;
+    use equations::models::rolling;
+    use equations::DiskParams;
+    use model_dsl::Source;
+
+    /// The rolling disk from its own source file, interpreted and embedded, against the same
+    /// model compiled by `model!`: the same steps (the scaled tolerances make the error norm
+    /// the model's own) and the same trajectory.
+    #[test]
+    fn the_embedded_interpreted_model_steps_like_the_compiled_one() {
+        let file = include_str!("../equations/src/models/box1_rolling.rs");
+        let start = file.find("model! {").unwrap() + "model! {".len();
+        let body = &file[start..file.rfind('}').unwrap()];
+        let models = Source::new("box1_rolling.rs", body).compile().unwrap();
+        let interpreted = &models[0].compiled;
+        let p = DiskParams::paper();
+        let y0 = InitialState::paper(&p).y;
+        let params = p.to_array();
+        for method in [Method::Dopri5, Method::Dop853, Method::Rodas4] {
+            let settings = SolveSettings {
+                t0: 0.0,
+                t_end: 0.3,
+                method,
+                rtol: 1e-9,
+                atol: 1e-11,
+                dt: None,
+            };
+            let file = solve(interpreted, &params, &y0, &settings).unwrap();
+            let model = rolling::Model::new(params);
+            let compiled = Problem::new(&model, y0, (0.0, 0.3))
+                .method(method)
+                .tolerances(1e-9, 1e-11)
+                .solve::<{ rolling::N_OUTPUTS }>()
+                .unwrap();
+            assert_eq!(file.stats.steps, compiled.stats.steps, "{method:?}");
+            assert_eq!(file.stats.rejected, compiled.stats.rejected, "{method:?}");
+            let last = file.rows.last().unwrap();
+            let want = compiled.last().unwrap();
+            for (k, (got, want)) in last[1..=12].iter().zip(want).enumerate() {
+                assert!(
+                    (got - want).abs() <= 1e-9 * want.abs().max(1.0),
+                    "{method:?} {}: {got} vs {want}",
+                    rolling::STATE_NAMES[k]
+                );
+            }
+            assert_eq!(file.header.len(), 1 + 12 + rolling::N_OUTPUTS);
+        }
+    }
+}
