@@ -288,9 +288,7 @@ mod tests {
     #[test]
     fn the_embedded_interpreted_model_steps_like_the_compiled_one() {
         let file = include_str!("../equations/src/models/box1_rolling.rs");
-        let start = file.find("model! {").unwrap() + "model! {".len();
-        let body = &file[start..file.rfind('}').unwrap()];
-        let models = Source::new("box1_rolling.rs", body).compile().unwrap();
+        let models = Source::rust("box1_rolling.rs", file).compile().unwrap();
         let interpreted = &models[0].compiled;
         let p = DiskParams::paper();
         let y0 = InitialState::paper(&p).y;

@@ -40,7 +40,7 @@ mod validate;
 pub use ast::{Call, Chart, Equation, Expr, ModelAst, Variant};
 pub use compile::{compile, compile_all};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
-pub use span::{Errors, SpanRange, Spans};
+pub use span::{SpanRange, Spans};
 pub use text::{Located, LocatedErrors, Source, TextModel};
 pub use unchecked::spec_unchecked;
 pub use validate::{validate, Validated, RESERVED_MODULES};

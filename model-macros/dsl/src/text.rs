@@ -11,7 +11,7 @@ use crate::parse::parse_model_recovering;
 use crate::validate::validate;
 use crate::ModelAst;
 use model_algebra::CompiledModel;
-use proc_macro2::{Span, TokenStream};
+use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
 use std::fmt;
 
 /// The text of a model and the name it is reported under.
@@ -19,8 +19,11 @@ use std::fmt;
 pub struct Source {
     /// The name shown in messages (usually the file's path).
     pub name: String,
-    /// The text: `mod NAME { .. }`, optionally with doc comments before it.
+    /// The text: `mod NAME { .. }`, optionally with doc comments before it; or Rust source
+    /// holding a `model! { .. }` invocation.
     pub text: String,
+    /// Whether `text` is Rust source whose first `model! { .. }` holds the model.
+    pub rust: bool,
 }
 
 /// One model of a source (the model itself or one of its charts), compiled.
@@ -59,22 +62,43 @@ impl Source {
         Source {
             name: name.into(),
             text: text.into(),
+            rust: false,
         }
     }
 
-    /// Reads the file at `path`; the path is the name shown in messages.
-    pub fn read(path: &std::path::Path) -> std::io::Result<Self> {
-        Ok(Source::new(
-            path.display().to_string(),
-            std::fs::read_to_string(path)?,
-        ))
+    /// A Rust source file whose first `model! { .. }` (or `model_macros::model! { .. }`) holds
+    /// the model; messages give lines and columns in the Rust file.
+    pub fn rust(name: impl Into<String>, text: impl Into<String>) -> Self {
+        Source {
+            rust: true,
+            ..Source::new(name, text)
+        }
     }
 
-    /// The text as tokens; a lexical error (an unclosed brace, a stray quote) is located.
+    /// Reads the file at `path` (a `.rs` file as Rust source holding `model!`); the path is
+    /// the name shown in messages.
+    pub fn read(path: &std::path::Path) -> std::io::Result<Self> {
+        let text = std::fs::read_to_string(path)?;
+        let name = path.display().to_string();
+        Ok(match path.extension().is_some_and(|e| e == "rs") {
+            true => Source::rust(name, text),
+            false => Source::new(name, text),
+        })
+    }
+
+    /// The model's tokens; a lexical error (an unclosed brace, a stray quote) is located.
     pub fn tokens(&self) -> Result<TokenStream, LocatedErrors> {
-        self.text
+        let tokens = self
+            .text
             .parse::<TokenStream>()
-            .map_err(|error| LocatedErrors(vec![self.locate(error.span(), &error.to_string())]))
+            .map_err(|error| LocatedErrors(vec![self.locate(error.span(), &error.to_string())]))?;
+        if !self.rust {
+            return Ok(tokens);
+        }
+        macro_body(tokens).ok_or_else(|| {
+            let message = "no `model! { .. }` in this file";
+            LocatedErrors(vec![self.locate(Span::call_site(), message)])
+        })
     }
 
     /// The model as written; every syntax error, located.
@@ -140,6 +164,26 @@ impl Source {
             source_line,
         }
     }
+}
+
+/// The body of the first `model! { .. }` among `tokens` (at any depth).
+fn macro_body(tokens: TokenStream) -> Option<TokenStream> {
+    let trees: Vec<TokenTree> = tokens.into_iter().collect();
+    for (k, tree) in trees.iter().enumerate() {
+        if let [TokenTree::Ident(name), TokenTree::Punct(bang), TokenTree::Group(body), ..] =
+            &trees[k..]
+        {
+            if name == "model" && bang.as_char() == '!' && body.delimiter() == Delimiter::Brace {
+                return Some(body.stream());
+            }
+        }
+        if let TokenTree::Group(group) = tree {
+            if let Some(body) = macro_body(group.stream()) {
+                return Some(body);
+            }
+        }
+    }
+    None
 }
 
 impl fmt::Display for Located {

@@ -25,24 +25,21 @@ pub fn unchecked(text: &str) -> ModelSpec {
 }
 
 /// The `model!` invocation of a Rust file of the workspace's `equations/src/models`, as text.
-pub fn disk_model(file: &str) -> String {
-    let start = file.find("model! {").expect("the file invokes `model!`") + "model! {".len();
-    let end = file.rfind('}').expect("the invocation is closed");
-    file[start..end].to_string()
+fn disk_model(name: &str, file: &str) -> String {
+    let tokens = Source::rust(name, file).tokens();
+    tokens.unwrap_or_else(|e| panic!("{e}")).to_string()
 }
 
 /// The rolling disk (Box 1) as the `equations` crate compiles it.
 pub fn rolling() -> String {
-    disk_model(include_str!(
-        "../../../../equations/src/models/box1_rolling.rs"
-    ))
+    let file = include_str!("../../../../equations/src/models/box1_rolling.rs");
+    disk_model("box1_rolling.rs", file)
 }
 
 /// The sliding disk (Box 3, with its Cartesian chart) as the `equations` crate compiles it.
 pub fn sliding() -> String {
-    disk_model(include_str!(
-        "../../../../equations/src/models/box3_sliding.rs"
-    ))
+    let file = include_str!("../../../../equations/src/models/box3_sliding.rs");
+    disk_model("box3_sliding.rs", file)
 }
 
 /// The model `text` in its chart `chart`, parsed and validated.

@@ -11,4 +11,5 @@ mod op_counts;
 mod pivots;
 mod rolling_disk;
 mod sliding_disk;
+mod text;
 mod variants;
