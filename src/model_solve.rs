@@ -126,7 +126,7 @@ fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, ModelFileError
         )));
     }
     let count = ((t_end - t0) / dt).floor();
-    if !(count >= 0.0 && count < 1e8) {
+    if !(0.0..1e8).contains(&count) {
         return Err(ModelFileError::Eval(format!(
             "--dt {dt} from {t0} to {t_end}: gives no samples or too many (at most 1e8)"
         )));
@@ -199,7 +199,8 @@ impl<'a> Interpreted<'a> {
         match failure {
             EvalFailure::SingularPivot { text, value } => EvalError::SingularPivot {
                 model: self.info.name,
-                pivot: (self.pivots.iter().find(|p| **p == text)).map_or_else(|| leak(text), |p| p),
+                pivot: (self.pivots.iter().find(|p| **p == text).copied())
+                    .unwrap_or_else(|| leak(text)),
                 value,
             },
             EvalFailure::BadOperand(operand) => EvalError::NonFinite {
