@@ -48,7 +48,8 @@ pub enum ModelFileError {
     /// A parameter without a default in the file was not set.
     #[error("parameter `{0}` has no default in the file: give it with `--set {0}=VALUE`")]
     MissingParam(String),
-    /// The model cannot be evaluated at the given point.
+    /// The model cannot be evaluated or integrated (a singular pivot, a non-finite value, a
+    /// failed integration), said in the model's terms.
     #[error("{0}")]
     Eval(String),
 }

@@ -28,8 +28,8 @@ use std::collections::BTreeSet;
 impl Chart {
     /// The model in this chart: a model of its own, with the chart's name, docs and states.
     ///
-    /// It never fails: names that do not fit are reported by [`check`] on the model, and the
-    /// chart model is only validated once the model is valid.
+    /// It never fails: names that do not fit are reported by [`validate`](crate::validate) on
+    /// the model, and the chart's model is only validated once the model is valid.
     pub fn apply(&self, model: &ModelAst) -> ModelAst {
         let replaced: BTreeSet<&str> = self.replace.iter().map(|s| s.name.as_str()).collect();
         let first = model
