@@ -39,7 +39,8 @@ pub enum Command {
     /// Run many scenes at once: axes over any scene key, a table of their summaries, figures;
     /// resumable, and shardable over a cluster's job array (`sweep merge` joins the shards).
     Sweep(crate::sweep::args::SweepArgs),
-    /// Print a model's equations as the compiler solved them (`model show rolling`).
+    /// A model's equations as the compiler solved them (`model show rolling`), and a model of
+    /// one's own from a DSL file: shown, evaluated or solved without compiling Rust.
     #[command(subcommand)]
     Model(ModelCommand),
 }
@@ -49,15 +50,98 @@ pub enum Command {
 pub enum ModelCommand {
     /// The solved explicit equations block by block, their pivots and the outputs (Markdown,
     /// or LaTeX with `--format latex`); for `rolling` also N/mg at the paper's start beside
-    /// the paper's formula (13).
+    /// the paper's formula (13). A DSL file shows its model and each of its charts.
     Show {
-        /// The model.
-        #[arg(value_enum)]
-        model: crate::model_show::ModelName,
+        /// `rolling`, `sliding`, `sliding-cartesian`, or a DSL file (what goes inside
+        /// `model! { .. }`).
+        model: String,
         /// Markdown (DSL syntax) or LaTeX.
         #[arg(long, value_enum, default_value = "markdown")]
         format: crate::model_show::Format,
     },
+    /// Evaluate a DSL file's model at one state, interpreted: derivatives and outputs by name,
+    /// as JSON.
+    Eval(ModelEvalArgs),
+    /// Integrate a DSL file's model, interpreted, and write `t`, the states and the outputs as
+    /// CSV.
+    Solve(ModelSolveArgs),
+}
+
+/// The model, state and parameters of `model eval` and `model solve`.
+#[derive(Debug, Args)]
+pub struct ModelPointArgs {
+    /// The DSL file.
+    pub file: PathBuf,
+    /// One of the model's charts instead of the model itself.
+    #[arg(long)]
+    pub chart: Option<String>,
+    /// A state value, `NAME=VALUE` (repeatable; states not given are 0).
+    #[arg(long = "state", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub state: Vec<String>,
+    /// A parameter value, `NAME=VALUE` (repeatable; the others keep the file's defaults).
+    #[arg(long = "set", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub set: Vec<String>,
+}
+
+/// `eulerdisk model eval FILE`.
+#[derive(Debug, Args)]
+pub struct ModelEvalArgs {
+    /// The model and the point.
+    #[command(flatten)]
+    pub point: ModelPointArgs,
+    /// The time.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub t: f64,
+}
+
+/// An integration method of `model solve`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MethodName {
+    /// Dormand–Prince 5(4).
+    Dopri5,
+    /// Dormand–Prince 8(5,3).
+    Dop853,
+    /// Rosenbrock 4(3), with the model's symbolic Jacobian (stiff models).
+    Rodas4,
+}
+
+impl From<MethodName> for model_runtime::Method {
+    fn from(method: MethodName) -> Self {
+        match method {
+            MethodName::Dopri5 => model_runtime::Method::Dopri5,
+            MethodName::Dop853 => model_runtime::Method::Dop853,
+            MethodName::Rodas4 => model_runtime::Method::Rodas4,
+        }
+    }
+}
+
+/// `eulerdisk model solve FILE`.
+#[derive(Debug, Args)]
+pub struct ModelSolveArgs {
+    /// The model and the initial point.
+    #[command(flatten)]
+    pub point: ModelPointArgs,
+    /// Start time.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub t0: f64,
+    /// End time.
+    #[arg(long, allow_negative_numbers = true)]
+    pub t_end: f64,
+    /// The integration method.
+    #[arg(long, value_enum, default_value = "dop853")]
+    pub method: MethodName,
+    /// Relative tolerance.
+    #[arg(long, default_value_t = 1e-8)]
+    pub rtol: f64,
+    /// Absolute tolerance.
+    #[arg(long, default_value_t = 1e-10)]
+    pub atol: f64,
+    /// Record every DT (and at the end time) instead of at every step.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// The CSV file (`-`: standard output).
+    #[arg(long, default_value = "-")]
+    pub out: PathBuf,
 }
 
 /// Exit code of a rejected input (bad scene, bad sweep file, bad JSON, singular state).

@@ -4,8 +4,8 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use eulerdisk::cli::{
-    backend, interrupt_on_ctrl_c, progress_style, Cli, Command, EvalArgs, ModelCommand, RunArgs,
-    EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    backend, interrupt_on_ctrl_c, progress_style, Cli, Command, EvalArgs, RunArgs, EXIT_FAILED,
+    EXIT_INPUT, EXIT_INTERRUPTED,
 };
 use eulerdisk::eval::{evaluate, parse_params, parse_state};
 use eulerdisk::run::provenance::Provenance;
@@ -24,18 +24,7 @@ fn main() -> ExitCode {
         Some(Command::Eval(args)) => eval(&args),
         Some(Command::Sound(args)) => eulerdisk::sound::args::command(&args),
         Some(Command::Sweep(args)) => eulerdisk::sweep::args::command(&args),
-        Some(Command::Model(ModelCommand::Show { model, format })) => {
-            match eulerdisk::model_show::show(model, format) {
-                Ok(text) => {
-                    print!("{text}");
-                    ExitCode::SUCCESS
-                }
-                Err(err) => {
-                    eprintln!("error: {err}");
-                    ExitCode::from(EXIT_FAILED)
-                }
-            }
-        }
+        Some(Command::Model(command)) => eulerdisk::model_command::run(&command),
         Some(Command::Scenes) => {
             for (name, text) in BUILTIN {
                 let description = scene::parse(name, text, &[])

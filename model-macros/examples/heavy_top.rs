@@ -11,6 +11,10 @@
 //! at those roots, found here by bisection of the cubic, with no integration involved. The
 //! energy and both momenta, outputs of the model, must stay constant.
 //!
+//! The same model, as text, is `heavy_top.dsl` beside this file: `eulerdisk model show|eval|solve`
+//! read it without compiling Rust, and a test here holds the two to the same tokens and the
+//! same numbers.
+//!
 //! ```text
 //! cargo run -p model-macros --example heavy_top [-- OUT.csv]
 //! ```
@@ -209,6 +213,54 @@ mod tests {
         assert!(high - low > 1e-5, "{low} {high}");
         // The start (w_theta = 0) is the highest point.
         assert!((high - initial().theta.cos()).abs() < 1e-12);
+    }
+
+    /// The `model!` body of this file and `heavy_top.dsl` are the same tokens, and the
+    /// interpreter running the file's compilation gives the compiled model's derivatives and
+    /// outputs to round-off at pseudo-random states and parameters.
+    #[test]
+    fn the_dsl_file_interpreted_agrees_with_the_compiled_model() {
+        use model_runtime::WithOutputs as _;
+        let source = model_dsl::Source::new("heavy_top.dsl", include_str!("heavy_top.dsl"));
+        let this = model_dsl::Source::rust("heavy_top.rs", include_str!("heavy_top.rs"));
+        let body = this.tokens().unwrap().to_string();
+        assert_eq!(body, source.tokens().unwrap().to_string());
+        let models = source.compile().unwrap();
+        let interpreted = &models[0].compiled;
+        // A small linear congruential sequence: reproducible, spread over each range.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = |lo: f64, hi: f64| {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            lo + (hi - lo) * (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            let p = heavy_top::Params {
+                m: uniform(0.1, 2.0),
+                g: uniform(1.0, 20.0),
+                l: uniform(0.01, 0.2),
+                I1: uniform(1e-4, 1e-2),
+                I3: uniform(1e-4, 1e-2),
+            };
+            let y: [f64; 6] = std::array::from_fn(|k| match k {
+                1 => uniform(0.1, 3.0),
+                _ => uniform(-50.0, 50.0),
+            });
+            let t = uniform(0.0, 10.0);
+            let compiled = heavy_top::Model::from_params(p).evaluate(t, &y).unwrap();
+            let params = p.to_array();
+            let der = interpreted.derivatives(t, &y, &params).unwrap();
+            let out = interpreted.outputs_at(t, &y, &der, &params).unwrap();
+            for (got, want) in der
+                .iter()
+                .zip(&compiled.der)
+                .chain(out.iter().zip(&compiled.outputs))
+            {
+                assert!(
+                    (got - want).abs() <= 1e-13 * want.abs().max(1.0),
+                    "{got} vs {want} at {y:?}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -4,10 +4,10 @@
 //! Everything the user can name is documented, so a crate with `#![deny(missing_docs)]` accepts
 //! the expansion, and the lints that generated straight-line code trips are allowed on the module.
 
-use crate::ast::ModelAst;
 use crate::emit_named::{named_items, ItemDocs};
 use crate::emit_program::{constant, statements, zero_unstored};
-use model_algebra::program::{CompiledModel, Program, Target};
+use model_algebra::{CompiledModel, Program, Target};
+use model_dsl::ModelAst;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 

@@ -9,8 +9,8 @@
 //! built one by one is a round trip through the proc-macro bridge, and a large model's programs
 //! have thousands of statements.
 
-use model_algebra::program::{Node, Operand, Program, Stmt, Target};
-use model_algebra::spec::Func;
+use model_algebra::Func;
+use model_algebra::{Node, Operand, Program, Stmt, Target};
 use proc_macro2::TokenStream;
 use std::fmt::Write;
 

@@ -4,12 +4,9 @@
 //! the time of each stage to stderr (expansion runs inside rustc, so this is the only place the
 //! cost of the equation compiler can be seen).
 
-use crate::ast::ModelAst;
-use crate::compile::compile;
 use crate::emit::emit;
-use crate::parse::parse_model_recovering;
 use crate::placeholder::placeholder;
-use crate::validate::validate;
+use model_dsl::{compile_all, parse_model_recovering, validate, ModelAst};
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 use syn::parse::{ParseStream, Parser};
@@ -89,18 +86,33 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
     };
     timing.model = ast.name.to_string();
     if let Some(error) = parsed.errors {
-        return (failure(error, placeholder(&ast)), timing);
+        return (failure(error, placeholders(&ast)), timing);
     }
-    let compiled = timing
-        .stage("validate", || validate(&ast))
-        .and_then(|model| timing.stage("compile", || compile(&model, &ast.spans)));
+    let validated = timing.stage("validate", || validate(&ast));
+    let compiled = validated.and_then(|models| {
+        let compiled = timing.stage("compile", || compile_all(&models))?;
+        Ok((models, compiled))
+    });
     match compiled {
-        Ok(compiled) => {
-            let output = timing.stage("emit", || emit(&ast, &compiled));
+        Ok((models, compiled)) => {
+            let output = timing.stage("emit", || {
+                (models.iter().zip(&compiled))
+                    .map(|(model, compiled)| emit(&model.ast, compiled))
+                    .collect()
+            });
             (output, timing)
         }
-        Err(error) => (failure(error, placeholder(&ast)), timing),
+        Err(error) => (failure(error, placeholders(&ast)), timing),
     }
+}
+
+/// The placeholders of the model and of each chart with a name of its own.
+fn placeholders(ast: &ModelAst) -> TokenStream {
+    let mut names = std::collections::BTreeSet::from([ast.name.to_string()]);
+    let charts = (ast.charts.iter())
+        .filter(|chart| names.insert(chart.name.to_string()))
+        .map(|chart| placeholder(&chart.apply(ast)));
+    std::iter::once(placeholder(ast)).chain(charts).collect()
 }
 
 fn failure(error: syn::Error, placeholder: TokenStream) -> TokenStream {

@@ -1,19 +1,11 @@
 #![doc = include_str!("../DSL.md")]
 #![warn(missing_docs)]
 
-mod ast;
-mod compile;
 mod emit;
 mod emit_named;
 mod emit_program;
 mod expand;
-mod expr;
-mod names;
-mod options;
-mod parse;
 mod placeholder;
-mod span;
-mod validate;
 
 #[cfg(test)]
 mod tests;

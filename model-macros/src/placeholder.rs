@@ -9,11 +9,10 @@
 //! by the same emitter as a real model, from a compiled model whose programs are empty, so its
 //! items cannot drift from the real ones.
 
-use crate::ast::ModelAst;
 use crate::emit::emit;
-use crate::validate::RESERVED_MODULES;
-use model_algebra::explain::Explanation;
-use model_algebra::program::{CompiledModel, Program};
+use model_algebra::Explanation;
+use model_algebra::{CompiledModel, Program};
+use model_dsl::{ModelAst, RESERVED_MODULES};
 use proc_macro2::TokenStream;
 use std::collections::BTreeSet;
 

@@ -2,6 +2,7 @@
 //! link instead of one per file, which is most of a cold `cargo test`.
 
 mod cli_eval;
+mod cli_model;
 mod cli_run;
 mod outputs;
 mod pruned_scene;

@@ -3,7 +3,14 @@
 //!
 //! `alpha` is the direction of the friction force; the slip velocity of the contact point is
 //! `-v_C (cos alpha, sin alpha)`. The chart is singular at `v_C = 0` (the coefficient of
-//! `der(alpha)` in S4 is `m v_C`); see `sliding_cartesian` for a chart regular there.
+//! `der(alpha)` in S4 is `m v_C`).
+//!
+//! The same rows also give `sliding_cartesian`, Box 3 in the Cartesian slip chart of
+//! docs/physics.md §6: its states carry the slip velocity `u = (u_X, u_Y) = v_C e_s` of the
+//! contact point, `v_C` and `alpha` become expressions of `u`, and the compiler's chain rule
+//! turns `der(v_C)` and `der(alpha)` into derivatives of `u`. Nothing there turns infinitely
+//! fast when the slip passes near zero; only `u = 0` itself is singular. Both models come from
+//! one text, so a fix to a row of Box 3 is made here once.
 
 model_macros::model! {
     /// Euler's disk sliding on a rough plane, polar slip chart (paper's Box 3).
@@ -62,6 +69,17 @@ model_macros::model! {
         variant pruned {
             keep { theta, v_C, alpha, N, T, nu }
             fix { mu_a = 0.0, w_z = 0.0 }
+        }
+
+        /// Euler's disk sliding on a rough plane, Cartesian slip chart (paper's Box 3).
+        chart sliding_cartesian {
+            states { u_X, u_Y } replace { v_C, alpha }
+            let v_C = sqrt(u_X^2 + u_Y^2);
+            let alpha = atan2(-u_Y, -u_X);
+            outputs after V_Y {
+                slip_speed = v_C;
+                slip_direction = alpha;
+            }
         }
     }
 }

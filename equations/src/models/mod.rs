@@ -30,8 +30,6 @@
 
 mod box1_rolling;
 mod box3_sliding;
-mod box3_sliding_cartesian;
 
 pub use box1_rolling::rolling;
-pub use box3_sliding::sliding;
-pub use box3_sliding_cartesian::sliding_cartesian;
+pub use box3_sliding::{sliding, sliding_cartesian};

@@ -2,22 +2,13 @@
 //! block, with the pivots each block divides by, and the outputs; in Markdown (DSL syntax) and
 //! in LaTeX, so that the compiler's result can be set beside the equations of a paper.
 
-use crate::compile::{symbol_name, Solved};
 use crate::expr::{ExprId, Sym};
 use crate::print::{to_dsl, to_latex};
+use crate::program::Explanation;
+use crate::solved::{symbol_name, Solved};
 use crate::spec::ModelSpec;
 use crate::system::{Body, Group};
 use std::fmt::Write;
-
-/// The solved model, printed.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Explanation {
-    /// Markdown: one section per block (its derivatives, the pivots, the solved equations in
-    /// DSL syntax), then the outputs.
-    pub markdown: String,
-    /// A LaTeX `align*` environment of the same equations.
-    pub latex: String,
-}
 
 /// Prints the blocks of `solved` (a model compiled from `spec`).
 pub fn explain(solved: &Solved, spec: &ModelSpec) -> Explanation {

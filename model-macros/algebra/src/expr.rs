@@ -178,14 +178,10 @@ impl Pool {
         &self.nodes[id.0 as usize]
     }
 
-    /// The number of distinct nodes interned so far.
+    /// The number of distinct nodes interned so far (the tests check the interning).
+    #[cfg(test)]
     pub fn len(&self) -> usize {
         self.nodes.len()
-    }
-
-    /// Whether only the three built-in constants exist.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.len() <= 3
     }
 
     /// The constant value of `id`, if it is a constant.
@@ -270,7 +266,8 @@ impl Pool {
         roots.iter().map(|r| memo[r]).collect()
     }
 
-    /// Evaluates one expression.
+    /// Evaluates one expression (the tests compare it with the compiled programs).
+    #[cfg(test)]
     pub fn eval(&self, id: ExprId, value: &dyn Fn(Sym) -> f64) -> f64 {
         self.eval_many(&[id], value)[0]
     }

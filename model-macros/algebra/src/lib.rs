@@ -1,21 +1,22 @@
 //! Symbolic algebra for the equation compiler.
 //!
-//! A model arrives as a [`spec::ModelSpec`] (the front end's parse, with a node id on every
-//! part) and leaves as a [`program::CompiledModel`]: straight-line programs for the explicit
-//! right-hand side, its Jacobian and the outputs. In between, one stage per module:
-//! [`lower`] (syntax tree to interned expressions, with diagnostics at the user's nodes),
-//! [`linear`] (each equation as coefficients of the derivatives), [`structure`] (matching and
-//! block triangular form), [`solve`] (symbolic elimination per block into the definitions of
-//! [`system`], or a numeric block when that would swell or no safe pivot exists), [`trig`]
-//! (identities that take `atan2` and `sin_cos` calls out of the solution), [`jacobian`] (chain
-//! rule through the solution), [`cse`] (the DAG as a program, counted by [`ops`]) and
-//! [`variant`] (reduced models), chained by [`compile()`]. [`expr`], [`simplify`], [`expand`],
-//! [`diff`] and [`print`](mod@print) are the algebra underneath; [`eval`] interprets a program, so the
-//! emitted code can be tested without compiling it.
+//! A model arrives as a [`ModelSpec`] (the front end's parse, with a node id on every part) and
+//! leaves as a [`CompiledModel`]: straight-line [`Program`]s for the explicit right-hand side,
+//! its Jacobian and the outputs, and the solved equations printed ([`Explanation`]). The API is
+//! this crate root; the stages are private modules, one per stage: `lower` (syntax tree to
+//! interned expressions, with diagnostics at the user's nodes), `linear` (each equation as
+//! coefficients of the derivatives), `structure` (matching and block triangular form), `solve`
+//! (symbolic elimination per block into the definitions of `system`, or a numeric block when
+//! that would swell or no safe pivot exists), `trig` (identities that take `atan2` and
+//! `sin_cos` calls out of the solution), `jacobian` (chain rule through the solution), `cse`
+//! (the DAG as a program, counted by `ops`), `solved` (the model after the algebra) and
+//! `variant` (reduced models), chained by [`compile()`]. `expr`, `simplify`, `expand`, `diff`
+//! and `print` are the algebra underneath; the interpreter ([`Program::eval`],
+//! [`CompiledModel::derivatives`]) runs a program, so the emitted code can be tested without
+//! compiling it and a model can be evaluated without compiling Rust.
 //!
 //! ```
-//! use model_algebra::spec::{Ast, BinOp, EquationSpec, ModelSpec, Named, NodeId};
-//! use model_algebra::{compile, CompileOptions, Inputs};
+//! use model_algebra::{compile, Ast, BinOp, CompileOptions, EquationSpec, Inputs, ModelSpec, Named, NodeId};
 //!
 //! // `der(x*x) = -k*x*x`, i.e. `2 x der(x) = -k x^2`: the compiler solves for `der(x)`.
 //! let name = |n: &str| Ast::Name(NodeId(0), n.into());
@@ -44,33 +45,39 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod compile;
-pub mod cse;
-pub mod diff;
+mod compile;
+mod cse;
+mod diff;
 mod display;
-pub mod eval;
-pub mod expand;
-pub mod explain;
-pub mod expr;
-pub mod jacobian;
-pub mod linear;
-pub mod lower;
-pub mod ops;
-pub mod print;
-pub mod program;
-pub mod simplify;
-pub mod solve;
-pub mod spec;
-pub mod structure;
+mod eval;
+mod expand;
+mod explain;
+mod expr;
+mod interpret;
+mod jacobian;
+mod linear;
+mod lower;
+mod ops;
+mod options;
+mod print;
+mod program;
+mod simplify;
+mod solve;
+mod solved;
+mod spec;
+mod structure;
 mod structure_messages;
-pub mod system;
-pub mod trig;
-pub mod variant;
+mod system;
+mod trig;
+mod variant;
 
-pub use compile::{compile, CompileOptions, PIVOT_TOLERANCE};
+pub use compile::compile;
 pub use eval::{EvalFailure, Inputs, Stores};
+pub use options::{CompileOptions, PIVOT_TOLERANCE};
+pub use program::{
+    CompiledModel, Explanation, Node, Operand, Ops, Program, Stmt, SumCheck, Target,
+};
+pub use spec::{Ast, BinOp, Diagnostic, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 
-#[cfg(test)]
-mod testing;
 #[cfg(test)]
 mod tests;

@@ -319,16 +319,66 @@ fn nonlinear_at(id: NodeId, what: &str) -> Diagnostic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::model;
+    use crate::spec::{BinOp, EquationSpec, Func, ModelSpec, Named};
+
+    // Specs built by hand: the front end that reads DSL text depends on this crate, so the
+    // stage's own unit tests spell their small models as trees.
+    fn name(n: &str) -> Ast {
+        Ast::Name(NodeId(0), n.into())
+    }
+    fn bin(op: BinOp, a: Ast, b: Ast) -> Ast {
+        Ast::Bin(NodeId(0), op, Box::new(a), Box::new(b))
+    }
+    fn named<T>(n: &str, value: T) -> Named<T> {
+        Named {
+            name: n.into(),
+            id: NodeId(0),
+            value,
+        }
+    }
+    fn der(a: Ast) -> Ast {
+        Ast::Der(NodeId(0), Box::new(a))
+    }
+    /// A model with these parameters (no defaults), states, lets and equations.
+    fn model(
+        params: &[&str],
+        states: &[&str],
+        lets: Vec<Named<Ast>>,
+        equations: Vec<(Ast, Ast)>,
+    ) -> ModelSpec {
+        ModelSpec {
+            name: "test_model".into(),
+            params: params.iter().map(|p| named(p, None)).collect(),
+            states: states.iter().map(|s| named(s, ())).collect(),
+            lets,
+            equations: (equations.into_iter().enumerate())
+                .map(|(k, (lhs, rhs))| EquationSpec {
+                    label: format!("e{k}"),
+                    id: NodeId(0),
+                    lhs,
+                    rhs,
+                })
+                .collect(),
+            outputs: vec![],
+            variants: vec![],
+        }
+    }
 
     #[test]
     fn lets_are_substituted_once_and_shared() {
-        let spec = model("params k\nstates x\nlet a = sin(x)*k\nlet b = a + a\neq e: der(x) = b*a");
+        // let a = sin(x)*k; let b = a + a; der(x) = b*a
+        let sin_x = Ast::Call(NodeId(0), Func::Sin, vec![name("x")]);
+        let lets = vec![
+            named("a", bin(BinOp::Mul, sin_x, name("k"))),
+            named("b", bin(BinOp::Add, name("a"), name("a"))),
+        ];
+        let equation = (der(name("x")), bin(BinOp::Mul, name("b"), name("a")));
+        let spec = model(&["k"], &["x"], lets, vec![equation]);
         let mut l = Lowerer::new(&spec, vec![None]);
         let r = l.equation(0).unwrap();
         let p = &mut l.pool;
         let (x, k) = (p.sym(Sym::State(0)), p.sym(Sym::Param(0)));
-        let s = p.call(crate::spec::Func::Sin, x);
+        let s = p.call(Func::Sin, x);
         let a = p.mul2(s, k);
         let two = p.num(2.0);
         let b = p.mul2(two, a);
@@ -341,7 +391,11 @@ mod tests {
 
     #[test]
     fn fixed_parameters_pi_and_time_become_what_they_are() {
-        let spec = model("params k, c\nstates x\neq e: der(x) = k*x + c*t + pi");
+        // der(x) = k*x + c*t + pi
+        let kx = bin(BinOp::Mul, name("k"), name("x"));
+        let ct = bin(BinOp::Mul, name("c"), name("t"));
+        let rhs = bin(BinOp::Add, bin(BinOp::Add, kx, ct), name("pi"));
+        let spec = model(&["k", "c"], &["x"], vec![], vec![(der(name("x")), rhs)]);
         let mut l = Lowerer::new(&spec, vec![Some(0.0), None]);
         let r = l.equation(0).unwrap();
         let p = &mut l.pool;
@@ -355,7 +409,14 @@ mod tests {
 
     #[test]
     fn der_applies_the_chain_rule() {
-        let spec = model("states x, y\neq e: der(x*y) = 0\neq f: der(y) = 1");
+        // der(x*y) = 0; der(y) = 1
+        let zero = Ast::Num(NodeId(0), 0.0);
+        let one = Ast::Num(NodeId(0), 1.0);
+        let equations = vec![
+            (der(bin(BinOp::Mul, name("x"), name("y"))), zero),
+            (der(name("y")), one),
+        ];
+        let spec = model(&[], &["x", "y"], vec![], equations);
         let mut l = Lowerer::new(&spec, vec![]);
         let r = l.equation(0).unwrap();
         let p = &mut l.pool;

@@ -179,5 +179,15 @@ pub struct CompiledModel {
     /// The reduced variants, compiled.
     pub variants: Vec<CompiledModel>,
     /// The solved equations, printed (Markdown and LaTeX).
-    pub explanation: crate::explain::Explanation,
+    pub explanation: Explanation,
+}
+
+/// The solved model, printed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Explanation {
+    /// Markdown: one section per block (its derivatives, the pivots, the solved equations in
+    /// DSL syntax), then the outputs.
+    pub markdown: String,
+    /// A LaTeX `align*` environment of the same equations.
+    pub latex: String,
 }

@@ -9,9 +9,10 @@
 
 use std::collections::BTreeSet;
 
-use crate::compile::{CompileOptions, Selection, Solved};
 use crate::expr::Sym;
+use crate::options::CompileOptions;
 use crate::program::CompiledModel;
+use crate::solved::{Selection, Solved};
 use crate::spec::{Diagnostic, ModelSpec, VariantSpec};
 
 /// Compiles one variant of `spec`.
@@ -107,28 +108,4 @@ pub fn compile_variant(
     })?;
     model.explanation = explanation;
     Ok(model)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::testing::model;
-
-    #[test]
-    fn closure_over_solved_dependencies() {
-        // der(a) reads b; der(b) reads c; der(c) reads nothing; d is independent.
-        let spec = model(
-            "params k = 1\nstates a, b, c, d\neq ea: der(a) = b\neq eb: der(b) = k*c\n\
-             eq ec: der(c) = 1\neq ed: der(d) = d\nout o = der(b)\n\
-             variant only_a keep a\nvariant only_o keep o\nvariant only_d keep d fix k = 0",
-        );
-        let options = CompileOptions::default();
-        let kept = |k: usize| compile_variant(&spec, &spec.variants[k], &options).unwrap();
-        assert_eq!(kept(0).states, vec!["a", "b", "c"]);
-        assert_eq!(kept(1).states, vec!["b", "c"]);
-        assert_eq!(kept(1).outputs, vec!["o"]);
-        let d = kept(2);
-        assert_eq!(d.states, vec!["d"]);
-        assert!(d.params.is_empty());
-    }
 }

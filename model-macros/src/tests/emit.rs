@@ -2,9 +2,9 @@
 //! whole expansion is valid Rust.
 
 use crate::emit::emit;
-use crate::parse::parse_model;
-use model_algebra::program::{CompiledModel, Node, Operand, Program, Stmt, SumCheck, Target};
-use model_algebra::spec::Func;
+use model_algebra::Func;
+use model_algebra::{CompiledModel, Node, Operand, Program, Stmt, SumCheck, Target};
+use model_dsl::parse_model;
 use quote::quote;
 
 fn compiled() -> CompiledModel {

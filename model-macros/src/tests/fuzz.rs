@@ -3,8 +3,7 @@
 //! diagnostic; mutated models also go through the whole expansion, compiler included.
 
 use crate::expand::expand_timed;
-use crate::parse::parse_model;
-use crate::validate::validate;
+use model_dsl::{parse_model, validate};
 use proc_macro2::TokenStream;
 use proptest::prelude::*;
 
@@ -24,6 +23,7 @@ const VALID: &str = "
             power = der(energy) * 0 + m * l^2 * omega * der(omega);
         }
         variant small { keep { omega } fix { m = 1 } }
+        chart scaled { states { w } replace { omega } let omega = 2*w; }
     }
 ";
 
@@ -40,6 +40,9 @@ const ALPHABET: &[&str] = &[
     "variant",
     "keep",
     "fix",
+    "chart",
+    "replace",
+    "after",
     "der",
     "sin",
     "atan2",

@@ -1,38 +1,6 @@
-//! Unit tests of the front end's stages, run on `proc_macro2` tokens outside the compiler.
+//! Unit tests of the emitter and of the whole expansion, run on `proc_macro2` tokens outside the
+//! compiler.
 
 mod emit;
 mod fuzz;
-mod parse;
 mod timing;
-mod validate;
-
-use crate::ast::Expr;
-use model_algebra::spec::BinOp;
-
-/// The expression fully parenthesised, to check precedence and associativity.
-pub fn show(expr: &Expr) -> String {
-    match expr {
-        Expr::Num(_, value) => format!("{value}"),
-        Expr::Name(_, name) => name.clone(),
-        Expr::Neg(_, arg) => format!("(-{})", show(arg)),
-        Expr::Bin(_, op, lhs, rhs) => {
-            let op = match op {
-                BinOp::Add => "+",
-                BinOp::Sub => "-",
-                BinOp::Mul => "*",
-                BinOp::Div => "/",
-                BinOp::Pow => "^",
-            };
-            format!("({}{op}{})", show(lhs), show(rhs))
-        }
-        Expr::Call(call) => {
-            let args: Vec<String> = call.args.iter().map(show).collect();
-            format!("{}({})", call.func, args.join(","))
-        }
-    }
-}
-
-/// Every message of a (possibly combined) error.
-pub fn messages(error: syn::Error) -> Vec<String> {
-    error.into_iter().map(|e| e.to_string()).collect()
-}

@@ -7,12 +7,12 @@
 
 use proptest::prelude::*;
 
-use crate::compile::{compile, CompileOptions};
 use crate::diff::partial;
 use crate::eval::Inputs;
 use crate::expr::{call_value, ExprId, Sym};
 use crate::lower::Lowerer;
 use crate::spec::{Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
+use crate::{compile, CompileOptions};
 
 /// `x`, `y` are states 0, 1; `z` is parameter 0.
 const NAMES: [&str; 3] = ["x", "y", "z"];

@@ -5,11 +5,10 @@
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 
-use super::end_to_end::{finite_difference_jacobian, finite_difference_jacobian_with};
 use super::props::{ast, eval_ast, ill_conditioned};
-use crate::compile::{compile, CompileOptions};
 use crate::eval::Inputs;
 use crate::spec::{Ast, BinOp, EquationSpec, ModelSpec, Named, NodeId};
+use crate::{compile, CompileOptions};
 
 /// Three states `x, y, w` (the trees read `x`, `y` and the parameter `z`).
 #[derive(Clone, Debug)]
@@ -151,14 +150,14 @@ proptest! {
             .eval(&inputs)
             .map_err(|e| TestCaseError::fail(format!("{e:?}")))?
             .jacobian(n);
-        let fd = finite_difference_jacobian(&compiled, &states, &[v[2]]);
+        let fd = compiled.finite_difference_jacobian(&states, &[v[2]], 1e-6).unwrap();
         // The differences are a reference only where they have converged: repeated with
         // twice and half the step they must agree. Next to a pole (tan(tan(x)) at x ≈ 1.61)
         // or where f oscillates faster than the step resolves (sin(tan(y)²) at y ≈ 1.565)
         // they do not, and such entries are skipped: there the reference, not the Jacobian,
         // is what is off.
-        let coarse = finite_difference_jacobian_with(&compiled, &states, &[v[2]], 2e-6);
-        let fine = finite_difference_jacobian_with(&compiled, &states, &[v[2]], 5e-7);
+        let coarse = compiled.finite_difference_jacobian(&states, &[v[2]], 2e-6).unwrap();
+        let fine = compiled.finite_difference_jacobian(&states, &[v[2]], 5e-7).unwrap();
         // Differences lose about eps·|f|/h to rounding (h ≈ 1e-6): a huge value with a
         // moderate derivative is beyond them.
         let rounding = 1e-9 * got.iter().fold(0.0f64, |a, b| a.max(b.abs()));

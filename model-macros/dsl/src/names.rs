@@ -4,7 +4,7 @@
 //! and the function names, so that a name in an expression always means one thing, and the
 //! diagnostics can say what a name is ("`m` is a parameter") rather than just that it is wrong.
 
-use model_algebra::spec::{Func, NodeId};
+use model_algebra::{Func, NodeId};
 use std::collections::BTreeMap;
 use std::fmt;
 

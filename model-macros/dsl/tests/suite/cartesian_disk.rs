@@ -3,25 +3,17 @@
 //! The two charts reach their code by different identities (the Cartesian one through
 //! `sin(atan2)`, the polar one by expanding `sin(alpha - psi)`), so agreement checks both.
 
-use crate::compile::{compile, CompileOptions};
-use crate::eval::{EvalFailure, Inputs};
-use crate::program::CompiledModel;
-use crate::testing::model;
+use crate::common::{charted, model, sliding};
+use model_algebra::CompiledModel;
+use model_algebra::{compile, CompileOptions};
+use model_algebra::{EvalFailure, Inputs};
 
-use super::sliding_disk::{state, PARAMS, SLIDING};
+use crate::sliding_disk::{state, PARAMS};
 
-/// The polar model's text with the slip as Cartesian states.
-pub fn cartesian() -> String {
-    SLIDING
-        .replace(
-            "v_C, alpha, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z",
-            "u_X, u_Y, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z
-    let v_C = sqrt(u_X^2 + u_Y^2)
-    let alpha = atan2(-u_Y, -u_X)",
-        )
-        .replace("keep theta, v_C, alpha, N", "keep theta, u_X, u_Y, N")
+/// The sliding disk in its Cartesian chart, as the `equations` crate compiles it.
+pub fn cartesian() -> model_algebra::ModelSpec {
+    charted(&sliding(), "sliding_cartesian")
 }
-
 fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Result<Vec<f64>, EvalFailure> {
     let inputs = Inputs {
         t: 0.0,
@@ -41,8 +33,8 @@ fn close(got: f64, want: f64, what: &str) {
 
 #[test]
 fn the_cartesian_chart_agrees_with_the_polar_one() {
-    let polar = compile(&model(SLIDING), &CompileOptions::default()).expect("polar compiles");
-    let spec = model(&cartesian());
+    let polar = compile(&model(&sliding()), &CompileOptions::default()).expect("polar compiles");
+    let spec = cartesian();
     let cart = compile(&spec, &CompileOptions::default()).expect("cartesian compiles");
     // No atan2 is left, and the only calls are the sine and cosine of theta and psi.
     assert_eq!(cart.rhs.ops().trig, 2, "{}", cart.rhs);
@@ -70,13 +62,13 @@ fn the_cartesian_chart_agrees_with_the_polar_one() {
         for k in (0..12).filter(|&k| k != 3 && k != 4) {
             close(dc[k], dp[k], &format!("der {}", spec.states[k].name));
         }
-        super::end_to_end::assert_jacobian_matches(&cart, &yc, &PARAMS);
+        crate::end_to_end::assert_jacobian_matches(&cart, &yc, &PARAMS);
     }
 }
 
 #[test]
 fn zero_slip_is_a_named_pivot() {
-    let cart = compile(&model(&cartesian()), &CompileOptions::default()).unwrap();
+    let cart = compile(&cartesian(), &CompileOptions::default()).unwrap();
     let mut y = state();
     y[3] = 0.0;
     y[4] = 0.0;
@@ -92,9 +84,9 @@ fn zero_slip_is_a_named_pivot() {
     assert_eq!(v.states[..2], ["u_X", "u_Y"]);
     let mut reduced: Vec<f64> = [3, 4, 5, 6, 7, 9, 10, 11].iter().map(|&i| y[i]).collect();
     assert!(matches!(
-        rhs(v, &reduced, &PARAMS[..4]),
+        rhs(v, &reduced, &PARAMS[..5]),
         Err(EvalFailure::SingularPivot { text, .. }) if text == "u_X^2 + u_Y^2"
     ));
     reduced[0] = 1e-9;
-    assert!(rhs(v, &reduced, &PARAMS[..4]).is_ok());
+    assert!(rhs(v, &reduced, &PARAMS[..5]).is_ok());
 }

@@ -1,16 +1,20 @@
 //! The relative singular-pivot test: a pivot that has cancelled to round-off is refused, a pivot
 //! that is merely small is not.
 
-use crate::compile::{compile, CompileOptions, PIVOT_TOLERANCE};
-use crate::eval::{EvalFailure, Inputs};
-use crate::program::CompiledModel;
-use crate::testing::model;
+use crate::common::model;
+use model_algebra::CompiledModel;
+use model_algebra::{compile, CompileOptions, PIVOT_TOLERANCE};
+use model_algebra::{EvalFailure, Inputs};
 
 const MODEL: &str = "
-    params eps = 1e-3
-    states x, y
-    eq a: (x - y)*der(x) = 1
-    eq b: eps*der(y) = 1
+mod m {
+    params { eps = 1e-3 }
+    states { x, y }
+    equations {
+        a: (x - y)*der(x) = 1;
+        b: eps*der(y) = 1;
+    }
+}
 ";
 
 fn rhs(m: &CompiledModel, x: f64, y: f64, eps: f64) -> Result<Vec<f64>, EvalFailure> {
@@ -73,7 +77,7 @@ fn a_zero_tolerance_tests_exact_zero_only() {
 fn sums_of_one_sign_and_factors_are_tested_where_they_can_cancel() {
     // The pivot `k*(x^2 + y^2)*(x - y)` can only cancel in its last factor.
     let m = compile(
-        &model("params k = 2\nstates x\neq a: k*(x^2 + 1)*(x - 3)*der(x) = 1"),
+        &model("mod m { params { k = 2 } states { x } equations { a: k*(x^2 + 1)*(x - 3)*der(x) = 1; } }"),
         &CompileOptions::default(),
     )
     .unwrap();

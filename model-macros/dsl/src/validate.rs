@@ -7,9 +7,9 @@
 use crate::ast::{Call, Expr, ModelAst};
 use crate::names::{function_list, Decl, Kind, Names, DER};
 use crate::options::compile_options;
-use crate::span::{Errors, SpanRange, Spans};
-use model_algebra::spec::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
+use crate::span::{Errors, SpanRange};
 use model_algebra::CompileOptions;
+use model_algebra::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Module names the emitter uses inside every model, so a variant cannot take them.
@@ -19,15 +19,34 @@ pub const RESERVED_MODULES: [&str; 7] = [
 ];
 
 /// A model ready for the compiler.
+#[derive(Clone, Debug)]
 pub struct Validated {
+    /// The model as written (for a chart: the model in the chart's coordinates).
+    pub ast: ModelAst,
     /// The model with its names resolved.
     pub spec: ModelSpec,
     /// The compiler's options for it.
     pub options: CompileOptions,
 }
 
-/// Checks the model and resolves its names; `Err` carries every problem found.
-pub fn validate(ast: &ModelAst) -> syn::Result<Validated> {
+/// Checks the model and resolves its names; `Err` carries every problem found. `Ok` holds the
+/// model, then the model in each of its charts (checked only once the model itself is valid,
+/// so a mistake in a shared row is reported once).
+pub fn validate(ast: &ModelAst) -> syn::Result<Vec<Validated>> {
+    let model = validate_one(ast)?;
+    let mut errors = Errors::default();
+    let mut models = vec![model];
+    for chart in &ast.charts {
+        match validate_one(&chart.apply(ast)) {
+            Ok(model) => models.push(model),
+            Err(error) => errors.push(error),
+        }
+    }
+    errors.finish()?;
+    Ok(models)
+}
+
+fn validate_one(ast: &ModelAst) -> syn::Result<Validated> {
     let mut validator = Validator {
         ast,
         names: Names::new(),
@@ -46,6 +65,7 @@ pub fn validate(ast: &ModelAst) -> syn::Result<Validated> {
     validator.check_labels();
     let variants = validator.check_variants();
     let options = compile_options(&ast.options, &ast.spans, &mut validator.errors);
+    crate::chart::check(ast, &validator.names, &mut validator.errors);
     validator.errors.finish()?;
     let spec = ModelSpec {
         name: ast.name.to_string(),
@@ -56,7 +76,11 @@ pub fn validate(ast: &ModelAst) -> syn::Result<Validated> {
         outputs,
         variants,
     };
-    Ok(Validated { spec, options })
+    Ok(Validated {
+        ast: ast.clone(),
+        spec,
+        options,
+    })
 }
 
 /// What an expression depends on, through lets and outputs.
@@ -96,7 +120,7 @@ struct Validator<'a> {
 
 impl<'a> Validator<'a> {
     fn range(&self, id: NodeId) -> SpanRange {
-        range(&self.ast.spans, id)
+        self.ast.spans.range(id)
     }
 
     fn check_item_docs(&mut self) {
@@ -542,11 +566,4 @@ impl<'a> Validator<'a> {
         }
         variants
     }
-}
-
-/// The source range of `id`, or the macro's call site for an id the table does not hold.
-pub fn range(spans: &Spans, id: NodeId) -> SpanRange {
-    spans
-        .get(id)
-        .unwrap_or_else(|| SpanRange::single(proc_macro2::Span::call_site()))
 }

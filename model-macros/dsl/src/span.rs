@@ -4,7 +4,7 @@
 //! node an id and records the source range here, so any diagnostic — found by the front end or by
 //! the compiler — can be drawn under the exact tokens the user wrote.
 
-use model_algebra::spec::NodeId;
+use model_algebra::NodeId;
 use proc_macro2::{Punct, Spacing, Span, TokenStream};
 use quote::{ToTokens, TokenStreamExt};
 
@@ -72,6 +72,12 @@ impl Spans {
     /// The range of `id`; `None` for an id this table never handed out.
     pub fn get(&self, id: NodeId) -> Option<SpanRange> {
         self.ranges.get(id.0 as usize).copied()
+    }
+
+    /// The range of `id`, or the macro's call site for an id this table never handed out.
+    pub fn range(&self, id: NodeId) -> SpanRange {
+        self.get(id)
+            .unwrap_or_else(|| SpanRange::single(Span::call_site()))
     }
 }
 

@@ -1,10 +1,11 @@
 //! Exact operation counts of compiled models: a change that makes emitted code bigger (or an
 //! elimination that starts to swell) fails here first.
 
-use crate::compile::{compile, CompileOptions};
-use crate::eval::Inputs;
-use crate::program::{Ops, Program};
-use crate::testing::model;
+use crate::common::model;
+use model_algebra::Inputs;
+use model_algebra::ModelSpec;
+use model_algebra::{compile, CompileOptions};
+use model_algebra::{Ops, Program};
 
 /// `(add, mul, div, sqrt, trig, transcendental)`.
 fn counts(p: &Program) -> [u32; 6] {
@@ -21,7 +22,7 @@ fn counts(p: &Program) -> [u32; 6] {
 
 #[test]
 fn pendulum_counts() {
-    let spec = model(super::end_to_end::PENDULUM);
+    let spec = model(crate::end_to_end::PENDULUM);
     let m = compile(&spec, &CompileOptions::default()).unwrap();
     assert_eq!(counts(&m.rhs), PENDULUM_RHS, "{}", m.rhs);
     assert_eq!(counts(&m.jacobian), PENDULUM_JACOBIAN);
@@ -40,6 +41,8 @@ const PENDULUM_OUTPUTS: [u32; 6] = [2, 5, 0, 0, 0, 0];
 /// The pinned counts of a disk model: its right-hand side, its Jacobian, and the right-hand
 /// side of its first variant.
 struct DiskCounts {
+    /// The variant whose right-hand side is counted.
+    variant: &'static str,
     rhs: [u32; 6],
     jacobian: [u32; 6],
     variant_rhs: [u32; 6],
@@ -47,11 +50,12 @@ struct DiskCounts {
 
 /// Compiles the model `text` and compares its counts with `expected` (printing the program
 /// whose counts differ).
-fn assert_counts(text: &str, expected: DiskCounts) {
-    let m = compile(&model(text), &CompileOptions::default()).unwrap();
+fn assert_counts(spec: &ModelSpec, expected: DiskCounts) {
+    let m = compile(spec, &CompileOptions::default()).unwrap();
     assert_eq!(counts(&m.rhs), expected.rhs, "{}", m.rhs);
     assert_eq!(counts(&m.jacobian), expected.jacobian);
-    let variant = &m.variants[0].rhs;
+    let variant = m.variants.iter().find(|v| v.name == expected.variant);
+    let variant = &variant.expect("the variant exists").rhs;
     assert_eq!(counts(variant), expected.variant_rhs, "{variant}");
 }
 
@@ -59,8 +63,9 @@ fn assert_counts(text: &str, expected: DiskCounts) {
 fn rolling_counts() {
     // The variant: the spin-only rolling model.
     assert_counts(
-        super::rolling_disk::ROLLING,
+        &model(&crate::rolling_disk::rolling_with_spin()),
         DiskCounts {
+            variant: "spin",
             rhs: [20, 52, 3, 0, 2, 0],
             jacobian: [53, 153, 4, 0, 2, 0],
             variant_rhs: [4, 19, 2, 0, 1, 0],
@@ -72,8 +77,9 @@ fn rolling_counts() {
 fn sliding_counts() {
     // The variant: the pruned sliding model.
     assert_counts(
-        super::sliding_disk::SLIDING,
+        &model(&crate::common::sliding()),
         DiskCounts {
+            variant: "pruned",
             rhs: [39, 100, 5, 0, 3, 0],
             jacobian: [169, 465, 9, 0, 3, 0],
             variant_rhs: [24, 41, 4, 0, 2, 0],
@@ -85,8 +91,9 @@ fn sliding_counts() {
 fn cartesian_sliding_counts() {
     // Before the trigonometric identities: rhs [42, 101, 6, 1, 5, 0], pruned [27, 53, 6, 1, 3, 0].
     assert_counts(
-        &super::cartesian_disk::cartesian(),
+        &crate::cartesian_disk::cartesian(),
         DiskCounts {
+            variant: "pruned",
             rhs: [43, 111, 5, 1, 2, 0],
             jacobian: [230, 617, 9, 1, 2, 0],
             variant_rhs: [28, 67, 5, 1, 2, 0],
@@ -96,17 +103,11 @@ fn cartesian_sliding_counts() {
 
 /// A dense `n × n` mass matrix of unrelated entries: its symbolic inverse swells.
 fn dense_model(n: usize) -> String {
-    let mut text = String::from("params ");
     let params: Vec<String> = (0..n * n)
-        .map(|k| format!("p{k} = {}", 1.0 + k as f64 / 7.0))
+        .map(|k| format!("p{k} = {:?}", 1.0 + k as f64 / 7.0))
         .collect();
-    text += &params.join(", ");
-    text += "\nstates ";
-    text += &(0..n)
-        .map(|i| format!("y{i}"))
-        .collect::<Vec<_>>()
-        .join(", ");
-    text += "\n";
+    let states: Vec<String> = (0..n).map(|i| format!("y{i}")).collect();
+    let mut equations = String::new();
     for i in 0..n {
         let lhs: Vec<String> = (0..n)
             .map(|j| {
@@ -118,9 +119,13 @@ fn dense_model(n: usize) -> String {
                 format!("({diag}p{}*sin(y{j}))*der(y{j})", i * n + j)
             })
             .collect();
-        text += &format!("eq e{i}: {} = cos(y{i})\n", lhs.join(" + "));
+        equations += &format!("e{i}: {} = cos(y{i});\n", lhs.join(" + "));
     }
-    text
+    format!(
+        "mod dense {{ params {{ {} }} states {{ {} }} equations {{ {equations} }} }}",
+        params.join(", "),
+        states.join(", ")
+    )
 }
 
 #[test]
@@ -159,7 +164,7 @@ fn swelling_block_falls_back_to_a_numeric_solve() {
             "{a:?} vs {b:?}"
         );
     }
-    super::end_to_end::assert_jacobian_matches(&m, &y, &p);
+    crate::end_to_end::assert_jacobian_matches(&m, &y, &p);
 }
 
 const DENSE8_RHS: [u32; 6] = [204, 296, 8, 0, 8, 0];
@@ -176,12 +181,8 @@ fn small_dense_block_stays_symbolic() {
 /// linearly, not explode (a generous bound, to catch exponential behaviour only).
 #[test]
 fn a_long_chain_of_blocks_compiles_quickly() {
-    let mut text = String::from("params k = 2\nstates ");
-    text += &(0..40)
-        .map(|i| format!("s{i}"))
-        .collect::<Vec<_>>()
-        .join(", ");
-    text += "\n";
+    let states: Vec<String> = (0..40).map(|i| format!("s{i}")).collect();
+    let mut equations = String::new();
     for i in (0..40).step_by(2) {
         let prev = if i == 0 {
             "k".to_string()
@@ -189,12 +190,16 @@ fn a_long_chain_of_blocks_compiles_quickly() {
             format!("der(s{})", i - 1)
         };
         let (a, b) = (format!("s{i}"), format!("s{}", i + 1));
-        text += &format!(
-            "eq e{i}: cos({a})*der({a}) + sin({b})*der({b}) = {prev}*{b}\n\
-             eq e{}: -sin({a})*der({a}) + (2 + cos({b}))*der({b}) = {prev} + {a}\n",
+        equations += &format!(
+            "e{i}: cos({a})*der({a}) + sin({b})*der({b}) = {prev}*{b};\n\
+             e{}: -sin({a})*der({a}) + (2 + cos({b}))*der({b}) = {prev} + {a};\n",
             i + 1
         );
     }
+    let text = format!(
+        "mod chain {{ params {{ k = 2 }} states {{ {} }} equations {{ {equations} }} }}",
+        states.join(", ")
+    );
     let spec = model(&text);
     let start = std::time::Instant::now();
     let m = compile(&spec, &CompileOptions::default()).unwrap();
@@ -202,5 +207,5 @@ fn a_long_chain_of_blocks_compiles_quickly() {
     assert!(elapsed.as_secs_f64() < 10.0, "{elapsed:?}");
     assert_eq!(m.states.len(), 40);
     let y: Vec<f64> = (0..40).map(|i| 0.1 + 0.02 * i as f64).collect();
-    super::end_to_end::assert_jacobian_matches(&m, &y, &[2.0]);
+    crate::end_to_end::assert_jacobian_matches(&m, &y, &[2.0]);
 }

@@ -1,18 +1,33 @@
 //! The algebra, seen from the front end: run the compiler, point its diagnostics at the user's
 //! tokens.
 
-use crate::span::{Errors, Spans};
-use crate::validate::{range, Validated};
-use model_algebra::program::CompiledModel;
+use crate::span::Errors;
+use crate::validate::Validated;
+use model_algebra::CompiledModel;
+
+/// Compiles every model (a model and its charts), reporting the errors of all together.
+pub fn compile_all(models: &[Validated]) -> syn::Result<Vec<CompiledModel>> {
+    let mut errors = Errors::default();
+    let mut compiled = Vec::new();
+    for model in models {
+        match compile(model) {
+            Ok(model) => compiled.push(model),
+            Err(error) => errors.push(error),
+        }
+    }
+    errors.finish()?;
+    Ok(compiled)
+}
 
 /// Compiles a validated model; a diagnostic of the compiler becomes an error under the tokens of
 /// the node it names, and all of them are reported together.
-pub fn compile(model: &Validated, spans: &Spans) -> syn::Result<CompiledModel> {
+pub fn compile(model: &Validated) -> syn::Result<CompiledModel> {
     let spec = &model.spec;
+    let spans = &model.ast.spans;
     model_algebra::compile(spec, &model.options).map_err(|diagnostics| {
         let mut errors = Errors::default();
         for diagnostic in diagnostics {
-            errors.at(range(spans, diagnostic.id), diagnostic.message);
+            errors.at(spans.range(diagnostic.id), diagnostic.message);
         }
         match errors.finish() {
             Err(error) => error,

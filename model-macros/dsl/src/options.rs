@@ -6,9 +6,8 @@
 //! (`0` restores the exact-zero test, e.g. for a model whose pivots cancel by design).
 
 use crate::span::{Errors, Spans};
-use crate::validate::range;
-use model_algebra::spec::Named;
 use model_algebra::CompileOptions;
+use model_algebra::Named;
 
 /// The options a model may set, with what each means (for the "unknown option" message).
 const KNOWN: [(&str, &str); 2] = [
@@ -31,7 +30,7 @@ pub fn compile_options(
     let mut compile = CompileOptions::default();
     let mut seen = Vec::new();
     for option in options {
-        let at = range(spans, option.id);
+        let at = spans.range(option.id);
         if seen.contains(&option.name.as_str()) {
             errors.at(at, format!("option `{}` is set twice", option.name));
             continue;

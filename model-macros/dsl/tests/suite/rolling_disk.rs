@@ -3,36 +3,21 @@
 
 use std::time::Instant;
 
-use crate::compile::{compile, CompileOptions};
-use crate::eval::Inputs;
-use crate::program::CompiledModel;
-use crate::testing::model;
+use crate::common::{model, rolling, with_variant};
+use model_algebra::CompiledModel;
+use model_algebra::Inputs;
+use model_algebra::{compile, CompileOptions};
 
-pub const ROLLING: &str = "
-    params m = 0.4387, a = 0.03755, g = 9.81, mu_a = 0.0, w_z = 0.0
-    states X, Y, Z, V_X, V_Y, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z
-    let A = m*a^2/4
-    let C = m*a^2/2
-    let k_F = mu_a*pi*a^2
-    let k_M = mu_a*pi*a^4/4
-    let v_z = (V_X*cos(psi) + V_Y*sin(psi))*sin(theta) + V_Z*cos(theta)
-    eq R1: der(X) = V_X
-    eq R2: der(Y) = V_Y
-    eq R3: der(Z) = V_Z
-    eq R4: der(V_X - a*(Omega_y*cos(psi)*sin(theta) + Omega_z*sin(psi))) = 0
-    eq R5: der(V_Y - a*(Omega_y*sin(psi)*sin(theta) - Omega_z*cos(psi))) = 0
-    eq R6: der(V_Z - a*Omega_y*cos(theta)) = 0
-    eq R7: A*der(Omega_x) - A*Omega_y*cos(theta)*der(psi) = -C*Omega_y*Omega_z - k_M*Omega_x
-    eq R8: A*der(Omega_y) + A*Omega_x*cos(theta)*der(psi) + m*a*(sin(theta)*(cos(psi)*der(V_X) + sin(psi)*der(V_Y)) + cos(theta)*der(V_Z)) = C*Omega_x*Omega_z - m*g*a*cos(theta) - k_F*a*(v_z - w_z) - k_M*Omega_y
-    eq R9: C*der(Omega_z) + m*a*(sin(psi)*der(V_X) - cos(psi)*der(V_Y)) = 0
-    eq R10: sin(theta)*der(psi) = -Omega_x
-    eq R11: der(theta) = Omega_y
-    eq R12: cos(theta)*der(psi) + der(phi) = Omega_z
-    out N = m*(der(V_Z) + g) + k_F*(v_z - w_z)*cos(theta)
-    variant spin keep theta, Omega_x fix mu_a = 0, w_z = 0
-";
+/// The rolling disk of the `equations` crate, with a variant that keeps only the spin.
+pub fn rolling_with_spin() -> String {
+    with_variant(
+        &rolling(),
+        "variant spin { keep { theta, Omega_x } fix { mu_a = 0, w_z = 0 } }",
+    )
+}
 
-pub const PARAMS: [f64; 5] = [0.4387, 0.03755, 9.81, 0.0, 0.0];
+/// `m, a, g, mu_d, mu_st, mu_a, w_z`.
+pub const PARAMS: [f64; 7] = [0.4387, 0.03755, 9.81, 0.115, 0.2, 0.0, 0.0];
 
 pub fn state() -> [f64; 12] {
     [
@@ -41,7 +26,7 @@ pub fn state() -> [f64; 12] {
 }
 
 /// The reduced explicit form of the rolling equations (μ_a = 0), derived by hand.
-fn reference(y: &[f64; 12], p: &[f64; 5]) -> [f64; 12] {
+fn reference(y: &[f64; 12], p: &[f64; 7]) -> [f64; 12] {
     let (m, a, g) = (p[0], p[1], p[2]);
     let (aa, cc) = (m * a * a / 4.0, m * a * a / 2.0);
     let (psi, th) = (y[6], y[7]);
@@ -75,7 +60,7 @@ fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<f64> {
 
 #[test]
 fn rolling_matches_the_reduced_explicit_form() {
-    let spec = model(ROLLING);
+    let spec = model(&rolling_with_spin());
     let start = Instant::now();
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
     let elapsed = start.elapsed();
@@ -97,24 +82,24 @@ fn rolling_matches_the_reduced_explicit_form() {
             want[k]
         );
     }
-    super::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
+    crate::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
 }
 
 #[test]
 fn variant_keeps_what_its_quantities_need() {
-    let spec = model(ROLLING);
+    let spec = model(&rolling_with_spin());
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
-    let v = &m.variants[0];
+    let v = &m.variants[1];
     assert_eq!(v.name, "spin");
     // der(theta) = Omega_y; der(Omega_x) reads theta, Omega_x, Omega_y, Omega_z.
     assert_eq!(v.states, vec!["theta", "Omega_x", "Omega_y", "Omega_z"]);
     let names: Vec<&str> = v.params.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, vec!["m", "a", "g"]);
+    assert_eq!(names, vec!["m", "a", "g", "mu_d", "mu_st"]);
     assert!(v.outputs.is_empty());
     let y = state();
     let full = rhs(&m, &y, &PARAMS);
     let reduced_y = [y[7], y[9], y[10], y[11]];
-    let reduced = rhs(v, &reduced_y, &PARAMS[..3]);
+    let reduced = rhs(v, &reduced_y, &PARAMS[..5]);
     for (k, &i) in [7, 9, 10, 11].iter().enumerate() {
         assert!(
             (reduced[k] - full[i]).abs() <= 1e-13 * (1.0 + full[i].abs()),
@@ -124,16 +109,16 @@ fn variant_keeps_what_its_quantities_need() {
             full[i]
         );
     }
-    super::end_to_end::assert_jacobian_matches(v, &reduced_y, &PARAMS[..3]);
+    crate::end_to_end::assert_jacobian_matches(v, &reduced_y, &PARAMS[..5]);
 }
 
 #[test]
 fn flat_disk_is_a_singular_pivot_everywhere() {
-    let spec = model(ROLLING);
+    let spec = model(&rolling_with_spin());
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
     let mut y = state();
     y[7] = 0.0;
-    let flat = |p: &crate::program::Program, y: &[f64], params: &[f64]| {
+    let flat = |p: &model_algebra::Program, y: &[f64], params: &[f64]| {
         p.eval(&Inputs {
             t: 0.0,
             states: y,
@@ -141,14 +126,14 @@ fn flat_disk_is_a_singular_pivot_everywhere() {
             ders: &[],
         })
     };
-    let expected = Err(crate::eval::EvalFailure::SingularPivot {
+    let expected = Err(model_algebra::EvalFailure::SingularPivot {
         text: "sin(theta)".into(),
         value: 0.0,
     });
     assert_eq!(flat(&m.rhs, &y, &PARAMS), expected);
     assert_eq!(flat(&m.jacobian, &y, &PARAMS), expected);
-    let v = &m.variants[0];
+    let v = &m.variants[1];
     let reduced = [0.0, y[9], y[10], y[11]];
-    assert_eq!(flat(&v.rhs, &reduced, &PARAMS[..3]), expected);
-    assert_eq!(flat(&v.jacobian, &reduced, &PARAMS[..3]), expected);
+    assert_eq!(flat(&v.rhs, &reduced, &PARAMS[..5]), expected);
+    assert_eq!(flat(&v.jacobian, &reduced, &PARAMS[..5]), expected);
 }

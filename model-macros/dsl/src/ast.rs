@@ -5,7 +5,7 @@
 //! carries a [`NodeId`] whose source range lives in [`Spans`].
 
 use crate::span::Spans;
-use model_algebra::spec::{BinOp, Named, NodeId};
+use model_algebra::{BinOp, Named, NodeId};
 use std::collections::BTreeMap;
 
 /// An expression before name resolution.
@@ -89,6 +89,27 @@ pub struct Variant {
     pub fix: Vec<Named<f64>>,
 }
 
+/// `chart NAME { states { .. } replace { .. } let ..; outputs [after NAME] { .. } }`.
+#[derive(Clone, Debug)]
+pub struct Chart {
+    /// Doc comments written before `chart`.
+    pub attrs: Vec<syn::Attribute>,
+    /// The chart's module name.
+    pub name: syn::Ident,
+    /// The name's node.
+    pub id: NodeId,
+    /// The new states.
+    pub states: Vec<Named<()>>,
+    /// The model's states they replace.
+    pub replace: Vec<Named<()>>,
+    /// Lets placed before the model's, defining every replaced state.
+    pub lets: Vec<Named<Expr>>,
+    /// Outputs added to the model's.
+    pub outputs: Vec<Named<Expr>>,
+    /// The model's output after which `outputs` go (`None`: last).
+    pub after: Option<Named<()>>,
+}
+
 /// A whole `model!` invocation as written.
 #[derive(Clone, Debug)]
 pub struct ModelAst {
@@ -110,6 +131,8 @@ pub struct ModelAst {
     pub outputs: Vec<Named<Expr>>,
     /// Reduced variants.
     pub variants: Vec<Variant>,
+    /// The model in other coordinates.
+    pub charts: Vec<Chart>,
     /// Compiler options (`options { name = value }`).
     pub options: Vec<Named<f64>>,
     /// Doc comments written on parameters, states and outputs, by name (they document the
@@ -132,6 +155,7 @@ impl ModelAst {
             equations: Vec::new(),
             outputs: Vec::new(),
             variants: Vec::new(),
+            charts: Vec::new(),
             options: Vec::new(),
             docs: BTreeMap::new(),
             spans: Spans::default(),

@@ -6,7 +6,7 @@
 
 use crate::ast::{Call, Expr};
 use crate::span::{SpanRange, Spans};
-use model_algebra::spec::BinOp;
+use model_algebra::BinOp;
 use syn::parse::ParseStream;
 use syn::{token, Token};
 

@@ -1,7 +1,7 @@
 use super::messages;
 use crate::parse::parse_model;
 use crate::validate::validate;
-use model_algebra::spec::Ast;
+use model_algebra::Ast;
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -140,7 +140,7 @@ fn a_valid_model_resolves_to_the_spec() {
         }
     })
     .unwrap();
-    let spec = validate(&ast).unwrap().spec;
+    let spec = validate(&ast).unwrap().remove(0).spec;
     assert_eq!(spec.name, "pend");
     assert_eq!(spec.equations[0].label, "kin");
     assert_eq!(spec.equations[1].label, "equation 2");
@@ -169,5 +169,5 @@ fn a_valid_model_resolves_to_the_spec() {
     }
     assert!(ids
         .iter()
-        .all(|&id| ast.spans.get(model_algebra::spec::NodeId(id)).is_some()));
+        .all(|&id| ast.spans.get(model_algebra::NodeId(id)).is_some()));
 }

@@ -1,9 +1,9 @@
 //! Small non-disk models compiled end to end and compared with hand-written derivatives.
 
-use crate::compile::{compile, CompileOptions};
-use crate::eval::Inputs;
-use crate::program::CompiledModel;
-use crate::testing::model;
+use crate::common::model;
+use model_algebra::CompiledModel;
+use model_algebra::Inputs;
+use model_algebra::{compile, CompileOptions};
 
 fn rhs(m: &CompiledModel, t: f64, y: &[f64], p: &[f64]) -> Vec<f64> {
     let stores = m
@@ -19,15 +19,21 @@ fn rhs(m: &CompiledModel, t: f64, y: &[f64], p: &[f64]) -> Vec<f64> {
 }
 
 pub const PENDULUM: &str = "
-    params m = 1.5, g = 9.81
-    states x, y, vx, vy, P
-    eq kx: der(x) = vx
-    eq ky: der(y) = vy
-    eq mx: m*der(vx) = -der(P)*x
-    eq my: m*der(vy) = -der(P)*y - m*g
-    eq c: der(x*vx + y*vy) = 0
-    out lambda = der(P)
-    out energy = m/2*(vx^2 + vy^2) + m*g*y
+mod m {
+    params { m = 1.5, g = 9.81 }
+    states { x, y, vx, vy, P }
+    equations {
+        kx: der(x) = vx;
+        ky: der(y) = vy;
+        mx: m*der(vx) = -der(P)*x;
+        my: m*der(vy) = -der(P)*y - m*g;
+        c: der(x*vx + y*vy) = 0;
+    }
+    outputs {
+        lambda = der(P);
+        energy = m/2*(vx^2 + vy^2) + m*g*y;
+    }
+}
 ";
 
 #[test]
@@ -55,34 +61,6 @@ fn cartesian_pendulum_matches_hand_derivation() {
     }
 }
 
-/// Central differences of the compiled right-hand side.
-pub fn finite_difference_jacobian(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<Vec<f64>> {
-    finite_difference_jacobian_with(m, y, p, 1e-6)
-}
-
-/// Central differences with steps `relative_step · max(|y_j|, 1)`.
-pub fn finite_difference_jacobian_with(
-    m: &CompiledModel,
-    y: &[f64],
-    p: &[f64],
-    relative_step: f64,
-) -> Vec<Vec<f64>> {
-    let n = y.len();
-    let mut jac = vec![vec![0.0; n]; n];
-    for j in 0..n {
-        let h = relative_step * y[j].abs().max(1.0);
-        let mut yp = y.to_vec();
-        yp[j] += h;
-        let fp = rhs(m, 0.0, &yp, p);
-        yp[j] -= 2.0 * h;
-        let fm = rhs(m, 0.0, &yp, p);
-        for i in 0..n {
-            jac[i][j] = (fp[i] - fm[i]) / (2.0 * h);
-        }
-    }
-    jac
-}
-
 pub fn assert_jacobian_matches(m: &CompiledModel, y: &[f64], p: &[f64]) {
     let n = y.len();
     let stores = m
@@ -95,7 +73,9 @@ pub fn assert_jacobian_matches(m: &CompiledModel, y: &[f64], p: &[f64]) {
         })
         .expect("jacobian evaluates");
     let jac = stores.jacobian(n);
-    let fd = finite_difference_jacobian(m, y, p);
+    let fd = m
+        .finite_difference_jacobian(y, p, 1e-6)
+        .expect("rhs evaluates");
     let scale = fd.iter().flatten().fold(1.0f64, |a, b| a.max(b.abs()));
     for i in 0..n {
         for j in 0..n {
@@ -159,12 +139,16 @@ fn numeric_fallback_has_a_correct_jacobian() {
 /// A slip velocity written in polar form through its Cartesian components: every entry of the
 /// 2×2 block vanishes on an axis, the block itself only at `u = 0`.
 const POLAR_SLIP: &str = "
-    params m = 2
-    states ux, uy
-    let v = sqrt(ux^2 + uy^2)
-    let alpha = atan2(-uy, -ux)
-    eq turn: m*v*der(alpha) = 1
-    eq push: -m*der(v) = 3
+mod m {
+    params { m = 2 }
+    states { ux, uy }
+    let v = sqrt(ux^2 + uy^2);
+    let alpha = atan2(-uy, -ux);
+    equations {
+        turn: m*v*der(alpha) = 1;
+        push: -m*der(v) = 3;
+    }
+}
 ";
 
 #[test]

@@ -4,39 +4,13 @@
 
 use std::time::Instant;
 
-use crate::compile::{compile, CompileOptions};
-use crate::eval::Inputs;
-use crate::program::CompiledModel;
-use crate::testing::model;
+use crate::common::{model, sliding};
+use model_algebra::CompiledModel;
+use model_algebra::Inputs;
+use model_algebra::{compile, CompileOptions};
 
-pub const SLIDING: &str = "
-    params m = 0.4387, a = 0.03755, g = 9.81, mu_d = 0.115, mu_a = 0.02, w_z = 0.1
-    states X, Y, Z, v_C, alpha, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z
-    let A = m*a^2/4
-    let C = m*a^2/2
-    let k_F = mu_a*pi*a^2
-    let k_M = mu_a*pi*a^4/4
-    let S = sin(alpha - psi)
-    let K = cos(alpha - psi)
-    let k = mu_d*K*sin(theta) + cos(theta)
-    let v_z = -v_C*sin(theta)*K + a*Omega_y*sin(theta)^2 + V_Z*cos(theta)
-    eq S1: der(X) = -v_C*cos(alpha) + a*(Omega_y*cos(psi)*sin(theta) + Omega_z*sin(psi))
-    eq S2: der(Y) = -v_C*sin(alpha) + a*(Omega_y*sin(psi)*sin(theta) - Omega_z*cos(psi))
-    eq S3: der(Z) = V_Z
-    eq S4: m*v_C*der(alpha) + m*a*(-Omega_y*K*sin(theta) + Omega_z*S)*der(psi) + m*a*Omega_y*S*cos(theta)*der(theta) + m*a*S*sin(theta)*der(Omega_y) + m*a*K*der(Omega_z) = -k_F*(v_z - w_z)*sin(theta)*S
-    eq S5: -m*der(v_C) - mu_d*m*der(V_Z) + m*a*(Omega_y*S*sin(theta) + Omega_z*K)*der(psi) + m*a*Omega_y*K*cos(theta)*der(theta) + m*a*K*sin(theta)*der(Omega_y) - m*a*S*der(Omega_z) = mu_d*m*g + k_F*(v_z - w_z)*(mu_d*cos(theta) - K*sin(theta))
-    eq S6: A*Omega_y*der(phi) + A*der(Omega_x) = (A - C)*Omega_y*Omega_z - k_M*Omega_x
-    eq S7: m*a*k*der(V_Z) - A*Omega_x*der(phi) + A*der(Omega_y) = (C - A)*Omega_x*Omega_z - m*g*a*k - k_F*a*(v_z - w_z)*cos(theta)*k - k_M*Omega_y
-    eq S8: C*der(Omega_z) - mu_d*m*a*S*der(V_Z) = mu_d*m*g*a*S + mu_d*k_F*a*(v_z - w_z)*cos(theta)*S
-    eq S9: sin(theta)*der(psi) = -Omega_x
-    eq S10: der(theta) = Omega_y
-    eq S11: cos(theta)*der(psi) + der(phi) = Omega_z
-    eq S12: der(V_Z) + a*(Omega_y*sin(theta)*der(theta) - cos(theta)*der(Omega_y)) = 0
-    out N = m*(der(V_Z) + g) + k_F*(v_z - w_z)*cos(theta)
-    variant pruned keep theta, v_C, alpha, N fix mu_a = 0, w_z = 0
-";
-
-pub const PARAMS: [f64; 6] = [0.4387, 0.03755, 9.81, 0.115, 0.02, 0.1];
+/// `m, a, g, mu_d, mu_st, mu_a, w_z`, with air drag on.
+pub const PARAMS: [f64; 7] = [0.4387, 0.03755, 9.81, 0.115, 0.2, 0.02, 0.1];
 
 pub fn state() -> [f64; 12] {
     [
@@ -45,8 +19,8 @@ pub fn state() -> [f64; 12] {
 }
 
 /// The sequential explicit elimination of the sliding equations.
-fn reference(y: &[f64; 12], p: &[f64; 6]) -> [f64; 12] {
-    let (m, a, g, mu_d, mu_a, w_z) = (p[0], p[1], p[2], p[3], p[4], p[5]);
+fn reference(y: &[f64; 12], p: &[f64; 7]) -> [f64; 12] {
+    let (m, a, g, mu_d, mu_a, w_z) = (p[0], p[1], p[2], p[3], p[5], p[6]);
     let (aa, cc) = (m * a * a / 4.0, m * a * a / 2.0);
     let k_f = mu_a * std::f64::consts::PI * a * a;
     let k_m = mu_a * std::f64::consts::PI * a.powi(4) / 4.0;
@@ -106,7 +80,7 @@ fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<f64> {
 
 #[test]
 fn sliding_matches_the_sequential_elimination() {
-    let spec = model(SLIDING);
+    let spec = model(&sliding());
     let start = Instant::now();
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
     eprintln!("compile time (with one variant): {:?}", start.elapsed());
@@ -125,12 +99,12 @@ fn sliding_matches_the_sequential_elimination() {
             want[k]
         );
     }
-    super::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
+    crate::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
 }
 
 #[test]
 fn pruned_variant_matches_the_full_model_in_still_air() {
-    let spec = model(SLIDING);
+    let spec = model(&sliding());
     let m = compile(&spec, &CompileOptions::default()).expect("compiles");
     let v = &m.variants[0];
     // N reads der(V_Z), so V_Z stays (its derivative must be in `dy`); X, Y, Z, phi go.
@@ -138,13 +112,15 @@ fn pruned_variant_matches_the_full_model_in_still_air() {
         v.states,
         vec!["v_C", "alpha", "V_Z", "psi", "theta", "Omega_x", "Omega_y", "Omega_z"]
     );
-    assert_eq!(v.outputs, vec!["N"]);
-    let still = [PARAMS[0], PARAMS[1], PARAMS[2], PARAMS[3], 0.0, 0.0];
+    assert_eq!(v.outputs, vec!["N", "T", "nu"]);
+    let still = [
+        PARAMS[0], PARAMS[1], PARAMS[2], PARAMS[3], PARAMS[4], 0.0, 0.0,
+    ];
     let y = state();
     let full = rhs(&m, &y, &still);
     let keep = [3, 4, 5, 6, 7, 9, 10, 11];
     let reduced_y: Vec<f64> = keep.iter().map(|&i| y[i]).collect();
-    let reduced = rhs(v, &reduced_y, &still[..4]);
+    let reduced = rhs(v, &reduced_y, &still[..5]);
     for (k, &i) in keep.iter().enumerate() {
         assert!(
             (reduced[k] - full[i]).abs() <= 1e-12 * (1.0 + full[i].abs()),
@@ -169,11 +145,11 @@ fn pruned_variant_matches_the_full_model_in_still_air() {
         .eval(&Inputs {
             t: 0.0,
             states: &reduced_y,
-            params: &still[..4],
+            params: &still[..5],
             ders: &reduced,
         })
         .unwrap()
         .outputs(1)[0];
     assert!((n_full - n_reduced).abs() <= 1e-12 * n_full.abs());
-    super::end_to_end::assert_jacobian_matches(v, &reduced_y, &still[..4]);
+    crate::end_to_end::assert_jacobian_matches(v, &reduced_y, &still[..5]);
 }

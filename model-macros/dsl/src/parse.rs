@@ -3,17 +3,16 @@
 //! Parsing recovers at statement and section boundaries (`;` and `{..}`), so one typo does not
 //! hide the next: every syntax error of the invocation is collected and reported together.
 
-use crate::ast::{Equation, ModelAst, Variant};
+use crate::ast::{Chart, Equation, ModelAst, Variant};
 use crate::expr::{parse_default, parse_expr, parse_signed_number, range_of};
 use crate::span::{Errors, SpanRange, Spans};
-use model_algebra::spec::Named;
+use model_algebra::Named;
 use proc_macro2::{TokenStream, TokenTree};
 use std::collections::BTreeMap;
 use syn::parse::{ParseStream, Parser};
 use syn::{token, Token};
 
 /// Parses a whole `model!` invocation; `Err` carries every syntax error found.
-#[cfg(test)]
 pub fn parse_model(tokens: TokenStream) -> syn::Result<ModelAst> {
     let parsed = parse_model_recovering(tokens);
     match parsed.errors {
@@ -109,7 +108,7 @@ fn parse_item(
     }
     let keyword: syn::Ident = input.parse().map_err(|_| {
         input.error(
-            "expected `params`, `states`, `let`, `equations`, `outputs`, `variant` or `options`",
+            "expected `params`, `states`, `let`, `equations`, `outputs`, `variant`, `chart` or `options`",
         )
     })?;
     let range = SpanRange::single(keyword.span());
@@ -192,11 +191,15 @@ fn parse_item(
             let variant = parse_variant(input, attrs, &mut model.spans, errors)?;
             model.variants.push(variant);
         }
+        "chart" => {
+            let chart = parse_chart(input, attrs, model, errors)?;
+            model.charts.push(chart);
+        }
         other => {
             return Err(syn::Error::new(
                 keyword.span(),
                 format!(
-                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `variant` or `options`"
+                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `variant`, `chart` or `options`"
                 ),
             ))
         }
@@ -276,6 +279,95 @@ fn parse_variant(
         keep,
         fix: fix.unwrap_or_default(),
     })
+}
+
+/// `chart NAME { states { .. } replace { .. } let ..; outputs [after NAME] { .. } }`; the new
+/// states' doc comments join the model's.
+fn parse_chart(
+    input: ParseStream,
+    attrs: Vec<syn::Attribute>,
+    model: &mut ModelAst,
+    errors: &mut Errors,
+) -> syn::Result<Chart> {
+    let name: syn::Ident = input.parse()?;
+    let id = model.spans.push(SpanRange::single(name.span()));
+    let content = braced(input)?;
+    let mut chart = Chart {
+        attrs,
+        name,
+        id,
+        states: Vec::new(),
+        replace: Vec::new(),
+        lets: Vec::new(),
+        outputs: Vec::new(),
+        after: None,
+    };
+    let spans = &mut model.spans;
+    while !content.is_empty() {
+        if content.peek(Token![let]) {
+            recover_statement(&content, errors, |input| {
+                input.parse::<Token![let]>()?;
+                chart.lets.push(parse_binding(input, spans)?);
+                input.parse::<Token![;]>()?;
+                Ok(())
+            });
+            continue;
+        }
+        let keyword: syn::Ident = content.parse().map_err(|_| {
+            content.error(
+                "expected `states { .. } replace { .. }`, `let` or `outputs { .. }` in a chart",
+            )
+        })?;
+        match keyword.to_string().as_str() {
+            "states" => {
+                let states = braced(&content)?;
+                parse_list(&states, &mut chart.states, |input| {
+                    parse_documented_name(input, spans, &mut model.docs)
+                })?;
+                let replace: syn::Ident = content.parse()?;
+                if replace != "replace" {
+                    return Err(syn::Error::new(
+                        replace.span(),
+                        "expected `replace { .. }`: a chart's states replace states of the model",
+                    ));
+                }
+                let replaced = braced(&content)?;
+                parse_list(&replaced, &mut chart.replace, |input| parse_name(input, spans))?;
+            }
+            "outputs" => {
+                if content.peek(syn::Ident) {
+                    let after: syn::Ident = content.parse()?;
+                    if after != "after" {
+                        return Err(syn::Error::new(
+                            after.span(),
+                            "expected `after NAME` or `{`",
+                        ));
+                    }
+                    chart.after = Some(parse_name(&content, spans)?);
+                }
+                let outputs = braced(&content)?;
+                while !outputs.is_empty() {
+                    recover_statement(&outputs, errors, |input| {
+                        let attrs = input.call(syn::Attribute::parse_outer)?;
+                        let binding = parse_binding(input, spans)?;
+                        if !attrs.is_empty() {
+                            model.docs.insert(binding.name.clone(), attrs);
+                        }
+                        chart.outputs.push(binding);
+                        input.parse::<Token![;]>()?;
+                        Ok(())
+                    });
+                }
+            }
+            other => {
+                return Err(syn::Error::new(
+                    keyword.span(),
+                    format!("unknown section `{other}` in chart `{}`: expected `states`, `let` or `outputs`", chart.name),
+                ))
+            }
+        }
+    }
+    Ok(chart)
 }
 
 /// `label: lhs = rhs;` or `lhs = rhs;`

@@ -1,0 +1,49 @@
+//! The front end of the equation compiler: the DSL of `model!` as an ordinary library.
+//!
+//! The procedural macro and the tools that read a model from a file (the `eulerdisk model`
+//! commands, tests) share this one parser and validator, so a model means the same thing, and
+//! a mistake gets the same message, wherever it is read. The pipeline is
+//! [`parse_model_recovering`] (tokens to a [`ModelAst`], every syntax error collected),
+//! [`validate`] (names resolved, the user's mistakes found, a `model_algebra` spec out) and
+//! [`compile`] (the algebra, with its diagnostics pointed back at the user's tokens). The
+//! grammar is described in the macro crate's `DSL.md`.
+//!
+//! A model can be read from text as well as from the macro's tokens: [`Source`] parses a file's
+//! text with line and column on every token, and renders an error as `file:line:col: message`
+//! with the source line and a caret under the token.
+//!
+//! ```
+//! use model_dsl::Source;
+//!
+//! let source = Source::new("decay.dsl", "mod decay { params { k = 0.5 } states { x } equations { der(x) = -k*x; } }");
+//! let models = source.compile().expect("compiles");
+//! assert_eq!(models[0].compiled.states, vec!["x"]);
+//!
+//! let typo = Source::new("typo.dsl", "mod decay { states { x } equations { der(x) = -kk*x; } }");
+//! let error = typo.compile().unwrap_err().to_string();
+//! assert!(error.starts_with("typo.dsl:1:48: unknown name `kk`"), "{error}");
+//! ```
+#![warn(missing_docs)]
+
+mod ast;
+mod chart;
+mod compile;
+mod expr;
+mod names;
+mod options;
+mod parse;
+mod span;
+mod text;
+mod unchecked;
+mod validate;
+
+pub use ast::{Call, Chart, Equation, Expr, ModelAst, Variant};
+pub use compile::{compile, compile_all};
+pub use parse::{parse_model, parse_model_recovering, Parsed};
+pub use span::{SpanRange, Spans};
+pub use text::{Located, LocatedErrors, Source, TextModel};
+pub use unchecked::spec_unchecked;
+pub use validate::{validate, Validated, RESERVED_MODULES};
+
+#[cfg(test)]
+mod tests;

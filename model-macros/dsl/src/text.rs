@@ -1,0 +1,221 @@
+//! A model read from text: a `.dsl` file holding what goes inside `model! { .. }`.
+//!
+//! Outside a procedural macro, `proc_macro2` lexes text itself, and with its `span-locations`
+//! feature every token knows its line and column. So a file goes through exactly the parser and
+//! validator the macro uses, and each error the macro would draw under a token becomes
+//! `file:line:col: message` followed by the source line and a caret under that token — the
+//! form compilers and editors understand.
+
+use crate::compile::compile_all;
+use crate::parse::parse_model_recovering;
+use crate::validate::validate;
+use crate::ModelAst;
+use model_algebra::CompiledModel;
+use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
+use std::fmt;
+
+/// The text of a model and the name it is reported under.
+#[derive(Clone, Debug)]
+pub struct Source {
+    /// The name shown in messages (usually the file's path).
+    pub name: String,
+    /// The text: `mod NAME { .. }`, optionally with doc comments before it; or Rust source
+    /// holding a `model! { .. }` invocation.
+    pub text: String,
+    /// Whether `text` is Rust source whose first `model! { .. }` holds the model.
+    pub rust: bool,
+}
+
+/// One model of a source (the model itself or one of its charts), compiled.
+#[derive(Clone, Debug)]
+pub struct TextModel {
+    /// The model as written.
+    pub ast: ModelAst,
+    /// What the compiler derived from it.
+    pub compiled: CompiledModel,
+}
+
+/// One error with its place in the text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Located {
+    /// The source's name.
+    pub name: String,
+    /// 1-based line of the offending token.
+    pub line: usize,
+    /// 1-based column (in characters) of the offending token.
+    pub column: usize,
+    /// How many characters to underline on that line (at least 1).
+    pub width: usize,
+    /// What is wrong.
+    pub message: String,
+    /// The text of the offending line, to show under the message.
+    pub source_line: String,
+}
+
+/// Every error found in one source, in the order the front end reported them.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LocatedErrors(pub Vec<Located>);
+
+impl Source {
+    /// A source named `name` holding `text`.
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> Self {
+        Source {
+            name: name.into(),
+            text: text.into(),
+            rust: false,
+        }
+    }
+
+    /// A Rust source file whose first `model! { .. }` (or `model_macros::model! { .. }`) holds
+    /// the model; messages give lines and columns in the Rust file.
+    pub fn rust(name: impl Into<String>, text: impl Into<String>) -> Self {
+        Source {
+            rust: true,
+            ..Source::new(name, text)
+        }
+    }
+
+    /// Reads the file at `path` (a `.rs` file as Rust source holding `model!`); the path is
+    /// the name shown in messages.
+    pub fn read(path: &std::path::Path) -> std::io::Result<Self> {
+        let text = std::fs::read_to_string(path)?;
+        let name = path.display().to_string();
+        Ok(match path.extension().is_some_and(|e| e == "rs") {
+            true => Source::rust(name, text),
+            false => Source::new(name, text),
+        })
+    }
+
+    /// The model's tokens; a lexical error (an unclosed brace, a stray quote) is located.
+    pub fn tokens(&self) -> Result<TokenStream, LocatedErrors> {
+        let tokens = self
+            .text
+            .parse::<TokenStream>()
+            .map_err(|error| LocatedErrors(vec![self.locate(error.span(), &error.to_string())]))?;
+        if !self.rust {
+            return Ok(tokens);
+        }
+        macro_body(tokens).ok_or_else(|| {
+            let message = "no `model! { .. }` in this file";
+            LocatedErrors(vec![self.locate(Span::call_site(), message)])
+        })
+    }
+
+    /// The model as written; every syntax error, located.
+    pub fn parse(&self) -> Result<ModelAst, LocatedErrors> {
+        let parsed = parse_model_recovering(self.tokens()?);
+        match (parsed.errors, parsed.model) {
+            (None, Some(model)) => Ok(model),
+            (Some(errors), _) => Err(self.locate_all(errors)),
+            (None, None) => Err(self.locate_all(syn::Error::new(
+                Span::call_site(),
+                "expected `mod NAME { .. }`",
+            ))),
+        }
+    }
+
+    /// Parses, validates and compiles the model, as `model!` does: the model, then the model
+    /// in each of its charts; every error, located.
+    pub fn compile(&self) -> Result<Vec<TextModel>, LocatedErrors> {
+        let ast = self.parse()?;
+        let validated = validate(&ast).map_err(|errors| self.locate_all(errors))?;
+        let compiled = compile_all(&validated).map_err(|errors| self.locate_all(errors))?;
+        Ok(validated
+            .into_iter()
+            .zip(compiled)
+            .map(|(model, compiled)| TextModel {
+                ast: model.ast,
+                compiled,
+            })
+            .collect())
+    }
+
+    /// Every error of a (combined) `syn::Error`, located in this source.
+    pub fn locate_all(&self, errors: syn::Error) -> LocatedErrors {
+        LocatedErrors(
+            errors
+                .into_iter()
+                .map(|error| self.locate(error.span(), &error.to_string()))
+                .collect(),
+        )
+    }
+
+    /// One message under `span`. A span that is not in this text (the call site, which a
+    /// parse of text uses for "the whole model") points at the first line.
+    fn locate(&self, span: Span, message: &str) -> Located {
+        let (start, end) = (span.start(), span.end());
+        let line = start.line.max(1);
+        let source_line = self.text.lines().nth(line - 1).unwrap_or("").to_string();
+        let width = if end.line == start.line && end.column > start.column {
+            end.column - start.column
+        } else {
+            source_line
+                .chars()
+                .count()
+                .saturating_sub(start.column)
+                .max(1)
+        };
+        Located {
+            name: self.name.clone(),
+            line,
+            column: start.column + 1,
+            width,
+            message: message.to_string(),
+            source_line,
+        }
+    }
+}
+
+/// The body of the first `model! { .. }` among `tokens` (at any depth).
+fn macro_body(tokens: TokenStream) -> Option<TokenStream> {
+    let trees: Vec<TokenTree> = tokens.into_iter().collect();
+    for (k, tree) in trees.iter().enumerate() {
+        if let [TokenTree::Ident(name), TokenTree::Punct(bang), TokenTree::Group(body), ..] =
+            &trees[k..]
+        {
+            if name == "model" && bang.as_char() == '!' && body.delimiter() == Delimiter::Brace {
+                return Some(body.stream());
+            }
+        }
+        if let TokenTree::Group(group) = tree {
+            if let Some(body) = macro_body(group.stream()) {
+                return Some(body);
+            }
+        }
+    }
+    None
+}
+
+impl fmt::Display for Located {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let gutter = self.line.to_string();
+        let pad = " ".repeat(gutter.len());
+        writeln!(
+            f,
+            "{}:{}:{}: {}",
+            self.name, self.line, self.column, self.message
+        )?;
+        writeln!(f, "{pad} |")?;
+        writeln!(f, "{gutter} | {}", self.source_line)?;
+        write!(
+            f,
+            "{pad} | {}{}",
+            " ".repeat(self.column - 1),
+            "^".repeat(self.width)
+        )
+    }
+}
+
+impl fmt::Display for LocatedErrors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (k, error) in self.0.iter().enumerate() {
+            if k > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "{error}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for LocatedErrors {}

@@ -1,0 +1,161 @@
+//! `eulerdisk model ...`: the dispatch of the model subcommands, with their exit codes.
+//!
+//! `show` takes a disk model's name or a DSL file; `eval` and `solve` take a file. A mistake
+//! in the file, an unknown name in `--state`/`--set` or a state where the model is singular
+//! is an input error (exit 2); a failed integration or an unwritable output is a failure
+//! (exit 1).
+
+use crate::cli::{
+    ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs, EXIT_FAILED, EXIT_INPUT,
+};
+use crate::model_file::{evaluate, load, params, select, state, ModelFileError};
+use crate::model_show::{Format, ModelName};
+use crate::model_solve::{solve, SolveSettings};
+use clap::ValueEnum;
+use model_algebra::CompiledModel;
+use model_dsl::TextModel;
+use model_runtime::Termination;
+use std::io::Write;
+use std::path::Path;
+use std::process::ExitCode;
+
+/// Runs one model subcommand.
+pub fn run(command: &ModelCommand) -> ExitCode {
+    match command {
+        ModelCommand::Show { model, format } => show(model, *format),
+        ModelCommand::Eval(args) => eval(args),
+        ModelCommand::Solve(args) => solve_file(args),
+    }
+}
+
+fn input_error(error: impl std::fmt::Display) -> ExitCode {
+    eprintln!("error: {error}");
+    ExitCode::from(EXIT_INPUT)
+}
+
+fn show(model: &str, format: Format) -> ExitCode {
+    if let Ok(name) = ModelName::from_str(model, true) {
+        return match crate::model_show::show(name, format) {
+            Ok(text) => {
+                print!("{text}");
+                ExitCode::SUCCESS
+            }
+            Err(err) => {
+                eprintln!("error: {err}");
+                ExitCode::from(EXIT_FAILED)
+            }
+        };
+    }
+    let path = Path::new(model);
+    if !path.exists() {
+        return input_error(format_args!(
+            "`{model}` is neither a model of the disk (rolling, sliding, sliding-cartesian) nor a DSL file"
+        ));
+    }
+    match crate::model_file::show(path, format) {
+        Ok(text) => {
+            print!("{text}");
+            ExitCode::SUCCESS
+        }
+        Err(err) => input_error(err),
+    }
+}
+
+/// The selected model of the file, with its parameters and state.
+struct Point {
+    models: Vec<TextModel>,
+    params: Vec<f64>,
+    state: Vec<f64>,
+}
+
+impl Point {
+    fn read(args: &ModelPointArgs) -> Result<Self, ModelFileError> {
+        let models = load(&args.file)?;
+        let model = select(&models, args.chart.as_deref())?;
+        let params = params(model, &args.set)?;
+        let state = state(model, &args.state)?;
+        Ok(Point {
+            models,
+            params,
+            state,
+        })
+    }
+
+    fn model(&self, args: &ModelPointArgs) -> Result<&CompiledModel, ModelFileError> {
+        select(&self.models, args.chart.as_deref())
+    }
+}
+
+fn eval(args: &ModelEvalArgs) -> ExitCode {
+    let result = Point::read(&args.point).and_then(|point| {
+        let model = point.model(&args.point)?;
+        evaluate(model, args.t, &point.state, &point.params)
+    });
+    match result {
+        Ok(evaluation) => match serde_json::to_string_pretty(&evaluation) {
+            Ok(json) => {
+                println!("{json}");
+                ExitCode::SUCCESS
+            }
+            Err(err) => {
+                eprintln!("error: cannot print the result: {err}");
+                ExitCode::from(EXIT_FAILED)
+            }
+        },
+        Err(err) => input_error(err),
+    }
+}
+
+fn solve_file(args: &ModelSolveArgs) -> ExitCode {
+    let point = match Point::read(&args.point) {
+        Ok(point) => point,
+        Err(err) => return input_error(err),
+    };
+    let model = match point.model(&args.point) {
+        Ok(model) => model,
+        Err(err) => return input_error(err),
+    };
+    let settings = SolveSettings {
+        t0: args.t0,
+        t_end: args.t_end,
+        method: args.method.into(),
+        rtol: args.rtol,
+        atol: args.atol,
+        dt: args.dt,
+    };
+    let trajectory = match solve(model, &point.params, &point.state, &settings) {
+        Ok(trajectory) => trajectory,
+        Err(err) => {
+            eprintln!("error: {err}");
+            return ExitCode::from(EXIT_FAILED);
+        }
+    };
+    let written = if args.out.as_os_str() == "-" {
+        let stdout = std::io::stdout();
+        let mut lock = stdout.lock();
+        trajectory.write_csv(&mut lock).and_then(|()| lock.flush())
+    } else {
+        std::fs::File::create(&args.out)
+            .map(std::io::BufWriter::new)
+            .and_then(|mut file| trajectory.write_csv(&mut file).and_then(|()| file.flush()))
+    };
+    if let Err(err) = written {
+        eprintln!("error: cannot write {}: {err}", args.out.display());
+        return ExitCode::from(EXIT_FAILED);
+    }
+    let stats = &trajectory.stats;
+    let stop = match &trajectory.stop {
+        Termination::EndTime => "reached the end time".to_string(),
+        Termination::Event { name } => format!("stopped by event `{name}`"),
+    };
+    eprintln!(
+        "`{}`: {} rows, {stop} at t = {}, {} steps ({} rejected), {} RHS evaluations",
+        model.name,
+        trajectory.rows.len(),
+        trajectory.rows.last().map_or(args.t0, |row| row[0]),
+        stats.steps,
+        stats.rejected,
+        stats.rhs_evals
+    );
+    ExitCode::SUCCESS
+}
