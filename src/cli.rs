@@ -12,8 +12,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::eval::Backend;
 use crate::run::ProgressStyle;
-use crate::scene::schema::ModeName;
 use crate::scene::{Override, SceneError, DEFAULT_SCENE};
+use equations::Mode;
 
 /// Euler's disk rolling and sliding on a rough plane (Saje & Zupan's model).
 #[derive(Debug, Parser)]
@@ -135,11 +135,11 @@ pub enum ModeArg {
     Sliding,
 }
 
-impl From<ModeArg> for ModeName {
-    fn from(m: ModeArg) -> ModeName {
+impl From<ModeArg> for Mode {
+    fn from(m: ModeArg) -> Mode {
         match m {
-            ModeArg::Rolling => ModeName::Rolling,
-            ModeArg::Sliding => ModeName::Sliding,
+            ModeArg::Rolling => Mode::Rolling,
+            ModeArg::Sliding => Mode::Sliding,
         }
     }
 }

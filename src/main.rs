@@ -40,7 +40,7 @@ fn main() -> ExitCode {
             for (name, text) in BUILTIN {
                 let description = scene::parse(name, text, &[])
                     .ok()
-                    .and_then(|s| s.file.description)
+                    .and_then(|s| s.file.cli.description)
                     .unwrap_or_default();
                 println!("{name:<20} {description}");
             }
@@ -99,10 +99,10 @@ fn run(args: RunArgs) -> ExitCode {
         eprintln!(
             "scene `{}`: t_end {} s, {} rtol {:e} atol {:e}, output in {}",
             scene.name,
-            scene.file.run.t_end,
-            scene.file.solver.integrator.as_str(),
-            scene.file.solver.rtol,
-            scene.file.solver.atol,
+            scene.file.settings.run.t_end,
+            scene.config.integrator.name(),
+            scene.file.settings.solver.rtol,
+            scene.file.settings.solver.atol,
             args.out.display()
         );
         let choice = eulerdisk::run::model::choose(&scene, opts.backend, opts.figures);
@@ -124,7 +124,7 @@ fn run(args: RunArgs) -> ExitCode {
                     if s.stop_reason != "end_time" {
                         eprintln!(
                             "stopped early at t = {} s of {} s ({}): {}",
-                            s.t_end, scene.file.run.t_end, s.stop_reason, s.stop_detail
+                            s.t_end, scene.file.settings.run.t_end, s.stop_reason, s.stop_detail
                         );
                     }
                     ExitCode::SUCCESS

@@ -4,7 +4,7 @@
 //! a quantity's name, unit and meaning cannot drift apart between those places.
 
 use crate::sample::Sample;
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 /// A recordable quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

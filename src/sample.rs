@@ -4,7 +4,7 @@
 //! figures, summary) reads names instead, so a change of chart or of model index order is
 //! absorbed in one conversion and never reaches the figures.
 
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// The disk's state in the rolling chart (the paper's rolling unknowns), SI units.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -134,7 +134,7 @@ pub struct Sample {
     /// Time (s).
     pub t: f64,
     /// The mode in force.
-    pub mode: ModeName,
+    pub mode: Mode,
     /// The state in the rolling chart.
     pub state: DiskState,
     /// The slip.

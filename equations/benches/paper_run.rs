@@ -20,11 +20,11 @@
 
 use common::{Args, Clock};
 use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, GeneratedModels, InitialState, PrunedModels, RunOutcome,
-    SimError,
+    simulate, DiskModels, GeneratedModels, PrunedModels, RunOutcome, SimError,
 };
 use equations::modes::SlipChart;
 use equations::DiskParams;
+use equations::{DiskConfig, InitialState};
 use model_runtime::Model;
 
 mod common;

@@ -7,11 +7,12 @@
 //! ```
 
 use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskObserver, GeneratedModels, InitialState,
-    IntegratorChoice, ReferenceModels, RunOutcome, SlipSign, TransitionRecord,
+    simulate, DiskModels, DiskObserver, GeneratedModels, ReferenceModels, RunOutcome,
+    TransitionRecord,
 };
 use equations::modes::{Mode, SlipChart};
 use equations::DiskParams;
+use equations::{DiskConfig, InitialState, Integrator, SlipSign};
 use std::time::Instant;
 
 /// Counts the mode decisions in the first 1 s, 10 s and 100 s.
@@ -72,8 +73,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut config = DiskConfig::paper();
     config.t_end = arg(0).map(str::parse).transpose()?.unwrap_or(1.0);
     config.integrator = match arg(1).unwrap_or("dopri5") {
-        "dop853" => IntegratorChoice::Dop853,
-        _ => IntegratorChoice::Dopri5,
+        "dop853" => Integrator::Dop853,
+        _ => Integrator::Dopri5,
     };
     let chart = match arg(2).unwrap_or("cartesian") {
         "polar" => SlipChart::Polar,

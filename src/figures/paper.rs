@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 use super::axes::time_range_label;
 use super::chart::{colors, render, Chart, Line};

@@ -5,7 +5,7 @@
 
 use std::io::{self, Write};
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 use crate::quantity::Quantity;
 use crate::record::{EventRow, StopRecord};
@@ -164,7 +164,7 @@ mod tests {
     fn stop_detail_with_commas_is_quoted() {
         let stop = StopRecord {
             t: 1.0,
-            mode: crate::scene::schema::ModeName::Rolling,
+            mode: equations::Mode::Rolling,
             reason: "error".into(),
             detail: "a, b".into(),
         };

@@ -24,8 +24,6 @@ use crate::figures::paper::FIGURE_QUANTITIES;
 use crate::quantity::Quantity;
 use crate::scene::Scene;
 
-use super::simulation::chart_of;
-
 /// The models a run integrates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RunModel {
@@ -118,7 +116,7 @@ pub fn choose_for<'q>(
     if backend == Backend::Reference {
         return full(RunModel::Reference, "--reference".into());
     }
-    let pruned = match PrunedModels::pruned(scene.params, chart_of(scene)) {
+    let pruned = match PrunedModels::pruned(scene.params, scene.config.chart()) {
         Ok(m) => m,
         Err(PruneError::AirNotStill { name, value }) => {
             return full(

@@ -98,7 +98,7 @@ pub fn command(args: &SoundArgs) -> ExitCode {
         eprintln!(
             "scene `{}`: simulating {} s for its sound, output in {}",
             scene.name,
-            scene.file.run.t_end,
+            scene.file.settings.run.t_end,
             args.run.out.display()
         );
     }

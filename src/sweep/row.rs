@@ -99,11 +99,7 @@ pub fn scalar_entries(summary: &Summary) -> serde_json::Map<String, serde_json::
 /// The summary's scalar keys: those of the printed comparison in its order, then the rest
 /// by name.
 pub fn summary_keys() -> Vec<String> {
-    let empty = Summary::of(
-        "",
-        &RunData::default(),
-        &equations::params::DiskParams::paper(),
-    );
+    let empty = Summary::of("", &RunData::default(), &equations::DiskParams::paper());
     let scalar = scalar_entries(&empty);
     let mut keys: Vec<String> = empty
         .comparison()

@@ -537,7 +537,7 @@ fn builtin_sweeps_validate_and_record_their_definition() {
         &["solver.rtol=3".to_string()],
     )
     .unwrap();
-    assert_eq!(p.scenes[0].file.solver.rtol, 1e-4);
+    assert_eq!(p.scenes[0].config.rtol, 1e-4);
     // The definition written first is the one read back.
     let tmp = tempfile::tempdir().unwrap();
     let plan = plan(

@@ -22,12 +22,12 @@
 
 use crate::common::extreme::{dop853, models, Watch};
 use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, DiskSample, InitialState, SimError, StopReason,
-    TimeVariable, TransitionRecord,
+    simulate, DiskObserver, DiskSample, SimError, StopReason, TransitionRecord,
 };
 use equations::modes::layout::THETA;
 use equations::modes::Mode;
 use equations::DiskParams;
+use equations::{DiskConfig, InitialState, TimeVariable};
 use model_runtime::error::SolveError;
 
 #[test]
