@@ -3,10 +3,11 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use eulerdisk::cli::{
-    backend, interrupt_on_ctrl_c, progress_style, Cli, Command, EvalArgs, ModelCommand, RunArgs,
-    EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+use eulerdisk::args::{
+    backend, interrupt_on_ctrl_c, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
+    EXIT_INTERRUPTED,
 };
+use eulerdisk::cli::{Cli, Command, EvalArgs, ModelCommand};
 use eulerdisk::eval::{evaluate, parse_params, parse_state};
 use eulerdisk::run::provenance::Provenance;
 use eulerdisk::run::{run_scene, Ending, RunOptions};

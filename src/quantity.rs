@@ -229,6 +229,22 @@ impl Quantity {
     }
 }
 
+/// The frozen-state rule lives with the quantities, which know what each value reads.
+impl Sample {
+    /// Replaces every value that depends on a state in `frozen` (a state the models did not
+    /// integrate) by NaN, so a frozen value can never pass for a result.
+    pub fn forget(&mut self, frozen: &[&str]) {
+        for name in frozen {
+            if let Some(v) = self.state.get_mut(name) {
+                *v = f64::NAN;
+            }
+        }
+        if !Quantity::Energy.computed_without(frozen) {
+            self.energy = f64::NAN;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

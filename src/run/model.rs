@@ -20,7 +20,7 @@ use equations::{DiskParams, ParamError};
 use model_runtime::Model;
 
 use crate::eval::Backend;
-use crate::figures::paper::FIGURE_QUANTITIES;
+use crate::figures::FIGURE_QUANTITIES;
 use crate::quantity::Quantity;
 use crate::scene::Scene;
 

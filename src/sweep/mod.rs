@@ -20,6 +20,7 @@
 
 pub mod args;
 pub mod axes;
+pub mod columns;
 pub mod execute;
 pub mod expand;
 pub mod figures;
