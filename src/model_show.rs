@@ -9,8 +9,8 @@
 
 use clap::ValueEnum;
 use equations::formulas::{rolling_normal_force_ratio, BodyRates, FormulaError};
+use equations::layout;
 use equations::models::{rolling, sliding, sliding_cartesian};
-use equations::modes::layout;
 use equations::DiskParams;
 use equations::InitialState;
 use model_runtime::{EvalError, WithOutputs as _};

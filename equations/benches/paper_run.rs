@@ -19,11 +19,9 @@
 //! ```
 
 use common::{Args, Clock};
-use equations::hybrid::{
-    simulate, DiskModels, GeneratedModels, PrunedModels, RunOutcome, SimError,
-};
-use equations::modes::SlipChart;
 use equations::DiskParams;
+use equations::SlipChart;
+use equations::{simulate, DiskModels, GeneratedModels, PrunedModels, RunOutcome, SimError};
 use equations::{DiskConfig, InitialState};
 use model_runtime::Model;
 

@@ -23,11 +23,9 @@
 //! `target/bench/` (or `--out`).
 
 use common::{Args, Clock};
-use equations::hybrid::{
-    simulate, DiskModels, DiskRecorder, GeneratedModels, RunOutcome, SimError,
-};
-use equations::modes::{layout, SlipChart, DIM};
 use equations::DiskParams;
+use equations::{layout, SlipChart, DIM};
+use equations::{simulate, DiskModels, DiskRecorder, GeneratedModels, RunOutcome, SimError};
 use equations::{DiskConfig, ErrorNorm, InitialState, Integrator, StepControl, TimeVariable};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -168,7 +166,7 @@ impl Method {
 /// What one run produced.
 struct Run {
     outcome: RunOutcome,
-    transitions: Vec<equations::hybrid::TransitionRecord>,
+    transitions: Vec<equations::TransitionRecord>,
     seconds: f64,
 }
 

@@ -17,10 +17,10 @@
 //!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors] [pi-gustafsson|pi-hairer|integral] [dopri5|dop853] [physical|regularised]
 //! ```
 
-use equations::hybrid::{simulate, DiskObserver, DiskSample, GeneratedModels, TransitionRecord};
 use equations::models::{rolling, sliding_cartesian};
-use equations::modes::{layout::THETA, Mode, SlipChart};
 use equations::DiskParams;
+use equations::{layout::THETA, Mode, SlipChart};
+use equations::{simulate, DiskObserver, DiskSample, GeneratedModels, TransitionRecord};
 use equations::{DiskConfig, InitialState, LimitingComponent};
 use std::time::Instant;
 

@@ -10,7 +10,8 @@ use std::fmt;
 use crate::modes::Mode;
 
 /// A number as scenes, messages and tables print it: plainly between 1e-4 and 1e15 (and 0),
-/// in scientific notation otherwise.
+/// in scientific notation otherwise; both parse back to the same `f64` (Rust prints the
+/// shortest round-trip digits).
 #[derive(Clone, Copy, Debug)]
 pub struct Number(pub f64);
 

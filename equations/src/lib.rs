@@ -36,10 +36,10 @@
 
 mod config;
 pub mod formulas;
-pub mod hybrid;
+mod hybrid;
 mod issue;
 pub mod models;
-pub mod modes;
+mod modes;
 mod params;
 pub mod reference;
 mod scene;
@@ -48,8 +48,10 @@ mod start;
 
 pub use config::{AllowedModes, DiskConfig, ATOL_MAX, MAX_DELIVERED_SAMPLES, RTOL_MAX, RTOL_MIN};
 pub use hybrid::{
-    simulate, DiskModels, DiskObserver, DiskRecorder, DiskSample, GeneratedModels, RunOutcome,
-    SimError, StopReason, TransitionRecord, Trigger,
+    consistent_slip_direction, simulate, DiskGuard, DiskModels, DiskObserver, DiskRecorder,
+    DiskSample, EmbedError, Embedded, Embedding, GeneratedModels, OnsetError, PruneError, Pruned,
+    PrunedModels, ReferenceModels, RunOutcome, SimError, SlidingModel, SlipAcceleration, SlipOnset,
+    StopReason, TransitionRecord, Trigger, Variant, PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use issue::{Issue, Number, Rule};
 /// Where a step's interior is searched for guard crossings (re-exported from the runtime).
@@ -58,7 +60,10 @@ pub use model_runtime::InteriorChecks;
 pub use model_runtime::LimitingComponent;
 /// The gains of the step-size controller (re-exported from the runtime).
 pub use model_runtime::StepControl;
-pub use modes::{Mode, SlipChart};
+pub use modes::{
+    layout, no_slip_velocity, ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip,
+    SlipChart, DIM,
+};
 pub use params::{DiskParams, ParamError};
 pub use scene::{
     AirTable, DiskScene, DiskTable, FrictionTable, InitialTable, ModesTable, SceneSettings,

@@ -14,9 +14,9 @@
 mod common;
 
 use common::extreme::Watch;
-use equations::hybrid::{simulate, DiskObserver, DiskSample, GeneratedModels, TransitionRecord};
-use equations::modes::SlipChart;
 use equations::DiskParams;
+use equations::SlipChart;
+use equations::{simulate, DiskObserver, DiskSample, GeneratedModels, TransitionRecord};
 use equations::{DiskConfig, InitialState};
 
 /// The horizon (s).

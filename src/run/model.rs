@@ -12,11 +12,11 @@
 //! The three model sets are three types; [`with_models`] builds the chosen one and hands it to
 //! a [`ModelsTask`], so a caller states once what it does with models, whichever they are.
 
-use equations::hybrid::{
+use equations::{
     DiskModels, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
 };
-use equations::modes::{SlipChart, DIM};
 use equations::{DiskParams, ParamError};
+use equations::{SlipChart, DIM};
 use model_runtime::Model;
 
 use crate::eval::Backend;

@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::Scope;
 
-use equations::modes::DIM;
+use equations::DIM;
 use equations::{
     simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
     RunOutcome, StopReason, TransitionRecord, Trigger,

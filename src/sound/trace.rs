@@ -5,7 +5,7 @@
 //! 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and keeps
 //! only what it needs: the time and `N/mg`.
 
-use equations::modes::DIM;
+use equations::DIM;
 use equations::{simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, SimError};
 use model_runtime::Model;
 

@@ -1,13 +1,13 @@
 //! The disk's vector error norm: its groups name the right states in every mode, chart and
 //! model set, and a run with it makes the same decisions as the per-component norm.
 
-use equations::hybrid::{
+use equations::DiskParams;
+use equations::{
     simulate, DiskModels, DiskRecorder, Embedded, GeneratedModels, PrunedModels, ReferenceModels,
     RunOutcome, SlidingModel, Variant,
 };
-use equations::modes::{SlipChart, DIM};
-use equations::DiskParams;
 use equations::{DiskConfig, ErrorNorm, InitialState, Integrator, LimitingComponent};
+use equations::{SlipChart, DIM};
 use model_runtime::Model;
 
 use crate::common::assert_same_decisions;

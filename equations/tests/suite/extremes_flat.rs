@@ -21,11 +21,11 @@ use crate::common::extreme::{
     accumulated_error_bound, dop853, models, rolling_state, Rates, Watch,
 };
 use equations::formulas::{self, BodyRates};
-use equations::hybrid::{simulate, StopReason};
-use equations::modes::layout::{PSI, THETA};
-use equations::modes::{Mode, Slip, DIM};
+use equations::layout::{PSI, THETA};
 use equations::DiskParams;
+use equations::{simulate, StopReason};
 use equations::{DiskConfig, InitialState};
+use equations::{Mode, Slip, DIM};
 
 /// The inclinations of the issue.
 const THETAS: [f64; 3] = [1e-2, 1e-4, 1e-6];

@@ -9,7 +9,7 @@
 //! or a hang (the work is bounded by a short horizon and a step budget).
 
 use crate::common::extreme::{dop853, models, Watch};
-use equations::hybrid::{simulate, SimError};
+use equations::{simulate, SimError};
 use equations::{DiskConfig, InitialState};
 use equations::{DiskParams, STATE_NAMES};
 use proptest::prelude::*;

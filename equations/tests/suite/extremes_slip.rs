@@ -20,12 +20,12 @@
 
 use crate::common::extreme::{dop853, models_in, rolling_state, Rates, Watch};
 use equations::formulas::spinning_in_place_rate;
-use equations::hybrid::{simulate, DiskSample, TransitionRecord, Trigger};
-use equations::modes::layout::{V_X, V_Y, V_Z};
-use equations::modes::{Mode, Slip, SlipChart, DIM};
+use equations::layout::{V_X, V_Y, V_Z};
 use equations::reference::RollingReference;
 use equations::DiskParams;
 use equations::InitialState;
+use equations::{simulate, DiskSample, TransitionRecord, Trigger};
+use equations::{Mode, Slip, SlipChart, DIM};
 use model_runtime::Model;
 
 /// Slip speeds of the starts (m/s): 1e-3 … 1e-12.

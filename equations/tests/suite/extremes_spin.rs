@@ -17,9 +17,9 @@ use crate::common::extreme::{
     accumulated_error_bound, dop853, models, rolling_state, Rates, Watch,
 };
 use equations::formulas::steady_circle_spin;
-use equations::hybrid::{simulate, StopReason};
 use equations::DiskParams;
 use equations::InitialState;
+use equations::{simulate, StopReason};
 
 /// The two kinds of fast motion.
 #[derive(Clone, Copy, Debug, PartialEq)]

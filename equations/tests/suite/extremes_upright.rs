@@ -22,10 +22,10 @@
 //!   the upward zero crossings of `Ω_y` (each period exactly, whatever the mean of the wobble).
 
 use crate::common::extreme::{dop853, models, rolling_state, Rates, Watch};
-use equations::hybrid::{simulate, DiskSample, StopReason};
-use equations::modes::layout::{OMEGA_Y, THETA};
-use equations::modes::Mode;
+use equations::layout::{OMEGA_Y, THETA};
 use equations::DiskParams;
+use equations::Mode;
+use equations::{simulate, DiskSample, StopReason};
 use equations::{DiskConfig, InitialState};
 use std::f64::consts::FRAC_PI_2;
 

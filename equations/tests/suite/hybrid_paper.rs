@@ -1,13 +1,13 @@
 //! The paper's scene on the hybrid driver: the start, the transition sequence, its agreement
 //! between integrators, charts and thresholds, and that no event is skipped.
 
-use equations::hybrid::{
+use equations::DiskParams;
+use equations::{
     simulate, DiskRecorder, GeneratedModels, ReferenceModels, RunOutcome, StopReason,
     TransitionRecord, Trigger,
 };
-use equations::modes::{Mode, SlipChart};
-use equations::DiskParams;
 use equations::{DiskConfig, InitialState, Integrator, TimeVariable};
+use equations::{Mode, SlipChart};
 use std::f64::consts::PI;
 
 use crate::common::assert_same_decisions;
@@ -131,7 +131,7 @@ fn regularised_time_reproduces_the_run_in_physical_time() {
         assert_eq!(a.samples.len(), b.samples.len());
         for (x, y) in a.samples.iter().zip(&b.samples) {
             assert_eq!(x.t, y.t);
-            let theta = equations::modes::layout::THETA;
+            let theta = equations::layout::THETA;
             assert!(
                 (x.state.y[theta] - y.state.y[theta]).abs() < 1e-8,
                 "{integrator:?} {chart:?}: theta at t = {}: {} against {}",
@@ -443,11 +443,11 @@ fn every_accepted_step_can_be_streamed() {
         times: Vec<f64>,
         worst_ratio_rolling: f64,
     }
-    impl equations::hybrid::DiskObserver for Steps {
+    impl equations::DiskObserver for Steps {
         fn wants_steps(&self) -> bool {
             true
         }
-        fn on_step(&mut self, s: &equations::hybrid::DiskSample) {
+        fn on_step(&mut self, s: &equations::DiskSample) {
             self.times.push(s.t);
             if s.mode == Mode::Rolling {
                 self.worst_ratio_rolling = self.worst_ratio_rolling.max(s.force.ratio());

@@ -2,13 +2,13 @@
 //! rolling and of spinning in place, a slide that ends at once, loss of contact, and a guard
 //! that is exactly zero when a segment starts.
 
-use equations::hybrid::{
-    consistent_slip_direction, simulate, DiskRecorder, GeneratedModels, StopReason, Trigger,
-};
-use equations::modes::layout::*;
-use equations::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use equations::layout::*;
 use equations::reference::SlidingPolarReference;
 use equations::DiskParams;
+use equations::{
+    consistent_slip_direction, simulate, DiskRecorder, GeneratedModels, StopReason, Trigger,
+};
+use equations::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use equations::{DiskConfig, InitialState, Integrator};
 use model_runtime::Model;
 use proptest::prelude::*;

@@ -4,12 +4,12 @@
 //! `φ` left out, so a run must make the same decisions at the same times, and give the same θ
 //! and N, to the accuracy of the integration; and the states they drop must stay frozen.
 
-use equations::hybrid::{
+use equations::DiskParams;
+use equations::{layout, SlipChart};
+use equations::{
     simulate, DiskModels, DiskRecorder, DiskSample, GeneratedModels, PruneError, PrunedModels,
     RunOutcome, TransitionRecord,
 };
-use equations::modes::{layout, SlipChart};
-use equations::DiskParams;
 use equations::{DiskConfig, InitialState, Integrator};
 use model_runtime::Model;
 

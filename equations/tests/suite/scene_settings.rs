@@ -1,7 +1,7 @@
 //! The scene's domain: settings read from TOML, their defaults, their one validation, the
 //! completed start, and the allowed modes enforced by the run.
 
-use equations::modes::layout::{V_X, V_Y};
+use equations::layout::{V_X, V_Y};
 use equations::{
     simulate, AllowedModes, DiskConfig, DiskRecorder, ErrorNorm, GeneratedModels, InitialState,
     Integrator, InteriorChecks, Mode, RunTable, SceneSettings, SlipSign, SolverTable, StepControl,

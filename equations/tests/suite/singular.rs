@@ -198,8 +198,8 @@ fn near_the_painleve_root_the_answer_is_finite_and_right() {
 /// the time.
 #[test]
 fn a_hybrid_run_at_the_painleve_root_reports_the_pivot_and_the_time() {
-    use equations::hybrid::{simulate, GeneratedModels, SimError};
-    use equations::modes::SlipChart;
+    use equations::SlipChart;
+    use equations::{simulate, GeneratedModels, SimError};
     use equations::{DiskConfig, InitialState, Integrator};
     use model_runtime::SolveError;
 

@@ -3,13 +3,11 @@
 //! of what may (constraint drift, energy change, the range of θ), so that long runs stay flat in
 //! memory.
 
-use equations::hybrid::{
-    DiskObserver, DiskRecorder, DiskSample, GeneratedModels, TransitionRecord,
-};
-use equations::modes::layout::{OMEGA_X, OMEGA_Y, OMEGA_Z, PSI, THETA};
-use equations::modes::{Mode, PhysicalState, SlipChart, DIM};
+use equations::layout::{OMEGA_X, OMEGA_Y, OMEGA_Z, PSI, THETA};
 use equations::DiskParams;
 use equations::{DiskConfig, Integrator, RunTable, SolverTable, TimeVariable};
+use equations::{DiskObserver, DiskRecorder, DiskSample, GeneratedModels, TransitionRecord};
+use equations::{Mode, PhysicalState, SlipChart, DIM};
 
 /// The generated models in the given slip chart.
 pub fn models_in(params: DiskParams, chart: SlipChart) -> GeneratedModels {
