@@ -1,9 +1,12 @@
 //! Scenes: TOML files that say which disk, which start, which solver and which outputs.
 //!
 //! Loading is a pipeline: text -> TOML tree -> command-line overrides applied to the tree ->
-//! typed tables (unknown keys and wrong types rejected with the key's path) -> rules between
-//! values (all collected) -> a validated [`Scene`]. Overrides act on the tree, before any
-//! checking, so `--set` and `--rtol` are held to exactly the rules the file is.
+//! the program's own entries (`description`, `[output]`) split off -> typed tables (unknown
+//! keys and wrong types rejected with the key's path), the disk's read straight into the
+//! equations crate's [`SceneSettings`] -> rules between values (all collected; the disk's are
+//! the equations crate's, [`SceneSettings::resolve`]) -> a validated [`Scene`]. Overrides act
+//! on the tree, before any checking, so `--set` and `--rtol` are held to exactly the rules the
+//! file is.
 //!
 //! The scenes shipped in `scenes/` are compiled into the binary, so `eulerdisk run
 //! tangent-toy` works from any directory.

@@ -32,6 +32,51 @@ fn every_shipped_scene_loads_and_validates() {
     }
 }
 
+/// Every shipped scene, written back out from the settings it was read into, reads back into
+/// the same scene: the CLI's tables and the equations crate's keep every key.
+#[test]
+fn every_shipped_scene_round_trips_through_its_settings() {
+    for (name, text) in BUILTIN {
+        let s = scene::parse(name, text, &[]).unwrap();
+        let written = toml::to_string(&s.file).unwrap();
+        let again = scene::parse(name, &written, &[]).unwrap_or_else(|e| panic!("{e}\n{written}"));
+        assert_eq!(again, s, "{name}:\n{written}");
+        // The description and the outputs are the CLI's own; the rest the equations crate's.
+        let tree: toml::Table = toml::from_str(&written).unwrap();
+        assert_eq!(
+            tree.contains_key("description"),
+            s.file.cli.description.is_some()
+        );
+        assert!(tree.contains_key("output") && tree.contains_key("solver"));
+    }
+}
+
+/// A scene without `[solver]` gets the equations crate's documented defaults, and a CLI-only
+/// key in a disk table is still refused by name.
+#[test]
+fn a_scene_without_solver_takes_the_library_defaults() {
+    let start = PAPER.find("[solver]").unwrap();
+    let end = start + PAPER[start..].find("[run]").unwrap();
+    let text = format!("{}{}", &PAPER[..start], &PAPER[end..]);
+    let s = scene::parse("no-solver", &text, &[]).unwrap();
+    assert_eq!(s.file.settings.solver, equations::SolverTable::default());
+    assert_eq!(
+        s.config,
+        equations::DiskConfig {
+            t_end: 100.0,
+            sample_rate: Some(1000.0),
+            ..equations::DiskConfig::default()
+        }
+    );
+    let err = scene::parse(
+        "t",
+        &PAPER.replace("[solver]", "[solver]\nquantities = 1"),
+        &[],
+    )
+    .unwrap_err();
+    assert_eq!(err.keys(), ["solver.quantities"], "{err}");
+}
+
 #[test]
 fn the_paper_scene_is_the_papers() {
     let s = scene::load(scene::DEFAULT_SCENE, &[]).unwrap();
