@@ -9,9 +9,9 @@
 //! interrupted run still writes what it had, marked as such in `events.csv` and
 //! `summary.json`. The split of the time between the four stages goes into the summary.
 
-pub mod collect;
+mod collect;
 pub mod model;
-pub mod owned;
+mod owned;
 pub mod plan;
 pub mod progress;
 pub mod provenance;
