@@ -7,8 +7,6 @@
 
 use std::fmt;
 
-use crate::modes::Mode;
-
 /// A number as scenes, messages and tables print it: plainly between 1e-4 and 1e15 (and 0),
 /// in scientific notation otherwise; both parse back to the same `f64` (Rust prints the
 /// shortest round-trip digits).
@@ -126,8 +124,8 @@ pub enum Rule {
     Empty,
     /// The initial state needs a mode the scene does not allow.
     ModeNotAllowed {
-        /// The mode needed.
-        mode: Mode,
+        /// The mode needed (its name, `rolling` or `sliding`).
+        mode: &'static str,
         /// Why it is needed.
         because: String,
     },

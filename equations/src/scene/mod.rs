@@ -127,22 +127,8 @@ impl SceneSettings {
     pub fn resolve(&self) -> Result<DiskScene, Vec<Issue>> {
         let mut c = Checks::default();
         let params = self.params();
-        c.positive("disk.m", params.m);
-        let a_ok = c.positive("disk.a", params.a);
-        c.positive("disk.g", params.g);
-        c.non_negative("friction.mu_d", params.mu_d);
-        if c.non_negative("friction.mu_st", params.mu_st) && params.mu_st < params.mu_d {
-            c.push(
-                "friction.mu_st",
-                Rule::BelowOther {
-                    value: params.mu_st,
-                    other: "friction.mu_d",
-                    other_value: params.mu_d,
-                },
-            );
-        }
-        c.non_negative("air.mu_a", params.mu_a);
-        c.finite("air.w_z", params.w_z);
+        c.issues.extend(params.issues());
+        let a_ok = !c.issues.iter().any(|i| i.key == "disk.a");
         let mut config = DiskConfig::new(&self.solver, &self.run);
         config.allowed = AllowedModes::of(&self.modes.allowed);
         // The recorded samples are bounded below the delivered ones: checked here, by the
@@ -164,7 +150,7 @@ impl SceneSettings {
                 c.push(
                     "initial.v_C",
                     Rule::ModeNotAllowed {
-                        mode: Mode::Sliding,
+                        mode: Mode::Sliding.name(),
                         because: format!(
                             "the contact particle slips at {:e} m/s",
                             start.state.slip.speed
