@@ -118,26 +118,18 @@ where
         }
     })?;
     if let Some((t, mode)) = gate.forbidden {
-        return Ok(RunOutcome {
-            stop: StopReason::ModeNotAllowed { t, mode },
-            last: first,
-            transitions: 0,
-            stats: Default::default(),
-            max_drift: Default::default(),
-        });
+        return Ok(stopped_at_start(
+            StopReason::ModeNotAllowed { t, mode },
+            first,
+        ));
     }
     if first.force.normal <= 0.0 || first.force.normal.is_nan() {
         // The floor would have to pull: the disk leaves it at once.
-        return Ok(RunOutcome {
-            stop: StopReason::ContactLost {
-                t: initial.t,
-                mode: phase.mode(),
-            },
-            last: first,
-            transitions: 0,
-            stats: Default::default(),
-            max_drift: Default::default(),
-        });
+        let stop = StopReason::ContactLost {
+            t: initial.t,
+            mode: phase.mode(),
+        };
+        return Ok(stopped_at_start(stop, first));
     }
     let options = HybridOptions {
         step: StepOptions {
@@ -277,6 +269,17 @@ where
         stats: out.stats,
         max_drift: system.max_drift(),
     })
+}
+
+/// A run that ends where it starts, at `first`, before any step.
+fn stopped_at_start(stop: StopReason, first: DiskSample) -> RunOutcome {
+    RunOutcome {
+        stop,
+        last: first,
+        transitions: 0,
+        stats: Default::default(),
+        max_drift: Default::default(),
+    }
 }
 
 /// Where the driver left a run, in physical time and the disk's own state.
