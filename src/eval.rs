@@ -7,13 +7,13 @@
 
 use std::collections::BTreeMap;
 
-use equations::params::{DiskParams, ParamError};
 use equations::{models, reference};
+use equations::{DiskParams, ParamError};
 use model_runtime::{EvalError, WithOutputs};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
 use crate::named_numbers::{parse_named_numbers, NamedNumbersError};
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// Number of states of every disk model.
 const N: usize = 12;
@@ -45,7 +45,7 @@ pub enum EvalCommandError {
     #[error("--state: the {mode} equations are singular here (key `{key}` = {value}): {source}")]
     Singular {
         /// The mode evaluated.
-        mode: ModeName,
+        mode: Mode,
         /// The state key the singular pivot depends on.
         key: String,
         /// Its value.
@@ -57,7 +57,7 @@ pub enum EvalCommandError {
     #[error("--state: {mode}: `{quantity}` is not finite ({value}) at this state")]
     NonFinite {
         /// The mode evaluated.
-        mode: ModeName,
+        mode: Mode,
         /// The quantity.
         quantity: String,
         /// Its value.
@@ -95,7 +95,7 @@ impl Serialize for NamedValues {
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Evaluation {
     /// The mode evaluated.
-    pub mode: ModeName,
+    pub mode: Mode,
     /// The model that answered (its name in the DSL or the reference).
     pub model: &'static str,
     /// `d(name)/dt` for every state, keyed by the state's name.
@@ -105,10 +105,10 @@ pub struct Evaluation {
 }
 
 /// The state names of a mode, in the models' index order.
-pub fn state_names(mode: ModeName) -> &'static [&'static str; N] {
+pub fn state_names(mode: Mode) -> &'static [&'static str; N] {
     match mode {
-        ModeName::Rolling => &models::rolling::STATE_NAMES,
-        ModeName::Sliding => &models::sliding::STATE_NAMES,
+        Mode::Rolling => &models::rolling::STATE_NAMES,
+        Mode::Sliding => &models::sliding::STATE_NAMES,
     }
 }
 
@@ -145,7 +145,7 @@ fn param_error(source: ParamError) -> EvalCommandError {
 }
 
 /// Parses `--state` for `mode` (missing entries are 0) into the model's state array.
-pub fn parse_state(mode: ModeName, text: Option<&str>) -> Result<[f64; N], EvalCommandError> {
+pub fn parse_state(mode: Mode, text: Option<&str>) -> Result<[f64; N], EvalCommandError> {
     let names = state_names(mode);
     let given: BTreeMap<String, f64> = match text {
         Some(text) => parse_named_numbers("--state", text, names)?,
@@ -157,27 +157,27 @@ pub fn parse_state(mode: ModeName, text: Option<&str>) -> Result<[f64; N], EvalC
 }
 
 /// Evaluates the `mode` equations of `backend` at `y`. Switching the CLI's default backend
-/// is the one line in [`crate::cli`] that names it.
+/// is the one line in [`crate::args`] that names it.
 pub fn evaluate(
     backend: Backend,
-    mode: ModeName,
+    mode: Mode,
     params: &DiskParams,
     y: &[f64; N],
 ) -> Result<Evaluation, EvalCommandError> {
     let p = *params;
     match (backend, mode) {
-        (Backend::Generated, ModeName::Rolling) => {
+        (Backend::Generated, Mode::Rolling) => {
             run(mode, &models::rolling::Model::new(p.to_array()), y)
         }
-        (Backend::Generated, ModeName::Sliding) => {
+        (Backend::Generated, Mode::Sliding) => {
             run(mode, &models::sliding::Model::new(p.to_array()), y)
         }
-        (Backend::Reference, ModeName::Rolling) => run(
+        (Backend::Reference, Mode::Rolling) => run(
             mode,
             &reference::RollingReference::new(p).map_err(param_error)?,
             y,
         ),
-        (Backend::Reference, ModeName::Sliding) => run(
+        (Backend::Reference, Mode::Sliding) => run(
             mode,
             &reference::SlidingPolarReference::new(p).map_err(param_error)?,
             y,
@@ -186,7 +186,7 @@ pub fn evaluate(
 }
 
 fn run<M: WithOutputs<N, K>, const K: usize>(
-    mode: ModeName,
+    mode: Mode,
     model: &M,
     y: &[f64; N],
 ) -> Result<Evaluation, EvalCommandError> {
@@ -221,7 +221,7 @@ fn run<M: WithOutputs<N, K>, const K: usize>(
 /// Names the state key behind a model error: the state named in the pivot (`sin(theta)` ->
 /// `theta`), else the one whose value is not finite, else the quantity itself.
 fn to_command_error(
-    mode: ModeName,
+    mode: Mode,
     names: &[&'static str],
     y: &[f64; N],
     e: EvalError,
@@ -278,10 +278,10 @@ mod tests {
             r#"{{"theta": {theta0}, "Omega_x": 1.0, "Z": {}}}"#,
             0.03755 * theta0.sin()
         );
-        let y = parse_state(ModeName::Rolling, Some(&text)).unwrap();
+        let y = parse_state(Mode::Rolling, Some(&text)).unwrap();
         let p = parse_params(None).unwrap();
-        let g = evaluate(Backend::Generated, ModeName::Rolling, &p, &y).unwrap();
-        let r = evaluate(Backend::Reference, ModeName::Rolling, &p, &y).unwrap();
+        let g = evaluate(Backend::Generated, Mode::Rolling, &p, &y).unwrap();
+        let r = evaluate(Backend::Reference, Mode::Rolling, &p, &y).unwrap();
         for (a, b) in g.derivatives.0.iter().zip(&r.derivatives.0) {
             assert_eq!(a.0, b.0);
             assert!((a.1 - b.1).abs() <= 1e-9 * (1.0 + b.1.abs()), "{a:?} {b:?}");
@@ -295,10 +295,10 @@ mod tests {
     fn flat_disk_is_singular_and_names_theta() {
         let p = parse_params(None).unwrap();
         for backend in [Backend::Generated, Backend::Reference] {
-            for mode in [ModeName::Rolling, ModeName::Sliding] {
+            for mode in [Mode::Rolling, Mode::Sliding] {
                 let y = parse_state(
                     mode,
-                    Some(r#"{"v_C": 0.1}"#).filter(|_| mode == ModeName::Sliding),
+                    Some(r#"{"v_C": 0.1}"#).filter(|_| mode == Mode::Sliding),
                 )
                 .unwrap();
                 let err = evaluate(backend, mode, &p, &y).unwrap_err();

@@ -6,6 +6,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod args;
 pub mod cli;
 pub mod eval;
 pub mod figures;

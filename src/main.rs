@@ -3,10 +3,11 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use eulerdisk::cli::{
-    backend, interrupt_on_ctrl_c, progress_style, Cli, Command, EvalArgs, RunArgs, EXIT_FAILED,
-    EXIT_INPUT, EXIT_INTERRUPTED,
+use eulerdisk::args::{
+    backend, interrupt_on_ctrl_c, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
+    EXIT_INTERRUPTED,
 };
+use eulerdisk::cli::{Cli, Command, EvalArgs};
 use eulerdisk::eval::{evaluate, parse_params, parse_state};
 use eulerdisk::run::provenance::Provenance;
 use eulerdisk::run::{run_scene, Ending, RunOptions};
@@ -29,7 +30,7 @@ fn main() -> ExitCode {
             for (name, text) in BUILTIN {
                 let description = scene::parse(name, text, &[])
                     .ok()
-                    .and_then(|s| s.file.description)
+                    .and_then(|s| s.file.cli.description)
                     .unwrap_or_default();
                 println!("{name:<20} {description}");
             }
@@ -88,10 +89,10 @@ fn run(args: RunArgs) -> ExitCode {
         eprintln!(
             "scene `{}`: t_end {} s, {} rtol {:e} atol {:e}, output in {}",
             scene.name,
-            scene.file.run.t_end,
-            scene.file.solver.integrator.as_str(),
-            scene.file.solver.rtol,
-            scene.file.solver.atol,
+            scene.file.settings.run.t_end,
+            scene.config.integrator.name(),
+            scene.file.settings.solver.rtol,
+            scene.file.settings.solver.atol,
             args.out.display()
         );
         let choice = eulerdisk::run::model::choose(&scene, opts.backend, opts.figures);
@@ -113,7 +114,7 @@ fn run(args: RunArgs) -> ExitCode {
                     if s.stop_reason != "end_time" {
                         eprintln!(
                             "stopped early at t = {} s of {} s ({}): {}",
-                            s.t_end, scene.file.run.t_end, s.stop_reason, s.stop_detail
+                            s.t_end, scene.file.settings.run.t_end, s.stop_reason, s.stop_detail
                         );
                     }
                     ExitCode::SUCCESS

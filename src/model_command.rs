@@ -5,9 +5,8 @@
 //! is an input error (exit 2); a failed integration or an unwritable output is a failure
 //! (exit 1).
 
-use crate::cli::{
-    ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs, EXIT_FAILED, EXIT_INPUT,
-};
+use crate::args::{EXIT_FAILED, EXIT_INPUT};
+use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
 use crate::model_file::{evaluate, load, params, select, state, ModelFileError};
 use crate::model_show::{Format, ModelName};
 use crate::model_solve::{solve, SolveSettings};

@@ -9,10 +9,10 @@
 
 use clap::ValueEnum;
 use equations::formulas::{rolling_normal_force_ratio, BodyRates, FormulaError};
-use equations::hybrid::InitialState;
+use equations::layout;
 use equations::models::{rolling, sliding, sliding_cartesian};
-use equations::modes::layout;
 use equations::DiskParams;
+use equations::InitialState;
 use model_runtime::{EvalError, WithOutputs as _};
 use std::fmt::Write as _;
 
@@ -61,15 +61,15 @@ pub fn paper_start_normal_force() -> Result<NormalForceCheck, CheckError> {
     let p = DiskParams::paper();
     let start = InitialState::paper(&p);
     let model = rolling::Model::new(p.to_array());
-    let ev = model.evaluate(start.t, &start.y)?;
+    let ev = model.evaluate(start.t, &start.state.y)?;
     let rates = BodyRates {
-        omega_x: start.y[layout::OMEGA_X],
-        omega_y: start.y[layout::OMEGA_Y],
-        omega_z: start.y[layout::OMEGA_Z],
+        omega_x: start.state.y[layout::OMEGA_X],
+        omega_y: start.state.y[layout::OMEGA_Y],
+        omega_z: start.state.y[layout::OMEGA_Z],
     };
     Ok(NormalForceCheck {
         model: ev.outputs[rolling::output::N] / (p.m * p.g),
-        formula: rolling_normal_force_ratio(&p, start.y[layout::THETA], &rates)?,
+        formula: rolling_normal_force_ratio(&p, start.state.y[layout::THETA], &rates)?,
     })
 }
 

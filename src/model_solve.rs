@@ -278,9 +278,9 @@ impl WithOutputs<MAX_STATES, 0> for Interpreted<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use equations::hybrid::InitialState;
     use equations::models::rolling;
     use equations::DiskParams;
+    use equations::InitialState;
     use model_dsl::Source;
 
     /// The rolling disk from its own source file, interpreted and embedded, against the same
@@ -292,7 +292,7 @@ mod tests {
         let models = Source::rust("box1_rolling.rs", file).compile().unwrap();
         let interpreted = &models[0].compiled;
         let p = DiskParams::paper();
-        let y0 = InitialState::paper(&p).y;
+        let y0 = InitialState::paper(&p).state.y;
         let params = p.to_array();
         for method in [Method::Dopri5, Method::Dop853, Method::Rodas4] {
             let settings = SolveSettings {

@@ -4,7 +4,7 @@
 //! a quantity's name, unit and meaning cannot drift apart between those places.
 
 use crate::sample::Sample;
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 /// A recordable quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -225,6 +225,22 @@ impl Quantity {
             Quantity::Energy => s.energy,
             Quantity::ResidualZ => st.z - p.a * st.theta.sin(),
             Quantity::ResidualV_Z => st.v_z - p.a * st.omega_y * st.theta.cos(),
+        }
+    }
+}
+
+/// The frozen-state rule lives with the quantities, which know what each value reads.
+impl Sample {
+    /// Replaces every value that depends on a state in `frozen` (a state the models did not
+    /// integrate) by NaN, so a frozen value can never pass for a result.
+    pub fn forget(&mut self, frozen: &[&str]) {
+        for name in frozen {
+            if let Some(v) = self.state.get_mut(name) {
+                *v = f64::NAN;
+            }
+        }
+        if !Quantity::Energy.computed_without(frozen) {
+            self.energy = f64::NAN;
         }
     }
 }

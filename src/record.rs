@@ -6,7 +6,7 @@
 
 use crate::run::model::ModelChoice;
 use crate::sample::Sample;
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// The quantity whose crossing caused a mode decision.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,9 +44,9 @@ pub struct EventRow {
     /// Time (s).
     pub t: f64,
     /// Mode before.
-    pub from: ModeName,
+    pub from: Mode,
     /// Mode after (sliding -> sliding: a restart from zero slip).
-    pub to: ModeName,
+    pub to: Mode,
     /// What fired it.
     pub trigger: TriggerKind,
     /// The triggering quantity's value (a friction ratio, see [`TriggerKind::value_meaning`]).
@@ -61,7 +61,7 @@ pub struct StopRecord {
     /// Time (s).
     pub t: f64,
     /// The mode in force.
-    pub mode: ModeName,
+    pub mode: Mode,
     /// Short name (`end_time`, `contact_lost`, `inclination_reached_0`, `chattering`,
     /// `interrupted`, `error`).
     pub reason: String,

@@ -4,7 +4,7 @@
 //! figures, summary) reads names instead, so a change of chart or of model index order is
 //! absorbed in one conversion and never reaches the figures.
 
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// The disk's state in the rolling chart (the paper's rolling unknowns), SI units.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -134,7 +134,7 @@ pub struct Sample {
     /// Time (s).
     pub t: f64,
     /// The mode in force.
-    pub mode: ModeName,
+    pub mode: Mode,
     /// The state in the rolling chart.
     pub state: DiskState,
     /// The slip.
@@ -143,21 +143,6 @@ pub struct Sample {
     pub forces: ContactForces,
     /// Total mechanical energy (J).
     pub energy: f64,
-}
-
-impl Sample {
-    /// Replaces every value that depends on a state in `frozen` (a state the models did not
-    /// integrate) by NaN, so a frozen value can never pass for a result.
-    pub fn forget(&mut self, frozen: &[&str]) {
-        for name in frozen {
-            if let Some(v) = self.state.get_mut(name) {
-                *v = f64::NAN;
-            }
-        }
-        if !crate::quantity::Quantity::Energy.computed_without(frozen) {
-            self.energy = f64::NAN;
-        }
-    }
 }
 
 #[cfg(test)]

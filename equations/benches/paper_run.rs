@@ -19,12 +19,10 @@
 //! ```
 
 use common::{Args, Clock};
-use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, GeneratedModels, InitialState, PrunedModels, RunOutcome,
-    SimError,
-};
-use equations::modes::SlipChart;
 use equations::DiskParams;
+use equations::SlipChart;
+use equations::{simulate, DiskModels, GeneratedModels, PrunedModels, RunOutcome, SimError};
+use equations::{DiskConfig, InitialState};
 use model_runtime::Model;
 
 mod common;

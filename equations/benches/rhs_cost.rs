@@ -13,10 +13,10 @@
 //! Prints a table and writes `rhs_cost.csv` to `target/bench/` (or `--out`).
 
 use common::{Args, Clock};
-use equations::hybrid::{DiskModels, GeneratedModels, ReferenceModels};
 use equations::models::{rolling, sliding, sliding_cartesian};
-use equations::modes::{layout, PhysicalState, Slip, SlipChart, DIM};
 use equations::DiskParams;
+use equations::{layout, PhysicalState, Slip, SlipChart, DIM};
+use equations::{DiskModels, GeneratedModels, ReferenceModels};
 use model_runtime::{Model, ModelInfo, OpCounts};
 use std::hint::black_box;
 use std::path::PathBuf;

@@ -23,12 +23,10 @@
 //! `target/bench/` (or `--out`).
 
 use common::{Args, Clock};
-use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskRecorder, ErrorNorm, GeneratedModels, InitialState,
-    IntegratorChoice, RunOutcome, SimError, StepControl, TimeVariable,
-};
-use equations::modes::{layout, SlipChart, DIM};
 use equations::DiskParams;
+use equations::{layout, SlipChart, DIM};
+use equations::{simulate, DiskModels, DiskRecorder, GeneratedModels, RunOutcome, SimError};
+use equations::{DiskConfig, ErrorNorm, InitialState, Integrator, StepControl, TimeVariable};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -75,7 +73,7 @@ fn rolling_scene(t_end: f64) -> Scene {
     Scene {
         name: "rolling",
         params,
-        initial: InitialState { t: 0.0, y },
+        initial: InitialState::from_velocity(&params, 0.0, y),
         t_end,
     }
 }
@@ -96,7 +94,7 @@ const METHOD_NAMES: [&str; 9] = [
 /// The integrator, its error norm, its step control and the accuracy knob it was given.
 #[derive(Clone, Copy)]
 struct Method {
-    choice: IntegratorChoice,
+    choice: Integrator,
     norm: ErrorNorm,
     control: StepControl,
     time: TimeVariable,
@@ -108,22 +106,22 @@ impl Method {
     fn name(&self) -> &'static str {
         if self.time == TimeVariable::Regularised {
             return match self.choice {
-                IntegratorChoice::Dop853 => "DOP853 regularised",
+                Integrator::Dop853 => "DOP853 regularised",
                 _ => "DP5 regularised",
             };
         }
         match (self.choice, self.norm, self.control) {
-            (IntegratorChoice::Dopri5, ErrorNorm::Vectors, _) => "DP5 vectors",
-            (IntegratorChoice::Dopri5, _, StepControl::PiHairer) => "DP5 pi-hairer",
-            (IntegratorChoice::Dopri5, _, StepControl::Integral) => "DP5 integral",
-            (IntegratorChoice::Dopri5, ..) => "DP5",
-            (IntegratorChoice::Dop853, ..) => "DOP853",
-            (IntegratorChoice::Rodas4, ..) => "Rodas4",
-            (IntegratorChoice::Rk4 { .. }, ..) => "RK4",
+            (Integrator::Dopri5, ErrorNorm::Vectors, _) => "DP5 vectors",
+            (Integrator::Dopri5, _, StepControl::PiHairer) => "DP5 pi-hairer",
+            (Integrator::Dopri5, _, StepControl::Integral) => "DP5 integral",
+            (Integrator::Dopri5, ..) => "DP5",
+            (Integrator::Dop853, ..) => "DOP853",
+            (Integrator::Rodas4, ..) => "Rodas4",
+            (Integrator::Rk4 { .. }, ..) => "RK4",
         }
     }
 
-    fn adaptive(choice: IntegratorChoice, rtol: f64) -> Self {
+    fn adaptive(choice: Integrator, rtol: f64) -> Self {
         Method {
             choice,
             norm: ErrorNorm::Components,
@@ -135,7 +133,7 @@ impl Method {
 
     fn rk4(h: f64) -> Self {
         Method {
-            choice: IntegratorChoice::Rk4 { h },
+            choice: Integrator::Rk4 { h },
             norm: ErrorNorm::Components,
             control: StepControl::default(),
             time: TimeVariable::Physical,
@@ -145,7 +143,7 @@ impl Method {
 
     fn config(&self, t_end: f64, params: &DiskParams) -> DiskConfig {
         match self.choice {
-            IntegratorChoice::Rk4 { h } => {
+            Integrator::Rk4 { h } => {
                 let config = sweep_config(self.choice, 1e-8, t_end);
                 // A fixed step moves the slip by about μ_d g h whatever happens, so a stick
                 // threshold below that is stepped over and every stick is missed (measured:
@@ -168,7 +166,7 @@ impl Method {
 /// What one run produced.
 struct Run {
     outcome: RunOutcome,
-    transitions: Vec<equations::hybrid::TransitionRecord>,
+    transitions: Vec<equations::TransitionRecord>,
     seconds: f64,
 }
 
@@ -291,7 +289,7 @@ fn methods(quick: bool) -> Vec<Method> {
         (3..=12).map(|k| 10f64.powi(-k)).collect()
     };
     let mut all = Vec::new();
-    for choice in [IntegratorChoice::Dopri5, IntegratorChoice::Dop853] {
+    for choice in [Integrator::Dopri5, Integrator::Dop853] {
         all.extend(rtols.iter().map(|&r| Method::adaptive(choice, r)));
         all.extend(rtols.iter().map(|&r| Method {
             time: TimeVariable::Regularised,
@@ -300,13 +298,13 @@ fn methods(quick: bool) -> Vec<Method> {
     }
     all.extend(rtols.iter().map(|&r| Method {
         norm: ErrorNorm::Vectors,
-        ..Method::adaptive(IntegratorChoice::Dopri5, r)
+        ..Method::adaptive(Integrator::Dopri5, r)
     }));
     // The other step controls (BENCHMARKS.md §3: fewer steps, not less work at equal accuracy).
     for control in [StepControl::PiHairer, StepControl::Integral] {
         all.extend(rtols.iter().map(|&r| Method {
             control,
-            ..Method::adaptive(IntegratorChoice::Dopri5, r)
+            ..Method::adaptive(Integrator::Dopri5, r)
         }));
     }
     // Rodas4 with its symbolic Jacobian: an order-4 method, so the sweep stops where its cost
@@ -315,7 +313,7 @@ fn methods(quick: bool) -> Vec<Method> {
         rtols
             .iter()
             .filter(|&&r| r >= 1e-9)
-            .map(|&r| Method::adaptive(IntegratorChoice::Rodas4, r)),
+            .map(|&r| Method::adaptive(Integrator::Rodas4, r)),
     );
     let steps: &[f64] = if quick {
         &[1e-3, 1e-4]
@@ -349,12 +347,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let reference = run_once(
             &models,
             scene,
-            &sweep_config(IntegratorChoice::Dop853, 1e-13, scene.t_end),
+            &sweep_config(Integrator::Dop853, 1e-13, scene.t_end),
         )?;
         let check = run_once(
             &models,
             scene,
-            &sweep_config(IntegratorChoice::Dopri5, 1e-12, scene.t_end),
+            &sweep_config(Integrator::Dopri5, 1e-12, scene.t_end),
         )?;
         let agreement = score(&check, &reference);
         println!(
@@ -406,7 +404,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// `δ = 1e-9` the loose tolerances integrate the slip with errors far above `δ`; the slip then
 /// hovers near zero in the stiff Cartesian chart and the step size collapses (DP5 at
 /// `rtol = 1e-6` took 9 M steps for 1 s).
-fn sweep_config(choice: IntegratorChoice, rtol: f64, t_end: f64) -> DiskConfig {
+fn sweep_config(choice: Integrator, rtol: f64, t_end: f64) -> DiskConfig {
     let atol = rtol * 1e-2;
     let paper = DiskConfig::paper();
     DiskConfig {

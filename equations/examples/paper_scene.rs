@@ -6,12 +6,13 @@
 //! [components|vectors] [pi-gustafsson|pi-hairer|integral] [physical|regularised]
 //! ```
 
-use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskObserver, GeneratedModels, InitialState,
-    IntegratorChoice, ReferenceModels, RunOutcome, SlipSign, TransitionRecord,
-};
-use equations::modes::{Mode, SlipChart};
 use equations::DiskParams;
+use equations::{
+    simulate, DiskModels, DiskObserver, GeneratedModels, ReferenceModels, RunOutcome,
+    TransitionRecord,
+};
+use equations::{DiskConfig, InitialState, Integrator, SlipSign};
+use equations::{Mode, SlipChart};
 use std::time::Instant;
 
 /// Counts the mode decisions in the first 1 s, 10 s and 100 s.
@@ -72,8 +73,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut config = DiskConfig::paper();
     config.t_end = arg(0).map(str::parse).transpose()?.unwrap_or(1.0);
     config.integrator = match arg(1).unwrap_or("dopri5") {
-        "dop853" => IntegratorChoice::Dop853,
-        _ => IntegratorChoice::Dopri5,
+        "dop853" => Integrator::Dop853,
+        _ => Integrator::Dopri5,
     };
     let chart = match arg(2).unwrap_or("cartesian") {
         "polar" => SlipChart::Polar,
@@ -152,7 +153,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!(
         "final: theta {:.10}, energy {:.12} J, mode {}",
-        out.last.state.y[equations::modes::layout::THETA],
+        out.last.state.y[equations::layout::THETA],
         out.last.energy,
         out.last.mode
     );
@@ -169,7 +170,7 @@ fn print_costs(models: &GeneratedModels, out: &RunOutcome, run_seconds: f64) {
     let rolling = out.last.state.rolling_vector();
     let sliding = out.last.state.sliding_vector(
         models.chart,
-        equations::modes::Slip {
+        equations::Slip {
             speed: 1e-3,
             direction: 0.7,
         },

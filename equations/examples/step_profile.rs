@@ -10,20 +10,18 @@
 //!
 //! It also counts the steps by slip speed and, for each state component, the accepted steps
 //! whose size it limited (the largest scaled error), which shows what a different error norm
-//! (`components` or `vectors`, `equations::hybrid::ErrorNorm`) would change.
+//! (`components` or `vectors`, `equations::ErrorNorm`) would change.
 //!
 //! ```text
 //! cargo run --release -p equations --example step_profile -- \
 //!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors] [pi-gustafsson|pi-hairer|integral] [dopri5|dop853] [physical|regularised]
 //! ```
 
-use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, DiskSample, GeneratedModels, InitialState,
-    LimitingComponent, TransitionRecord,
-};
 use equations::models::{rolling, sliding_cartesian};
-use equations::modes::{layout::THETA, Mode, SlipChart};
 use equations::DiskParams;
+use equations::{layout::THETA, Mode, SlipChart};
+use equations::{simulate, DiskObserver, DiskSample, GeneratedModels, TransitionRecord};
+use equations::{DiskConfig, InitialState, LimitingComponent};
 use std::time::Instant;
 
 /// Upper edges of the inclination bands (rad).
@@ -150,7 +148,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         config.step_control = c.parse()?;
     }
     if args.get(7).map(String::as_str) == Some("dop853") {
-        config.integrator = equations::hybrid::IntegratorChoice::Dop853;
+        config.integrator = equations::Integrator::Dop853;
     }
     if let Some(t) = args.get(8) {
         config.time = t.parse()?;

@@ -6,13 +6,70 @@
 //! ([`reference`](mod@reference), the oracle), and as the closed forms a reader can check by hand
 //! ([`formulas`]). The tests hold each to the others at random and extreme states. All of
 //! them take their parameters from one validated [`DiskParams`].
+//!
+//! The crate also owns the scene's domain: the settings a scene file writes
+//! ([`SceneSettings`], with the one set of defaults in [`SolverTable::default`]), their one
+//! validation ([`Issue`], keyed by the scene's names), the completion of the initial state
+//! ([`InitialState`]), and the run ([`simulate`]) that takes what they resolve to
+//! ([`DiskScene`]).
+//!
+//! # Example
+//!
+//! ```
+//! use equations::{simulate, DiskRecorder, GeneratedModels, SceneSettings};
+//!
+//! let text = r#"
+//!     disk = { m = 0.4387, a = 0.03755, g = 9.81 }
+//!     friction = { mu_d = 0.15, mu_st = 0.2 }
+//!     initial = { theta = 0.5707963267948966, Omega_x = 1.0 }
+//!     run = { t_end = 0.1 }
+//! "#;
+//! let settings: SceneSettings = toml::from_str(text).unwrap();
+//! let scene = settings.resolve().unwrap();
+//! assert_eq!(scene.config.integrator.name(), "dop853");
+//! let models = GeneratedModels::generated(scene.params, scene.config.chart()).unwrap();
+//! let mut record = DiskRecorder::default();
+//! let out = simulate(&models, &scene.config, &scene.initial, &mut record).unwrap();
+//! assert_eq!(out.stop.name(), "end time");
+//! ```
 #![warn(missing_docs)]
 
+mod config;
 pub mod formulas;
-pub mod hybrid;
+mod hybrid;
+mod issue;
 pub mod models;
-pub mod modes;
-pub mod params;
+mod modes;
+mod params;
 pub mod reference;
+mod scene;
+mod settings;
+mod start;
 
+pub use config::{AllowedModes, DiskConfig, ATOL_MAX, MAX_DELIVERED_SAMPLES, RTOL_MAX, RTOL_MIN};
+pub use hybrid::{
+    consistent_slip_direction, simulate, DiskGuard, DiskModels, DiskObserver, DiskRecorder,
+    DiskSample, EmbedError, Embedded, Embedding, GeneratedModels, OnsetError, PruneError, Pruned,
+    PrunedModels, ReferenceModels, RunOutcome, SimError, SlidingModel, SlipAcceleration, SlipOnset,
+    StopReason, TransitionRecord, Trigger, Variant, PROBE_SLIP_SPEED, PRUNED_STATES,
+};
+pub use issue::{Issue, Number, Rule};
+/// Where a step's interior is searched for guard crossings (re-exported from the runtime).
+pub use model_runtime::InteriorChecks;
+/// Whether a run counts the component that limits each step (re-exported from the runtime).
+pub use model_runtime::LimitingComponent;
+/// The gains of the step-size controller (re-exported from the runtime).
+pub use model_runtime::StepControl;
+pub use modes::{
+    layout, no_slip_velocity, ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip,
+    SlipChart, DIM,
+};
 pub use params::{DiskParams, ParamError};
+pub use scene::{
+    AirTable, DiskScene, DiskTable, FrictionTable, InitialTable, ModesTable, SceneSettings,
+    MAX_RECORDED_SAMPLES,
+};
+pub use settings::{
+    spelled, ChatterLimit, ErrorNorm, Integrator, RunTable, SlipSign, SolverTable, TimeVariable,
+};
+pub use start::{InitialState, CONSTRAINT_TOL, STATE_NAMES};

@@ -57,8 +57,11 @@ pub mod layout {
 
 use layout::*;
 
-/// The contact mode of the disk.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// The contact mode of the disk; spelled `rolling` or `sliding` in scenes and output files.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Deserialize, serde::Serialize,
+)]
+#[serde(rename_all = "lowercase")]
 pub enum Mode {
     /// No slip at the contact: `v_C = 0`, friction below `mu_st N`.
     Rolling,
@@ -94,7 +97,7 @@ pub enum SlipChart {
 /// The slip of the contact particle, in the paper's polar terms.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Slip {
-    /// Slip speed `v_C` (m/s); negative only under [`crate::hybrid::SlipSign::Paper`].
+    /// Slip speed `v_C` (m/s); negative only under [`crate::SlipSign::Paper`].
     pub speed: f64,
     /// Direction `α` of the friction force (rad): the slip points along `-(cos α, sin α)`.
     pub direction: f64,

@@ -6,6 +6,8 @@
 
 use std::f64::consts::PI;
 
+use crate::issue::{Checks, Issue, Rule};
+
 /// Parameters of a thin homogeneous disk on a rough plane (SI units).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DiskParams {
@@ -79,34 +81,63 @@ impl DiskParams {
         }
     }
 
-    /// Checks every parameter and returns the first problem found, named.
+    /// The scene keys of the parameters, in [`DiskParams::NAMES`] order.
+    pub const KEYS: [&'static str; 7] = [
+        "disk.m",
+        "disk.a",
+        "disk.g",
+        "friction.mu_d",
+        "friction.mu_st",
+        "air.mu_a",
+        "air.w_z",
+    ];
+
+    /// Every rule the parameters break, each with its scene key ([`DiskParams::KEYS`]): `m`,
+    /// `a`, `g` finite and > 0; `mu_d`, `mu_st`, `mu_a` finite and >= 0; `mu_st >= mu_d`;
+    /// `w_z` finite. The one set of rules for parameters, whether a scene or a program gives
+    /// them.
+    pub fn issues(&self) -> Vec<Issue> {
+        let mut c = Checks::default();
+        let [m, a, g, mu_d, mu_st, mu_a, w_z] = Self::KEYS;
+        c.positive(m, self.m);
+        c.positive(a, self.a);
+        c.positive(g, self.g);
+        let mu_d_ok = c.non_negative(mu_d, self.mu_d);
+        if c.non_negative(mu_st, self.mu_st) && mu_d_ok && self.mu_st < self.mu_d {
+            c.push(
+                mu_st,
+                Rule::BelowOther {
+                    value: self.mu_st,
+                    other: mu_d,
+                    other_value: self.mu_d,
+                },
+            );
+        }
+        c.non_negative(mu_a, self.mu_a);
+        c.finite(w_z, self.w_z);
+        c.issues
+    }
+
+    /// The first of [`DiskParams::issues`], named by the parameter.
     pub fn validate(&self) -> Result<(), ParamError> {
-        for (name, value) in [("m", self.m), ("a", self.a)] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(ParamError::NotPositive { name, value });
-            }
-        }
-        for (name, value) in [("g", self.g), ("w_z", self.w_z)] {
-            if !value.is_finite() {
-                return Err(ParamError::NotFinite { name, value });
-            }
-        }
-        for (name, value) in [
-            ("mu_d", self.mu_d),
-            ("mu_st", self.mu_st),
-            ("mu_a", self.mu_a),
-        ] {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(ParamError::Negative { name, value });
-            }
-        }
-        if self.mu_d > self.mu_st {
-            return Err(ParamError::DynamicAboveStatic {
+        let Some(issue) = self.issues().into_iter().next() else {
+            return Ok(());
+        };
+        let index = Self::KEYS.iter().position(|k| *k == issue.key).unwrap_or(0);
+        let name = Self::NAMES[index];
+        Err(match issue.rule {
+            Rule::NotFinite { value } => ParamError::NotFinite { name, value },
+            Rule::NotPositive { value } => ParamError::NotPositive { name, value },
+            Rule::BelowOther { .. } => ParamError::DynamicAboveStatic {
                 mu_d: self.mu_d,
                 mu_st: self.mu_st,
-            });
-        }
-        Ok(())
+            },
+            // Negative is the only rule left.
+            _ => ParamError::Negative {
+                name,
+                value: self.to_array()[index],
+            },
+        })
     }
 
     /// Validates and returns the parameters, so construction and checking read as one step.

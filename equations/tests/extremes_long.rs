@@ -14,11 +14,10 @@
 mod common;
 
 use common::extreme::Watch;
-use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, DiskSample, GeneratedModels, InitialState, TransitionRecord,
-};
-use equations::modes::SlipChart;
 use equations::DiskParams;
+use equations::SlipChart;
+use equations::{simulate, DiskObserver, DiskSample, GeneratedModels, TransitionRecord};
+use equations::{DiskConfig, InitialState};
 
 /// The horizon (s).
 const T_END: f64 = 1000.0;

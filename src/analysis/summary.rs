@@ -6,14 +6,14 @@
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 use serde::Serialize;
 
 use super::oscillation::{mean_period, Series};
 use crate::quantity::Quantity;
 use crate::record::{RunData, SampleCounts, Timings, TriggerKind};
 use crate::sample::Sample;
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// Time after which the paper reports the settled amplitudes (s).
 pub const SETTLED_AFTER: f64 = 50.0;
@@ -28,7 +28,7 @@ pub struct Summary {
     /// Why those models.
     pub model_reason: String,
     /// Mode at the start (after the initial decision).
-    pub start_mode: Option<ModeName>,
+    pub start_mode: Option<Mode>,
     /// Why the run ended, as a word (`end_time`, `contact_lost`, `error`, ...).
     pub stop_reason: String,
     /// Why the run ended, in full: the error, the event and its numbers (empty at the end
@@ -137,7 +137,7 @@ impl Summary {
         let has_settled = t_stop >= SETTLED_AFTER;
         let sliding: Vec<f64> = s
             .iter()
-            .filter(|x| x.mode == ModeName::Sliding)
+            .filter(|x| x.mode == Mode::Sliding)
             .map(|x| x.forces.nu)
             .filter(|v| v.is_finite())
             .collect();
@@ -145,7 +145,7 @@ impl Summary {
         let rolling_last = (t_stop - t_start >= 1.0).then(|| {
             data.events
                 .iter()
-                .filter(|e| e.to == ModeName::Rolling && e.t > last_window && e.t <= t_stop)
+                .filter(|e| e.to == Mode::Rolling && e.t > last_window && e.t <= t_stop)
                 .count() as f64
         });
         let mut not_computed = BTreeMap::new();
@@ -330,7 +330,7 @@ impl Summary {
     }
 }
 
-fn start_mode(data: &RunData) -> Option<ModeName> {
+fn start_mode(data: &RunData) -> Option<Mode> {
     let t0 = data.samples.first().map(|s| s.t);
     match data.events.first() {
         Some(e) if e.trigger == TriggerKind::InitialFriction => Some(e.to),
@@ -344,7 +344,7 @@ pub fn rolling_energy_drift(samples: &[Sample]) -> Option<f64> {
     let mut worst: Option<f64> = None;
     let mut phase_start: Option<f64> = None;
     for s in samples {
-        if s.mode != ModeName::Rolling {
+        if s.mode != Mode::Rolling {
             phase_start = None;
             continue;
         }

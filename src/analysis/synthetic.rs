@@ -6,11 +6,11 @@
 
 use std::f64::consts::PI;
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 use crate::record::{EventRow, RunData, StopRecord, TriggerKind, Work};
 use crate::sample::{ContactForces, DiskState, Sample, Slip};
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// What the synthetic run is made of.
 #[derive(Clone, Copy, Debug)]
@@ -37,12 +37,12 @@ impl SyntheticRun {
     fn sample(&self, t: f64, p: &DiskParams) -> Sample {
         let (theta, theta_dot) = self.theta(t);
         let mode = if theta_dot < 0.0 {
-            ModeName::Sliding
+            Mode::Sliding
         } else {
-            ModeName::Rolling
+            Mode::Rolling
         };
         let normal = p.m * p.g * (1.0 + 0.5 * (0.4 - theta));
-        let nu = if mode == ModeName::Sliding {
+        let nu = if mode == Mode::Sliding {
             p.mu_d
         } else {
             0.5 * (p.mu_d + p.mu_st)
@@ -58,7 +58,7 @@ impl SyntheticRun {
                 ..Default::default()
             },
             slip: Slip {
-                v_c: if mode == ModeName::Sliding {
+                v_c: if mode == Mode::Sliding {
                     -1e-2 * theta_dot
                 } else {
                     0.0
@@ -97,7 +97,7 @@ impl SyntheticRun {
                     t: w[1].t,
                     from: w[0].mode,
                     to: w[1].mode,
-                    trigger: if w[1].mode == ModeName::Sliding {
+                    trigger: if w[1].mode == Mode::Sliding {
                         TriggerKind::FrictionLimit
                     } else {
                         TriggerKind::SlipStopped
@@ -114,7 +114,7 @@ impl SyntheticRun {
             events,
             stop: Some(StopRecord {
                 t: self.t_end,
-                mode: ModeName::Rolling,
+                mode: Mode::Rolling,
                 reason: "end_time".into(),
                 detail: String::new(),
             }),

@@ -20,12 +20,11 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::{data_range, padded_range, tick_label, usable_span};
 use super::legend;
+use super::line::{Axis, Line, Stroke, FAMILY};
 use crate::output::atomic::{produce_atomic, write_bytes_atomic, WriteError};
 
 /// The shipped font (DejaVu Sans, Bitstream Vera licence, see `assets/`).
 const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-/// The family name the charts ask for.
-pub const FAMILY: &str = "sans-serif";
 /// Pixel size of every figure.
 pub const SIZE: (u32, u32) = (1200, 720);
 /// Most points drawn per line: longer series are reduced to their min/max per bucket, which
@@ -44,80 +43,6 @@ pub fn register_font() {
             }
         }
     });
-}
-
-/// How a line is drawn.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Stroke {
-    /// A continuous line.
-    Line,
-    /// A thin continuous line (reference values).
-    Thin,
-    /// Small unconnected dots (a cloud of many points).
-    Cloud,
-    /// Unconnected dots.
-    Dots,
-}
-
-/// Which y axis a line uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Axis {
-    /// The left axis.
-    Left,
-    /// The right axis.
-    Right,
-}
-
-/// One line of a chart.
-#[derive(Clone, Debug)]
-pub struct Line {
-    /// Legend text.
-    pub label: String,
-    /// Points (x, y).
-    pub points: Vec<(f64, f64)>,
-    /// Colour.
-    pub color: RGBColor,
-    /// Line or dots.
-    pub stroke: Stroke,
-    /// Which y axis.
-    pub axis: Axis,
-}
-
-impl Line {
-    /// A continuous line on the left axis.
-    pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, color: RGBColor) -> Line {
-        Line {
-            label: label.into(),
-            points,
-            color,
-            stroke: Stroke::Line,
-            axis: Axis::Left,
-        }
-    }
-
-    /// The same line drawn as dots.
-    pub fn dots(mut self) -> Line {
-        self.stroke = Stroke::Dots;
-        self
-    }
-
-    /// The same line drawn as a cloud of small dots.
-    pub fn cloud(mut self) -> Line {
-        self.stroke = Stroke::Cloud;
-        self
-    }
-
-    /// The same line drawn thin.
-    pub fn thin(mut self) -> Line {
-        self.stroke = Stroke::Thin;
-        self
-    }
-
-    /// The same line on the right axis.
-    pub fn right(mut self) -> Line {
-        self.axis = Axis::Right;
-        self
-    }
 }
 
 /// A figure described as data.

@@ -9,7 +9,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::chart::{Line, Stroke, FAMILY};
+use super::line::{Line, Stroke, FAMILY};
 
 /// Height of the legend strip (pixels).
 pub const HEIGHT: u32 = 34;

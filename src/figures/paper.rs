@@ -8,25 +8,15 @@
 
 use std::path::Path;
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 use super::axes::time_range_label;
-use super::chart::{colors, render, Chart, Line};
+use super::chart::{colors, render, Chart};
+use super::line::Line;
 use crate::analysis::oscillation::{cycle_extremes, upward_crossings, CycleExtremes, Series};
 use crate::output::atomic::WriteError;
-use crate::quantity::Quantity;
 use crate::record::RunData;
 use crate::sample::Sample;
-
-/// Every quantity the figures plot (besides time): a run that draws them must compute these.
-pub const FIGURE_QUANTITIES: [Quantity; 6] = [
-    Quantity::Theta,
-    Quantity::ThetaDot,
-    Quantity::PsiDot,
-    Quantity::Nu,
-    Quantity::V_C,
-    Quantity::NOverMg,
-];
 
 /// The file stems of the figures, in the order [`paper_charts`] builds them: the files a run
 /// writes (and owns: a rerun clears them first).

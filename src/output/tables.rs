@@ -5,7 +5,7 @@
 
 use std::io::{self, Write};
 
-use equations::params::DiskParams;
+use equations::{DiskParams, Number};
 
 use crate::quantity::Quantity;
 use crate::record::{EventRow, StopRecord};
@@ -13,25 +13,10 @@ use crate::sample::Sample;
 
 /// Formats a number so that it parses back to the same `f64`, compactly: plain notation for
 /// moderate magnitudes, exponent notation otherwise (Rust prints the shortest round-trip
-/// digits in both).
+/// digits in both). [`Number`] is the same as a `Display`, which a writer formats in place,
+/// without a `String` per number (a trajectory has millions of them).
 pub fn number(v: f64) -> String {
     Number(v).to_string()
-}
-
-/// [`number`] as a `Display`, so that a writer formats it in place, without a `String` per
-/// number (a trajectory has millions of them).
-#[derive(Clone, Copy, Debug)]
-pub struct Number(pub f64);
-
-impl std::fmt::Display for Number {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let v = self.0;
-        if v == 0.0 || (1e-4..1e15).contains(&v.abs()) {
-            write!(f, "{v}")
-        } else {
-            write!(f, "{v:e}")
-        }
-    }
 }
 
 /// The header of `trajectory.csv` for `quantities`.
@@ -164,7 +149,7 @@ mod tests {
     fn stop_detail_with_commas_is_quoted() {
         let stop = StopRecord {
             t: 1.0,
-            mode: crate::scene::schema::ModeName::Rolling,
+            mode: equations::Mode::Rolling,
             reason: "error".into(),
             detail: "a, b".into(),
         };

@@ -4,7 +4,7 @@
 
 use std::io::Write;
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 
 use super::plan::{SamplePlan, Window};
 use crate::output::atomic::{AtomicFile, WriteError};
@@ -12,7 +12,7 @@ use crate::output::tables::{trajectory_header, write_trajectory_row};
 use crate::quantity::Quantity;
 use crate::record::{EventRow, RunData};
 use crate::sample::Sample;
-use crate::scene::schema::ModeName;
+use equations::Mode;
 
 /// `trajectory.csv`, written row by row while the run goes on, so that writing overlaps the
 /// simulation instead of following it.
@@ -109,7 +109,7 @@ impl Collector {
     }
 
     /// The mode of the latest sample or event.
-    pub fn latest_mode(&self) -> Option<ModeName> {
+    pub fn latest_mode(&self) -> Option<Mode> {
         let sample = self.latest.map(|s| (s.t, s.mode));
         let event = self.data.events.last().map(|e| (e.t, e.to));
         match (sample, event) {
@@ -145,7 +145,7 @@ mod tests {
 
     #[test]
     fn keeps_the_trajectory_grid_and_both_windows() {
-        let p = equations::params::DiskParams::paper();
+        let p = equations::DiskParams::paper();
         let fine = SyntheticRun {
             period: 0.1,
             t_end: 3.0,
@@ -172,7 +172,7 @@ mod tests {
 
     #[test]
     fn the_final_state_ends_the_trajectory_and_the_file() {
-        let p = equations::params::DiskParams::paper();
+        let p = equations::DiskParams::paper();
         let run = SyntheticRun {
             period: 0.1,
             t_end: 2.0,

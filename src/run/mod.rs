@@ -9,9 +9,9 @@
 //! interrupted run still writes what it had, marked as such in `events.csv` and
 //! `summary.json`. The split of the time between the four stages goes into the summary.
 
-pub mod collect;
+mod collect;
 pub mod model;
-pub mod owned;
+mod owned;
 pub mod plan;
 pub mod progress;
 pub mod provenance;
@@ -29,9 +29,9 @@ use crate::output::atomic::{write_atomic, write_bytes_atomic, WriteError};
 use crate::output::tables::write_events;
 use crate::quantity::Quantity;
 use crate::record::{RunData, StopRecord, Timings, Work};
-use crate::scene::schema::ModeName;
 use crate::scene::Scene;
 use collect::{Collector, TrajectoryFile};
+use equations::Mode;
 use model::ModelChoice;
 use plan::SamplePlan;
 use progress::Progress;
@@ -122,7 +122,11 @@ pub fn run_scene(
     owned::clear_owned(&opts.out_dir)?;
     let started = Instant::now();
     let choice = model::choose(scene, opts.backend, opts.figures);
-    let plan = SamplePlan::new(0.0, scene.file.run.t_end, scene.file.run.sample_rate);
+    let plan = SamplePlan::new(
+        0.0,
+        scene.file.settings.run.t_end,
+        scene.file.settings.run.sample_rate,
+    );
     let file = opts
         .trajectory
         .then(|| {
@@ -133,7 +137,7 @@ pub fn run_scene(
             )
         })
         .transpose()?;
-    let mut progress = Progress::new(opts.progress, scene.file.run.t_end);
+    let mut progress = Progress::new(opts.progress, scene.file.settings.run.t_end);
     let recorded = record(scene, &choice, plan.clone(), interrupt, &mut progress, file);
     progress.finish();
     let Recorded {
@@ -151,7 +155,7 @@ pub fn run_scene(
         // The run stopped early: its last second was not known in advance. The simulation is
         // deterministic, so a second pass sampling only that second records the same motion.
         let replay = plan.last_second_before(stop.t);
-        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.run.t_end);
+        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
         let again = record(scene, &choice, replay, interrupt, &mut quiet, None)?;
         data.last_second = again.data.last_second;
         timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
@@ -308,7 +312,7 @@ fn collect(
 fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
     StopRecord {
         t: c.latest_t().unwrap_or(0.0),
-        mode: c.latest_mode().unwrap_or(ModeName::Rolling),
+        mode: c.latest_mode().unwrap_or(Mode::Rolling),
         reason: reason.to_string(),
         detail,
     }
@@ -364,7 +368,7 @@ pub fn write_outputs(
     }
     let stop = data.stop.clone().unwrap_or(StopRecord {
         t: data.samples.last().map_or(0.0, |s| s.t),
-        mode: data.samples.last().map_or(ModeName::Rolling, |s| s.mode),
+        mode: data.samples.last().map_or(Mode::Rolling, |s| s.mode),
         reason: "unknown".into(),
         detail: String::new(),
     });

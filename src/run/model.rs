@@ -12,19 +12,17 @@
 //! The three model sets are three types; [`with_models`] builds the chosen one and hands it to
 //! a [`ModelsTask`], so a caller states once what it does with models, whichever they are.
 
-use equations::hybrid::{
+use equations::{
     DiskModels, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
 };
-use equations::modes::{SlipChart, DIM};
 use equations::{DiskParams, ParamError};
+use equations::{SlipChart, DIM};
 use model_runtime::Model;
 
 use crate::eval::Backend;
-use crate::figures::paper::FIGURE_QUANTITIES;
+use crate::figures::FIGURE_QUANTITIES;
 use crate::quantity::Quantity;
 use crate::scene::Scene;
-
-use super::simulation::chart_of;
 
 /// The models a run integrates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -118,7 +116,7 @@ pub fn choose_for<'q>(
     if backend == Backend::Reference {
         return full(RunModel::Reference, "--reference".into());
     }
-    let pruned = match PrunedModels::pruned(scene.params, chart_of(scene)) {
+    let pruned = match PrunedModels::pruned(scene.params, scene.config.chart()) {
         Ok(m) => m,
         Err(PruneError::AirNotStill { name, value }) => {
             return full(

@@ -11,7 +11,6 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::plan::SamplePlan;
-use super::simulation::config_of;
 use crate::scene::{self, Override, Scene, DEFAULT_SCENE};
 
 /// The program's version (`Cargo.toml`).
@@ -61,9 +60,13 @@ pub struct DerivedSettings {
 impl Provenance {
     /// The provenance of a run of `scene`, loaded from `name_or_path` with `overrides`.
     pub fn new(scene: &Scene, name_or_path: &str, overrides: &[Override]) -> Provenance {
-        let fine_rate =
-            SamplePlan::new(0.0, scene.file.run.t_end, scene.file.run.sample_rate).fine_rate();
-        let c = config_of(scene, fine_rate);
+        let fine_rate = SamplePlan::new(
+            0.0,
+            scene.file.settings.run.t_end,
+            scene.file.settings.run.sample_rate,
+        )
+        .fine_rate();
+        let c = &scene.config;
         Provenance {
             program: format!("eulerdisk {VERSION}"),
             git_revision: GIT_REVISION.to_string(),
@@ -169,7 +172,7 @@ mod tests {
         }
         assert_eq!(p.settings["run"]["t_end"], 100.0);
         assert_eq!(p.derived.stick_threshold, 1e-9);
-        assert!(p.derived.fine_sample_rate >= scene.file.run.sample_rate);
+        assert!(p.derived.fine_sample_rate >= scene.file.settings.run.sample_rate);
     }
 
     #[test]

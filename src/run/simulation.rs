@@ -1,29 +1,29 @@
-//! The bridge to `equations::hybrid`: scene -> configuration, and the simulation's records ->
-//! the CLI's named records.
+//! The bridge to the equations crate's run: the simulation's records -> the CLI's named
+//! records.
 //!
 //! The simulation runs on a worker thread and streams what it observes through a bounded
 //! channel, in batches; the caller's thread writes and collects meanwhile (on a second core,
 //! the files cost the simulation nothing). The worker asks only for the samples of the
 //! [`SamplePlan`], and it stops by itself, through its observer, when the caller raises the
-//! stop flag (Ctrl-C) or the disk enters a mode the scene forbids.
+//! stop flag (Ctrl-C); a mode the scene forbids ends the run by itself
+//! ([`StopReason::ModeNotAllowed`]).
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::Scope;
 
-use equations::hybrid::{
-    self, ChatterLimit, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
-    IntegratorChoice, RunOutcome, SlipSign, StopReason, TransitionRecord, Trigger,
+use equations::DIM;
+use equations::{
+    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
+    RunOutcome, StopReason, TransitionRecord, Trigger,
 };
-use equations::modes::{Mode, SlipChart, DIM};
 use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
 use super::plan::SamplePlan;
 use crate::record::{EventRow, StopRecord, TriggerKind};
 use crate::sample::{ContactForces, DiskState, Sample, Slip};
-use crate::scene::schema::{IntegratorName, ModeName, SlipSignRule};
 use crate::scene::Scene;
 
 /// What the worker sends.
@@ -52,21 +52,13 @@ pub struct Outcome {
     pub last: Sample,
 }
 
-/// The mode's name in the CLI.
-pub fn mode_name(m: Mode) -> ModeName {
-    match m {
-        Mode::Rolling => ModeName::Rolling,
-        Mode::Sliding => ModeName::Sliding,
-    }
-}
-
 /// Converts one simulation sample.
 pub fn convert_sample(s: &DiskSample) -> Sample {
     let f = &s.force;
     let friction = f.r_x.hypot(f.r_y);
     Sample {
         t: s.t,
-        mode: mode_name(s.mode),
+        mode: s.mode,
         state: DiskState::from_array(&s.state.y),
         slip: Slip {
             v_c: s.state.slip.speed,
@@ -92,17 +84,28 @@ pub fn convert_event(r: &TransitionRecord) -> EventRow {
     };
     EventRow {
         t: r.t,
-        from: mode_name(r.from),
-        to: mode_name(r.to),
+        from: r.from,
+        to: r.to,
         trigger,
         value,
         slip_direction: r.slip_direction,
     }
 }
 
-/// Converts the simulation's stop reason.
-pub fn convert_outcome(o: &RunOutcome) -> Outcome {
+/// Converts the simulation's stop reason; `allowed` are the modes the run was allowed.
+pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes) -> Outcome {
+    let mut mode = o.last.mode;
     let (reason, detail) = match o.stop {
+        StopReason::ModeNotAllowed { t, mode: entered } => {
+            mode = entered;
+            (
+                "mode_not_allowed",
+                format!(
+                    "the disk entered {entered} at t = {t} s but modes.allowed = {:?}",
+                    allowed.modes().iter().map(|m| m.name()).collect::<Vec<_>>()
+                ),
+            )
+        }
         StopReason::Requested { t } => ("interrupted", format!("stopped on request at t = {t} s")),
         StopReason::EndTime => ("end_time", String::new()),
         StopReason::ContactLost { t, mode } => (
@@ -125,7 +128,7 @@ pub fn convert_outcome(o: &RunOutcome) -> Outcome {
     Outcome {
         stop: StopRecord {
             t: o.last.t,
-            mode: mode_name(o.last.mode),
+            mode,
             reason: reason.to_string(),
             detail,
         },
@@ -136,56 +139,8 @@ pub fn convert_outcome(o: &RunOutcome) -> Outcome {
     }
 }
 
-/// The simulation settings for a scene; samples are delivered at `fine_rate`.
-pub fn config_of(scene: &Scene, fine_rate: f64) -> DiskConfig {
-    let f = &scene.file;
-    let mut c = DiskConfig::default();
-    c.integrator = match f.solver.integrator {
-        IntegratorName::Dopri5 => IntegratorChoice::Dopri5,
-        IntegratorName::Dop853 => IntegratorChoice::Dop853,
-        IntegratorName::Rodas4 => IntegratorChoice::Rodas4,
-    };
-    c.guard_checks = f.solver.guard_checks.0;
-    c.error_norm = f.solver.error_norm.0;
-    c.step_control = f.solver.step_control.0;
-    c.time = f.solver.time.0;
-    c.rtol = f.solver.rtol;
-    c.atol = f.solver.atol;
-    // The stick threshold must sit above the slip's integration error (BENCHMARKS.md §2:
-    // with 1e-9 m/s at atol 1e-8 the slip hovers near zero and the step size collapses).
-    c.stick_threshold = (10.0 * c.atol).max(1e-9);
-    c.t_end = f.run.t_end;
-    c.slip_sign = match f.run.slip_sign {
-        SlipSignRule::Physical => SlipSign::Physical,
-        SlipSignRule::Paper => SlipSign::Paper,
-    };
-    c.sample_rate = Some(fine_rate);
-    c.chatter = ChatterLimit {
-        max_transitions: 50,
-        window: 1e-6,
-    };
-    c
-}
-
-/// The slip chart a scene needs: the paper's signed slip only exists in the polar chart.
-pub fn chart_of(scene: &Scene) -> SlipChart {
-    match scene.file.run.slip_sign {
-        SlipSignRule::Physical => SlipChart::Cartesian,
-        SlipSignRule::Paper => SlipChart::Polar,
-    }
-}
-
 /// Samples per message: the channel's cost spread over many samples.
 const BATCH: usize = 256;
-
-/// Why the worker's observer stopped the run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Halted {
-    /// The caller's stop flag (Ctrl-C).
-    Interrupted,
-    /// The disk entered a mode the scene does not allow.
-    Forbidden { t: f64, mode: ModeName },
-}
 
 /// Where the simulation's stream goes: a channel to another thread, or straight into a
 /// collector on this one.
@@ -211,9 +166,9 @@ struct ChannelObserver<'a, O> {
     flush_every: f64,
     /// States the models do not integrate: blanked in every sample.
     frozen: Vec<&'static str>,
-    allowed: Vec<ModeName>,
     stop: &'a AtomicBool,
-    halted: Option<Halted>,
+    /// Whether this observer stopped the run (the caller's stop flag or a closed channel).
+    interrupted: bool,
 }
 
 impl<O: Outlet> ChannelObserver<'_, O> {
@@ -250,25 +205,16 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
 
     fn on_transition(&mut self, record: &TransitionRecord) {
         self.flush();
-        let row = convert_event(record);
-        if self.halted.is_none() && !self.allowed.contains(&row.to) {
-            self.halted = Some(Halted::Forbidden {
-                t: row.t,
-                mode: row.to,
-            });
-        }
-        self.send(Message::Event(row));
+        self.send(Message::Event(convert_event(record)));
     }
 
     fn proceed(&mut self) -> ControlFlow<()> {
         // A closed channel: the caller has given up on this run (a write error).
-        if self.halted.is_none() && (!self.open || self.stop.load(Ordering::Relaxed)) {
-            self.halted = Some(Halted::Interrupted);
+        if !self.open || self.stop.load(Ordering::Relaxed) {
+            self.interrupted = true;
+            return ControlFlow::Break(());
         }
-        match self.halted {
-            Some(_) => ControlFlow::Break(()),
-            None => ControlFlow::Continue(()),
-        }
+        ControlFlow::Continue(())
     }
 }
 
@@ -283,29 +229,18 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
     type Output = Result<Outcome, String>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
-        hybrid::simulate(models, self.config, self.initial, self.observer)
-            .map(|o| convert_outcome(&o))
+        simulate(models, self.config, self.initial, self.observer)
+            .map(|o| convert_outcome(&o, self.config.allowed))
             .map_err(|e| e.to_string())
     }
 }
 
-/// The stop record of a run its observer stopped.
-fn halted_record(halted: Halted, allowed: &[ModeName], stop: &StopRecord) -> StopRecord {
-    match halted {
-        Halted::Interrupted => StopRecord {
-            reason: "interrupted".into(),
-            detail: format!("stopped by the user (Ctrl-C) at t = {} s", stop.t),
-            ..stop.clone()
-        },
-        Halted::Forbidden { t, mode } => StopRecord {
-            t,
-            mode,
-            reason: "mode_not_allowed".into(),
-            detail: format!(
-                "the disk entered {mode} at t = {t} s but modes.allowed = {:?}",
-                allowed.iter().map(|m| m.as_str()).collect::<Vec<_>>()
-            ),
-        },
+/// The stop record of a run the caller interrupted.
+fn interrupted_record(stop: &StopRecord) -> StopRecord {
+    StopRecord {
+        reason: "interrupted".into(),
+        detail: format!("stopped by the user (Ctrl-C) at t = {} s", stop.t),
+        ..stop.clone()
     }
 }
 
@@ -319,12 +254,11 @@ pub fn simulate_into<O: Outlet>(
     stop: &AtomicBool,
     outlet: O,
 ) -> Result<Outcome, String> {
-    let config = config_of(scene, plan.fine_rate());
-    let initial = InitialState {
-        t: 0.0,
-        y: scene.initial.state.to_array(),
+    let config = DiskConfig {
+        sample_rate: Some(plan.fine_rate()),
+        ..scene.config
     };
-    let flush_every = scene.file.run.t_end / 200.0;
+    let flush_every = scene.config.t_end / 200.0;
     let mut observer = ChannelObserver {
         tx: outlet,
         open: true,
@@ -333,21 +267,20 @@ pub fn simulate_into<O: Outlet>(
         flush_at: flush_every,
         flush_every,
         frozen: choice.frozen.clone(),
-        allowed: scene.file.modes.allowed.clone(),
         stop,
-        halted: None,
+        interrupted: false,
     };
     let task = Streamed {
         config: &config,
-        initial: &initial,
+        initial: &scene.initial,
         observer: &mut observer,
     };
-    let result = with_models(choice.model, scene.params, chart_of(scene), task)
+    let result = with_models(choice.model, scene.params, scene.config.chart(), task)
         .unwrap_or_else(|e| Err(e.to_string()));
     observer.flush();
     result.map(|mut o| {
-        if let Some(h) = observer.halted {
-            o.stop = halted_record(h, &observer.allowed, &o.stop);
+        if observer.interrupted && matches!(o.stop.reason.as_str(), "interrupted") {
+            o.stop = interrupted_record(&o.stop);
         }
         o
     })

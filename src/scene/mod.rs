@@ -1,22 +1,24 @@
 //! Scenes: TOML files that say which disk, which start, which solver and which outputs.
 //!
 //! Loading is a pipeline: text -> TOML tree -> command-line overrides applied to the tree ->
-//! typed tables (unknown keys and wrong types rejected with the key's path) -> rules between
-//! values (all collected) -> a validated [`Scene`]. Overrides act on the tree, before any
-//! checking, so `--set` and `--rtol` are held to exactly the rules the file is.
+//! the program's own entries (`description`, `[output]`) split off -> typed tables (unknown
+//! keys and wrong types rejected with the key's path), the disk's read straight into the
+//! equations crate's [`SceneSettings`] -> rules between values (all collected; the disk's are
+//! the equations crate's, [`SceneSettings::resolve`]) -> a validated [`Scene`]. Overrides act
+//! on the tree, before any checking, so `--set` and `--rtol` are held to exactly the rules the
+//! file is.
 //!
 //! The scenes shipped in `scenes/` are compiled into the binary, so `eulerdisk run
 //! tangent-toy` works from any directory.
 
-pub mod initial;
-pub mod issue;
-pub mod schema;
-pub mod validate;
+mod schema;
+mod validate;
 
 use std::path::{Path, PathBuf};
 
-pub use issue::{Issue, Rule};
-pub use schema::SceneFile;
+use equations::{Issue, SceneSettings};
+
+pub use schema::{CliTables, OutputTable, SceneFile};
 pub use validate::Scene;
 
 /// The scenes shipped with the program: (name, TOML text).
@@ -257,8 +259,17 @@ pub fn parse(name: &str, text: &str, overrides: &[Override]) -> Result<Scene, Sc
             }
         }
     }
-    let file: SceneFile = serde_path_to_error::deserialize(toml::Value::Table(tree))
+    // The program's own entries are split off; the rest is the disk's, read straight into
+    // the equations crate's settings.
+    let cli_tree: toml::Table = schema::CLI_KEYS
+        .iter()
+        .filter_map(|k| tree.remove(*k).map(|v| (k.to_string(), v)))
+        .collect();
+    let cli: CliTables = serde_path_to_error::deserialize(toml::Value::Table(cli_tree))
         .map_err(|e| key_error(name, e))?;
+    let settings: SceneSettings = serde_path_to_error::deserialize(toml::Value::Table(tree))
+        .map_err(|e| key_error(name, e))?;
+    let file = SceneFile { cli, settings };
     validate::validate(name, file).map_err(|issues| SceneError::Invalid {
         name: name.to_string(),
         issues,

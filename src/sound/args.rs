@@ -10,7 +10,7 @@ use clap::Args;
 use super::peaks::PeakRule;
 use super::render::{Compression, RenderOptions, Ring};
 use super::{sound_scene, SoundOptions};
-use crate::cli::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT};
+use crate::args::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT};
 use crate::scene;
 
 /// `eulerdisk sound`.
@@ -98,7 +98,7 @@ pub fn command(args: &SoundArgs) -> ExitCode {
         eprintln!(
             "scene `{}`: simulating {} s for its sound, output in {}",
             scene.name,
-            scene.file.run.t_end,
+            scene.file.settings.run.t_end,
             args.run.out.display()
         );
     }

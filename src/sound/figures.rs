@@ -14,7 +14,8 @@ use super::peaks::Peak;
 use super::rate::PeakRate;
 use super::spectrogram::Spectrogram;
 use super::trace::TimeSpan;
-use crate::figures::chart::{colors, register_font, FAMILY, SIZE};
+use crate::figures::chart::{colors, register_font, SIZE};
+use crate::figures::line::FAMILY;
 use crate::output::atomic::{produce_atomic, WriteError};
 
 /// The paper's knock "frequency" in the first second (angular, s⁻¹; period 0.14 s).

@@ -5,18 +5,18 @@
 //! pipeline is: simulate and keep `N/mg` finely sampled ([`trace`]) → pick the major peaks
 //! with a written-down rule ([`peaks`]) → measure their rate ([`rate`]) → render each peak
 //! as a knock on a resonance into a WAV ([`mod@render`]) → show the sound's spectrogram and the
-//! rate against the paper's numbers ([`mod@spectrogram`], [`figures`]). Each stage is a plain
+//! rate against the paper's numbers ([`mod@spectrogram`], `figures.rs`). Each stage is a plain
 //! function of the previous stage's data, so each is tested on synthetic input with a known
 //! answer.
 
 pub mod args;
-pub mod figures;
-pub mod files;
+mod figures;
+mod files;
 pub mod peaks;
 pub mod rate;
 pub mod render;
 pub mod spectrogram;
-pub mod summary;
+mod summary;
 pub mod trace;
 
 use std::path::{Path, PathBuf};

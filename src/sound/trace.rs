@@ -5,15 +5,15 @@
 //! 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and keeps
 //! only what it needs: the time and `N/mg`.
 
-use equations::hybrid::{self, DiskModels, DiskObserver, DiskSample, InitialState, SimError};
-use equations::modes::DIM;
+use equations::DIM;
+use equations::{simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, SimError};
 use model_runtime::Model;
 
 use super::SoundError;
 use crate::eval::Backend;
 use crate::quantity::Quantity;
 use crate::run::model::{choose_for, with_models, ModelChoice, ModelsTask};
-use crate::run::simulation::{chart_of, config_of, convert_outcome};
+use crate::run::simulation::convert_outcome;
 use crate::scene::Scene;
 
 /// Most force samples one run may keep (about 0.8 GB of memory).
@@ -175,20 +175,19 @@ impl ModelsTask for Recording<'_> {
     type Output = Result<(String, String), SimError>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
-        let config = config_of(self.scene, self.rate);
-        let initial = InitialState {
-            t: 0.0,
-            y: self.scene.initial.state.to_array(),
+        let config = DiskConfig {
+            sample_rate: Some(self.rate),
+            ..self.scene.config
         };
-        let outcome = hybrid::simulate(models, &config, &initial, self.observer)?;
-        let stop = convert_outcome(&outcome).stop;
+        let outcome = simulate(models, &config, &self.scene.initial, self.observer)?;
+        let stop = convert_outcome(&outcome, config.allowed).stop;
         Ok((stop.reason, stop.detail))
     }
 }
 
 /// Simulates `scene` and keeps `N/mg` at `rate` samples per second.
 pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceRun, SoundError> {
-    let t_end = scene.file.run.t_end;
+    let t_end = scene.file.settings.run.t_end;
     if !(rate.is_finite() && rate > 0.0) {
         return Err(SoundError::Setting {
             name: "force-rate",
@@ -216,7 +215,7 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
         rate,
         observer: &mut observer,
     };
-    let stop = with_models(model.model, params, chart_of(scene), task)
+    let stop = with_models(model.model, params, scene.config.chart(), task)
         .map_err(|e| e.to_string())
         .and_then(|r| r.map_err(|e| e.to_string()));
     let (stop_reason, stop_detail) = stop.map_err(|message| SoundError::Simulation { message })?;

@@ -12,7 +12,7 @@ use super::merge::merge;
 use super::run_sweep;
 use super::shard::Shard;
 use super::spec::{self, BUILTIN};
-use crate::cli::{interrupt_on_ctrl_c, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED};
+use crate::args::{interrupt_on_ctrl_c, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED};
 
 /// `eulerdisk sweep`.
 #[derive(Debug, Args)]

@@ -15,8 +15,9 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle as BarStyle};
 use rayon::prelude::*;
 
+use super::columns::scalar_entries;
 use super::expand::{Plan, PointId};
-use super::row::{scalar_entries, Row, Status};
+use super::row::{Row, Status};
 use super::run_point::{process_cpu_s, run_point};
 use super::shard::Shard;
 use super::store::{Store, StoreError, SCRATCH_DIR};

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::axes::{self, as_number, AxisIssue, AxisValues};
-use super::row::{summary_keys, ERROR_PREFIX, FIXED_COLUMNS, TIMING_COLUMNS};
+use super::columns::{summary_keys, ERROR_PREFIX, FIXED_COLUMNS, TIMING_COLUMNS};
 use super::spec::{Combine, LoadedSweep, SpecError, SweepFile};
 use crate::output::tables::number;
 use crate::scene::{self, Override, Scene, SceneError};

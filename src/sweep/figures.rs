@@ -18,7 +18,8 @@ use super::expand::Definition;
 use super::row::{axis_field, reference, value, Row};
 use super::spec::Combine;
 use crate::figures::axes::tick_label;
-use crate::figures::chart::{colors, render, Chart, DrawResult, Figure, Line, FAMILY};
+use crate::figures::chart::{colors, render, Chart, DrawResult, Figure};
+use crate::figures::line::{Line, FAMILY};
 use crate::output::atomic::WriteError;
 
 /// The colours of successive lines.

@@ -19,10 +19,11 @@
 //! identical however many workers or shards made it.
 
 pub mod args;
-pub mod axes;
+mod axes;
+pub mod columns;
 pub mod execute;
 pub mod expand;
-pub mod figures;
+mod figures;
 pub mod merge;
 pub mod row;
 pub mod run_point;

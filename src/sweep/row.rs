@@ -9,17 +9,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::axes::as_number;
+use super::columns::{ERROR_PREFIX, TIMING_COLUMNS};
 use super::expand::{axis_number, Definition, PointId};
-use crate::analysis::summary::Summary;
 use crate::output::tables::{number, quoted};
-use crate::record::RunData;
-
-/// Prefix of the error columns (`err_transitions`).
-pub const ERROR_PREFIX: &str = "err_";
-/// Summary keys that have columns of their own in every table, so not repeated.
-pub const FIXED_COLUMNS: &[&str] = &["stop_reason", "wall_s"];
-/// Columns that measure time: they differ between two runs of the same point.
-pub const TIMING_COLUMNS: &[&str] = &["wall_s", "cpu_s"];
 
 /// How a run ended, for the sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -83,41 +75,6 @@ impl Row {
         }
         r
     }
-}
-
-/// The scalar entries of `summary`'s JSON form.
-pub fn scalar_entries(summary: &Summary) -> serde_json::Map<String, serde_json::Value> {
-    match serde_json::to_value(summary) {
-        Ok(serde_json::Value::Object(map)) => map
-            .into_iter()
-            .filter(|(_, v)| !v.is_object() && !v.is_array())
-            .collect(),
-        _ => serde_json::Map::new(),
-    }
-}
-
-/// The summary's scalar keys: those of the printed comparison in its order, then the rest
-/// by name.
-pub fn summary_keys() -> Vec<String> {
-    let empty = Summary::of(
-        "",
-        &RunData::default(),
-        &equations::params::DiskParams::paper(),
-    );
-    let scalar = scalar_entries(&empty);
-    let mut keys: Vec<String> = empty
-        .comparison()
-        .iter()
-        .map(|r| r.key.to_string())
-        .filter(|k| scalar.contains_key(k))
-        .collect();
-    let rest: Vec<String> = scalar
-        .keys()
-        .filter(|k| !keys.contains(k))
-        .cloned()
-        .collect();
-    keys.extend(rest);
-    keys
 }
 
 /// A JSON scalar as a CSV field (numbers so that they parse back to the same bits).

@@ -13,7 +13,7 @@ use std::sync::atomic::AtomicBool;
 
 use super::spec::Keep;
 use crate::analysis::summary::Summary;
-use crate::cli::DEFAULT_BACKEND;
+use crate::args::DEFAULT_BACKEND;
 use crate::output::tables::read_stop_row;
 use crate::run::provenance::Provenance;
 use crate::run::{run_scene, Ending, ProgressStyle, RunOptions};

@@ -4,9 +4,9 @@
 
 use std::process::{Command, Output};
 
+use equations::Mode;
 use eulerdisk::eval::{evaluate, parse_params, parse_state, Backend};
 use eulerdisk::named_numbers::parse_named_numbers;
-use eulerdisk::scene::schema::ModeName;
 use proptest::prelude::*;
 use serde_json::Value;
 
@@ -89,9 +89,9 @@ fn sliding_uses_slip_speed_and_direction() {
 fn printed_numbers_round_trip_to_the_same_bits() {
     let p = parse_params(None).unwrap();
     for (mode, state) in [
-        (ModeName::Rolling, PAPER_STATE),
+        (Mode::Rolling, PAPER_STATE),
         (
-            ModeName::Sliding,
+            Mode::Sliding,
             r#"{"theta": 1.1, "Omega_z": 30, "v_C": 0.3, "alpha": 1}"#,
         ),
     ] {
@@ -99,7 +99,7 @@ fn printed_numbers_round_trip_to_the_same_bits() {
             (Backend::Generated, None),
             (Backend::Reference, Some("--reference")),
         ] {
-            let mut args = vec!["--mode", mode.as_str(), "--state", state];
+            let mut args = vec!["--mode", mode.name(), "--state", state];
             args.extend(flag);
             let printed = ok_json(&args);
             let y = parse_state(mode, Some(state)).unwrap();
@@ -199,7 +199,7 @@ proptest! {
     #[test]
     fn state_parsing_names_every_rejection(
         entries in prop::collection::vec((prop::sample::select(KEYS), json_value()), 0..5),
-        mode in prop::sample::select(&[ModeName::Rolling, ModeName::Sliding][..]),
+        mode in prop::sample::select(&[Mode::Rolling, Mode::Sliding][..]),
     ) {
         let body: Vec<String> = entries.iter().map(|(k, v)| format!("\"{k}\": {v}")).collect();
         let text = format!("{{{}}}", body.join(", "));
@@ -223,7 +223,7 @@ proptest! {
         sliding in any::<bool>(),
         reference in any::<bool>(),
     ) {
-        let mode = if sliding { ModeName::Sliding } else { ModeName::Rolling };
+        let mode = if sliding { Mode::Sliding } else { Mode::Rolling };
         let backend = if reference { Backend::Reference } else { Backend::Generated };
         let y: [f64; 12] = std::array::from_fn(|i| values[i]);
         let p = parse_params(None).unwrap();

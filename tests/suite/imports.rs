@@ -436,14 +436,26 @@ fn the_scanner_sees_use_trees_inline_paths_and_circles() {
     );
     let paths = local_paths(&without_test_items(&code));
     let flat: Vec<String> = paths.iter().map(|p| p.join("::")).collect();
-    assert_eq!(flat, ["crate::a::B", "crate::a::c::D", "crate::e", "super::g::h"]);
+    assert_eq!(
+        flat,
+        ["crate::a::B", "crate::a::c::D", "crate::e", "super::g::h"]
+    );
 
     let names: BTreeSet<ModPath> = [vec!["a".to_string()], vec!["a".into(), "c".into()]]
         .into_iter()
         .collect();
     let from = vec!["x".to_string()];
-    let to = |p: &[&str]| target(&from, &p.iter().map(|s| s.to_string()).collect::<Vec<_>>(), &names);
-    assert_eq!(to(&["crate", "a", "c", "D"]), Some(vec!["a".into(), "c".into()]));
+    let to = |p: &[&str]| {
+        target(
+            &from,
+            &p.iter().map(|s| s.to_string()).collect::<Vec<_>>(),
+            &names,
+        )
+    };
+    assert_eq!(
+        to(&["crate", "a", "c", "D"]),
+        Some(vec!["a".into(), "c".into()])
+    );
     assert_eq!(to(&["crate", "a", "B"]), Some(vec!["a".into()]));
     assert_eq!(to(&["crate", "Root"]), None);
 

@@ -1,7 +1,7 @@
 //! Summary and figures on a synthetic run whose answers are known: θ oscillates with a set
 //! period, the disk slides while θ falls and rolls while it rises.
 
-use equations::params::DiskParams;
+use equations::DiskParams;
 use eulerdisk::analysis::summary::Summary;
 use eulerdisk::analysis::synthetic::SyntheticRun;
 use eulerdisk::figures::paper::{paper_charts, write_paper_figures, FIGURE_STEMS};

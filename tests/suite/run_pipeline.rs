@@ -42,7 +42,7 @@ fn paper_scene_first_seconds_match_the_paper() {
     let s = &report.summary;
     assert_eq!(s.stop_reason, "end_time");
     assert_eq!(s.t_end, 1.5);
-    assert_eq!(s.start_mode.map(|m| m.as_str()), Some("sliding"));
+    assert_eq!(s.start_mode.map(|m| m.name()), Some("sliding"));
     // Paper: period 0.14 s, 2π/T = 44 1/s in the first second.
     let period = s.theta_period_first_s.unwrap();
     assert!((period - 0.14).abs() < 0.005, "{period}");

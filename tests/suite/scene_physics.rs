@@ -17,7 +17,7 @@ fn simulate(name: &str, t_end: f64) -> RunData {
         every: 1,
         first: None,
         last: None,
-        ..SamplePlan::new(0.0, t_end, scene.file.run.sample_rate)
+        ..SamplePlan::new(0.0, t_end, scene.file.settings.run.sample_rate)
     };
     let interrupt = AtomicBool::new(false);
     let mut progress = Progress::new(ProgressStyle::Quiet, t_end);

@@ -11,10 +11,11 @@ use std::time::{Duration, Instant};
 use eulerdisk::output::tables::split_fields;
 use eulerdisk::run::{run_scene, ProgressStyle};
 use eulerdisk::scene::{self, Override};
+use eulerdisk::sweep::columns::{scalar_entries, TIMING_COLUMNS};
 use eulerdisk::sweep::execute::{ExecOptions, ExecReport};
 use eulerdisk::sweep::expand::{plan, run_arguments, Plan, PlanError};
 use eulerdisk::sweep::merge::merge;
-use eulerdisk::sweep::row::{scalar_entries, Row, Status, TIMING_COLUMNS};
+use eulerdisk::sweep::row::{Row, Status};
 use eulerdisk::sweep::run_point::run_options;
 use eulerdisk::sweep::shard::Shard;
 use eulerdisk::sweep::spec::{self, Keep, LoadedSweep};
@@ -537,7 +538,7 @@ fn builtin_sweeps_validate_and_record_their_definition() {
         &["solver.rtol=3".to_string()],
     )
     .unwrap();
-    assert_eq!(p.scenes[0].file.solver.rtol, 1e-4);
+    assert_eq!(p.scenes[0].config.rtol, 1e-4);
     // The definition written first is the one read back.
     let tmp = tempfile::tempdir().unwrap();
     let plan = plan(

@@ -27,7 +27,7 @@
 //! pruning saves; with constant slots they compile to a few register moves.
 //!
 //! ```
-//! use equations::hybrid::Embedded;
+//! use equations::Embedded;
 //! use equations::models::rolling;
 //! use model_runtime::Model;
 //!
@@ -162,7 +162,7 @@ impl<const K: usize> Embedding<K> {
 pub trait Variant<const K: usize>: Model<K> {
     /// The full model's state names, in index order.
     const LAYOUT: &'static [&'static str; DIM];
-    /// The layout index of each state, from [`slots`] at compile time.
+    /// The layout index of each state, from `slots` (this module) at compile time.
     const SLOTS: [usize; K];
 }
 

@@ -4,11 +4,12 @@
 use super::models::DiskModels;
 use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
 use super::{
-    DiskConfig, DiskObserver, DiskSample, InitialState, IntegratorChoice, RunOutcome, SimError,
-    SlipSign, StopReason, TimeVariable, TransitionRecord, Trigger,
+    DiskObserver, DiskSample, RunOutcome, SimError, StopReason, TransitionRecord, Trigger,
 };
-use crate::modes::layout::THETA;
+use crate::config::{AllowedModes, DiskConfig};
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use crate::settings::{Integrator, TimeVariable};
+use crate::start::InitialState;
 use model_runtime::ChatterLimit as DriverChatter;
 use model_runtime::{
     Clocked, Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
@@ -19,11 +20,14 @@ use model_runtime::{
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
 /// mode decisions to `observer`.
 ///
-/// The initial state is given in rolling variables. If its contact particle slips (faster
-/// than the stick threshold) the run starts sliding with that slip; otherwise the state is put
-/// on the rolling constraints and starts rolling if static friction can hold it, or sliding
-/// from zero slip in the consistent direction if it cannot (reported as a transition with
-/// [`Trigger::InitialFriction`], not counted in [`RunOutcome::transitions`]).
+/// The settings and the start are checked first ([`DiskConfig::issues`],
+/// [`InitialState::issues`]): every broken rule comes back in [`SimError::Invalid`]. A sliding
+/// start whose slip exceeds the stick threshold starts sliding with that slip; otherwise the
+/// state is put on the rolling constraints and starts rolling if static friction can hold it,
+/// or sliding from zero slip in the consistent direction if it cannot (reported as a
+/// transition with [`Trigger::InitialFriction`], not counted in [`RunOutcome::transitions`]).
+/// A decision for a mode `config.allowed` does not list ends the run there with
+/// [`StopReason::ModeNotAllowed`].
 pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     models: &DiskModels<R, S>,
     config: &DiskConfig,
@@ -32,7 +36,7 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
 ) -> Result<RunOutcome, SimError> {
     validate(models, config, initial)?;
     match config.integrator {
-        IntegratorChoice::Dopri5 => run_with(
+        Integrator::Dopri5 => run_with(
             Dopri5::new(),
             Dopri5::new(),
             models,
@@ -40,7 +44,7 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
             initial,
             observer,
         ),
-        IntegratorChoice::Dop853 => run_with(
+        Integrator::Dop853 => run_with(
             Dop853::new(),
             Dop853::new(),
             models,
@@ -48,7 +52,7 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
             initial,
             observer,
         ),
-        IntegratorChoice::Rodas4 => run_with(
+        Integrator::Rodas4 => run_with(
             Rodas4::new(),
             Rodas4::new(),
             models,
@@ -56,7 +60,7 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
             initial,
             observer,
         ),
-        IntegratorChoice::Rk4 { h } => {
+        Integrator::Rk4 { h } => {
             run_with(Rk4::new(h), Rk4::new(h), models, config, initial, observer)
         }
     }
@@ -68,104 +72,19 @@ const CLOCKED: usize = DIM + 1;
 /// The disk's modes, for the clocked system's guard lists.
 const PHASES: [Phase; 3] = [Phase::Rolling, Phase::Sliding, Phase::Bridge];
 
-/// The most samples a run may deliver (about a day of a fast observer's time).
-const MAX_SAMPLES: f64 = 1e9;
-
-fn config_error(name: &'static str, value: f64, reason: &'static str) -> SimError {
-    SimError::Config {
-        name,
-        value,
-        reason,
-    }
-}
-
 fn validate<R, S>(
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
 ) -> Result<(), SimError> {
     models.params.validate()?;
-    let positive = [
-        ("rtol", config.rtol),
-        ("atol", config.atol),
-        ("stick_threshold", config.stick_threshold),
-        ("chatter.window", config.chatter.window),
-    ];
-    for (name, value) in positive {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(config_error(name, value, "must be finite and > 0"));
-        }
+    let mut issues = config.issues(initial.t, models.chart);
+    issues.extend(initial.issues());
+    if issues.is_empty() {
+        Ok(())
+    } else {
+        Err(SimError::Invalid { issues })
     }
-    if let IntegratorChoice::Rk4 { h } = config.integrator {
-        if !(h.is_finite() && h > 0.0) {
-            return Err(config_error("integrator.h", h, "must be finite and > 0"));
-        }
-        if config.time == TimeVariable::Regularised {
-            return Err(config_error(
-                "integrator.h",
-                h,
-                "a fixed step cannot follow a regularised time: choose an adaptive integrator",
-            ));
-        }
-    }
-    if let Some(rate) = config.sample_rate {
-        if !(rate.is_finite() && rate > 0.0) {
-            return Err(config_error("sample_rate", rate, "must be finite and > 0"));
-        }
-    }
-    if !(config.min_inclination > 0.0 && config.min_inclination < std::f64::consts::FRAC_PI_2) {
-        return Err(config_error(
-            "min_inclination",
-            config.min_inclination,
-            "must lie in (0, pi/2): the models are singular at sin(theta) = 0",
-        ));
-    }
-    if config.chatter.max_transitions == 0 {
-        return Err(config_error("chatter.max_transitions", 0.0, "must be >= 1"));
-    }
-    if !(config.t_end.is_finite() && config.t_end >= initial.t && initial.t.is_finite()) {
-        return Err(config_error(
-            "t_end",
-            config.t_end,
-            "must be finite and not before the initial time",
-        ));
-    }
-    if config.stick_threshold < config.atol {
-        // The slip's own error is about atol: a lower threshold is crossed by noise or,
-        // more often, never (the run then slides past every stick, silently wrong).
-        return Err(config_error(
-            "stick_threshold",
-            config.stick_threshold,
-            "must be at least atol: a slip below the integration error cannot be seen to stop",
-        ));
-    }
-    if let Some(rate) = config.sample_rate {
-        // Finite is not enough: 1e300 samples per second would never finish.
-        if rate * (config.t_end - initial.t) > MAX_SAMPLES {
-            return Err(config_error(
-                "sample_rate",
-                rate,
-                "gives more than 1e9 samples over the run",
-            ));
-        }
-    }
-    if config.slip_sign == SlipSign::Paper && models.chart != SlipChart::Polar {
-        return Err(SimError::SignedSlipNeedsPolarChart);
-    }
-    if let Some(i) = initial.y.iter().position(|v| !v.is_finite()) {
-        return Err(SimError::InitialState {
-            component: i,
-            value: initial.y[i],
-        });
-    }
-    let theta = initial.y[THETA];
-    if !(theta > 0.0 && theta < std::f64::consts::PI) {
-        return Err(SimError::InitialState {
-            component: THETA,
-            value: theta,
-        });
-    }
-    Ok(())
 }
 
 fn run_with<St, Sc, R, S, O>(
@@ -185,8 +104,13 @@ where
 {
     let mut system = DiskSystem::new(models, config);
     let (start, decision) = initial_phase(&mut system, models, config, initial)?;
+    let mut gate = Gate {
+        allowed: config.allowed,
+        forbidden: None,
+    };
+    gate.admit(initial.t, start.phase.mode());
     if let Some(record) = decision {
-        observer.on_transition(&record);
+        gate.forward(&record, observer);
     }
     let Entry {
         phase,
@@ -200,18 +124,19 @@ where
             source,
         }
     })?;
+    if let Some((t, mode)) = gate.forbidden {
+        return Ok(stopped_at_start(
+            StopReason::ModeNotAllowed { t, mode },
+            first,
+        ));
+    }
     if first.force.normal <= 0.0 || first.force.normal.is_nan() {
         // The floor would have to pull: the disk leaves it at once.
-        return Ok(RunOutcome {
-            stop: StopReason::ContactLost {
-                t: initial.t,
-                mode: phase.mode(),
-            },
-            last: first,
-            transitions: 0,
-            stats: Default::default(),
-            max_drift: Default::default(),
-        });
+        let stop = StopReason::ContactLost {
+            t: initial.t,
+            mode: phase.mode(),
+        };
+        return Ok(stopped_at_start(stop, first));
     }
     let options = HybridOptions {
         step: StepOptions {
@@ -237,6 +162,7 @@ where
         models,
         bridge,
         user: observer,
+        gate: &mut gate,
         failure: None,
     };
     let ended = match config.time {
@@ -314,7 +240,7 @@ where
     {
         // The decision just before a stop: no segment followed it to carry it. A stop on a
         // bridge is sampled in the direction just decided, where the run found it must stop.
-        adaptor.user.on_transition(record);
+        adaptor.gate.forward(record, adaptor.user);
         if let Some(direction) = record.slip_direction {
             adaptor.bridge = Some(Slip {
                 speed: 0.0,
@@ -346,7 +272,10 @@ where
     }
     let stop = match out.stop {
         model_runtime::StopReason::EndTime => StopReason::EndTime,
-        model_runtime::StopReason::Observer => StopReason::Requested { t: out.t },
+        model_runtime::StopReason::Observer => match gate.forbidden {
+            Some((t, mode)) => StopReason::ModeNotAllowed { t, mode },
+            None => StopReason::Requested { t: out.t },
+        },
         model_runtime::StopReason::User(Halted { halt, .. }) => match halt {
             Halt::Stop(reason) => reason,
             Halt::Onset { t, source } => return Err(SimError::Onset { t, source }),
@@ -366,6 +295,17 @@ where
         stats: out.stats,
         max_drift: system.max_drift(),
     })
+}
+
+/// A run that ends where it starts, at `first`, before any step.
+fn stopped_at_start(stop: StopReason, first: DiskSample) -> RunOutcome {
+    RunOutcome {
+        stop,
+        last: first,
+        transitions: 0,
+        stats: Default::default(),
+        max_drift: Default::default(),
+    }
 }
 
 /// Where the driver left a run, in physical time and the disk's own state.
@@ -426,12 +366,11 @@ fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     initial: &InitialState,
 ) -> Result<(Entry, Option<TransitionRecord>), SimError> {
     let t = initial.t;
-    let given = PhysicalState::from_rolling(&initial.y, 0.0);
-    let slip = given.velocity_slip(&models.params);
+    let given = initial.state;
     let mut state = given;
-    if slip[0].hypot(slip[1]) > config.stick_threshold {
+    if initial.mode == Mode::Sliding && given.slip.speed.abs() > config.stick_threshold {
         state.project(&models.params, Mode::Sliding);
-        let y = state.sliding_vector(models.chart, Slip::from_vector(slip));
+        let y = state.sliding_vector(models.chart, given.slip);
         return Ok((undecided(Phase::Sliding, y), None));
     }
     state.project(&models.params, Mode::Rolling);
@@ -493,6 +432,28 @@ fn undecided(phase: Phase, y: [f64; DIM]) -> Entry {
     }
 }
 
+/// The allowed modes of a run, and the first decision for one that is not.
+struct Gate {
+    allowed: AllowedModes,
+    /// Time and mode of the first decision for a mode not allowed.
+    forbidden: Option<(f64, Mode)>,
+}
+
+impl Gate {
+    /// Notes entering `mode` at `t`.
+    fn admit(&mut self, t: f64, mode: Mode) {
+        if self.forbidden.is_none() && !self.allowed.allows(mode) {
+            self.forbidden = Some((t, mode));
+        }
+    }
+
+    /// Forwards a mode decision to the caller's observer, noting the mode it enters.
+    fn forward<O: DiskObserver>(&mut self, record: &TransitionRecord, observer: &mut O) {
+        self.admit(record.t, record.to);
+        observer.on_transition(record);
+    }
+}
+
 /// The disk at `(t, y)` in `phase`, with its contact force (one model evaluation); on a
 /// bridge, `bridge` is the slip it started from.
 pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
@@ -543,6 +504,7 @@ struct Adaptor<'a, R, S, O> {
     /// The slip the current bridge started from (from the note of the transition into it).
     bridge: Option<Slip>,
     user: &'a mut O,
+    gate: &'a mut Gate,
     /// The first model failure while sampling (reported after the run).
     failure: Option<(f64, Phase, EvalError)>,
 }
@@ -555,6 +517,9 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
     }
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {
+        if self.gate.forbidden.is_some() {
+            return std::ops::ControlFlow::Break(());
+        }
         self.user.proceed()
     }
 
@@ -592,7 +557,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
             self.bridge = bridge;
         }
         if let Some(decision) = decision {
-            self.user.on_transition(&decision);
+            self.gate.forward(&decision, self.user);
         }
     }
 }

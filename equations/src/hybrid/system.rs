@@ -8,9 +8,11 @@
 
 use super::models::DiskModels;
 use super::onset::{consistent_slip_direction, OnsetError};
-use super::{DiskConfig, SlipSign, StopReason, TimeVariable, TransitionRecord, Trigger};
+use super::{StopReason, TransitionRecord, Trigger};
+use crate::config::DiskConfig;
 use crate::modes::layout::{THETA, U_X, U_Y, V_C};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use crate::settings::{SlipSign, TimeVariable};
 use model_runtime::{
     Direction, EvalError, EventHit, GuardInputs, GuardSpec, HybridSystem, Model, TimeScale,
     Transition,

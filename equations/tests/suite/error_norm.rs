@@ -1,13 +1,13 @@
 //! The disk's vector error norm: its groups name the right states in every mode, chart and
 //! model set, and a run with it makes the same decisions as the per-component norm.
 
-use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskRecorder, Embedded, ErrorNorm, GeneratedModels,
-    InitialState, IntegratorChoice, LimitingComponent, PrunedModels, ReferenceModels, RunOutcome,
-    SlidingModel, Variant,
-};
-use equations::modes::{SlipChart, DIM};
 use equations::DiskParams;
+use equations::{
+    simulate, DiskModels, DiskRecorder, Embedded, GeneratedModels, PrunedModels, ReferenceModels,
+    RunOutcome, SlidingModel, Variant,
+};
+use equations::{DiskConfig, ErrorNorm, InitialState, Integrator, LimitingComponent};
+use equations::{SlipChart, DIM};
 use model_runtime::Model;
 
 use crate::common::assert_same_decisions;
@@ -108,7 +108,7 @@ fn run(norm: ErrorNorm, t_end: f64) -> (RunOutcome, DiskRecorder) {
     let params = DiskParams::paper();
     let models: GeneratedModels = DiskModels::generated(params, SlipChart::Cartesian).unwrap();
     let config = DiskConfig {
-        integrator: IntegratorChoice::Dop853,
+        integrator: Integrator::Dop853,
         rtol: 1e-10,
         atol: 1e-12,
         t_end,

@@ -18,13 +18,14 @@
 //!   when `Ω_x = Ω_z = 0` and `sin(α − ψ) = 0`).
 
 use crate::common::extreme::{
-    accumulated_error_bound, dop853, models, rolling_state, with_slip, Rates, Watch,
+    accumulated_error_bound, dop853, models, rolling_state, Rates, Watch,
 };
 use equations::formulas::{self, BodyRates};
-use equations::hybrid::{simulate, DiskConfig, InitialState, StopReason};
-use equations::modes::layout::{PSI, THETA};
-use equations::modes::{Mode, DIM};
+use equations::layout::{PSI, THETA};
 use equations::DiskParams;
+use equations::{simulate, StopReason};
+use equations::{DiskConfig, InitialState};
+use equations::{Mode, Slip, DIM};
 
 /// The inclinations of the issue.
 const THETAS: [f64; 3] = [1e-2, 1e-4, 1e-6];
@@ -50,11 +51,10 @@ fn initial(p: &DiskParams, theta0: f64, omega_x: f64, start: Start) -> InitialSt
             z: 0.0,
         },
     );
-    let y = match start {
-        Start::Rolling => y,
-        Start::Sliding => with_slip(&y, [SLIP, 0.0]),
-    };
-    InitialState { t: 0.0, y }
+    match start {
+        Start::Rolling => InitialState::rolling(0.0, y),
+        Start::Sliding => InitialState::sliding(p, 0.0, y, Slip::from_vector([SLIP, 0.0])),
+    }
 }
 
 /// `N/mg` by the paper's closed forms in the sample's mode.

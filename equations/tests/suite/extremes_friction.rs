@@ -13,16 +13,17 @@
 //!   integration tolerance.
 
 use crate::common::extreme::{accumulated_error_bound, dop853, models, Watch};
-use equations::hybrid::{simulate, DiskConfig, InitialState, OnsetError, SimError, StopReason};
-use equations::modes::layout::{V_X, V_Y, X, Y};
-use equations::modes::Mode;
+use equations::layout::{V_X, V_Y, X, Y};
 use equations::DiskParams;
+use equations::Mode;
+use equations::{simulate, OnsetError, SimError, StopReason};
+use equations::{DiskConfig, InitialState};
 use model_runtime::{integrate, Dop853, StepOptions, Tolerance};
 
 /// The largest relative change of the energy among kept samples.
 fn energy_change(watch: &Watch) -> (f64, f64) {
     let e0 = watch.samples()[0].energy;
-    let rel = |s: &equations::hybrid::DiskSample| (s.energy - e0) / e0.abs();
+    let rel = |s: &equations::DiskSample| (s.energy - e0) / e0.abs();
     let rise = watch.samples().iter().map(rel).fold(f64::MIN, f64::max);
     let change = watch
         .samples()
@@ -137,7 +138,7 @@ fn with_unlimited_static_friction_the_disk_rolls_as_the_rolling_model_alone() {
         Tolerance::scalar(config.rtol, config.atol),
         StepOptions::default(),
         0.0,
-        &initial.y,
+        &initial.state.y,
         out.last.t,
     )
     .unwrap();

@@ -4,13 +4,14 @@
 //! `tests/suite/cli_eval.rs`: random keys, types, NaN, ±inf, 1e400, random text) and the models at
 //! non-finite states (`singular.rs`); what had no test is the library entry point itself, which
 //! other programs call without those front ends. Any setting or initial component set to NaN,
-//! ±inf, zero, a negative or a huge number must give a typed error naming it, or a run whose
-//! every number is finite; never a panic or a hang (the work is bounded by a short horizon and
-//! a step budget).
+//! ±inf, zero, a negative or a huge number must give a typed error naming it by the scene's key
+//! (the same rules a scene is held to), or a run whose every number is finite; never a panic
+//! or a hang (the work is bounded by a short horizon and a step budget).
 
 use crate::common::extreme::{dop853, models, Watch};
-use equations::hybrid::{simulate, DiskConfig, InitialState, SimError};
-use equations::DiskParams;
+use equations::{simulate, SimError};
+use equations::{DiskConfig, InitialState};
+use equations::{DiskParams, STATE_NAMES};
 use proptest::prelude::*;
 
 fn bad_number() -> impl Strategy<Value = f64> {
@@ -27,24 +28,32 @@ fn bad_number() -> impl Strategy<Value = f64> {
     ]
 }
 
-/// The configuration fields that take a number, by name.
+/// The configuration fields that take a number, by the key their issues name.
 const FIELDS: [&str; 6] = [
-    "rtol",
-    "atol",
-    "t_end",
+    "solver.rtol",
+    "solver.atol",
+    "run.t_end",
     "stick_threshold",
     "min_inclination",
-    "sample_rate",
+    "run.sample_rate",
 ];
+
+/// The keys of the issues of a rejected setup.
+fn keys(e: &SimError) -> Vec<String> {
+    match e {
+        SimError::Invalid { issues } => issues.iter().map(|i| i.key.clone()).collect(),
+        _ => vec![],
+    }
+}
 
 fn with_field(mut c: DiskConfig, field: &str, v: f64) -> DiskConfig {
     match field {
-        "rtol" => c.rtol = v,
-        "atol" => c.atol = v,
-        "t_end" => c.t_end = v,
+        "solver.rtol" => c.rtol = v,
+        "solver.atol" => c.atol = v,
+        "run.t_end" => c.t_end = v,
         "stick_threshold" => c.stick_threshold = v,
         "min_inclination" => c.min_inclination = v,
-        "sample_rate" => c.sample_rate = Some(v),
+        "run.sample_rate" => c.sample_rate = Some(v),
         _ => unreachable!(),
     }
     c
@@ -65,13 +74,16 @@ proptest! {
         match simulate(&models(p), &config, &InitialState::paper(&p), &mut watch) {
             Ok(_) => prop_assert!(watch.first_non_finite.is_none(), "{field} = {value}"),
             // A huge end time is named through the sample count it would need, a huge atol
-            // through the stick threshold that must stay above it.
-            Err(SimError::Config { name, .. }) => prop_assert!(
-                name.starts_with(field)
-                    || (field == "t_end" && name == "sample_rate")
-                    || (field == "atol" && name == "stick_threshold"),
-                "{field}: {name}"
-            ),
+            // through the stick threshold that must stay above it; nothing else is named.
+            Err(e @ SimError::Invalid { .. }) => {
+                let keys = keys(&e);
+                prop_assert!(
+                    !keys.is_empty() && keys.iter().all(|k| k == field
+                        || (field == "run.t_end" && k == "run.sample_rate")
+                        || (field == "solver.atol" && k == "stick_threshold")),
+                    "{field} = {value}: {keys:?}"
+                )
+            }
             // Legal but unworkable values (rtol 1e-300, a stick threshold of 1e-300 m/s, a huge
             // end time) end with a typed integration failure: a collapse or the step budget; a
             // stick threshold of 1e300 m/s with a singular pivot (`|u|² = inf`) at the start.
@@ -87,12 +99,15 @@ proptest! {
     ) {
         let p = DiskParams::paper();
         let mut initial = InitialState::paper(&p);
-        initial.y[component] = value;
+        initial.state.y[component] = value;
         let config = DiskConfig { max_steps: 20_000, ..dop853(1e-8, 0.01) };
         let mut watch = Watch::streaming();
         match simulate(&models(p), &config, &initial, &mut watch) {
             Ok(_) => prop_assert!(watch.first_non_finite.is_none(), "y[{component}] = {value}"),
-            Err(SimError::InitialState { component: c, .. }) => prop_assert_eq!(c, component),
+            Err(e @ SimError::Invalid { .. }) => prop_assert_eq!(
+                keys(&e),
+                vec![format!("initial.{}", STATE_NAMES[component])]
+            ),
             // Huge rates: a typed integration failure (collapse, budget) is a named stop too.
             Err(SimError::Solve { .. } | SimError::Transition { .. } | SimError::Onset { .. }) => {}
             Err(e) => prop_assert!(false, "y[{component}] = {value}: {e}"),
@@ -110,14 +125,7 @@ fn an_absurd_sample_rate_is_rejected_by_name() {
         ..dop853(1e-8, 0.05)
     };
     let result = simulate(&models(p), &config, &InitialState::paper(&p), &mut ());
-    assert!(
-        matches!(
-            result,
-            Err(SimError::Config {
-                name: "sample_rate",
-                ..
-            })
-        ),
-        "{result:?}"
-    );
+    let error = result.unwrap_err();
+    assert_eq!(keys(&error), ["run.sample_rate"], "{error}");
+    assert!(error.to_string().contains("more than 1e9"), "{error}");
 }

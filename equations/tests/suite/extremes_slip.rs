@@ -18,13 +18,14 @@
 //! that precesses (the paper's, `Ω_x = 1`) turns the slip aside by ~3e-8 m/s as it passes: a
 //! near miss of zero (docs/physics.md §6), which is not a stick.
 
-use crate::common::extreme::{dop853, models_in, rolling_state, with_slip, Rates, Watch};
+use crate::common::extreme::{dop853, models_in, rolling_state, Rates, Watch};
 use equations::formulas::spinning_in_place_rate;
-use equations::hybrid::{simulate, DiskSample, InitialState, TransitionRecord, Trigger};
-use equations::modes::layout::{V_X, V_Y, V_Z};
-use equations::modes::{Mode, SlipChart, DIM};
+use equations::layout::{V_X, V_Y, V_Z};
 use equations::reference::RollingReference;
 use equations::DiskParams;
+use equations::InitialState;
+use equations::{simulate, DiskSample, TransitionRecord, Trigger};
+use equations::{Mode, Slip, SlipChart, DIM};
 use model_runtime::Model;
 
 /// Slip speeds of the starts (m/s): 1e-3 … 1e-12.
@@ -117,10 +118,7 @@ fn the_stick_event_fires_before_the_slip_singularity_and_decides_by_the_rule() {
         for case in cases(&p) {
             for speed in slip_speeds() {
                 let u = case.slip_direction.map(|c| c * speed);
-                let initial = InitialState {
-                    t: 0.0,
-                    y: with_slip(&case.y, u),
-                };
+                let initial = InitialState::sliding(&p, 0.0, case.y, Slip::from_vector(u));
                 let mut watch = Watch::keeping_steps();
                 let out = simulate(&models, &config, &initial, &mut watch)
                     .unwrap_or_else(|e| panic!("{chart:?} {} {speed:e}: {e}", case.name));

@@ -17,8 +17,9 @@ use crate::common::extreme::{
     accumulated_error_bound, dop853, models, rolling_state, Rates, Watch,
 };
 use equations::formulas::steady_circle_spin;
-use equations::hybrid::{simulate, InitialState, StopReason};
 use equations::DiskParams;
+use equations::InitialState;
+use equations::{simulate, StopReason};
 
 /// The two kinds of fast motion.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -83,8 +84,13 @@ fn huge_spin_finishes_with_the_energy_drift_within_the_accumulated_error() {
             for rate in [10.0, 100.0, 1e3] {
                 let y = start(&p, kind, sign * rate);
                 let mut watch = Watch::streaming();
-                let out =
-                    simulate(&models(p), &config, &InitialState { t: 0.0, y }, &mut watch).unwrap();
+                let out = simulate(
+                    &models(p),
+                    &config,
+                    &InitialState::from_velocity(&p, 0.0, y),
+                    &mut watch,
+                )
+                .unwrap();
                 let bound = accumulated_error_bound(&config, out.stats.steps);
                 println!(
                     "{kind:?} {:+e}: stop {:?}, steps {}, energy drift {:.2e} (bound {bound:.1e}), \

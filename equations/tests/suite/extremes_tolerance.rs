@@ -21,13 +21,11 @@
 //!   times are within 5e-8 s, while the stall delayed a stick by 4.7e-5 s.
 
 use crate::common::extreme::{dop853, models, Watch};
-use equations::hybrid::{
-    simulate, DiskConfig, DiskObserver, DiskSample, InitialState, SimError, StopReason,
-    TimeVariable, TransitionRecord,
-};
-use equations::modes::layout::THETA;
-use equations::modes::Mode;
+use equations::layout::THETA;
 use equations::DiskParams;
+use equations::Mode;
+use equations::{simulate, DiskObserver, DiskSample, SimError, StopReason, TransitionRecord};
+use equations::{DiskConfig, InitialState, TimeVariable};
 use model_runtime::SolveError;
 
 #[test]

@@ -22,10 +22,11 @@
 //!   the upward zero crossings of `Ω_y` (each period exactly, whatever the mean of the wobble).
 
 use crate::common::extreme::{dop853, models, rolling_state, Rates, Watch};
-use equations::hybrid::{simulate, DiskConfig, DiskSample, InitialState, StopReason};
-use equations::modes::layout::{OMEGA_Y, THETA};
-use equations::modes::Mode;
+use equations::layout::{OMEGA_Y, THETA};
 use equations::DiskParams;
+use equations::Mode;
+use equations::{simulate, DiskSample, StopReason};
+use equations::{DiskConfig, InitialState};
 use std::f64::consts::FRAC_PI_2;
 
 /// `κ = m g a / (A + m a²)`: the square of the rate at which the disk falls from upright (s⁻²).
@@ -54,7 +55,13 @@ fn growth_rate(samples: &[DiskSample], lo: f64, hi: f64) -> f64 {
 
 fn run(p: &DiskParams, config: &DiskConfig, y: [f64; 12]) -> (StopReason, Watch) {
     let mut watch = Watch::keeping();
-    let out = simulate(&models(*p), config, &InitialState { t: 0.0, y }, &mut watch).unwrap();
+    let out = simulate(
+        &models(*p),
+        config,
+        &InitialState::from_velocity(p, 0.0, y),
+        &mut watch,
+    )
+    .unwrap();
     watch.assert_finite("upright");
     (out.stop, watch)
 }

@@ -1,12 +1,13 @@
 //! The paper's scene on the hybrid driver: the start, the transition sequence, its agreement
 //! between integrators, charts and thresholds, and that no event is skipped.
 
-use equations::hybrid::{
-    simulate, DiskConfig, DiskRecorder, GeneratedModels, InitialState, IntegratorChoice,
-    ReferenceModels, RunOutcome, StopReason, TimeVariable, TransitionRecord, Trigger,
-};
-use equations::modes::{Mode, SlipChart};
 use equations::DiskParams;
+use equations::{
+    simulate, DiskRecorder, GeneratedModels, ReferenceModels, RunOutcome, StopReason,
+    TransitionRecord, Trigger,
+};
+use equations::{DiskConfig, InitialState, Integrator, TimeVariable};
+use equations::{Mode, SlipChart};
 use std::f64::consts::PI;
 
 use crate::common::assert_same_decisions;
@@ -29,7 +30,7 @@ fn run_reference(config: &DiskConfig, chart: SlipChart) -> (RunOutcome, DiskReco
     (out, rec)
 }
 
-fn tight(integrator: IntegratorChoice, t_end: f64) -> DiskConfig {
+fn tight(integrator: Integrator, t_end: f64) -> DiskConfig {
     DiskConfig {
         integrator,
         rtol: 1e-11,
@@ -76,8 +77,8 @@ fn the_paper_scene_slides_from_the_start_along_minus_x() {
 
 #[test]
 fn the_first_twenty_transitions_agree_between_dp5_and_dop853() {
-    let (_, a) = run(&tight(IntegratorChoice::Dopri5, 1.6), SlipChart::Cartesian);
-    let (_, b) = run(&tight(IntegratorChoice::Dop853, 1.6), SlipChart::Cartesian);
+    let (_, a) = run(&tight(Integrator::Dopri5, 1.6), SlipChart::Cartesian);
+    let (_, b) = run(&tight(Integrator::Dop853, 1.6), SlipChart::Cartesian);
     let (a, b) = (events(&a), events(&b));
     assert!(a.len() >= 20 && b.len() >= 20, "{} {}", a.len(), b.len());
     let worst = a
@@ -104,7 +105,7 @@ fn the_first_twenty_transitions_agree_between_dp5_and_dop853() {
 /// physical time at the same times, and sample the same states at the same physical times.
 #[test]
 fn regularised_time_reproduces_the_run_in_physical_time() {
-    let physical = tight(IntegratorChoice::Dop853, 5.0);
+    let physical = tight(Integrator::Dop853, 5.0);
     let regularised = |integrator| DiskConfig {
         time: TimeVariable::Regularised,
         sample_rate: Some(50.0),
@@ -118,9 +119,9 @@ fn regularised_time_reproduces_the_run_in_physical_time() {
         SlipChart::Cartesian,
     );
     for (integrator, chart) in [
-        (IntegratorChoice::Dop853, SlipChart::Cartesian),
-        (IntegratorChoice::Dopri5, SlipChart::Cartesian),
-        (IntegratorChoice::Dop853, SlipChart::Polar),
+        (Integrator::Dop853, SlipChart::Cartesian),
+        (Integrator::Dopri5, SlipChart::Cartesian),
+        (Integrator::Dop853, SlipChart::Polar),
     ] {
         let (out_r, b) = run(&regularised(integrator), chart);
         assert_eq!(out_r.stop, StopReason::EndTime);
@@ -130,7 +131,7 @@ fn regularised_time_reproduces_the_run_in_physical_time() {
         assert_eq!(a.samples.len(), b.samples.len());
         for (x, y) in a.samples.iter().zip(&b.samples) {
             assert_eq!(x.t, y.t);
-            let theta = equations::modes::layout::THETA;
+            let theta = equations::layout::THETA;
             assert!(
                 (x.state.y[theta] - y.state.y[theta]).abs() < 1e-8,
                 "{integrator:?} {chart:?}: theta at t = {}: {} against {}",
@@ -140,7 +141,7 @@ fn regularised_time_reproduces_the_run_in_physical_time() {
             );
         }
         assert!(
-            out_r.stats.steps < out_p.stats.steps || integrator == IntegratorChoice::Dopri5,
+            out_r.stats.steps < out_p.stats.steps || integrator == Integrator::Dopri5,
             "{integrator:?}: {} regularised steps against {} in physical time",
             out_r.stats.steps,
             out_p.stats.steps
@@ -153,7 +154,7 @@ fn polar_and_cartesian_charts_give_the_same_transitions() {
     let config = DiskConfig {
         rtol: 1e-10,
         atol: 1e-12,
-        ..tight(IntegratorChoice::Dop853, 1.0)
+        ..tight(Integrator::Dop853, 1.0)
     };
     let (_, a) = run(&config, SlipChart::Cartesian);
     let (_, b) = run(&config, SlipChart::Polar);
@@ -185,7 +186,7 @@ fn generated_and_reference_models_switch_at_the_same_times() {
 #[test]
 fn the_stick_threshold_does_not_move_the_events() {
     // The approach to zero slip is bridged exactly, so the threshold is only a detection level.
-    let coarse = tight(IntegratorChoice::Dop853, 0.8);
+    let coarse = tight(Integrator::Dop853, 0.8);
     let fine = DiskConfig {
         stick_threshold: 1e-10,
         ..coarse
@@ -295,7 +296,7 @@ fn chattering_is_reported_with_a_named_reason() {
     // Two mode decisions within one second exceed a limit of one: the run stops at the second.
     let config = DiskConfig {
         t_end: 1.0,
-        chatter: equations::hybrid::ChatterLimit {
+        chatter: equations::ChatterLimit {
             max_transitions: 1,
             window: 1.0,
         },
@@ -364,7 +365,7 @@ fn the_physical_reading_never_gains_energy_and_the_papers_reading_does() {
         ..DiskConfig::paper()
     };
     let paper = DiskConfig {
-        slip_sign: equations::hybrid::SlipSign::Paper,
+        slip_sign: equations::SlipSign::Paper,
         ..physical
     };
     let (out_phys, phys) = run(&physical, SlipChart::Polar);
@@ -406,7 +407,7 @@ fn sliding_restarts_keep_the_sequence_consistent() {
     // restarts from zero slip in a new consistent direction.
     let mu_st = DiskParams::paper().mu_st;
     let config = DiskConfig {
-        integrator: IntegratorChoice::Dop853,
+        integrator: Integrator::Dop853,
         rtol: 1e-10,
         atol: 1e-12,
         t_end: 30.0,
@@ -442,11 +443,11 @@ fn every_accepted_step_can_be_streamed() {
         times: Vec<f64>,
         worst_ratio_rolling: f64,
     }
-    impl equations::hybrid::DiskObserver for Steps {
+    impl equations::DiskObserver for Steps {
         fn wants_steps(&self) -> bool {
             true
         }
-        fn on_step(&mut self, s: &equations::hybrid::DiskSample) {
+        fn on_step(&mut self, s: &equations::DiskSample) {
             self.times.push(s.t);
             if s.mode == Mode::Rolling {
                 self.worst_ratio_rolling = self.worst_ratio_rolling.max(s.force.ratio());
@@ -478,8 +479,8 @@ fn slides_that_end_at_once_are_resolved_alike_by_both_integrators() {
     // above mu_st: sliding restarts, and ~60 µs later the slip is back at zero and the disk
     // rolls. Every one of these switch-backs must be found, at the same times, by DP5 and
     // DOP853 (409 decisions up to 19.5 s).
-    let (_, a) = run(&tight(IntegratorChoice::Dopri5, 19.5), SlipChart::Cartesian);
-    let (_, b) = run(&tight(IntegratorChoice::Dop853, 19.5), SlipChart::Cartesian);
+    let (_, a) = run(&tight(Integrator::Dopri5, 19.5), SlipChart::Cartesian);
+    let (_, b) = run(&tight(Integrator::Dop853, 19.5), SlipChart::Cartesian);
     assert_same_decisions(&a.transitions, &b.transitions, 1e-8);
     let short: Vec<(f64, f64)> = a
         .transitions

@@ -2,14 +2,14 @@
 //! rolling and of spinning in place, a slide that ends at once, loss of contact, and a guard
 //! that is exactly zero when a segment starts.
 
-use equations::hybrid::{
-    consistent_slip_direction, simulate, DiskConfig, DiskRecorder, GeneratedModels, InitialState,
-    IntegratorChoice, StopReason, Trigger,
-};
-use equations::modes::layout::*;
-use equations::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use equations::layout::*;
 use equations::reference::SlidingPolarReference;
 use equations::DiskParams;
+use equations::{
+    consistent_slip_direction, simulate, DiskRecorder, GeneratedModels, StopReason, Trigger,
+};
+use equations::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use equations::{DiskConfig, InitialState, Integrator};
 use model_runtime::Model;
 use proptest::prelude::*;
 
@@ -33,7 +33,7 @@ fn rolling_state(p: &DiskParams, psi: f64, theta: f64, omega: [f64; 3]) -> [f64;
 
 fn dop853(t_end: f64) -> DiskConfig {
     DiskConfig {
-        integrator: IntegratorChoice::Dop853,
+        integrator: Integrator::Dop853,
         rtol: 1e-12,
         atol: 1e-14,
         t_end,
@@ -81,7 +81,7 @@ proptest! {
 fn the_paper_onset_accelerates_the_slip_at_4_239() {
     let p = DiskParams::paper();
     let m = models(p, SlipChart::Cartesian);
-    let state = PhysicalState::from_rolling(&InitialState::paper(&p).y, 0.0);
+    let state = PhysicalState::from_rolling(&InitialState::paper(&p).state.y, 0.0);
     let (acc, _) = m.probe_onset(0.0, &state, std::f64::consts::PI).unwrap();
     assert!((acc.along - 4.239).abs() < 5e-4, "{acc:?}");
     assert!(acc.across.abs() < 1e-14, "{acc:?}");
@@ -106,7 +106,7 @@ fn pure_rolling_conserves_energy_to_1e_10_over_10_s() {
     let out = simulate(
         &models(p, SlipChart::Cartesian),
         &config,
-        &InitialState { t: 0.0, y },
+        &InitialState::from_velocity(&p, 0.0, y),
         &mut rec,
     )
     .unwrap();
@@ -144,7 +144,7 @@ fn spinning_in_place_is_held_to_1e_9_over_10_s() {
     let out = simulate(
         &models(p, SlipChart::Cartesian),
         &config,
-        &InitialState { t: 0.0, y },
+        &InitialState::from_velocity(&p, 0.0, y),
         &mut rec,
     )
     .unwrap();
@@ -184,7 +184,7 @@ fn a_slip_that_dies_at_once_ends_in_rolling() {
     let out = simulate(
         &models(p, SlipChart::Cartesian),
         &config,
-        &InitialState { t: 0.0, y },
+        &InitialState::from_velocity(&p, 0.0, y),
         &mut rec,
     )
     .unwrap();
@@ -209,7 +209,7 @@ fn losing_contact_stops_the_run() {
     let out = simulate(
         &models(p, SlipChart::Cartesian),
         &dop853(1.0),
-        &InitialState { t: 0.0, y },
+        &InitialState::from_velocity(&p, 0.0, y),
         &mut (),
     )
     .unwrap();
@@ -228,7 +228,7 @@ fn losing_contact_stops_the_run() {
     let theta0: f64 = 1.0;
     let tip = (0.9 * p.g / (p.a * theta0.sin())).sqrt();
     let y = rolling_state(&p, 0.0, theta0, [0.0, tip, 0.0]);
-    let initial = InitialState { t: 0.0, y };
+    let initial = InitialState::from_velocity(&p, 0.0, y);
     let out = simulate(
         &models(p, SlipChart::Cartesian),
         &dop853(1.0),
@@ -250,7 +250,7 @@ fn losing_contact_stops_the_run() {
 fn a_disk_tipped_more_gently_falls_flat_and_stops_at_zero_inclination() {
     let p = DiskParams::paper();
     let y = rolling_state(&p, 0.0, 1.3, [0.0, -12.0, 0.0]);
-    let initial = InitialState { t: 0.0, y };
+    let initial = InitialState::from_velocity(&p, 0.0, y);
     let m = models(p, SlipChart::Cartesian);
     let out = simulate(&m, &dop853(1.0), &initial, &mut ()).unwrap();
     let StopReason::InclinationReachedFloor { t, theta } = out.stop else {
@@ -278,7 +278,7 @@ fn a_guard_exactly_zero_at_the_start_waits_for_its_next_crossing() {
     let out = simulate(
         &models(p, SlipChart::Cartesian),
         &config,
-        &InitialState { t: 0.0, y },
+        &InitialState::from_velocity(&p, 0.0, y),
         &mut (),
     )
     .unwrap();

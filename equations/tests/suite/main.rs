@@ -22,6 +22,7 @@ mod normal_force;
 mod paper_scene;
 mod pruned_run;
 mod reference_vs_explicit;
+mod scene_settings;
 mod singular;
 mod trajectories;
 mod variants;

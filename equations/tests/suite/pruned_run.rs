@@ -4,18 +4,19 @@
 //! `φ` left out, so a run must make the same decisions at the same times, and give the same θ
 //! and N, to the accuracy of the integration; and the states they drop must stay frozen.
 
-use equations::hybrid::{
-    simulate, DiskConfig, DiskModels, DiskRecorder, DiskSample, GeneratedModels, InitialState,
-    IntegratorChoice, PruneError, PrunedModels, RunOutcome, TransitionRecord,
-};
-use equations::modes::{layout, SlipChart};
 use equations::DiskParams;
+use equations::{layout, SlipChart};
+use equations::{
+    simulate, DiskModels, DiskRecorder, DiskSample, GeneratedModels, PruneError, PrunedModels,
+    RunOutcome, TransitionRecord,
+};
+use equations::{DiskConfig, InitialState, Integrator};
 use model_runtime::Model;
 
 /// The paper's scene to `t_end` at tight tolerances (DOP853, `rtol = 1e-10`, `atol = 1e-12`).
 fn tight(t_end: f64) -> DiskConfig {
     DiskConfig {
-        integrator: IntegratorChoice::Dop853,
+        integrator: Integrator::Dop853,
         rtol: 1e-10,
         atol: 1e-12,
         t_end,
@@ -102,7 +103,7 @@ fn dropped_states_stay_frozen_and_are_named() {
     assert_eq!(polar.frozen_states(), ["X", "Y", "Z", "phi"]);
 
     let (_, record) = run(&pruned, &tight(0.5));
-    let start = InitialState::paper(&params).y;
+    let start = InitialState::paper(&params).state.y;
     let full = GeneratedModels::generated(params, SlipChart::Cartesian).unwrap();
     let (_, moving) = run(&full, &tight(0.5));
     for (p, f) in record.samples.iter().zip(&moving.samples).skip(1) {

@@ -198,10 +198,9 @@ fn near_the_painleve_root_the_answer_is_finite_and_right() {
 /// the time.
 #[test]
 fn a_hybrid_run_at_the_painleve_root_reports_the_pivot_and_the_time() {
-    use equations::hybrid::{
-        simulate, DiskConfig, GeneratedModels, InitialState, IntegratorChoice, SimError,
-    };
-    use equations::modes::SlipChart;
+    use equations::SlipChart;
+    use equations::{simulate, GeneratedModels, SimError};
+    use equations::{DiskConfig, InitialState, Integrator};
     use model_runtime::SolveError;
 
     let p = painleve_disk();
@@ -228,9 +227,9 @@ fn a_hybrid_run_at_the_painleve_root_reports_the_pivot_and_the_time() {
     y[9] = w.omega_x;
     y[10] = w.omega_y;
     y[11] = w.omega_z;
-    let initial = InitialState { t: 0.25, y };
+    let initial = InitialState::from_velocity(&p, 0.25, y);
     let config = DiskConfig {
-        integrator: IntegratorChoice::Dop853,
+        integrator: Integrator::Dop853,
         t_end: 1.0,
         ..DiskConfig::paper()
     };

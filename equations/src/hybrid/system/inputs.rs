@@ -68,8 +68,8 @@ mod tests {
     use super::super::DiskSystem;
     use super::*;
     use crate::hybrid::models::{DiskModels, GeneratedModels, PrunedModels};
-    use crate::hybrid::DiskConfig;
     use crate::params::DiskParams;
+    use crate::DiskConfig;
     use model_runtime::{HybridSystem, Model};
     use proptest::prelude::*;
 

@@ -3,13 +3,11 @@
 //! of what may (constraint drift, energy change, the range of θ), so that long runs stay flat in
 //! memory.
 
-use equations::hybrid::{
-    DiskConfig, DiskObserver, DiskRecorder, DiskSample, GeneratedModels, IntegratorChoice,
-    TransitionRecord,
-};
-use equations::modes::layout::{OMEGA_X, OMEGA_Y, OMEGA_Z, PSI, THETA};
-use equations::modes::{Mode, PhysicalState, SlipChart, DIM};
+use equations::layout::{OMEGA_X, OMEGA_Y, OMEGA_Z, PSI, THETA};
 use equations::DiskParams;
+use equations::{DiskConfig, Integrator, RunTable, SolverTable, TimeVariable};
+use equations::{DiskObserver, DiskRecorder, DiskSample, GeneratedModels, TransitionRecord};
+use equations::{Mode, PhysicalState, SlipChart, DIM};
 
 /// The generated models in the given slip chart.
 pub fn models_in(params: DiskParams, chart: SlipChart) -> GeneratedModels {
@@ -54,26 +52,19 @@ pub fn rolling_state(p: &DiskParams, psi: f64, theta: f64, w: Rates) -> [f64; DI
     s.y
 }
 
-/// The same state with the contact particle slipping by `slip` (m/s, horizontal).
-pub fn with_slip(y: &[f64; DIM], slip: [f64; 2]) -> [f64; DIM] {
-    let mut y = *y;
-    y[equations::modes::layout::V_X] += slip[0];
-    y[equations::modes::layout::V_Y] += slip[1];
-    y
-}
-
-/// DOP853 at the given tolerances (`atol = rtol / 100`, stick threshold
-/// `max(1e-9, 10 atol)` m/s as the command line sets it) up to `t_end`, otherwise the paper's
-/// settings.
+/// DOP853 in physical time at the given tolerances (`atol = rtol / 100`) up to `t_end`, the
+/// rest as a scene sets it (the stick threshold follows atol), without samples.
 pub fn dop853(rtol: f64, t_end: f64) -> DiskConfig {
-    let atol = rtol * 1e-2;
-    DiskConfig {
-        integrator: IntegratorChoice::Dop853,
+    let solver = SolverTable {
+        integrator: Integrator::Dop853,
         rtol,
-        atol,
-        stick_threshold: (10.0 * atol).max(1e-9),
-        t_end,
-        ..DiskConfig::paper()
+        atol: rtol * 1e-2,
+        time: TimeVariable::Physical,
+        ..SolverTable::default()
+    };
+    DiskConfig {
+        sample_rate: None,
+        ..DiskConfig::new(&solver, &RunTable::lasting(t_end))
     }
 }
 

@@ -9,8 +9,8 @@ pub mod scales;
 pub mod subject;
 pub mod tracked;
 
-use equations::hybrid::TransitionRecord;
 use equations::DiskParams;
+use equations::TransitionRecord;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Two runs made the same mode decisions: the same number, the same kinds in the same order,

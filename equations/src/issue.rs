@@ -1,11 +1,32 @@
-//! A broken rule of a scene, named by the key it is about.
+//! A broken rule of a scene or of a run's settings, named by the key it is about.
 //!
-//! Validation collects every issue of a scene before failing (one run of the command shows
-//! all the mistakes), and each issue carries the numbers that explain it.
+//! One type for every check, whoever asks: a scene being loaded and [`crate::simulate`] being
+//! called directly are held to the same rules and report them the same way. Validation
+//! collects every issue before failing (one run of the command shows all the mistakes), and
+//! each issue carries the numbers that explain it.
 
 use std::fmt;
 
-use crate::output::tables::number;
+/// A number as scenes, messages and tables print it: plainly between 1e-4 and 1e15 (and 0),
+/// in scientific notation otherwise; both parse back to the same `f64` (Rust prints the
+/// shortest round-trip digits).
+#[derive(Clone, Copy, Debug)]
+pub struct Number(pub f64);
+
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        if v == 0.0 || (1e-4..1e15).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
+
+fn number(v: f64) -> Number {
+    Number(v)
+}
 
 /// One broken rule, about one key (`table.key`).
 #[derive(Clone, Debug, PartialEq)]
@@ -14,6 +35,16 @@ pub struct Issue {
     pub key: String,
     /// The rule it breaks.
     pub rule: Rule,
+}
+
+impl Issue {
+    /// The issue `rule` about `key`.
+    pub fn new(key: impl Into<String>, rule: Rule) -> Self {
+        Issue {
+            key: key.into(),
+            rule,
+        }
+    }
 }
 
 /// The rules a scene value can break.
@@ -93,10 +124,17 @@ pub enum Rule {
     Empty,
     /// The initial state needs a mode the scene does not allow.
     ModeNotAllowed {
-        /// The mode needed.
+        /// The mode needed (its name, `rolling` or `sliding`).
         mode: &'static str,
         /// Why it is needed.
         because: String,
+    },
+    /// A setting that cannot go with another one.
+    Incompatible {
+        /// The value, as written.
+        value: String,
+        /// Why it cannot be used here.
+        reason: &'static str,
     },
     /// The run would record more samples than is sensible.
     TooManySamples {
@@ -157,6 +195,7 @@ impl fmt::Display for Issue {
             }
             Rule::Duplicate { name } => write!(f, "`{name}` is listed twice"),
             Rule::Empty => write!(f, "must not be empty"),
+            Rule::Incompatible { value, reason } => write!(f, "`{value}` {reason}"),
             Rule::ModeNotAllowed { mode, because } => write!(
                 f,
                 "the initial state needs mode `{mode}` ({because}), which `modes.allowed` does not list"
@@ -177,5 +216,69 @@ impl fmt::Display for Issue {
                 number(limit / t_end),
             ),
         }
+    }
+}
+
+/// Collects the issues of one validation; the helpers check one value each and report whether
+/// it passed, so a later rule that needs the value usable can skip it.
+#[derive(Debug, Default)]
+pub(crate) struct Checks {
+    /// Every issue found so far, in the order of the checks.
+    pub issues: Vec<Issue>,
+}
+
+impl Checks {
+    /// Records `rule` about `key`.
+    pub fn push(&mut self, key: &str, rule: Rule) {
+        self.issues.push(Issue::new(key, rule));
+    }
+
+    /// `value` must be finite.
+    pub fn finite(&mut self, key: &str, value: f64) -> bool {
+        let ok = value.is_finite();
+        if !ok {
+            self.push(key, Rule::NotFinite { value });
+        }
+        ok
+    }
+
+    /// `value` must be finite and > 0.
+    pub fn positive(&mut self, key: &str, value: f64) -> bool {
+        let ok = self.finite(key, value) && value > 0.0;
+        if value.is_finite() && !ok {
+            self.push(key, Rule::NotPositive { value });
+        }
+        ok
+    }
+
+    /// `value` must be finite and >= 0.
+    pub fn non_negative(&mut self, key: &str, value: f64) -> bool {
+        let ok = self.finite(key, value) && value >= 0.0;
+        if value.is_finite() && !ok {
+            self.push(key, Rule::Negative { value });
+        }
+        ok
+    }
+
+    /// `value` must be finite and lie in `[min, max]` (`(min, max)` when `open`).
+    pub fn in_range(&mut self, key: &str, value: f64, min: f64, max: f64, open: bool) -> bool {
+        let inside = if open {
+            value > min && value < max
+        } else {
+            (min..=max).contains(&value)
+        };
+        let ok = self.finite(key, value) && inside;
+        if value.is_finite() && !ok {
+            self.push(
+                key,
+                Rule::OutOfRange {
+                    value,
+                    min,
+                    max,
+                    open,
+                },
+            );
+        }
+        ok
     }
 }

@@ -1,0 +1,125 @@
+//! What every subcommand's arguments share: the exit codes, the arguments of a run, the
+//! progress style, the Ctrl-C handler, the choice of models.
+//!
+//! Kept apart from the parser (`cli.rs`), which names every subcommand's arguments, so that a
+//! subcommand's own argument module (`sound/args.rs`, `sweep/args.rs`) can use these without
+//! depending on the parser that depends on it.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use clap::Args;
+
+use crate::eval::Backend;
+use crate::run::ProgressStyle;
+use crate::scene::{Override, SceneError, DEFAULT_SCENE};
+
+/// Exit code of a rejected input (bad scene, bad sweep file, bad JSON, singular state).
+pub const EXIT_INPUT: u8 = 2;
+/// Exit code of a failed run (simulation error, output not writable, incomplete merge).
+pub const EXIT_FAILED: u8 = 1;
+/// Exit code of an interrupted run (128 + SIGINT, as shells report it).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// `eulerdisk run`.
+#[derive(Debug, Args, Default)]
+pub struct RunArgs {
+    /// A scene file, or the name of a built-in scene.
+    #[arg(default_value = DEFAULT_SCENE)]
+    pub scene: String,
+    /// Override `run.t_end` (s).
+    #[arg(long, allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Override `solver.rtol`.
+    #[arg(long, allow_negative_numbers = true)]
+    pub rtol: Option<f64>,
+    /// Override `solver.atol`.
+    #[arg(long, allow_negative_numbers = true)]
+    pub atol: Option<f64>,
+    /// Override `solver.integrator` (dopri5, dop853, rodas4).
+    #[arg(long)]
+    pub integrator: Option<String>,
+    /// Output directory.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Print nothing but errors and why a run stopped early: no progress, no scene line, no
+    /// summary table (summary.json is still written).
+    #[arg(long)]
+    pub quiet: bool,
+    /// Override any scene key: `--set table.key=value` (repeatable).
+    #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Run the hand-written reference models instead of the generated ones.
+    #[arg(long)]
+    pub reference: bool,
+    /// Skip the figures.
+    #[arg(long)]
+    pub no_figures: bool,
+}
+
+impl RunArgs {
+    /// The scene overrides these arguments ask for, in order (`--set` last, so it wins).
+    pub fn overrides(&self) -> Result<Vec<Override>, SceneError> {
+        let mut out = Vec::new();
+        if let Some(v) = self.t_end {
+            out.push(Override::new("run", "t_end", v));
+        }
+        if let Some(v) = self.rtol {
+            out.push(Override::new("solver", "rtol", v));
+        }
+        if let Some(v) = self.atol {
+            out.push(Override::new("solver", "atol", v));
+        }
+        if let Some(v) = &self.integrator {
+            out.push(Override::new("solver", "integrator", v.as_str()));
+        }
+        for spec in &self.set {
+            out.push(Override::parse(spec)?);
+        }
+        Ok(out)
+    }
+}
+
+/// How a command reports progress: nothing when `quiet`, a bar on a terminal, lines otherwise.
+pub fn progress_style(quiet: bool) -> ProgressStyle {
+    if quiet {
+        ProgressStyle::Quiet
+    } else if std::io::stderr().is_terminal() {
+        ProgressStyle::Bar
+    } else {
+        ProgressStyle::Lines
+    }
+}
+
+/// Installs the Ctrl-C handler of a long command: the first Ctrl-C sets the returned flag and
+/// prints `message` (what happens now); a second one exits at once with
+/// [`EXIT_INTERRUPTED`] (complete files are already in place, partial ones only ever exist
+/// under temporary names).
+pub fn interrupt_on_ctrl_c(message: &'static str) -> Arc<AtomicBool> {
+    let interrupt = Arc::new(AtomicBool::new(false));
+    let flag = interrupt.clone();
+    let installed = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+        eprintln!("\ninterrupted: {message} (Ctrl-C again to quit now)");
+    });
+    if let Err(err) = installed {
+        eprintln!("warning: Ctrl-C will not save partial results: {err}");
+    }
+    interrupt
+}
+
+/// The models the CLI runs unless `--reference` is given: the one line to switch.
+pub const DEFAULT_BACKEND: Backend = Backend::Generated;
+
+/// The backend a `--reference` flag selects.
+pub fn backend(reference: bool) -> Backend {
+    if reference {
+        Backend::Reference
+    } else {
+        DEFAULT_BACKEND
+    }
+}
