@@ -10,12 +10,9 @@
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use eulerdisk::run::ProgressStyle;
-use eulerdisk::sweep::execute::ExecOptions;
-use eulerdisk::sweep::expand::plan;
-use eulerdisk::sweep::run_point::process_cpu_s;
-use eulerdisk::sweep::run_sweep;
-use eulerdisk::sweep::spec::{self, LoadedSweep};
+use eulerdisk::{
+    parse_sweep, plan, process_cpu_s, run_sweep, ExecOptions, LoadedSweep, ProgressStyle,
+};
 
 fn load() -> String {
     std::fs::read_to_string("/proc/loadavg").unwrap_or_else(|_| "unknown".into())
@@ -34,7 +31,7 @@ fn main() {
     let sweep = LoadedSweep {
         name: "scaling".into(),
         folder: None,
-        file: spec::parse("scaling", &text).expect("the benchmark's sweep parses"),
+        file: parse_sweep("scaling", &text).expect("the benchmark's sweep parses"),
     };
     let plan = plan(&sweep, &[]).expect("the benchmark's sweep is valid");
     let root = std::env::temp_dir().join(format!("eulerdisk-sweep-scaling-{}", std::process::id()));

@@ -157,7 +157,7 @@ pub fn parse_state(mode: Mode, text: Option<&str>) -> Result<[f64; N], EvalComma
 }
 
 /// Evaluates the `mode` equations of `backend` at `y`. Switching the CLI's default backend
-/// is the one line in [`crate::args`] that names it.
+/// is the one line in the `args` module (`DEFAULT_BACKEND`) that names it.
 pub fn evaluate(
     backend: Backend,
     mode: Mode,

@@ -3,23 +3,122 @@
 //! The binary is a thin shell over this library so that integration tests can drive the same
 //! scene loader, parsers and writers the command uses, with random inputs, without a process
 //! per case.
+//!
+//! # The API by theme
+//!
+//! The modules are private; what the binary and the tests use is re-exported here, once, under
+//! one name, so a caller's imports never depend on how the crate is split into files. Where two
+//! modules name things alike, the root name says which (`load_scene`, `load_sweep`,
+//! `sweep_command`, `sound_command`).
+//!
+//! * **The command line**: [`Cli`], [`Command`], [`RunArgs`], [`EvalArgs`], the exit codes
+//!   [`EXIT_INPUT`], [`EXIT_FAILED`], [`EXIT_INTERRUPTED`], and the shared pieces [`backend`],
+//!   [`progress_style`], [`interrupt_on_ctrl_c`].
+//! * **Scenes**: [`load_scene`], [`parse_scene`], [`BUILTIN_SCENES`], [`DEFAULT_SCENE`],
+//!   [`Scene`] (its file, [`SceneFile`], with the command line's own tables [`CliTables`] and
+//!   [`OutputTable`]), [`Override`], [`SceneError`].
+//! * **Running a scene**: [`run_scene`] with [`RunOptions`] gives a [`RunReport`] ([`Ending`],
+//!   [`RunError`]); the model it runs, [`choose`] ([`ModelChoice`], [`RunModel`]); the run's
+//!   origin, [`Provenance`]; one simulation and what it keeps, [`record_run`] ([`SamplePlan`],
+//!   [`Progress`], [`ProgressStyle`], [`Recorded`]).
+//! * **What a run gives**: [`RunData`], [`Summary`], [`Quantity`]; the paper's figures,
+//!   [`paper_charts`], [`write_paper_figures`], [`FIGURE_STEMS`], [`Chart`]; a run built by
+//!   hand, [`SyntheticRun`].
+//! * **Sweeps**: [`sweep_command`]; [`load_sweep`], [`parse_sweep`], [`BUILTIN_SWEEPS`]
+//!   ([`LoadedSweep`], [`Keep`]); [`plan`] ([`Plan`], [`PlanError`], [`run_arguments`]);
+//!   [`run_sweep`] ([`ExecOptions`], [`ExecReport`], [`SweepReport`], [`SweepError`],
+//!   [`Shard`], [`sweep_dir`], [`run_options`], [`process_cpu_s`]); the stored rows,
+//!   [`read_manifest`], [`read_rows`], [`Row`], [`Status`], [`scalar_entries`],
+//!   [`TIMING_COLUMNS`], [`TABLE_FILE`], [`ROWS_DIR`]; [`merge`].
+//! * **Sound**: [`sound_command`]; [`sound_scene`] with [`SoundOptions`] ([`SoundReport`],
+//!   [`SoundError`], [`wav_name`]); the pieces, [`record_force`] ([`ForceTrace`],
+//!   [`TimeSpan`]), [`major_peaks`] ([`PeakRule`]), [`analyse`], [`render`]
+//!   ([`RenderOptions`], [`HEADROOM`]), [`spectrogram`] ([`StftSettings`]).
+//! * **Model commands**: [`model_command`].
+//! * **Evaluation**: [`evaluate`], [`parse_params`], [`parse_state`], [`Backend`],
+//!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
+//! * **Reading the outputs**: [`EVENTS_HEADER`], [`split_fields`].
 #![warn(missing_docs)]
 
-pub mod analysis;
-pub mod args;
-pub mod cli;
-pub mod eval;
-pub mod figures;
-pub mod model_command;
-pub mod model_file;
-pub mod model_show;
-pub mod model_solve;
-pub mod named_numbers;
-pub mod output;
-pub mod quantity;
-pub mod record;
-pub mod run;
-pub mod sample;
-pub mod scene;
-pub mod sound;
-pub mod sweep;
+mod analysis;
+mod args;
+mod cli;
+mod eval;
+mod figures;
+mod model_command;
+mod model_file;
+mod model_show;
+mod model_solve;
+mod named_numbers;
+mod output;
+mod quantity;
+mod record;
+mod run;
+mod sample;
+mod scene;
+mod sound;
+mod sweep;
+
+// The command line: the parsed arguments, the exit codes, the pieces every command shares.
+pub use args::{
+    backend, interrupt_on_ctrl_c, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
+    EXIT_INTERRUPTED,
+};
+pub use cli::{Cli, Command, EvalArgs};
+
+// Scenes: loading, parsing and overriding a scene file.
+pub use scene::{
+    load as load_scene, parse as parse_scene, CliTables, OutputTable, Override, Scene, SceneError,
+    SceneFile, BUILTIN as BUILTIN_SCENES, DEFAULT_SCENE,
+};
+
+// Running a scene: options, report, the model chosen, one simulation and what it keeps.
+pub use run::model::{choose, ModelChoice, RunModel};
+pub use run::plan::SamplePlan;
+pub use run::progress::Progress;
+pub use run::provenance::Provenance;
+pub use run::{
+    record as record_run, run_scene, Ending, ProgressStyle, Recorded, RunError, RunOptions,
+    RunReport,
+};
+
+// What a run gives: its data, its summary, its quantities and the paper's figures.
+pub use analysis::summary::Summary;
+pub use analysis::synthetic::SyntheticRun;
+pub use figures::chart::Chart;
+pub use figures::paper::{paper_charts, write_paper_figures, FIGURE_STEMS};
+pub use quantity::Quantity;
+pub use record::RunData;
+
+// Sweeps: the command, the sweep file, its plan, its execution and its stored rows.
+pub use sweep::args::command as sweep_command;
+pub use sweep::columns::{scalar_entries, TIMING_COLUMNS};
+pub use sweep::execute::{ExecOptions, ExecReport};
+pub use sweep::expand::{plan, run_arguments, Plan, PlanError};
+pub use sweep::merge::merge;
+pub use sweep::row::{Row, Status};
+pub use sweep::run_point::{process_cpu_s, run_options};
+pub use sweep::shard::Shard;
+pub use sweep::spec::{
+    load as load_sweep, parse as parse_sweep, Keep, LoadedSweep, BUILTIN as BUILTIN_SWEEPS,
+};
+pub use sweep::store::{read_manifest, read_rows, ROWS_DIR, TABLE_FILE};
+pub use sweep::{run_sweep, sweep_dir, SweepError, SweepReport};
+
+// Sound: the command, a scene's rattle, and the pieces it is made of.
+pub use sound::args::command as sound_command;
+pub use sound::peaks::{major_peaks, PeakRule};
+pub use sound::render::{render, RenderOptions, HEADROOM};
+pub use sound::spectrogram::{spectrogram, StftSettings};
+pub use sound::trace::{record_force, ForceTrace, TimeSpan};
+pub use sound::{analyse, sound_scene, wav_name, SoundError, SoundOptions, SoundReport};
+
+// Model commands: `eulerdisk model ...`.
+pub use model_command::run as model_command;
+
+// Evaluation: the right-hand side at one state, and the parsers of its arguments.
+pub use eval::{evaluate, parse_params, parse_state, Backend, EvalCommandError};
+pub use named_numbers::parse_named_numbers;
+
+// Reading the outputs: the events table's header and one CSV line's fields.
+pub use output::tables::{split_fields, EVENTS_HEADER};

@@ -3,32 +3,28 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use eulerdisk::args::{
-    backend, interrupt_on_ctrl_c, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
-    EXIT_INTERRUPTED,
+use eulerdisk::{
+    backend, evaluate, interrupt_on_ctrl_c, load_scene, parse_params, parse_scene, parse_state,
+    progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance, RunArgs, RunOptions,
+    BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
 };
-use eulerdisk::cli::{Cli, Command, EvalArgs};
-use eulerdisk::eval::{evaluate, parse_params, parse_state};
-use eulerdisk::run::provenance::Provenance;
-use eulerdisk::run::{run_scene, Ending, RunOptions};
-use eulerdisk::scene::{self, BUILTIN};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         None => run(RunArgs {
-            scene: scene::DEFAULT_SCENE.to_string(),
+            scene: DEFAULT_SCENE.to_string(),
             out: "out".into(),
             ..RunArgs::default()
         }),
         Some(Command::Run(args)) => run(args),
         Some(Command::Eval(args)) => eval(&args),
-        Some(Command::Sound(args)) => eulerdisk::sound::args::command(&args),
-        Some(Command::Sweep(args)) => eulerdisk::sweep::args::command(&args),
-        Some(Command::Model(command)) => eulerdisk::model_command::run(&command),
+        Some(Command::Sound(args)) => eulerdisk::sound_command(&args),
+        Some(Command::Sweep(args)) => eulerdisk::sweep_command(&args),
+        Some(Command::Model(command)) => eulerdisk::model_command(&command),
         Some(Command::Scenes) => {
-            for (name, text) in BUILTIN {
-                let description = scene::parse(name, text, &[])
+            for (name, text) in BUILTIN_SCENES {
+                let description = parse_scene(name, text, &[])
                     .ok()
                     .and_then(|s| s.file.cli.description)
                     .unwrap_or_default();
@@ -65,7 +61,7 @@ fn eval(args: &EvalArgs) -> ExitCode {
 
 fn run(args: RunArgs) -> ExitCode {
     let loaded = args.overrides().and_then(|o| {
-        let scene = scene::load(&args.scene, &o)?;
+        let scene = load_scene(&args.scene, &o)?;
         Ok((scene, o))
     });
     let (scene, overrides) = match loaded {
@@ -95,7 +91,7 @@ fn run(args: RunArgs) -> ExitCode {
             scene.file.settings.solver.atol,
             args.out.display()
         );
-        let choice = eulerdisk::run::model::choose(&scene, opts.backend, opts.figures);
+        let choice = eulerdisk::choose(&scene, opts.backend, opts.figures);
         eprintln!("model: {}: {}", choice.model.label(), choice.reason);
     }
     match run_scene(&scene, &opts, &interrupt) {

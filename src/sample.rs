@@ -38,7 +38,7 @@ pub struct DiskState {
 impl DiskState {
     /// The state as an array in the rolling models' index order
     /// (X, Y, Z, V_X, V_Y, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z).
-    pub fn to_array(&self) -> [f64; 12] {
+    pub fn to_array(self) -> [f64; 12] {
         [
             self.x,
             self.y,

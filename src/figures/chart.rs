@@ -100,7 +100,7 @@ impl Chart {
             .collect()
     }
 
-    /// Whether no data line (reference lines, drawn [`Stroke::Thin`], do not count) has a
+    /// Whether no data line (reference lines, drawn `Stroke::Thin`, do not count) has a
     /// point to draw.
     pub fn is_empty(&self) -> bool {
         self.lines

@@ -95,7 +95,7 @@ pub fn read_stop_row(events_csv: &str) -> Option<(String, String)> {
     (fields.len() == 7 && fields[2] == "stop").then(|| (fields[3].clone(), fields[5].clone()))
 }
 
-/// Splits one CSV line into its fields, undoing [`quoted`].
+/// Splits one CSV line into its fields, undoing the quoting of the tables' writer (`quoted`).
 pub fn split_fields(line: &str) -> Vec<String> {
     let mut fields = vec![String::new()];
     let mut in_quotes = false;

@@ -43,8 +43,8 @@ pub struct SamplePlan {
 
 impl SamplePlan {
     /// The plan of a run over `[t0, t_end]` whose trajectory is sampled at `rate`: the fine
-    /// grid as fine as [`FINE_RATE_MAX`] allows (never coarser than the trajectory), finely
-    /// sampled in the first and the last [`WINDOW`].
+    /// grid as fine as `FINE_RATE_MAX` allows (never coarser than the trajectory), finely
+    /// sampled in the first and the last `WINDOW`.
     pub fn new(t0: f64, t_end: f64, rate: f64) -> SamplePlan {
         let every = (FINE_RATE_MAX / rate).floor().max(1.0) as u64;
         SamplePlan {

@@ -5,8 +5,7 @@
 use std::process::{Command, Output};
 
 use equations::Mode;
-use eulerdisk::eval::{evaluate, parse_params, parse_state, Backend};
-use eulerdisk::named_numbers::parse_named_numbers;
+use eulerdisk::{evaluate, parse_named_numbers, parse_params, parse_state, Backend};
 use proptest::prelude::*;
 use serde_json::Value;
 

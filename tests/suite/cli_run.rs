@@ -6,8 +6,7 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use eulerdisk::output::tables::EVENTS_HEADER;
-use eulerdisk::quantity::Quantity;
+use eulerdisk::{Quantity, EVENTS_HEADER};
 
 fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
@@ -40,7 +39,7 @@ fn short_run_writes_every_file() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 
     let (header, rows) = csv(&out.join("trajectory.csv"));
-    let scene = eulerdisk::scene::load("tangent-toy", &[]).unwrap();
+    let scene = eulerdisk::load_scene("tangent-toy", &[]).unwrap();
     let mut expected = vec!["t_s".to_string(), "mode".to_string()];
     expected.extend(scene.quantities.iter().map(|q| q.column()));
     assert_eq!(header, expected);
@@ -404,7 +403,7 @@ fn every_builtin_scene_is_listed() {
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
-    for (name, _) in eulerdisk::scene::BUILTIN {
+    for (name, _) in eulerdisk::BUILTIN_SCENES {
         assert!(text.contains(name), "{name}");
     }
 }

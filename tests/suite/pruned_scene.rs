@@ -5,21 +5,19 @@
 use std::fs;
 use std::sync::atomic::AtomicBool;
 
-use eulerdisk::eval::Backend;
-use eulerdisk::quantity::Quantity;
-use eulerdisk::run::model::{choose, RunModel};
-use eulerdisk::run::provenance::Provenance;
-use eulerdisk::run::{run_scene, ProgressStyle, RunOptions, RunReport};
-use eulerdisk::scene::{self, Override};
+use eulerdisk::{
+    choose, load_scene, run_scene, Backend, Override, ProgressStyle, Provenance, Quantity,
+    RunModel, RunOptions, RunReport, Scene,
+};
 
 const PRUNED: &str = "tangent-toy-pruned";
 
-fn load(name: &str, sets: &[&str]) -> scene::Scene {
+fn load(name: &str, sets: &[&str]) -> Scene {
     let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
-    scene::load(name, &overrides).unwrap()
+    load_scene(name, &overrides).unwrap()
 }
 
-fn short_run(scene: &scene::Scene, figures: bool) -> (tempfile::TempDir, RunReport) {
+fn short_run(scene: &Scene, figures: bool) -> (tempfile::TempDir, RunReport) {
     let dir = tempfile::tempdir().unwrap();
     let opts = RunOptions {
         out_dir: dir.path().to_path_buf(),

@@ -5,12 +5,11 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use eulerdisk::eval::Backend;
-use eulerdisk::run::provenance::Provenance;
-use eulerdisk::run::{run_scene, Ending, ProgressStyle, RunOptions};
-use eulerdisk::scene::{self, Override};
+use eulerdisk::{
+    load_scene, run_scene, Backend, Ending, Override, ProgressStyle, Provenance, RunOptions,
+};
 
-fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
+fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::RunReport) {
     let overrides = [Override::new("run", "t_end", t_end)];
     run_in_tempdir(&overrides, backend, &AtomicBool::new(false))
 }
@@ -20,8 +19,8 @@ fn run_in_tempdir(
     overrides: &[Override],
     backend: Backend,
     interrupt: &AtomicBool,
-) -> (tempfile::TempDir, eulerdisk::run::RunReport) {
-    let scene = scene::load("tangent-toy", overrides).unwrap();
+) -> (tempfile::TempDir, eulerdisk::RunReport) {
+    let scene = load_scene("tangent-toy", overrides).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let opts = RunOptions {
         out_dir: dir.path().to_path_buf(),

@@ -2,17 +2,14 @@
 
 use std::sync::atomic::AtomicBool;
 
-use eulerdisk::record::RunData;
-use eulerdisk::run::model::ModelChoice;
-use eulerdisk::run::plan::SamplePlan;
-use eulerdisk::run::progress::Progress;
-use eulerdisk::run::{record, ProgressStyle};
-use eulerdisk::scene::{self, Override};
+use eulerdisk::{
+    load_scene, record_run, ModelChoice, Override, Progress, ProgressStyle, RunData, SamplePlan,
+};
 
 /// Runs a built-in scene for `t_end` seconds with the full models (the checks read `X`, `Y`
 /// and the energy) and returns what it recorded: every sample at the scene's rate.
 fn simulate(name: &str, t_end: f64) -> RunData {
-    let scene = scene::load(name, &[Override::new("run", "t_end", t_end)]).unwrap();
+    let scene = load_scene(name, &[Override::new("run", "t_end", t_end)]).unwrap();
     let plan = SamplePlan {
         every: 1,
         first: None,
@@ -21,7 +18,7 @@ fn simulate(name: &str, t_end: f64) -> RunData {
     };
     let interrupt = AtomicBool::new(false);
     let mut progress = Progress::new(ProgressStyle::Quiet, t_end);
-    let recorded = record(
+    let recorded = record_run(
         &scene,
         &ModelChoice::default(),
         plan,

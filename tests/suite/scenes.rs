@@ -1,13 +1,15 @@
 //! Scene loading: every shipped scene validates, every rejection names its key, and random
 //! edits never panic.
 
-use eulerdisk::scene::{self, Override, SceneError, BUILTIN};
+use eulerdisk::{
+    load_scene, parse_scene, Override, Scene, SceneError, BUILTIN_SCENES, DEFAULT_SCENE,
+};
 use proptest::prelude::*;
 
 const PAPER: &str = include_str!("../../scenes/tangent-toy.toml");
 
-fn with_override(spec: &str) -> Result<scene::Scene, SceneError> {
-    scene::parse("tangent-toy", PAPER, &[Override::parse(spec)?])
+fn with_override(spec: &str) -> Result<Scene, SceneError> {
+    parse_scene("tangent-toy", PAPER, &[Override::parse(spec)?])
 }
 
 #[test]
@@ -20,14 +22,14 @@ fn every_shipped_scene_loads_and_validates() {
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
     on_disk.sort();
-    let mut builtin: Vec<String> = BUILTIN.iter().map(|(n, _)| n.to_string()).collect();
+    let mut builtin: Vec<String> = BUILTIN_SCENES.iter().map(|(n, _)| n.to_string()).collect();
     builtin.sort();
     assert_eq!(on_disk, builtin, "scenes/ and the built-in list differ");
     for name in &on_disk {
         let path = dir.join(format!("{name}.toml"));
-        let s = scene::load(path.to_str().unwrap(), &[]).unwrap_or_else(|e| panic!("{e}"));
+        let s = load_scene(path.to_str().unwrap(), &[]).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(&s.name, name);
-        let s2 = scene::load(name, &[]).unwrap();
+        let s2 = load_scene(name, &[]).unwrap();
         assert_eq!(s, s2);
     }
 }
@@ -36,10 +38,10 @@ fn every_shipped_scene_loads_and_validates() {
 /// the same scene: the CLI's tables and the equations crate's keep every key.
 #[test]
 fn every_shipped_scene_round_trips_through_its_settings() {
-    for (name, text) in BUILTIN {
-        let s = scene::parse(name, text, &[]).unwrap();
+    for (name, text) in BUILTIN_SCENES {
+        let s = parse_scene(name, text, &[]).unwrap();
         let written = toml::to_string(&s.file).unwrap();
-        let again = scene::parse(name, &written, &[]).unwrap_or_else(|e| panic!("{e}\n{written}"));
+        let again = parse_scene(name, &written, &[]).unwrap_or_else(|e| panic!("{e}\n{written}"));
         assert_eq!(again, s, "{name}:\n{written}");
         // The description and the outputs are the CLI's own; the rest the equations crate's.
         let tree: toml::Table = toml::from_str(&written).unwrap();
@@ -58,7 +60,7 @@ fn a_scene_without_solver_takes_the_library_defaults() {
     let start = PAPER.find("[solver]").unwrap();
     let end = start + PAPER[start..].find("[run]").unwrap();
     let text = format!("{}{}", &PAPER[..start], &PAPER[end..]);
-    let s = scene::parse("no-solver", &text, &[]).unwrap();
+    let s = parse_scene("no-solver", &text, &[]).unwrap();
     assert_eq!(s.file.settings.solver, equations::SolverTable::default());
     assert_eq!(
         s.config,
@@ -68,7 +70,7 @@ fn a_scene_without_solver_takes_the_library_defaults() {
             ..equations::DiskConfig::default()
         }
     );
-    let err = scene::parse(
+    let err = parse_scene(
         "t",
         &PAPER.replace("[solver]", "[solver]\nquantities = 1"),
         &[],
@@ -79,7 +81,7 @@ fn a_scene_without_solver_takes_the_library_defaults() {
 
 #[test]
 fn the_paper_scene_is_the_papers() {
-    let s = scene::load(scene::DEFAULT_SCENE, &[]).unwrap();
+    let s = load_scene(DEFAULT_SCENE, &[]).unwrap();
     assert_eq!(s.params, equations::DiskParams::paper());
     assert_eq!(s.config.rtol, 1e-8);
     assert_eq!(s.config.atol, 1e-10);
@@ -90,7 +92,7 @@ fn the_paper_scene_is_the_papers() {
     assert_eq!(s.initial.state.slip.speed, 0.0);
 }
 
-fn expect_key(result: Result<scene::Scene, SceneError>, key: &str, words: &str) {
+fn expect_key(result: Result<Scene, SceneError>, key: &str, words: &str) {
     let err = result.expect_err("should be rejected");
     let text = err.to_string();
     assert!(
@@ -170,7 +172,7 @@ fn each_rule_names_its_key() {
     let rolling_only = Override::parse("modes.allowed=[\"rolling\"]").unwrap();
     let slipping = Override::parse("initial.V_X=0.5").unwrap();
     expect_key(
-        scene::parse("t", PAPER, &[rolling_only, slipping]),
+        parse_scene("t", PAPER, &[rolling_only, slipping]),
         "initial.v_C",
         "sliding",
     );
@@ -212,23 +214,19 @@ fn shape_errors_name_the_key() {
     );
     let without_mass = PAPER.replace("m = 0.4387", "");
     expect_key(
-        scene::parse("t", &without_mass, &[]),
+        parse_scene("t", &without_mass, &[]),
         "disk.m",
         "missing field",
     );
     let without_run = PAPER.replace("[run]", "[runs]");
-    expect_key(
-        scene::parse("t", &without_run, &[]),
-        "runs",
-        "unknown field",
-    );
+    expect_key(parse_scene("t", &without_run, &[]), "runs", "unknown field");
 }
 
 #[test]
 fn all_issues_are_reported_together() {
     let overrides =
         ["disk.m=-1", "solver.rtol=0", "initial.theta=7"].map(|s| Override::parse(s).unwrap());
-    let err = scene::parse("t", PAPER, &overrides).unwrap_err();
+    let err = parse_scene("t", PAPER, &overrides).unwrap_err();
     let keys = err.keys();
     for key in ["disk.m", "solver.rtol", "initial.theta"] {
         assert!(keys.contains(&key), "{keys:?}");
@@ -255,7 +253,7 @@ fn overrides_replace_values_and_bad_overrides_are_named() {
     assert_eq!(s.config.error_norm, paper.error_norm);
     assert_eq!(s.config.step_control, paper.step_control);
     for bad in ["mu_d=0.1", "friction.mu_d", ".x=1", "a.b.c=1"] {
-        let err = Override::parse(bad).and_then(|o| scene::parse("t", PAPER, &[o]));
+        let err = Override::parse(bad).and_then(|o| parse_scene("t", PAPER, &[o]));
         assert!(err.is_err(), "{bad}");
         assert!(err
             .unwrap_err()
@@ -266,7 +264,7 @@ fn overrides_replace_values_and_bad_overrides_are_named() {
 
 #[test]
 fn unknown_scene_lists_the_builtin_ones() {
-    let err = scene::load("no-such-scene", &[]).unwrap_err();
+    let err = load_scene("no-such-scene", &[]).unwrap_err();
     assert!(err.to_string().contains("tangent-toy"), "{err}");
 }
 
@@ -326,7 +324,7 @@ proptest! {
     ) {
         let spec = format!("{table}.{key}={value}");
         let o = Override::parse(&spec).unwrap();
-        match scene::parse("t", PAPER, &[o]) {
+        match parse_scene("t", PAPER, &[o]) {
             Ok(s) => {
                 let p = s.params;
                 for v in [p.m, p.a, p.g, p.mu_d, p.mu_st, p.mu_a, p.w_z] {
@@ -356,6 +354,6 @@ proptest! {
     /// Random bytes as a scene never panic the loader.
     #[test]
     fn random_text_never_panics(text in ".{0,200}") {
-        let _ = scene::parse("t", &text, &[]);
+        let _ = parse_scene("t", &text, &[]);
     }
 }

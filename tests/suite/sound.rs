@@ -3,15 +3,11 @@
 
 use std::f64::consts::{PI, TAU};
 
-use eulerdisk::eval::Backend;
-use eulerdisk::run::model::RunModel;
-use eulerdisk::scene::{self, Override};
-use eulerdisk::sound::peaks::{major_peaks, PeakRule};
-use eulerdisk::sound::rate::rate_between;
-use eulerdisk::sound::render::{render, RenderOptions, HEADROOM};
-use eulerdisk::sound::spectrogram::{spectrogram, StftSettings};
-use eulerdisk::sound::trace::{record_force, ForceTrace, TimeSpan};
-use eulerdisk::sound::{analyse, sound_scene, wav_name, SoundOptions};
+use eulerdisk::{
+    analyse, load_scene, major_peaks, record_force, render, sound_scene, spectrogram, wav_name,
+    Backend, ForceTrace, Override, PeakRule, RenderOptions, RunModel, SoundOptions, StftSettings,
+    TimeSpan, DEFAULT_SCENE, HEADROOM,
+};
 use proptest::prelude::*;
 
 const FORCE_RATE: f64 = 20_000.0;
@@ -71,7 +67,13 @@ proptest! {
         for (p, t) in peaks.iter().zip(&expected) {
             prop_assert!((p.t - t).abs() < 1e-5, "peak at {} expected {}", p.t, t);
         }
-        let r = rate_between(&peaks, 0.0, seconds);
+        // The rate of a window clear of both ends, as the analysis reports it.
+        let analysis = analyse(&trace, &SoundOptions::default()).unwrap();
+        let r = analysis
+            .rates
+            .iter()
+            .find(|r| r.from >= 0.5 && r.to <= seconds - 0.5)
+            .unwrap();
         prop_assert!((r.per_second.unwrap() / rate - 1.0).abs() < 1e-5, "{:?}", r);
     }
 }
@@ -150,11 +152,7 @@ fn spectrogram_of_a_pure_tone_peaks_at_its_bin() {
 #[test]
 fn short_paper_scene_reports_its_knock_rate() {
     let t_end = 3.0;
-    let scene = scene::load(
-        scene::DEFAULT_SCENE,
-        &[Override::new("run", "t_end", t_end)],
-    )
-    .unwrap();
+    let scene = load_scene(DEFAULT_SCENE, &[Override::new("run", "t_end", t_end)]).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let report = sound_scene(
         &scene,
@@ -198,7 +196,7 @@ fn short_paper_scene_reports_its_knock_rate() {
 #[test]
 #[ignore]
 fn paper_scene_full_run_sound() {
-    let scene = scene::load(scene::DEFAULT_SCENE, &[]).unwrap();
+    let scene = load_scene(DEFAULT_SCENE, &[]).unwrap();
     let keep = std::env::var_os("EULERDISK_SOUND_OUT").map(std::path::PathBuf::from);
     let tmp = tempfile::tempdir().unwrap();
     let dir = keep.unwrap_or_else(|| tmp.path().to_path_buf());
@@ -209,7 +207,7 @@ fn paper_scene_full_run_sound() {
 
 #[test]
 fn time_compression_is_named_in_the_file_and_the_summary() {
-    let scene = scene::load(scene::DEFAULT_SCENE, &[Override::new("run", "t_end", 1.5)]).unwrap();
+    let scene = load_scene(DEFAULT_SCENE, &[Override::new("run", "t_end", 1.5)]).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let mut opts = SoundOptions {
         figures: false,
@@ -235,11 +233,7 @@ fn time_compression_is_named_in_the_file_and_the_summary() {
 fn sound_runs_the_pruned_models_in_still_air() {
     let t_end = 0.5;
     let rate = 2000.0;
-    let scene = scene::load(
-        scene::DEFAULT_SCENE,
-        &[Override::new("run", "t_end", t_end)],
-    )
-    .unwrap();
+    let scene = load_scene(DEFAULT_SCENE, &[Override::new("run", "t_end", t_end)]).unwrap();
     let pruned = record_force(&scene, Backend::Generated, rate).unwrap();
     let reference = record_force(&scene, Backend::Reference, rate).unwrap();
     assert_eq!(
@@ -260,8 +254,8 @@ fn sound_runs_the_pruned_models_in_still_air() {
     println!("largest difference of N/mg, pruned vs reference: {worst:e}");
     assert!(worst < 1e-6, "{worst:e}");
 
-    let airy = scene::load(
-        scene::DEFAULT_SCENE,
+    let airy = load_scene(
+        DEFAULT_SCENE,
         &[
             Override::new("run", "t_end", 0.05),
             Override::new("air", "mu_a", 0.01),

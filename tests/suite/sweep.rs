@@ -8,19 +8,12 @@ use std::process::Command;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
-use eulerdisk::output::tables::split_fields;
-use eulerdisk::run::{run_scene, ProgressStyle};
-use eulerdisk::scene::{self, Override};
-use eulerdisk::sweep::columns::{scalar_entries, TIMING_COLUMNS};
-use eulerdisk::sweep::execute::{ExecOptions, ExecReport};
-use eulerdisk::sweep::expand::{plan, run_arguments, Plan, PlanError};
-use eulerdisk::sweep::merge::merge;
-use eulerdisk::sweep::row::{Row, Status};
-use eulerdisk::sweep::run_point::run_options;
-use eulerdisk::sweep::shard::Shard;
-use eulerdisk::sweep::spec::{self, Keep, LoadedSweep};
-use eulerdisk::sweep::store::{read_manifest, read_rows, ROWS_DIR, TABLE_FILE};
-use eulerdisk::sweep::{run_sweep, sweep_dir};
+use eulerdisk::{
+    load_scene, load_sweep, merge, plan, read_manifest, read_rows, run_arguments, run_options,
+    run_scene, run_sweep, scalar_entries, split_fields, sweep_dir, ExecOptions, ExecReport, Keep,
+    LoadedSweep, Override, Plan, PlanError, ProgressStyle, Row, Shard, Status, BUILTIN_SWEEPS,
+    ROWS_DIR, TABLE_FILE, TIMING_COLUMNS,
+};
 
 const BIN: &str = env!("CARGO_BIN_EXE_eulerdisk");
 
@@ -45,7 +38,7 @@ keys = ["n_over_mg_max", "err_n_over_mg_max"]
 fn sweep_file(dir: &Path, text: &str) -> LoadedSweep {
     let path = dir.join("s.toml");
     fs::write(&path, text).unwrap();
-    spec::load(path.to_str().unwrap()).unwrap()
+    load_sweep(path.to_str().unwrap()).unwrap()
 }
 
 fn small_plan(dir: &Path) -> Plan {
@@ -114,7 +107,7 @@ fn each_row_is_the_run_of_its_point_bit_for_bit() {
     for (point, row) in &rows {
         let sets = run_arguments(d, &d.points[*point]);
         let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
-        let scene = scene::load(&d.scene_name, &overrides).unwrap();
+        let scene = load_scene(&d.scene_name, &overrides).unwrap();
         let dir = tmp.path().join(format!("lib{point}"));
         let report = run_scene(
             &scene,
@@ -286,8 +279,7 @@ fn resume_runs_only_the_points_without_a_row() {
     assert_eq!(untimed_table(&out), table);
     // Another sweep is refused in the same folder instead of being mixed in.
     let other =
-        eulerdisk::sweep::expand::plan(&sweep_file(tmp.path(), &SMALL.replace("0.3", "0.2")), &[])
-            .unwrap();
+        eulerdisk::plan(&sweep_file(tmp.path(), &SMALL.replace("0.3", "0.2")), &[]).unwrap();
     let err = run_sweep(&other, &out, &opts(1, None), &AtomicBool::new(false)).unwrap_err();
     assert!(err.to_string().contains("another sweep"), "{err}");
 }
@@ -408,7 +400,7 @@ fn rejected(text: &str) -> PlanError {
     let tmp = tempfile::tempdir().unwrap();
     let path = tmp.path().join("bad.toml");
     fs::write(&path, text).unwrap();
-    match spec::load(path.to_str().unwrap()) {
+    match load_sweep(path.to_str().unwrap()) {
         Err(e) => PlanError::Spec(e),
         Ok(l) => plan(&l, &[]).map(|_| ()).unwrap_err(),
     }
@@ -528,13 +520,13 @@ fn bad_sweep_files_are_rejected_by_key_and_value() {
 
 #[test]
 fn builtin_sweeps_validate_and_record_their_definition() {
-    for (name, _) in spec::BUILTIN {
-        let p = plan(&spec::load(name).unwrap(), &["run.t_end=0.1".to_string()]).unwrap();
+    for (name, _) in BUILTIN_SWEEPS {
+        let p = plan(&load_sweep(name).unwrap(), &["run.t_end=0.1".to_string()]).unwrap();
         assert!(p.definition.points.len() >= 9, "{name}");
     }
     // A `--set` that every point's axis value replaces does not reject the sweep.
     let p = plan(
-        &spec::load("speed-accuracy").unwrap(),
+        &load_sweep("speed-accuracy").unwrap(),
         &["solver.rtol=3".to_string()],
     )
     .unwrap();
@@ -542,7 +534,7 @@ fn builtin_sweeps_validate_and_record_their_definition() {
     // The definition written first is the one read back.
     let tmp = tempfile::tempdir().unwrap();
     let plan = plan(
-        &spec::load("paper-friction").unwrap(),
+        &load_sweep("paper-friction").unwrap(),
         &["run.t_end=0.05".to_string()],
     )
     .unwrap();
