@@ -38,6 +38,20 @@
 //! * **Evaluation**: [`evaluate`], [`parse_params`], [`parse_state`], [`Backend`],
 //!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
 //! * **Reading the outputs**: [`EVENTS_HEADER`], [`split_fields`].
+//!
+//! ```
+//! use eulerdisk::{load_scene, split_fields, Override, DEFAULT_SCENE};
+//!
+//! let shorter = Override::parse("run.t_end=0.5").unwrap();
+//! let scene = load_scene(DEFAULT_SCENE, &[shorter]).unwrap();
+//! assert_eq!(scene.file.settings.run.t_end, 0.5);
+//! // A bad value is rejected by its key.
+//! let negative = Override::parse("run.t_end=-1").unwrap();
+//! let err = load_scene(DEFAULT_SCENE, &[negative]).unwrap_err();
+//! assert!(err.to_string().contains("run.t_end"), "{err}");
+//! // The tables quote a field that holds a comma.
+//! assert_eq!(split_fields(r#"0.5,"a, b""#), ["0.5", "a, b"]);
+//! ```
 #![warn(missing_docs)]
 
 mod analysis;
