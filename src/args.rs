@@ -23,6 +23,21 @@ pub const EXIT_FAILED: u8 = 1;
 /// Exit code of an interrupted run (128 + SIGINT, as shells report it).
 pub const EXIT_INTERRUPTED: u8 = 130;
 
+/// Prints `value` as pretty JSON on standard output: success, or a failure naming why it could
+/// not be printed. The one way `eval` and `model eval` answer.
+pub fn print_json<T: serde::Serialize>(value: &T) -> std::process::ExitCode {
+    match serde_json::to_string_pretty(value) {
+        Ok(json) => {
+            println!("{json}");
+            std::process::ExitCode::SUCCESS
+        }
+        Err(err) => {
+            eprintln!("error: cannot print the result: {err}");
+            std::process::ExitCode::from(EXIT_FAILED)
+        }
+    }
+}
+
 /// `eulerdisk run`.
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {

@@ -75,7 +75,7 @@ mod sweep;
 
 // The command line: the parsed arguments, the exit codes, the pieces every command shares.
 pub use args::{
-    backend, interrupt_on_ctrl_c, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
+    backend, interrupt_on_ctrl_c, print_json, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
     EXIT_INTERRUPTED,
 };
 pub use cli::{Cli, Command, EvalArgs};

@@ -5,8 +5,8 @@ use std::process::ExitCode;
 use clap::Parser;
 use eulerdisk::{
     backend, evaluate, interrupt_on_ctrl_c, load_scene, parse_params, parse_scene, parse_state,
-    progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance, RunArgs, RunOptions,
-    BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    print_json, progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance, RunArgs,
+    RunOptions, BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
 };
 
 fn main() -> ExitCode {
@@ -42,16 +42,7 @@ fn eval(args: &EvalArgs) -> ExitCode {
         evaluate(backend(args.reference), mode, &p, &y)
     });
     match result {
-        Ok(e) => match serde_json::to_string_pretty(&e) {
-            Ok(json) => {
-                println!("{json}");
-                ExitCode::SUCCESS
-            }
-            Err(err) => {
-                eprintln!("error: cannot print the result: {err}");
-                ExitCode::from(EXIT_FAILED)
-            }
-        },
+        Ok(e) => print_json(&e),
         Err(err) => {
             eprintln!("error: {err}");
             ExitCode::from(EXIT_INPUT)

@@ -5,7 +5,7 @@
 //! is an input error (exit 2); a failed integration or an unwritable output is a failure
 //! (exit 1).
 
-use crate::args::{EXIT_FAILED, EXIT_INPUT};
+use crate::args::{print_json, EXIT_FAILED, EXIT_INPUT};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
 use crate::model_file::{evaluate, load, params, select, state, ModelFileError};
 use crate::model_show::{Format, ModelName};
@@ -91,16 +91,7 @@ fn eval(args: &ModelEvalArgs) -> ExitCode {
         evaluate(model, args.t, &point.state, &point.params)
     });
     match result {
-        Ok(evaluation) => match serde_json::to_string_pretty(&evaluation) {
-            Ok(json) => {
-                println!("{json}");
-                ExitCode::SUCCESS
-            }
-            Err(err) => {
-                eprintln!("error: cannot print the result: {err}");
-                ExitCode::from(EXIT_FAILED)
-            }
-        },
+        Ok(evaluation) => print_json(&evaluation),
         Err(err) => input_error(err),
     }
 }
