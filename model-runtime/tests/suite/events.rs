@@ -1,5 +1,6 @@
 //! Exact event location and the hybrid driver on systems with closed-form event times.
 
+use crate::common::ball::{Ball, BallGuard, Flights, Impact, G, RESTITUTION};
 use crate::common::{dist, stop, up_crossings, ClockGuards, Harmonic, Kepler, OneGuard};
 use model_runtime::{
     ChatterLimit, Crossed, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError,
@@ -7,78 +8,8 @@ use model_runtime::{
     Sample, Stepper, StopReason, Tolerance, Transition, TransitionKind,
 };
 
-const G: f64 = 9.81;
-const RESTITUTION: f64 = 0.9;
-
-/// A ball dropped from height 1 bouncing with restitution 0.9: y = (height, velocity).
-struct Ball;
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum BallGuard {
-    Ground,
-}
-const BALL_GUARDS: [GuardSpec<BallGuard>; 1] = [GuardSpec {
-    id: BallGuard::Ground,
-    direction: Direction::Down,
-}];
-impl HybridSystem<2> for Ball {
-    type Mode = ();
-    type Guard = BallGuard;
-    type Stop = ();
-    type Note = ();
-    fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
-        *dy = [y[1], -G];
-        Ok(())
-    }
-    fn jacobian(
-        &self,
-        _: (),
-        _t: f64,
-        _y: &[f64; 2],
-        j: &mut [[f64; 2]; 2],
-    ) -> Result<(), EvalError> {
-        *j = [[0.0, 1.0], [0.0, 0.0]];
-        Ok(())
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<BallGuard>] {
-        &BALL_GUARDS
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 2],
-        _dy: &[f64; 2],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[0];
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<2, BallGuard>,
-    ) -> Result<Transition<2, (), ()>, EvalError> {
-        Ok(Transition::Continue {
-            y: [0.0, -RESTITUTION * hit.y[1]],
-            note: (),
-        })
-    }
-}
-
-/// Impact times of the ball in closed form.
-fn impact_times(count: usize) -> Vec<f64> {
-    let t1 = (2.0 / G).sqrt();
-    let v1 = G * t1;
-    let mut times = vec![t1];
-    for k in 1..count {
-        let last = times[k - 1];
-        times.push(last + 2.0 * RESTITUTION.powi(k as i32) * v1 / G);
-    }
-    times
-}
-
 fn bounce<S: Stepper<2>>(stepper: S) {
-    let expected = impact_times(10);
+    let expected = Flights::of(&Ball::dropped(), 1.0, 0.0).impact_times(10);
     let t_end = expected[9] + 0.05;
     let options = HybridOptions {
         sample_rate: Some(20.0),
@@ -87,7 +18,7 @@ fn bounce<S: Stepper<2>>(stepper: S) {
     let mut solver = HybridSolver::new(stepper, Tolerance::scalar(1e-10, 1e-12), options).unwrap();
     let mut rec = Recorder::new();
     let out = solver
-        .run(&mut Ball, (), 0.0, &[1.0, 0.0], t_end, &mut rec)
+        .run(&mut Ball::dropped(), (), 0.0, &[1.0, 0.0], t_end, &mut rec)
         .unwrap();
     assert_eq!(out.stop, StopReason::EndTime);
     assert_eq!(out.t, t_end);
@@ -427,7 +358,7 @@ struct Counter {
     steps: u64,
     samples: u64,
 }
-impl Observer<2, (), BallGuard> for Counter {
+impl Observer<2, (), BallGuard, Impact> for Counter {
     fn on_step(&mut self, s: &model_runtime::StepView<'_, 2, ()>) {
         assert!(s.t1 > s.t0 && s.dense.is_none());
         self.steps += 1;
@@ -450,7 +381,7 @@ fn observer_sees_every_accepted_step() {
         samples: 0,
     };
     let out = solver
-        .run(&mut Ball, (), 0.0, &[1.0, 0.0], 3.0, &mut c)
+        .run(&mut Ball::dropped(), (), 0.0, &[1.0, 0.0], 3.0, &mut c)
         .unwrap();
     assert_eq!(c.steps, out.stats.steps);
     assert_eq!(c.samples, 0);

@@ -2,74 +2,12 @@
 //! the record of the event that caused it: in physical time, through regularised time, and
 //! ahead of a restart that fails.
 
+use crate::common::ball::{Ball, BallGuard, Flights, Impact};
 use model_runtime::{
     Clocked, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError, HybridOptions,
     HybridSolver, HybridSystem, PhysicalTime, Recorder, Regularised, SolveError, StopReason,
     TimeScale, Tolerance, Transition, TransitionKind,
 };
-
-const G: f64 = 9.81;
-const RESTITUTION: f64 = 0.9;
-
-/// What the ball's transition map tells the observer about an impact.
-#[derive(Clone, Debug, PartialEq)]
-struct Impact {
-    /// 1 for the first impact.
-    number: u32,
-    /// The speed just before it (m/s), read from the event state.
-    speed: f64,
-    /// A label built at the impact: a note need not be `Copy`.
-    label: String,
-}
-
-/// A ball dropped from height 1, bouncing with restitution 0.9; y = (height, velocity).
-struct Ball {
-    impacts: u32,
-}
-const GROUND: [GuardSpec<()>; 1] = [GuardSpec {
-    id: (),
-    direction: Direction::Down,
-}];
-
-impl HybridSystem<2> for Ball {
-    type Mode = ();
-    type Guard = ();
-    type Stop = ();
-    type Note = Impact;
-    fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
-        *dy = [y[1], -G];
-        Ok(())
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
-        &GROUND
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 2],
-        _dy: &[f64; 2],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[0];
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<2, ()>,
-    ) -> Result<Transition<2, (), (), Impact>, EvalError> {
-        self.impacts += 1;
-        Ok(Transition::Continue {
-            y: [0.0, -RESTITUTION * hit.y[1]],
-            note: Impact {
-                number: self.impacts,
-                speed: -hit.y[1],
-                label: format!("impact {} at t = {:.3}", self.impacts, hit.t),
-            },
-        })
-    }
-}
 
 /// Regularised time with a clock that runs slower near the ground.
 impl TimeScale<2> for Ball {
@@ -78,18 +16,20 @@ impl TimeScale<2> for Ball {
     }
 }
 
-/// Impact `k` (from 1) in closed form: its time and the speed before it.
+/// Impact `k` (from 1) of the dropped ball in closed form: its time and the speed before it.
 fn impact(k: u32) -> (f64, f64) {
-    let v1 = (2.0 * G).sqrt();
-    let mut t = v1 / G;
-    for j in 1..k {
-        t += 2.0 * RESTITUTION.powi(j as i32) * v1 / G;
-    }
-    (t, v1 * RESTITUTION.powi(k as i32 - 1))
+    let flights = Flights::of(&Ball::dropped(), 1.0, 0.0);
+    (
+        flights.impact_times(k as usize)[k as usize - 1],
+        flights.speed(k),
+    )
 }
 
 /// Every record carries the note its transition map produced for that event, in order.
-fn check_notes(records: &[model_runtime::TransitionRecord<2, (), (), Impact>], expected: u32) {
+fn check_notes(
+    records: &[model_runtime::TransitionRecord<2, (), BallGuard, Impact>],
+    expected: u32,
+) {
     assert_eq!(records.len(), expected as usize);
     for (i, r) in records.iter().enumerate() {
         let k = i as u32 + 1;
@@ -121,7 +61,7 @@ fn notes_reach_the_observer_in_physical_time() {
     )
     .unwrap();
     let mut seen = Recorder::new();
-    let mut ball = Ball { impacts: 0 };
+    let mut ball = Ball::dropped();
     let out = solver
         .run(&mut ball, (), 0.0, &[1.0, 0.0], 2.5, &mut seen)
         .unwrap();
@@ -134,7 +74,7 @@ fn notes_reach_the_observer_in_physical_time() {
 
 #[test]
 fn notes_pass_through_regularised_time() {
-    let mut ball = Ball { impacts: 0 };
+    let mut ball = Ball::dropped();
     let mut clocked = Regularised::<_, 2, 3>::new(&mut ball, &[()], 0.0, 2.5);
     let tol = clocked.tolerance(&Tolerance::scalar(1e-10, 1e-12), (1e-10, 1e-12));
     let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();

@@ -1,55 +1,13 @@
 //! Properties over random configurations: event times of random bouncing balls, and the
 //! error of adaptive runs following the requested tolerance.
 
+use crate::common::ball::{Ball, Flights};
 use crate::common::{dist, ClockGuards, Forced};
 use model_runtime::{
     integrate, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridOptions,
     HybridSolver, HybridSystem, Recorder, StepOptions, Stepper, Tolerance, Transition,
 };
 use proptest::prelude::*;
-
-struct Ball {
-    g: f64,
-    e: f64,
-}
-const GROUND: [GuardSpec<()>; 1] = [GuardSpec {
-    id: (),
-    direction: Direction::Down,
-}];
-impl HybridSystem<2> for Ball {
-    type Mode = ();
-    type Guard = ();
-    type Stop = ();
-    type Note = ();
-    fn rhs(&self, _: (), _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
-        *dy = [y[1], -self.g];
-        Ok(())
-    }
-    fn guards(&self, _: ()) -> &[GuardSpec<()>] {
-        &GROUND
-    }
-    fn guard_values(
-        &self,
-        _: (),
-        _t: f64,
-        y: &[f64; 2],
-        _dy: &[f64; 2],
-        g: &mut [f64],
-    ) -> Result<(), EvalError> {
-        g[0] = y[0];
-        Ok(())
-    }
-    fn on_event(
-        &mut self,
-        _: (),
-        hit: &EventHit<2, ()>,
-    ) -> Result<Transition<2, (), ()>, EvalError> {
-        Ok(Transition::Continue {
-            y: [0.0, -self.e * hit.y[1]],
-            note: (),
-        })
-    }
-}
 
 fn check_ball<S: Stepper<2>>(
     stepper: S,
@@ -58,15 +16,9 @@ fn check_ball<S: Stepper<2>>(
     e: f64,
     rtol: f64,
 ) -> Result<(), TestCaseError> {
-    let g = 9.81;
-    // First impact: h0 + v0 t - g t²/2 = 0.
-    let t1 = (v0 + (v0 * v0 + 2.0 * g * h0).sqrt()) / g;
-    let v1 = g * t1 - v0;
-    let mut times = vec![t1];
-    for k in 1..6 {
-        let last = times[k - 1];
-        times.push(last + 2.0 * e.powi(k as i32) * v1 / g);
-    }
+    let mut ball = Ball::new(9.81, e);
+    let flights = Flights::of(&ball, h0, v0);
+    let times = flights.impact_times(6);
     let mut solver = HybridSolver::new(
         stepper,
         Tolerance::scalar(rtol, rtol * 1e-2),
@@ -76,13 +28,13 @@ fn check_ball<S: Stepper<2>>(
     let mut rec = Recorder::new();
     solver
         .run(
-            &mut Ball { g, e },
+            &mut ball,
             (),
             0.0,
             &[h0, v0],
             // Halfway through the seventh flight (flights shrink geometrically: a later end
             // could lie beyond their accumulation point).
-            times[5] + e.powi(6) * v1 / g,
+            times[5] + e.powi(6) * flights.v1 / flights.g,
             &mut rec,
         )
         .unwrap();

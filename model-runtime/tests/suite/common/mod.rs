@@ -1,6 +1,8 @@
 //! Test problems with known solutions, shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod ball;
+
 use model_runtime::{
     Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, ModelInfo, OpCounts, Transition,
 };
