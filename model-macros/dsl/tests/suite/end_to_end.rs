@@ -61,6 +61,29 @@ fn cartesian_pendulum_matches_hand_derivation() {
     }
 }
 
+/// The compiled model's derivatives at `(y, p)` against `want` (to 1e-12 relative, each named
+/// by its state), and its Jacobian against differences of the derivatives.
+pub fn assert_derivatives_match(
+    m: &CompiledModel,
+    names: &[&str],
+    y: &[f64],
+    p: &[f64],
+    want: &[f64],
+) {
+    let got = m.derivatives(0.0, y, p).expect("rhs evaluates");
+    assert_eq!(got.len(), want.len());
+    for k in 0..want.len() {
+        assert!(
+            (got[k] - want[k]).abs() <= 1e-12 * (1.0 + want[k].abs()),
+            "der({}): {} vs {}",
+            names[k],
+            got[k],
+            want[k]
+        );
+    }
+    assert_jacobian_matches(m, y, p);
+}
+
 pub fn assert_jacobian_matches(m: &CompiledModel, y: &[f64], p: &[f64]) {
     let n = y.len();
     let stores = m

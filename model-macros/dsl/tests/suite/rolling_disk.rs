@@ -4,7 +4,6 @@
 use std::time::Instant;
 
 use crate::common::{model, rolling, with_variant};
-use model_algebra::CompiledModel;
 use model_algebra::Inputs;
 use model_algebra::{compile, CompileOptions};
 
@@ -48,16 +47,6 @@ fn reference(y: &[f64; 12], p: &[f64; 7]) -> [f64; 12] {
     ]
 }
 
-fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<f64> {
-    let inputs = Inputs {
-        t: 0.0,
-        states: y,
-        params: p,
-        ders: &[],
-    };
-    m.rhs.eval(&inputs).expect("rhs").ders(y.len())
-}
-
 #[test]
 fn rolling_matches_the_reduced_explicit_form() {
     let spec = model(&rolling_with_spin());
@@ -71,18 +60,8 @@ fn rolling_matches_the_reduced_explicit_form() {
     eprintln!("pivots {:?}, numeric {:?}", m.pivots, m.numeric_blocks);
     eprintln!("{}", m.rhs);
     let y = state();
-    let got = rhs(&m, &y, &PARAMS);
-    let want = reference(&y, &PARAMS);
-    for k in 0..12 {
-        assert!(
-            (got[k] - want[k]).abs() <= 1e-12 * (1.0 + want[k].abs()),
-            "der {}: {} vs {}",
-            spec.states[k].name,
-            got[k],
-            want[k]
-        );
-    }
-    crate::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
+    let names: Vec<&str> = spec.states.iter().map(|s| s.name.as_str()).collect();
+    crate::end_to_end::assert_derivatives_match(&m, &names, &y, &PARAMS, &reference(&y, &PARAMS));
 }
 
 #[test]
@@ -97,9 +76,9 @@ fn variant_keeps_what_its_quantities_need() {
     assert_eq!(names, vec!["m", "a", "g", "mu_d", "mu_st"]);
     assert!(v.outputs.is_empty());
     let y = state();
-    let full = rhs(&m, &y, &PARAMS);
+    let full = m.derivatives(0.0, &y, &PARAMS).expect("rhs");
     let reduced_y = [y[7], y[9], y[10], y[11]];
-    let reduced = rhs(v, &reduced_y, &PARAMS[..5]);
+    let reduced = v.derivatives(0.0, &reduced_y, &PARAMS[..5]).expect("rhs");
     for (k, &i) in [7, 9, 10, 11].iter().enumerate() {
         assert!(
             (reduced[k] - full[i]).abs() <= 1e-13 * (1.0 + full[i].abs()),

@@ -5,7 +5,6 @@
 use std::time::Instant;
 
 use crate::common::{model, sliding};
-use model_algebra::CompiledModel;
 use model_algebra::Inputs;
 use model_algebra::{compile, CompileOptions};
 
@@ -68,16 +67,6 @@ fn reference(y: &[f64; 12], p: &[f64; 7]) -> [f64; 12] {
     ]
 }
 
-fn rhs(m: &CompiledModel, y: &[f64], p: &[f64]) -> Vec<f64> {
-    let inputs = Inputs {
-        t: 0.0,
-        states: y,
-        params: p,
-        ders: &[],
-    };
-    m.rhs.eval(&inputs).expect("rhs").ders(y.len())
-}
-
 #[test]
 fn sliding_matches_the_sequential_elimination() {
     let spec = model(&sliding());
@@ -88,18 +77,8 @@ fn sliding_matches_the_sequential_elimination() {
     eprintln!("jacobian ops {:?}", m.jacobian.ops());
     eprintln!("pivots {:?}, numeric {:?}", m.pivots, m.numeric_blocks);
     let y = state();
-    let got = rhs(&m, &y, &PARAMS);
-    let want = reference(&y, &PARAMS);
-    for k in 0..12 {
-        assert!(
-            (got[k] - want[k]).abs() <= 1e-12 * (1.0 + want[k].abs()),
-            "der {}: {} vs {}",
-            spec.states[k].name,
-            got[k],
-            want[k]
-        );
-    }
-    crate::end_to_end::assert_jacobian_matches(&m, &y, &PARAMS);
+    let names: Vec<&str> = spec.states.iter().map(|s| s.name.as_str()).collect();
+    crate::end_to_end::assert_derivatives_match(&m, &names, &y, &PARAMS, &reference(&y, &PARAMS));
 }
 
 #[test]
@@ -117,10 +96,10 @@ fn pruned_variant_matches_the_full_model_in_still_air() {
         PARAMS[0], PARAMS[1], PARAMS[2], PARAMS[3], PARAMS[4], 0.0, 0.0,
     ];
     let y = state();
-    let full = rhs(&m, &y, &still);
+    let full = m.derivatives(0.0, &y, &still).expect("rhs");
     let keep = [3, 4, 5, 6, 7, 9, 10, 11];
     let reduced_y: Vec<f64> = keep.iter().map(|&i| y[i]).collect();
-    let reduced = rhs(v, &reduced_y, &still[..5]);
+    let reduced = v.derivatives(0.0, &reduced_y, &still[..5]).expect("rhs");
     for (k, &i) in keep.iter().enumerate() {
         assert!(
             (reduced[k] - full[i]).abs() <= 1e-12 * (1.0 + full[i].abs()),
