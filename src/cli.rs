@@ -137,6 +137,16 @@ pub struct ModelSolveArgs {
     /// The CSV file (`-`: standard output).
     #[arg(long, default_value = "-")]
     pub out: PathBuf,
+    /// An event, `NAME[:up|:down][:stop]` (repeatable): located where the state or output
+    /// NAME crosses zero (upwards, downwards, or both by default); `:stop` ends the run there.
+    /// For a threshold other than zero, add an output to the file (`hit = theta - 0.1`) and
+    /// watch it.
+    #[arg(long = "event", value_name = "SPEC")]
+    pub event: Vec<String>,
+    /// Write the located events to this CSV (`event,t`, the states, the outputs; `-`:
+    /// standard output); without it, each event is said on standard error.
+    #[arg(long, value_name = "PATH")]
+    pub events: Option<PathBuf>,
 }
 
 /// A mode on the command line.

@@ -1,15 +1,15 @@
 //! `eulerdisk model ...`: the dispatch of the model subcommands, with their exit codes.
 //!
 //! `show` takes a disk model's name or a DSL file; `eval` and `solve` take a file. A mistake
-//! in the file, an unknown name in `--state`/`--set` or a state where the model is singular
-//! is an input error (exit 2); a failed integration or an unwritable output is a failure
+//! in the file, an unknown name in `--state`/`--set`, a malformed `--event` or a state where
+//! the model is singular is an input error (exit 2); a failed integration or an unwritable output is a failure
 //! (exit 1).
 
 use crate::args::{print_json, EXIT_FAILED, EXIT_INPUT};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
 use crate::model_file::{evaluate, load, params, select, state, ModelFileError};
 use crate::model_show::{Format, ModelName};
-use crate::model_solve::{solve, SolveSettings};
+use crate::model_solve::{solve, EventSpec, FileTrajectory, SolveSettings};
 use clap::ValueEnum;
 use model_algebra::CompiledModel;
 use model_dsl::TextModel;
@@ -105,6 +105,13 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         Ok(model) => model,
         Err(err) => return input_error(err),
     };
+    let events = match (args.event.iter())
+        .map(|text| EventSpec::parse(text, model))
+        .collect::<Result<Vec<_>, _>>()
+    {
+        Ok(events) => events,
+        Err(err) => return input_error(err),
+    };
     let settings = SolveSettings {
         t0: args.t0,
         t_end: args.t_end,
@@ -112,6 +119,7 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         rtol: args.rtol,
         atol: args.atol,
         dt: args.dt,
+        events,
     };
     let trajectory = match solve(model, &point.params, &point.state, &settings) {
         Ok(trajectory) => trajectory,
@@ -120,32 +128,56 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
             return ExitCode::from(EXIT_FAILED);
         }
     };
-    let written = if args.out.as_os_str() == "-" {
-        let stdout = std::io::stdout();
-        let mut lock = stdout.lock();
-        trajectory.write_csv(&mut lock).and_then(|()| lock.flush())
-    } else {
-        std::fs::File::create(&args.out)
-            .map(std::io::BufWriter::new)
-            .and_then(|mut file| trajectory.write_csv(&mut file).and_then(|()| file.flush()))
-    };
+    let mut written = write_to(&args.out, |out| trajectory.write_csv(out));
+    match &args.events {
+        Some(path) if written.is_ok() => {
+            written = write_to(path, |out| trajectory.write_events_csv(out));
+        }
+        Some(_) => {}
+        None => {
+            for event in &trajectory.events {
+                eprintln!("event `{}` at t = {}", event.name, event.t());
+            }
+        }
+    }
     if let Err(err) = written {
-        eprintln!("error: cannot write {}: {err}", args.out.display());
+        eprintln!("error: {err}");
         return ExitCode::from(EXIT_FAILED);
     }
+    eprintln!("{}", summary(&model.name, &trajectory, args.t0));
+    ExitCode::SUCCESS
+}
+
+/// Writes with `write` to the file `path` (`-`: standard output); an error names the path.
+fn write_to(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), String> {
+    let written = if path.as_os_str() == "-" {
+        let mut lock = std::io::stdout().lock();
+        write(&mut lock).and_then(|()| lock.flush())
+    } else {
+        std::fs::File::create(path)
+            .map(std::io::BufWriter::new)
+            .and_then(|mut file| write(&mut file).and_then(|()| file.flush()))
+    };
+    written.map_err(|err| format!("cannot write {}: {err}", path.display()))
+}
+
+/// One line on the run: rows, events, why and when it ended, the work done.
+fn summary(name: &str, trajectory: &FileTrajectory, t0: f64) -> String {
     let stats = &trajectory.stats;
     let stop = match &trajectory.stop {
         Termination::EndTime => "reached the end time".to_string(),
         Termination::Event { name } => format!("stopped by event `{name}`"),
     };
-    eprintln!(
-        "`{}`: {} rows, {stop} at t = {}, {} steps ({} rejected), {} RHS evaluations",
-        model.name,
+    format!(
+        "`{name}`: {} rows, {} events, {stop} at t = {}, {} steps ({} rejected), {} RHS evaluations",
         trajectory.rows.len(),
-        trajectory.rows.last().map_or(args.t0, |row| row[0]),
+        trajectory.events.len(),
+        trajectory.rows.last().map_or(t0, |row| row[0]),
         stats.steps,
         stats.rejected,
         stats.rhs_evals
-    );
-    ExitCode::SUCCESS
+    )
 }

@@ -7,14 +7,20 @@
 //! derivatives and stay zero. The error norm is a root mean square over all components, so
 //! each component's tolerances are scaled by `sqrt(n / MAX_STATES)`, which makes the norm, and
 //! with it every step-size decision, exactly that of the model's `n` states alone.
+//!
+//! Events (`--event NAME[:up|:down][:stop]`) are zero crossings of one of the model's states
+//! or outputs. A threshold other than zero is an output of the file (`hit = theta - 0.1`), so
+//! the command needs no expression language of its own; an output needs the derivatives,
+//! which the runtime hands every event function, and is evaluated by the interpreter there.
 
 use crate::model_file::{describe, ModelFileError};
 use model_algebra::{CompiledModel, EvalFailure, Inputs, Ops};
 use model_runtime::{
-    EvalError, Method, Model, ModelInfo, OpCounts, Output, Problem, Stats, Termination, Tolerance,
-    WithOutputs,
+    Direction, EvalError, Event, LocatedEvent, Method, Model, ModelInfo, OpCounts, Output, Problem,
+    Stats, Termination, Tolerance, WithOutputs,
 };
 use std::io::Write;
+use std::sync::Arc;
 
 /// The most states a model file may have for `model solve`.
 pub const MAX_STATES: usize = 32;
@@ -34,6 +40,146 @@ pub struct SolveSettings {
     pub atol: f64,
     /// Record every `dt` from `t0` (and at `t_end`); `None`: at every accepted step.
     pub dt: Option<f64>,
+    /// The events to locate, in the order given (the first wins a tie).
+    pub events: Vec<EventSpec>,
+}
+
+/// What an event watches: one of the model's states or outputs, by index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Watched {
+    /// The state at this index of `CompiledModel::states`.
+    State(usize),
+    /// The output at this index of `CompiledModel::outputs`.
+    Output(usize),
+}
+
+/// One `--event NAME[:up|:down][:stop]`, resolved against a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventSpec {
+    /// The state's or output's name (the event's name).
+    pub name: String,
+    /// What crosses zero.
+    pub watched: Watched,
+    /// Which crossings fire (both by default).
+    pub direction: Direction,
+    /// Whether the run ends at the first one.
+    pub stop: bool,
+}
+
+/// The form of `--event`, said in every error about it.
+const EVENT_FORM: &str = "expected NAME[:up|:down][:stop]";
+
+impl EventSpec {
+    /// Reads `NAME[:up|:down][:stop]` for `model`; an empty spec, an unknown word, a word
+    /// given twice or a name that is neither a state nor an output of the model is an
+    /// [`ModelFileError::Assignment`] naming the flag, the spec and the problem.
+    pub fn parse(text: &str, model: &CompiledModel) -> Result<Self, ModelFileError> {
+        let problem = |problem: String| ModelFileError::Assignment {
+            flag: "--event",
+            text: text.to_string(),
+            problem,
+        };
+        let mut words = text.split(':').map(str::trim);
+        let name = words.next().unwrap_or_default();
+        if name.is_empty() {
+            return Err(problem(format!("the name is empty; {EVENT_FORM}")));
+        }
+        let watched = watched(model, name).ok_or_else(|| {
+            problem(format!(
+                "the model has no state or output `{name}`; the states are {}; the outputs are {}",
+                quoted(&model.states),
+                quoted(&model.outputs)
+            ))
+        })?;
+        let (mut direction, mut stop) = (None, false);
+        for word in words {
+            let twice = match word {
+                "up" | "down" if direction.is_some() => true,
+                "up" => std::mem::replace(&mut direction, Some(Direction::Up)).is_some(),
+                "down" => std::mem::replace(&mut direction, Some(Direction::Down)).is_some(),
+                "stop" => std::mem::replace(&mut stop, true),
+                _ => {
+                    return Err(problem(format!(
+                        "`{word}` is neither a direction (`up`, `down`) nor `stop`; {EVENT_FORM}"
+                    )))
+                }
+            };
+            if twice {
+                return Err(problem(format!(
+                    "`{word}` comes after another direction or twice; {EVENT_FORM}"
+                )));
+            }
+        }
+        Ok(EventSpec {
+            name: name.to_string(),
+            watched,
+            direction: direction.unwrap_or(Direction::Both),
+            stop,
+        })
+    }
+
+    /// The runtime's event: the state read from `y`, or the output evaluated at `(t, y, dy)`
+    /// by the interpreter (NaN where it cannot be, which the runtime reports naming the
+    /// event).
+    fn event(&self, shared: &Arc<Shared>) -> Event<MAX_STATES> {
+        let event = match self.watched {
+            Watched::State(k) => Event::new(&self.name, move |_t, y, _dy| y[k]),
+            Watched::Output(j) => {
+                let shared = Arc::clone(shared);
+                Event::new(&self.name, move |t, y, dy| {
+                    let n = shared.model.states.len();
+                    (shared
+                        .model
+                        .outputs_at(t, &y[..n], &dy[..n], &shared.params))
+                    .map_or(f64::NAN, |outputs| outputs[j])
+                })
+            }
+        };
+        let event = event.direction(self.direction);
+        if self.stop {
+            event.terminal()
+        } else {
+            event
+        }
+    }
+}
+
+/// The state or output called `name`.
+fn watched(model: &CompiledModel, name: &str) -> Option<Watched> {
+    let position = |names: &[String]| names.iter().position(|n| n == name);
+    (position(&model.states).map(Watched::State))
+        .or_else(|| position(&model.outputs).map(Watched::Output))
+}
+
+/// `` `a`, `b` `` (or `none`).
+fn quoted(names: &[String]) -> String {
+    if names.is_empty() {
+        return "none".to_string();
+    }
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    quoted.join(", ")
+}
+
+/// The model and its parameters, owned, for the event functions (which must be `'static`).
+struct Shared {
+    model: CompiledModel,
+    params: Vec<f64>,
+}
+
+/// A located event: its name, time, and the states and outputs there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FileEvent {
+    /// The event's name (the state or output that crossed zero).
+    pub name: String,
+    /// `t`, the states and the outputs at the event, as a trajectory row.
+    pub row: Vec<f64>,
+}
+
+impl FileEvent {
+    /// The event time.
+    pub fn t(&self) -> f64 {
+        self.row[0]
+    }
 }
 
 /// A trajectory of a file's model: a table of `t`, the states and the outputs.
@@ -41,8 +187,10 @@ pub struct SolveSettings {
 pub struct FileTrajectory {
     /// Column names: `t`, the states, the outputs.
     pub header: Vec<String>,
-    /// One row per recorded time.
+    /// One row per recorded time; after a terminal event the last row is the event's.
     pub rows: Vec<Vec<f64>>,
+    /// The located events, in time order.
+    pub events: Vec<FileEvent>,
     /// Why the run ended.
     pub stop: Termination,
     /// The work done.
@@ -54,11 +202,30 @@ impl FileTrajectory {
     pub fn write_csv(&self, mut out: impl Write) -> std::io::Result<()> {
         writeln!(out, "{}", self.header.join(","))?;
         for row in &self.rows {
-            let cells: Vec<String> = row.iter().map(f64::to_string).collect();
-            writeln!(out, "{}", cells.join(","))?;
+            write_row(&mut out, None, row)?;
         }
         Ok(())
     }
+
+    /// Writes the located events as CSV: `event,t`, the states and the outputs.
+    pub fn write_events_csv(&self, mut out: impl Write) -> std::io::Result<()> {
+        writeln!(out, "event,{}", self.header.join(","))?;
+        for event in &self.events {
+            write_row(&mut out, Some(&event.name), &event.row)?;
+        }
+        Ok(())
+    }
+}
+
+/// One CSV line: the label (if any), then the numbers in Rust's shortest round-trip form.
+fn write_row(out: &mut impl Write, label: Option<&str>, row: &[f64]) -> std::io::Result<()> {
+    let numbers = row.iter().map(f64::to_string);
+    let cells: Vec<String> = label
+        .map(str::to_string)
+        .into_iter()
+        .chain(numbers)
+        .collect();
+    writeln!(out, "{}", cells.join(","))
 }
 
 /// Integrates `model` from `y0` with `params`; the outputs are evaluated at every recorded
@@ -89,32 +256,74 @@ pub fn solve(
         Some(dt) => Output::Times(sample_times(settings.t0, settings.t_end, dt)?),
         None => Output::Steps,
     };
-    let solved = Problem::new(&interpreted, start, (settings.t0, settings.t_end))
+    let mut problem = Problem::new(&interpreted, start, (settings.t0, settings.t_end))
         .method(settings.method)
         .tolerance(tolerance)
-        .output(output)
+        .output(output);
+    if !settings.events.is_empty() {
+        let shared = Arc::new(Shared {
+            model: model.clone(),
+            params: params.to_vec(),
+        });
+        for spec in &settings.events {
+            problem = problem.event(spec.event(&shared));
+        }
+    }
+    let solved = problem
         .solve::<0>()
         .map_err(|failure| ModelFileError::Eval(failure.to_string()))?;
     let mut header = vec!["t".to_string()];
     header.extend(model.states.iter().cloned());
     header.extend(model.outputs.iter().cloned());
-    let mut rows = Vec::with_capacity(solved.t.len());
+    let mut rows = Vec::with_capacity(solved.t.len() + 1);
     for (&t, y) in solved.t.iter().zip(&solved.y) {
-        let y = &y[..n];
-        let at_t =
-            |e: EvalFailure| ModelFileError::Eval(format!("at t = {t}: {}", describe(model, &e)));
-        let der = model.derivatives(t, y, params).map_err(at_t)?;
-        let outputs = model.outputs_at(t, y, &der, params).map_err(at_t)?;
-        let mut row = vec![t];
-        row.extend_from_slice(y);
-        row.extend(outputs);
-        rows.push(row);
+        rows.push(row(model, params, t, &y[..n])?);
+    }
+    let events = (solved.events.iter())
+        .map(|event| event_row(model, params, event))
+        .collect::<Result<Vec<_>, _>>()?;
+    if let (Termination::Event { .. }, Some(last)) = (&solved.stop, events.last()) {
+        // The run ended at the event: its state closes the trajectory.
+        if rows.last().is_none_or(|row| row[0] < last.t()) {
+            rows.push(last.row.clone());
+        }
     }
     Ok(FileTrajectory {
         header,
         rows,
+        events,
         stop: solved.stop,
         stats: solved.stats,
+    })
+}
+
+/// `t`, the states and the outputs at `(t, y)`.
+fn row(
+    model: &CompiledModel,
+    params: &[f64],
+    t: f64,
+    y: &[f64],
+) -> Result<Vec<f64>, ModelFileError> {
+    let at_t =
+        |e: EvalFailure| ModelFileError::Eval(format!("at t = {t}: {}", describe(model, &e)));
+    let der = model.derivatives(t, y, params).map_err(at_t)?;
+    let outputs = model.outputs_at(t, y, &der, params).map_err(at_t)?;
+    let mut row = vec![t];
+    row.extend_from_slice(y);
+    row.extend(outputs);
+    Ok(row)
+}
+
+/// A located event as a trajectory row, under its name.
+fn event_row(
+    model: &CompiledModel,
+    params: &[f64],
+    event: &LocatedEvent<MAX_STATES>,
+) -> Result<FileEvent, ModelFileError> {
+    let n = model.states.len();
+    Ok(FileEvent {
+        name: event.name.clone(),
+        row: row(model, params, event.t, &event.y[..n])?,
     })
 }
 
@@ -302,6 +511,7 @@ mod tests {
                 rtol: 1e-9,
                 atol: 1e-11,
                 dt: None,
+                events: Vec::new(),
             };
             let file = solve(interpreted, &params, &y0, &settings).unwrap();
             let model = rolling::Model::new(params);

@@ -264,3 +264,186 @@ fn solve_writes_a_trajectory_that_keeps_the_energy() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("sin(theta)"));
 }
+
+/// A body dropped from a height: no outputs, `h` falls as `h0 - g t^2 / 2`.
+const DROP: &str = "mod drop {
+    params { g = 9.81 }
+    states { h, v }
+    equations { der(h) = v; der(v) = -g; }
+}";
+
+/// An oscillator `x = cos(w t)` from `x = 1`, with the threshold `x = 1/2` as an output.
+const OSCILLATOR: &str = "mod oscillator {
+    params { w = 3 }
+    states { x, v }
+    equations { der(x) = v; der(v) = -w^2 * x; }
+    outputs { e = x - 0.5; }
+}";
+
+/// A CSV of numbers under a header (the first `skip` columns dropped).
+fn read_csv(text: &str, skip: usize) -> (String, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().to_string();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .skip(skip)
+                .map(|x| x.parse().unwrap())
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+/// `solve` with `args` on `text`, at tight tolerances; the stdout and stderr.
+fn solve_events(text: &str, args: &[&str]) -> (String, String) {
+    let (_dir, path) = file(text);
+    let mut all = vec!["solve", arg(&path), "--rtol", "1e-12", "--atol", "1e-14"];
+    all.extend_from_slice(args);
+    let out = model(&all);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{args:?}: {stderr}");
+    (String::from_utf8(out.stdout).unwrap(), stderr)
+}
+
+/// The times of `event `NAME` at t = T` lines on standard error.
+fn said_events(stderr: &str, name: &str) -> Vec<f64> {
+    let prefix = format!("event `{name}` at t = ");
+    (stderr.lines())
+        .filter_map(|l| l.strip_prefix(&prefix))
+        .map(|t| t.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn a_terminal_event_stops_a_falling_body_on_the_ground() {
+    let (h0, g) = (2.0_f64, 9.81_f64);
+    let dir = tempfile::tempdir().unwrap();
+    let events = dir.path().join("events.csv");
+    let (stdout, stderr) = solve_events(
+        DROP,
+        &[
+            "--state",
+            "h=2",
+            "--t-end",
+            "5",
+            "--dt",
+            "0.1",
+            "--event",
+            "h:down:stop",
+            "--events",
+            arg(&events),
+        ],
+    );
+    let landing = (2.0 * h0 / g).sqrt();
+    let (header, rows) = read_csv(&stdout, 0);
+    assert_eq!(header, "t,h,v");
+    let last = rows.last().unwrap();
+    assert!((last[0] - landing).abs() < 1e-9, "{} vs {landing}", last[0]);
+    assert!(last[1].abs() < 1e-9, "h = {}", last[1]);
+    assert!((last[2] + g * landing).abs() < 1e-9, "v = {}", last[2]);
+    // The samples 0, 0.1, ..., 0.6 before the landing, then the landing itself.
+    assert_eq!(rows.len(), 8, "{rows:?}");
+    assert!((rows[6][0] - 0.6).abs() < 1e-15, "{rows:?}");
+    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 1);
+    assert_eq!(header, "event,t,h,v");
+    assert_eq!(located.len(), 1);
+    assert_eq!(located[0], *last);
+    let text = std::fs::read_to_string(&events).unwrap();
+    assert!(text.lines().nth(1).unwrap().starts_with("h,"), "{text}");
+    assert!(
+        stderr.contains(&format!("stopped by event `h` at t = {}", last[0])),
+        "{stderr}"
+    );
+    // With `--events`, the events are not said again on standard error.
+    assert!(said_events(&stderr, "h").is_empty(), "{stderr}");
+}
+
+#[test]
+fn an_oscillator_reports_every_zero_crossing_in_both_directions() {
+    let (w, t_end) = (3.0_f64, 10.0_f64);
+    let (_, stderr) = solve_events(
+        OSCILLATOR,
+        &["--state", "x=1", "--t-end", "10", "--event", "x"],
+    );
+    let times = said_events(&stderr, "x");
+    // x = cos(w t) is zero at (k + 1/2) pi / w: k = 0..9 before t = 10.
+    let want: Vec<f64> = (0..)
+        .map(|k| (k as f64 + 0.5) * std::f64::consts::PI / w)
+        .take_while(|&t| t <= t_end)
+        .collect();
+    assert_eq!(want.len(), 10);
+    assert_eq!(times.len(), want.len(), "{stderr}");
+    for (got, want) in times.iter().zip(&want) {
+        assert!((got - want).abs() < 1e-8, "{got} vs {want}");
+    }
+    assert!(
+        stderr.contains("10 events, reached the end time at t = 10"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn an_event_on_an_output_fires_only_in_its_direction() {
+    let w = 3.0_f64;
+    let dir = tempfile::tempdir().unwrap();
+    let events = dir.path().join("events.csv");
+    let args = [
+        "--state",
+        "x=1",
+        "--t-end",
+        "10",
+        "--event",
+        "e:up",
+        "--events",
+        arg(&events),
+    ];
+    solve_events(OSCILLATOR, &args);
+    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 1);
+    assert_eq!(header, "event,t,x,v,e");
+    // cos(w t) rises through 1/2 at w t = 5 pi / 3 + 2 pi k: k = 0..3 before t = 10 (the
+    // falling crossings at w t = pi / 3 + 2 pi k, five of them, do not fire).
+    let pi = std::f64::consts::PI;
+    let want: Vec<f64> = (0..)
+        .map(|k| (5.0 * pi / 3.0 + 2.0 * pi * k as f64) / w)
+        .take_while(|&t| t <= 10.0)
+        .collect();
+    assert_eq!(want.len(), 4);
+    assert_eq!(located.len(), want.len(), "{located:?}");
+    for (row, want) in located.iter().zip(&want) {
+        assert!((row[0] - want).abs() < 1e-8, "{} vs {want}", row[0]);
+        assert!(row[3].abs() < 1e-8, "e = {}", row[3]);
+        assert!(row[2] > 0.0, "v = {}: x rises", row[2]);
+    }
+    // The same threshold downwards: the other crossings.
+    let (_, stderr) = solve_events(
+        OSCILLATOR,
+        &["--state", "x=1", "--t-end", "10", "--event", "e:down"],
+    );
+    let down = said_events(&stderr, "e");
+    assert_eq!(down.len(), 5, "{stderr}");
+    assert!((down[0] - pi / 3.0 / w).abs() < 1e-8, "{}", down[0]);
+}
+
+#[test]
+fn bad_event_specs_are_input_errors_naming_the_problem() {
+    let (_dir, path) = file(OSCILLATOR);
+    for (spec, needle) in [
+        (
+            "y",
+            "--event `y`: the model has no state or output `y`; the states are `x`, `v`; the outputs are `e`",
+        ),
+        ("x:sideways", "`sideways` is neither a direction (`up`, `down`) nor `stop`"),
+        ("", "--event ``: the name is empty"),
+        (":stop", "--event `:stop`: the name is empty"),
+        ("x:up:down", "`down` comes after another direction or twice"),
+        ("x:stop:stop", "`stop` comes after another direction or twice"),
+    ] {
+        let out = model(&["solve", arg(&path), "--t-end", "1", "--event", spec]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{spec:?}: {err}");
+        assert!(err.contains(needle), "{spec:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(out.stdout.is_empty(), "{spec:?}");
+    }
+}
