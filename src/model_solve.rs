@@ -94,9 +94,8 @@ impl EventSpec {
         let (mut direction, mut stop) = (None, false);
         for word in words {
             let twice = match word {
-                "up" | "down" if direction.is_some() => true,
-                "up" => std::mem::replace(&mut direction, Some(Direction::Up)).is_some(),
-                "down" => std::mem::replace(&mut direction, Some(Direction::Down)).is_some(),
+                "up" => direction.replace(Direction::Up).is_some(),
+                "down" => direction.replace(Direction::Down).is_some(),
                 "stop" => std::mem::replace(&mut stop, true),
                 _ => {
                     return Err(problem(format!(
@@ -532,6 +531,69 @@ mod tests {
                 );
             }
             assert_eq!(file.header.len(), 1 + 12 + rolling::N_OUTPUTS);
+        }
+    }
+
+    fn oscillator() -> CompiledModel {
+        let text = "mod oscillator {
+            params { w = 3 }
+            states { x, v }
+            equations { der(x) = v; der(v) = -w^2 * x; }
+            outputs { speed = v; position = x; }
+        }";
+        let models = Source::new("oscillator.dsl", text).compile().unwrap();
+        models[0].compiled.clone()
+    }
+
+    #[test]
+    fn an_event_spec_names_a_state_or_an_output_a_direction_and_a_stop() {
+        let model = oscillator();
+        let spec = |text| EventSpec::parse(text, &model).unwrap();
+        let x = spec("x");
+        assert_eq!(x.watched, Watched::State(0));
+        assert_eq!((x.direction, x.stop), (Direction::Both, false));
+        let position = spec("position:down:stop");
+        assert_eq!(position.watched, Watched::Output(1));
+        assert_eq!((position.direction, position.stop), (Direction::Down, true));
+        let v = spec(" v : stop : up ");
+        assert_eq!((v.name.as_str(), v.watched), ("v", Watched::State(1)));
+        assert_eq!((v.direction, v.stop), (Direction::Up, true));
+        for bad in ["", "w", "x:", "x:left", "x:down:up", "speed:stop:stop"] {
+            let err = EventSpec::parse(bad, &model).unwrap_err();
+            assert!(
+                matches!(&err, ModelFileError::Assignment { flag: "--event", text, .. } if text == bad),
+                "{bad:?}: {err}"
+            );
+        }
+    }
+
+    /// An output equal to a state crosses zero where the state does: the output's event,
+    /// evaluated by the interpreter from `(t, y, dy)`, is located at the same times (to the
+    /// root finder's few ulps), and both at the analytic zeros of `cos(3 t)`.
+    #[test]
+    fn an_event_on_an_output_is_located_where_the_equal_state_crosses() {
+        let model = oscillator();
+        let settings = |event: &str| SolveSettings {
+            t0: 0.0,
+            t_end: 4.0,
+            method: Method::Dop853,
+            rtol: 1e-12,
+            atol: 1e-14,
+            dt: None,
+            events: vec![EventSpec::parse(event, &model).unwrap()],
+        };
+        let times = |event: &str| -> Vec<f64> {
+            let solved = solve(&model, &[3.0], &[1.0, 0.0], &settings(event)).unwrap();
+            assert!(solved.events.iter().all(|e| e.name == event));
+            solved.events.iter().map(FileEvent::t).collect()
+        };
+        let (state, output) = (times("x"), times("position"));
+        assert_eq!(state.len(), 4, "{state:?}");
+        assert_eq!(state.len(), output.len());
+        for (k, (a, b)) in state.iter().zip(&output).enumerate() {
+            let want = (k as f64 + 0.5) * std::f64::consts::PI / 3.0;
+            assert!((a - b).abs() < 1e-13, "{a} vs {b}");
+            assert!((a - want).abs() < 1e-9, "{a} vs {want}");
         }
     }
 }
