@@ -60,6 +60,47 @@ impl Expr {
     }
 }
 
+/// A comparison, `lhs < rhs` and the like: the condition of a `when` guard.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Relation {
+    /// The whole comparison.
+    pub id: NodeId,
+    /// Left-hand side.
+    pub lhs: Expr,
+    /// The comparison operator.
+    pub op: RelOp,
+    /// Right-hand side.
+    pub rhs: Expr,
+}
+
+/// A comparison operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RelOp {
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `==`
+    Eq,
+}
+
+impl RelOp {
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            RelOp::Lt => "<",
+            RelOp::Le => "<=",
+            RelOp::Gt => ">",
+            RelOp::Ge => ">=",
+            RelOp::Eq => "==",
+        }
+    }
+}
+
 /// One equation `label: lhs = rhs;`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Equation {

@@ -4,7 +4,7 @@
 //! minus and associates to the right, as in mathematics: `-x^2 = -(x^2)`, `a^b^c = a^(b^c)`, and
 //! an exponent may itself be negated, `2^-x = 2^(-x)`.
 
-use crate::ast::{Call, Expr};
+use crate::ast::{Call, Expr, RelOp, Relation};
 use crate::span::{SpanRange, Spans};
 use model_algebra::BinOp;
 use syn::parse::ParseStream;
@@ -26,6 +26,43 @@ pub fn parse_expr(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         let rhs = parse_product(input, spans)?;
         lhs = binary(spans, op, lhs, rhs);
     }
+}
+
+/// Parses a comparison `EXPR OP EXPR` with `OP` one of `<`, `<=`, `>`, `>=`, `==`.
+pub fn parse_relation(input: ParseStream, spans: &mut Spans) -> syn::Result<Relation> {
+    let lhs = parse_expr(input, spans)?;
+    let op = if input.peek(Token![<=]) {
+        input.parse::<Token![<=]>()?;
+        RelOp::Le
+    } else if input.peek(Token![>=]) {
+        input.parse::<Token![>=]>()?;
+        RelOp::Ge
+    } else if input.peek(Token![==]) {
+        input.parse::<Token![==]>()?;
+        RelOp::Eq
+    } else if input.peek(Token![<]) {
+        input.parse::<Token![<]>()?;
+        RelOp::Lt
+    } else if input.peek(Token![>]) {
+        input.parse::<Token![>]>()?;
+        RelOp::Gt
+    } else if input.peek(Token![=]) {
+        let eq: Token![=] = input.parse()?;
+        return Err(syn::Error::new(
+            eq.span,
+            "a condition compares with `<`, `<=`, `>`, `>=` or `==`, not `=`",
+        ));
+    } else {
+        return Err(input.error("expected a comparison: `<`, `<=`, `>`, `>=` or `==`"));
+    };
+    let rhs = parse_expr(input, spans)?;
+    let range = range_of(spans, &lhs).to(range_of(spans, &rhs));
+    Ok(Relation {
+        id: spans.push(range),
+        lhs,
+        op,
+        rhs,
+    })
 }
 
 fn parse_product(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {

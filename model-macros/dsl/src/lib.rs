@@ -37,7 +37,7 @@ mod text;
 mod unchecked;
 mod validate;
 
-pub use ast::{Call, Chart, Equation, Expr, ModelAst, Variant};
+pub use ast::{Call, Chart, Equation, Expr, ModelAst, RelOp, Relation, Variant};
 pub use compile::{compile, compile_all};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
