@@ -76,18 +76,32 @@ pub fn explain(solved: &Solved, spec: &ModelSpec) -> Explanation {
         }
         md.push('\n');
     }
-    if !spec.outputs.is_empty() {
-        md.push_str("## Outputs\n\n");
-        for (output, &e) in spec.outputs.iter().zip(&solved.outputs) {
-            let _ = writeln!(md, "    {} = {}", output.name, dsl(e));
-            let _ = writeln!(tex, "{} &= {} \\\\", latex_name(&output.name), latex(e));
+    let outputs: Vec<(String, String)> =
+        solved.outputs.iter().map(|&e| (dsl(e), latex(e))).collect();
+    let shown = spec
+        .outputs
+        .iter()
+        .zip(&outputs)
+        .filter(|(o, _)| !is_internal(&o.name));
+    for (k, (output, (text, tex_text))) in shown.enumerate() {
+        if k == 0 {
+            md.push_str("## Outputs\n\n");
         }
+        let _ = writeln!(md, "    {} = {}", output.name, text);
+        let _ = writeln!(tex, "{} &= {} \\\\", latex_name(&output.name), tex_text);
     }
     tex.push_str("\\end{align*}\n");
     Explanation {
         markdown: md,
         latex: tex,
+        outputs,
     }
+}
+
+/// Whether an output is the front end's own (a name no user can write, such as a switched
+/// model's guard `when:impact`): computed like any output, but not printed with the user's.
+pub fn is_internal(name: &str) -> bool {
+    name.contains(':')
 }
 
 fn pivots(md: &mut String, group: &Group) {

@@ -61,6 +61,7 @@ mod ops;
 mod options;
 mod print;
 mod program;
+mod select;
 mod simplify;
 mod solve;
 mod solved;

@@ -190,4 +190,7 @@ pub struct Explanation {
     pub markdown: String,
     /// A LaTeX `align*` environment of the same equations.
     pub latex: String,
+    /// Every output's expression as solved, in the DSL's syntax and in LaTeX (the front end's
+    /// internal outputs included, which the two texts above leave out).
+    pub outputs: Vec<(String, String)>,
 }

@@ -151,6 +151,64 @@ pub struct Chart {
     pub after: Option<Named<()>>,
 }
 
+/// `mode NAME { let ..; equations { .. } when .. }`: one mode of a switched model, with the
+/// equations it adds to the model's shared ones.
+#[derive(Clone, Debug)]
+pub struct Mode {
+    /// Doc comments written before `mode`.
+    pub attrs: Vec<syn::Attribute>,
+    /// The mode's name (and module name).
+    pub name: syn::Ident,
+    /// The name's node.
+    pub id: NodeId,
+    /// Lets of this mode, after the model's.
+    pub lets: Vec<Named<Expr>>,
+    /// Equations of this mode, after the model's shared ones.
+    pub equations: Vec<Equation>,
+    /// Events of this mode, before the model's shared ones.
+    pub events: Vec<When>,
+    /// Accumulation rules of this mode's events.
+    pub accumulations: Vec<Accumulates>,
+}
+
+/// `when NAME: GUARD [-> TARGET] [{ RESETS }]`: an event, located where the guard's relation
+/// starts to hold.
+#[derive(Clone, Debug)]
+pub struct When {
+    /// Doc comments written before `when`.
+    pub attrs: Vec<syn::Attribute>,
+    /// The event's name.
+    pub name: Named<()>,
+    /// The guard.
+    pub guard: Relation,
+    /// Where the run goes: `None` stays in the mode (a restart after a reset, or only a record
+    /// when there is no reset either).
+    pub target: Option<Target>,
+    /// `{ state = EXPR; .. }`; `None` when no braces were written.
+    pub resets: Option<Vec<Named<Expr>>>,
+}
+
+/// `when NAME accumulates -> TARGET [{ RESETS }]`: what an accumulation of an event's resets
+/// (a ball's ever shorter bounces) turns into.
+#[derive(Clone, Debug)]
+pub struct Accumulates {
+    /// The event that accumulates.
+    pub event: Named<()>,
+    /// Where the run goes.
+    pub target: Target,
+    /// The states set there.
+    pub resets: Vec<Named<Expr>>,
+}
+
+/// The target of a transition.
+#[derive(Clone, Debug)]
+pub enum Target {
+    /// `-> NAME`: a mode.
+    Mode(Named<()>),
+    /// `-> stop`: end the run, with the event's name as the reason.
+    Stop(NodeId),
+}
+
 /// A whole `model!` invocation as written.
 #[derive(Clone, Debug)]
 pub struct ModelAst {
@@ -176,6 +234,14 @@ pub struct ModelAst {
     pub charts: Vec<Chart>,
     /// Compiler options (`options { name = value }`).
     pub options: Vec<Named<f64>>,
+    /// Initial values written on states (`states { h = 1.0 }`).
+    pub initial: Vec<Named<f64>>,
+    /// The modes of a switched model (empty for a smooth one).
+    pub modes: Vec<Mode>,
+    /// Events of every mode (of the model itself when it has no modes).
+    pub events: Vec<When>,
+    /// Accumulation rules of the shared events (or of the model's events without modes).
+    pub accumulations: Vec<Accumulates>,
     /// Doc comments written on parameters, states and outputs, by name (they document the
     /// emitted index constants).
     pub docs: BTreeMap<String, Vec<syn::Attribute>>,
@@ -198,6 +264,10 @@ impl ModelAst {
             variants: Vec::new(),
             charts: Vec::new(),
             options: Vec::new(),
+            initial: Vec::new(),
+            modes: Vec::new(),
+            events: Vec::new(),
+            accumulations: Vec::new(),
             docs: BTreeMap::new(),
             spans: Spans::default(),
         }

@@ -81,6 +81,10 @@ impl Chart {
             variants,
             charts: Vec::new(),
             options: model.options.clone(),
+            initial: Vec::new(),
+            modes: Vec::new(),
+            events: Vec::new(),
+            accumulations: Vec::new(),
             docs: model.docs.clone(),
             spans: model.spans.clone(),
         }

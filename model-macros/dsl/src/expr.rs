@@ -17,7 +17,7 @@ pub fn parse_expr(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         let op = if input.peek(Token![+]) {
             input.parse::<Token![+]>()?;
             BinOp::Add
-        } else if input.peek(Token![-]) {
+        } else if input.peek(Token![-]) && !input.peek(Token![->]) {
             input.parse::<Token![-]>()?;
             BinOp::Sub
         } else {

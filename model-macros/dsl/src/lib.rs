@@ -33,14 +33,25 @@ mod names;
 mod options;
 mod parse;
 mod span;
+mod statements;
+mod switched;
+mod switched_compile;
+mod switching;
 mod text;
 mod unchecked;
 mod validate;
 
-pub use ast::{Call, Chart, Equation, Expr, ModelAst, RelOp, Relation, Variant};
+pub use ast::{
+    Accumulates, Call, Chart, Equation, Expr, Mode, ModelAst, RelOp, Relation, Target, Variant,
+    When,
+};
 pub use compile::{compile, compile_all};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
+pub use switched::{
+    validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
+};
+pub use switched_compile::{compile_switched, CompiledEvent, CompiledMode, CompiledSwitched, Jump};
 pub use text::{Located, LocatedErrors, Source, TextModel};
 pub use unchecked::spec_unchecked;
 pub use validate::{validate, Validated, RESERVED_MODULES};

@@ -3,14 +3,18 @@
 //! Parsing recovers at statement and section boundaries (`;` and `{..}`), so one typo does not
 //! hide the next: every syntax error of the invocation is collected and reported together.
 
-use crate::ast::{Chart, Equation, ModelAst, Variant};
-use crate::expr::{parse_default, parse_expr, parse_signed_number, range_of};
+use crate::ast::{Chart, ModelAst, Variant};
+use crate::expr::{parse_default, parse_signed_number};
 use crate::span::{Errors, SpanRange, Spans};
-use model_algebra::Named;
-use proc_macro2::{TokenStream, TokenTree};
-use std::collections::BTreeMap;
+use crate::statements::{
+    braced, check_docs_only, no_docs_here, once, parse_binding, parse_documented_name,
+    parse_equation, parse_list, parse_name, recover_section, recover_statement, skip_all,
+    with_value,
+};
+use crate::switching::{parse_mode, parse_when, Events};
+use proc_macro2::TokenStream;
 use syn::parse::{ParseStream, Parser};
-use syn::{token, Token};
+use syn::Token;
 
 /// Parses a whole `model!` invocation; `Err` carries every syntax error found.
 pub fn parse_model(tokens: TokenStream) -> syn::Result<ModelAst> {
@@ -108,7 +112,7 @@ fn parse_item(
     }
     let keyword: syn::Ident = input.parse().map_err(|_| {
         input.error(
-            "expected `params`, `states`, `let`, `equations`, `outputs`, `variant`, `chart` or `options`",
+            "expected `params`, `states`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart` or `options`",
         )
     })?;
     let range = SpanRange::single(keyword.span());
@@ -140,9 +144,17 @@ fn parse_item(
             no_docs_here(&attrs, "`states`", errors);
             once(&mut seen.states, range, "states", errors);
             let content = braced(input)?;
+            let initial = &mut model.initial;
             recover_section(&content, errors, |input| {
                 parse_list(input, &mut model.states, |input| {
-                    parse_documented_name(input, &mut model.spans, &mut model.docs)
+                    let name = parse_documented_name(input, &mut model.spans, &mut model.docs)?;
+                    // An initial value: where a run starts unless told otherwise.
+                    if input.peek(Token![=]) {
+                        input.parse::<Token![=]>()?;
+                        let value = parse_default(input)?;
+                        initial.push(with_value(name.clone(), value));
+                    }
+                    Ok(name)
                 })
             });
         }
@@ -195,11 +207,24 @@ fn parse_item(
             let chart = parse_chart(input, attrs, model, errors)?;
             model.charts.push(chart);
         }
+        "mode" => {
+            let mode = parse_mode(input, attrs, &mut model.spans, errors)?;
+            model.modes.push(mode);
+        }
+        "when" => {
+            let mut events = Events {
+                events: &mut model.events,
+                accumulations: &mut model.accumulations,
+            };
+            recover_statement(input, errors, |input| {
+                parse_when(input, attrs, &mut model.spans, &mut events)
+            });
+        }
         other => {
             return Err(syn::Error::new(
                 keyword.span(),
                 format!(
-                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `variant`, `chart` or `options`"
+                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart` or `options`"
                 ),
             ))
         }
@@ -368,185 +393,4 @@ fn parse_chart(
         }
     }
     Ok(chart)
-}
-
-/// `label: lhs = rhs;` or `lhs = rhs;`
-fn parse_equation(input: ParseStream, spans: &mut Spans) -> syn::Result<Equation> {
-    let label = if input.peek(syn::Ident) && input.peek2(Token![:]) && !input.peek2(Token![::]) {
-        let label = parse_name(input, spans)?;
-        input.parse::<Token![:]>()?;
-        Some(label)
-    } else {
-        None
-    };
-    let lhs = parse_expr(input, spans)?;
-    if input.peek(Token![==]) {
-        let eqeq: Token![==] = input.parse()?;
-        return Err(syn::Error::new_spanned(
-            eqeq,
-            "`==` is not an equation sign here: an equation reads `lhs = rhs;` with a single `=`",
-        ));
-    }
-    input
-        .parse::<Token![=]>()
-        .map_err(|_| input.error("expected `=`: an equation reads `lhs = rhs;`"))?;
-    let rhs = parse_expr(input, spans)?;
-    input.parse::<Token![;]>()?;
-    let start = match &label {
-        Some(label) => spans.get(label.id),
-        None => spans.get(lhs.id()),
-    };
-    let end = range_of(spans, &rhs);
-    let id = spans.push(start.map_or(end, |start| start.to(end)));
-    Ok(Equation {
-        label,
-        id,
-        lhs,
-        rhs,
-    })
-}
-
-/// `NAME = EXPR` (without the `;`).
-fn parse_binding(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<crate::ast::Expr>> {
-    let name = parse_name(input, spans)?;
-    input.parse::<Token![=]>()?;
-    let value = parse_expr(input, spans)?;
-    Ok(with_value(name, value))
-}
-
-fn parse_name(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<()>> {
-    let ident: syn::Ident = input.parse()?;
-    Ok(Named {
-        name: ident.to_string(),
-        id: spans.push(SpanRange::single(ident.span())),
-        value: (),
-    })
-}
-
-/// A name with the doc comments written before it (kept in `docs` under the name).
-fn parse_documented_name(
-    input: ParseStream,
-    spans: &mut Spans,
-    docs: &mut BTreeMap<String, Vec<syn::Attribute>>,
-) -> syn::Result<Named<()>> {
-    let attrs = input.call(syn::Attribute::parse_outer)?;
-    let name = parse_name(input, spans)?;
-    if !attrs.is_empty() {
-        docs.insert(name.name.clone(), attrs);
-    }
-    Ok(name)
-}
-
-fn with_value<T>(name: Named<()>, value: T) -> Named<T> {
-    Named {
-        name: name.name,
-        id: name.id,
-        value,
-    }
-}
-
-/// `item, item, ...` with an optional trailing comma, up to the end of `input`, appended to
-/// `items` as they parse (so the items before an error are kept).
-fn parse_list<T>(
-    input: ParseStream,
-    items: &mut Vec<T>,
-    mut item: impl FnMut(ParseStream) -> syn::Result<T>,
-) -> syn::Result<()> {
-    while !input.is_empty() {
-        items.push(item(input)?);
-        if input.is_empty() {
-            break;
-        }
-        input.parse::<Token![,]>()?;
-    }
-    Ok(())
-}
-
-fn braced<'a>(input: ParseStream<'a>) -> syn::Result<syn::parse::ParseBuffer<'a>> {
-    if !input.peek(token::Brace) {
-        return Err(input.error("expected `{`"));
-    }
-    let content;
-    syn::braced!(content in input);
-    Ok(content)
-}
-
-/// Runs one `;`-terminated statement; on error records it and skips past the next `;`.
-fn recover_statement(
-    input: ParseStream,
-    errors: &mut Errors,
-    statement: impl FnOnce(ParseStream) -> syn::Result<()>,
-) {
-    if let Err(error) = statement(input) {
-        errors.push(error);
-        skip_past_semicolon(input);
-    }
-}
-
-/// Runs a whole `{..}` section; on error records it and skips the rest of the section.
-fn recover_section(
-    input: ParseStream,
-    errors: &mut Errors,
-    section: impl FnOnce(ParseStream) -> syn::Result<()>,
-) {
-    if let Err(error) = section(input) {
-        errors.push(error);
-        skip_all(input);
-    }
-}
-
-fn skip_past_semicolon(input: ParseStream) {
-    let _ = input.step(|cursor| {
-        let mut rest = *cursor;
-        while let Some((tree, next)) = rest.token_tree() {
-            rest = next;
-            if matches!(&tree, TokenTree::Punct(p) if p.as_char() == ';') {
-                break;
-            }
-        }
-        Ok(((), rest))
-    });
-}
-
-fn skip_all(input: ParseStream) {
-    let _ = input.step(|cursor| {
-        let mut rest = *cursor;
-        while let Some((_, next)) = rest.token_tree() {
-            rest = next;
-        }
-        Ok(((), rest))
-    });
-}
-
-fn once(slot: &mut Option<SpanRange>, range: SpanRange, section: &str, errors: &mut Errors) {
-    if slot.is_some() {
-        errors.at(
-            range,
-            format!("`{section}` is written twice: declare everything in one section"),
-        );
-    } else {
-        *slot = Some(range);
-    }
-}
-
-fn check_docs_only(attrs: &[syn::Attribute], errors: &mut Errors) {
-    for attr in attrs {
-        if !attr.path().is_ident("doc") {
-            errors.push(syn::Error::new_spanned(
-                attr,
-                "only doc comments (`/// ..`) are allowed in a model",
-            ));
-        }
-    }
-}
-
-fn no_docs_here(attrs: &[syn::Attribute], what: &str, errors: &mut Errors) {
-    if let Some(attr) = attrs.iter().find(|attr| attr.path().is_ident("doc")) {
-        errors.push(syn::Error::new_spanned(
-            attr,
-            format!(
-                "doc comments go on the module, a variant, a parameter, a state or an output, not on {what}; use `//` here"
-            ),
-        ));
-    }
 }

@@ -8,6 +8,8 @@
 
 use crate::compile::compile_all;
 use crate::parse::parse_model_recovering;
+use crate::switched::validate_switched;
+use crate::switched_compile::{compile_switched, CompiledSwitched};
 use crate::validate::validate;
 use crate::ModelAst;
 use model_algebra::CompiledModel;
@@ -128,6 +130,14 @@ impl Source {
                 compiled,
             })
             .collect())
+    }
+
+    /// Parses, validates and compiles a switched model (one with `mode` or `when`), as `model!`
+    /// does; every error, located.
+    pub fn compile_switched(&self) -> Result<CompiledSwitched, LocatedErrors> {
+        let ast = self.parse()?;
+        let plan = validate_switched(&ast).map_err(|errors| self.locate_all(errors))?;
+        compile_switched(&plan).map_err(|errors| self.locate_all(errors))
     }
 
     /// Every error of a (combined) `syn::Error`, located in this source.

@@ -46,7 +46,7 @@ pub fn validate(ast: &ModelAst) -> syn::Result<Vec<Validated>> {
     Ok(models)
 }
 
-fn validate_one(ast: &ModelAst) -> syn::Result<Validated> {
+pub(crate) fn validate_one(ast: &ModelAst) -> syn::Result<Validated> {
     let mut validator = Validator {
         ast,
         names: Names::new(),

@@ -11,5 +11,6 @@ mod op_counts;
 mod pivots;
 mod rolling_disk;
 mod sliding_disk;
+mod switching;
 mod text;
 mod variants;

@@ -1,0 +1,151 @@
+//! A switched model compiled: each mode's model by the algebra, and its outputs program split
+//! into the user's outputs, the guards and each event's resets.
+
+use crate::compile::compile;
+use crate::span::Errors;
+use crate::switched::{Action, Crossing, JumpPlan, SwitchedPlan};
+use model_algebra::{CompiledModel, Program};
+
+/// A switched model after the compiler.
+#[derive(Clone, Debug)]
+pub struct CompiledSwitched {
+    /// The model's name.
+    pub name: String,
+    /// Each state's initial value, where one is written.
+    pub initial: Vec<Option<f64>>,
+    /// The modes, the first being where a run starts.
+    pub modes: Vec<CompiledMode>,
+}
+
+/// One mode compiled.
+#[derive(Clone, Debug)]
+pub struct CompiledMode {
+    /// The mode's model (named after the mode), with the user's outputs only.
+    pub model: CompiledModel,
+    /// `out[k]` = the guard value of event `k`, `lhs - rhs` (reads `t`, `y`, `dy`, `p`).
+    pub guards: Program,
+    /// The mode's events, in priority order.
+    pub events: Vec<CompiledEvent>,
+}
+
+/// One event compiled.
+#[derive(Clone, Debug)]
+pub struct CompiledEvent {
+    /// The event's name.
+    pub name: String,
+    /// Which crossings fire it.
+    pub crossing: Crossing,
+    /// The guard as the compiler simplified it, `lhs - rhs` in the DSL's syntax.
+    pub guard: String,
+    /// What it does.
+    pub action: Action<Jump>,
+    /// What an accumulation of its resets turns into.
+    pub accumulation: Option<Jump>,
+    /// Whether every mode has it.
+    pub shared: bool,
+}
+
+/// A compiled jump: the target and the program of the new values.
+#[derive(Clone, Debug)]
+pub struct Jump {
+    /// The mode the run continues in (`None`: the same mode, restarted).
+    pub to: Option<usize>,
+    /// The states reset, in the order written.
+    pub states: Vec<usize>,
+    /// `out[k]` = the new value of `states[k]`, from the state just before the event.
+    pub program: Program,
+    /// Each new value as the compiler simplified it, in the DSL's syntax.
+    pub texts: Vec<String>,
+}
+
+impl CompiledSwitched {
+    /// The state names (shared by every mode).
+    pub fn states(&self) -> &[String] {
+        &self.modes[0].model.states
+    }
+
+    /// The mode named `name`.
+    pub fn mode(&self, name: &str) -> Option<usize> {
+        self.modes.iter().position(|m| m.model.name == name)
+    }
+}
+
+/// Compiles every mode of a checked switched model; all errors are reported together.
+pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
+    let mut errors = Errors::default();
+    let mut modes = Vec::new();
+    for mode in &plan.modes {
+        let mut model = match compile(&mode.model) {
+            Ok(model) => model,
+            Err(error) => {
+                let name = &mode.model.spec.name;
+                for error in error {
+                    errors.push(syn::Error::new(
+                        error.span(),
+                        format!("in mode `{name}`: {error}"),
+                    ));
+                }
+                continue;
+            }
+        };
+        let all = model.outputs_program.clone();
+        let texts: Vec<String> = (model.explanation.outputs.iter())
+            .map(|(text, _)| text.clone())
+            .collect();
+        let n_user = mode.user_outputs;
+        let spans = &mode.model.ast.spans;
+        let guards = all.select_outputs(n_user..n_user + mode.events.len());
+        let mut events = Vec::new();
+        for event in &mode.events {
+            let guard = all.select_outputs(event.guard_output..event.guard_output + 1);
+            if guard.reads_only_parameters() && !event.shared {
+                errors.at(
+                    spans.range(event.guard_id),
+                    format!(
+                        "the guard of `{}` reads no state, derivative or time: it never changes sign during a run, so the event never fires",
+                        event.name
+                    ),
+                );
+            }
+            let jump = |plan: &JumpPlan| {
+                let outputs = plan.resets.iter().map(|&(_, o)| o);
+                let range = match (outputs.clone().min(), outputs.clone().max()) {
+                    (Some(lo), Some(hi)) => lo..hi + 1,
+                    _ => 0..0,
+                };
+                Jump {
+                    to: plan.to,
+                    states: plan.resets.iter().map(|&(s, _)| s).collect(),
+                    program: all.select_outputs(range),
+                    texts: outputs.map(|o| texts[o].clone()).collect(),
+                }
+            };
+            events.push(CompiledEvent {
+                name: event.name.clone(),
+                crossing: event.crossing,
+                guard: texts[event.guard_output].clone(),
+                action: match &event.action {
+                    Action::Record => Action::Record,
+                    Action::Stop => Action::Stop,
+                    Action::Jump(plan) => Action::Jump(jump(plan)),
+                },
+                accumulation: event.accumulation.as_ref().map(jump),
+                shared: event.shared,
+            });
+        }
+        model.outputs.truncate(n_user);
+        model.outputs_program = all.select_outputs(0..n_user);
+        model.explanation.outputs.truncate(n_user);
+        modes.push(CompiledMode {
+            model,
+            guards,
+            events,
+        });
+    }
+    errors.finish()?;
+    Ok(CompiledSwitched {
+        name: plan.ast.name.to_string(),
+        initial: plan.initial.clone(),
+        modes,
+    })
+}

@@ -1,0 +1,219 @@
+//! Switching, as written: `mode NAME { .. }` blocks and `when` events.
+//!
+//! A switched model is one set of states and parameters with several sets of equations (its
+//! modes) and events that move the run between them. An event is a guard relation that starts
+//! to hold, `when impact: h < 0`, located exactly by the runtime; what follows it is written as
+//! a mechanics text says it: the states it resets (`{ v = -e * v; }`, every right-hand side read
+//! just before the event) and the mode the run continues in (`-> sliding`), or `-> stop`. An
+//! event with neither is only recorded. `when impact accumulates -> resting { .. }` says what an
+//! accumulation of an event's resets (a Zeno point, such as a ball's ever shorter bounces)
+//! turns into. The grammar is described in the macro crate's `DSL.md`, section "Switching".
+
+use crate::ast::{Accumulates, Mode, Target, When};
+use crate::expr::parse_relation;
+use crate::span::{Errors, SpanRange, Spans};
+use crate::statements::{
+    braced, check_docs_only, parse_binding, parse_equation, parse_name, recover_statement, skip_all,
+};
+use model_algebra::Named;
+use syn::parse::ParseStream;
+use syn::Token;
+
+/// Where parsed events go: a mode's lists or the model's shared ones.
+pub(crate) struct Events<'a> {
+    /// The events.
+    pub events: &'a mut Vec<When>,
+    /// The accumulation rules.
+    pub accumulations: &'a mut Vec<Accumulates>,
+}
+
+/// `mode NAME { let ..; equations { .. } when .. }` (after the keyword `mode`).
+pub(crate) fn parse_mode(
+    input: ParseStream,
+    attrs: Vec<syn::Attribute>,
+    spans: &mut Spans,
+    errors: &mut Errors,
+) -> syn::Result<Mode> {
+    let name: syn::Ident = input.parse()?;
+    let id = spans.push(SpanRange::single(name.span()));
+    let content = braced(input)?;
+    let mut mode = Mode {
+        attrs,
+        name,
+        id,
+        lets: Vec::new(),
+        equations: Vec::new(),
+        events: Vec::new(),
+        accumulations: Vec::new(),
+    };
+    let mut equations_seen = false;
+    while !content.is_empty() {
+        let item_attrs = content.call(syn::Attribute::parse_outer)?;
+        check_docs_only(&item_attrs, errors);
+        if content.peek(Token![let]) {
+            recover_statement(&content, errors, |input| {
+                input.parse::<Token![let]>()?;
+                mode.lets.push(parse_binding(input, spans)?);
+                input.parse::<Token![;]>()?;
+                Ok(())
+            });
+            continue;
+        }
+        let keyword: syn::Ident = match content.parse() {
+            Ok(keyword) => keyword,
+            Err(_) => {
+                errors.push(content.error(format!(
+                    "expected `let`, `equations {{ .. }}` or `when` in mode `{}`",
+                    mode.name
+                )));
+                skip_all(&content);
+                break;
+            }
+        };
+        match keyword.to_string().as_str() {
+            "equations" => {
+                if equations_seen {
+                    errors.push(syn::Error::new(
+                        keyword.span(),
+                        format!(
+                            "`equations` is written twice in mode `{}`: declare them in one section",
+                            mode.name
+                        ),
+                    ));
+                }
+                equations_seen = true;
+                let inner = braced(&content)?;
+                while !inner.is_empty() {
+                    recover_statement(&inner, errors, |input| {
+                        mode.equations.push(parse_equation(input, spans)?);
+                        Ok(())
+                    });
+                }
+            }
+            "when" => {
+                let mut events = Events {
+                    events: &mut mode.events,
+                    accumulations: &mut mode.accumulations,
+                };
+                recover_statement(&content, errors, |input| {
+                    parse_when(input, item_attrs, spans, &mut events)
+                });
+            }
+            other => {
+                errors.push(syn::Error::new(
+                    keyword.span(),
+                    format!(
+                        "unknown section `{other}` in mode `{}`: expected `let`, `equations` or `when` \
+                         (parameters, states, outputs and options belong to the model)",
+                        mode.name
+                    ),
+                ));
+                skip_all(&content);
+            }
+        }
+    }
+    Ok(mode)
+}
+
+/// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS }] [;]` or
+/// `NAME accumulates -> TARGET [{ RESETS }] [;]`.
+pub(crate) fn parse_when(
+    input: ParseStream,
+    attrs: Vec<syn::Attribute>,
+    spans: &mut Spans,
+    events: &mut Events,
+) -> syn::Result<()> {
+    let name = parse_name(input, spans)?;
+    if input.peek(syn::Ident) {
+        let word: syn::Ident = input.parse()?;
+        if word != "accumulates" {
+            return Err(syn::Error::new(
+                word.span(),
+                format!(
+                    "expected `:` and a guard (`when {0}: h < 0`) or `accumulates` \
+                     (`when {0} accumulates -> MODE`)",
+                    name.name
+                ),
+            ));
+        }
+        if !input.peek(Token![->]) {
+            return Err(input.error("expected `-> MODE` or `-> stop` after `accumulates`"));
+        }
+        let target = parse_target(input, spans)?
+            .ok_or_else(|| input.error("expected `-> MODE` or `-> stop`"))?;
+        let resets = parse_resets(input, spans)?.unwrap_or_default();
+        end_of_event(input)?;
+        events.accumulations.push(Accumulates {
+            event: name,
+            target,
+            resets,
+        });
+        return Ok(());
+    }
+    if !input.peek(Token![:]) {
+        return Err(input.error(format!(
+            "expected `:` and a guard after the event's name, e.g. `when {}: h < 0`",
+            name.name
+        )));
+    }
+    input.parse::<Token![:]>()?;
+    let guard = parse_relation(input, spans)?;
+    let target = parse_target(input, spans)?;
+    let resets = parse_resets(input, spans)?;
+    end_of_event(input)?;
+    events.events.push(When {
+        attrs,
+        name,
+        guard,
+        target,
+        resets,
+    });
+    Ok(())
+}
+
+/// `-> NAME` or `-> stop`, if written.
+fn parse_target(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Target>> {
+    if !input.peek(Token![->]) {
+        return Ok(None);
+    }
+    input.parse::<Token![->]>()?;
+    let name = parse_name(input, spans)
+        .map_err(|_| input.error("expected a mode's name or `stop` after `->`"))?;
+    Ok(Some(if name.name == "stop" {
+        Target::Stop(name.id)
+    } else {
+        Target::Mode(name)
+    }))
+}
+
+/// `{ state = EXPR; .. }`, if written.
+fn parse_resets(
+    input: ParseStream,
+    spans: &mut Spans,
+) -> syn::Result<Option<Vec<Named<crate::ast::Expr>>>> {
+    if !input.peek(syn::token::Brace) {
+        return Ok(None);
+    }
+    let content = braced(input)?;
+    let mut resets = Vec::new();
+    while !content.is_empty() {
+        resets.push(parse_binding(&content, spans)?);
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![;]>()?;
+    }
+    Ok(Some(resets))
+}
+
+/// An event ends with its braces or a `;` (both after braces are accepted).
+fn end_of_event(input: ParseStream) -> syn::Result<()> {
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+        return Ok(());
+    }
+    if input.is_empty() || input.peek(syn::Ident) || input.peek(Token![#]) {
+        return Ok(());
+    }
+    Err(input.error("expected `;`, `{ .. }` or `-> MODE` to end the event"))
+}

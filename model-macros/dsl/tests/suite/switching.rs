@@ -1,0 +1,245 @@
+//! Switched models through the front end: modes and events parsed, checked, compiled, and
+//! every mistake in the new constructs located at its token.
+
+use model_algebra::Inputs;
+use model_dsl::{Action, CompiledSwitched, Crossing, Located, Source};
+
+const BALL: &str = include_str!("../../../examples/bouncing_ball.dsl");
+
+fn compile(text: &str) -> CompiledSwitched {
+    match Source::new("m.dsl", text).compile_switched() {
+        Ok(model) => model,
+        Err(errors) => panic!("{errors}"),
+    }
+}
+
+fn errors(text: &str) -> Vec<Located> {
+    Source::new("bad.dsl", text)
+        .compile_switched()
+        .expect_err("must be rejected")
+        .0
+}
+
+fn eval(program: &model_algebra::Program, y: &[f64], dy: &[f64], p: &[f64], n: usize) -> Vec<f64> {
+    let inputs = Inputs {
+        t: 0.0,
+        states: y,
+        params: p,
+        ders: dy,
+    };
+    program.eval(&inputs).unwrap().outputs(n)
+}
+
+#[test]
+fn the_ball_compiles_to_two_modes_with_its_event_and_its_rest() {
+    let ball = compile(BALL);
+    assert_eq!(ball.name, "bouncing_ball");
+    assert_eq!(ball.states(), ["h", "v"]);
+    assert_eq!(ball.initial, [Some(1.0), Some(0.0)]);
+    let names: Vec<&str> = ball.modes.iter().map(|m| m.model.name.as_str()).collect();
+    assert_eq!(names, ["flying", "resting"]);
+    let flying = &ball.modes[0];
+    assert_eq!(flying.model.outputs, ["energy"]);
+    assert_eq!(flying.events.len(), 1);
+    let impact = &flying.events[0];
+    assert_eq!(
+        (impact.name.as_str(), impact.crossing),
+        ("impact", Crossing::Down)
+    );
+    assert_eq!(impact.guard, "h");
+    let Action::Jump(jump) = &impact.action else {
+        panic!("{:?}", impact.action)
+    };
+    assert_eq!((jump.to, jump.states.as_slice()), (None, &[1usize][..]));
+    assert_eq!(jump.texts, ["-v*e"]);
+    let p = [9.81, 0.8];
+    // The guard reads h; the reset gives -e v from the state before the impact.
+    assert_eq!(
+        eval(&flying.guards, &[0.25, -3.0], &[-3.0, -9.81], &p, 1),
+        [0.25]
+    );
+    assert_eq!(
+        eval(&jump.program, &[0.0, -3.0], &[-3.0, -9.81], &p, 1),
+        [2.4000000000000004]
+    );
+    let rest = impact.accumulation.as_ref().expect("the rule");
+    assert_eq!(
+        (rest.to, rest.states.as_slice()),
+        (Some(1), &[0usize, 1][..])
+    );
+    assert_eq!(
+        eval(&rest.program, &[1e-12, -3e-6], &[0.0, 0.0], &p, 2),
+        [0.0, 0.0]
+    );
+    // The user's outputs alone in the mode's own outputs program.
+    assert_eq!(
+        eval(
+            &flying.model.outputs_program,
+            &[1.0, 2.0],
+            &[2.0, -9.81],
+            &p,
+            1
+        ),
+        [9.81 + 2.0]
+    );
+    assert!(
+        !flying.model.explanation.markdown.contains("when:"),
+        "{}",
+        flying.model.explanation.markdown
+    );
+    assert!(ball.modes[1].events.is_empty());
+}
+
+#[test]
+fn a_model_with_events_and_no_modes_is_its_own_mode_and_guards_may_read_derivatives() {
+    let text = "mod drop { params { g = 9.81 } states { h = 2, v }
+        equations { der(h) = v; der(v) = -g; }
+        outputs { speed = abs(v); }
+        when apex: der(h) < 0;
+        when fast: speed > 3 -> stop;
+        when floor: h <= 0 { v = -v; } }";
+    let model = compile(text);
+    assert_eq!(model.modes.len(), 1);
+    assert_eq!(model.modes[0].model.name, "drop");
+    assert_eq!(model.initial, [Some(2.0), None]);
+    let events = &model.modes[0].events;
+    let summary: Vec<(&str, Crossing, bool)> = events
+        .iter()
+        .map(|e| {
+            (
+                e.name.as_str(),
+                e.crossing,
+                matches!(e.action, Action::Record),
+            )
+        })
+        .collect();
+    assert_eq!(
+        summary,
+        [
+            ("apex", Crossing::Down, true),
+            ("fast", Crossing::Up, false),
+            ("floor", Crossing::Down, false)
+        ]
+    );
+    assert!(matches!(events[1].action, Action::Stop));
+    // The guards in one program: der(h), speed - 3, h.
+    let values = eval(
+        &model.modes[0].guards,
+        &[0.5, -4.0],
+        &[-4.0, -9.81],
+        &[9.81],
+        3,
+    );
+    assert_eq!(values, [-4.0, 1.0, 0.5]);
+}
+
+#[test]
+fn shared_equations_and_events_join_every_mode() {
+    let text = "mod belt { params { k = 10, vb = 0.5 } states { x, v }
+        equations { kinematics: der(x) = v; }
+        when broken: x > 100 -> stop;
+        mode stuck { equations { der(v) = 0; } when slip: k*x > 6 -> sliding; }
+        mode sliding { equations { der(v) = -k*x; } when stick: v > vb -> stuck { v = vb; } } }";
+    let model = compile(text);
+    let events: Vec<Vec<&str>> = (model.modes.iter())
+        .map(|m| m.events.iter().map(|e| e.name.as_str()).collect())
+        .collect();
+    assert_eq!(events, [vec!["slip", "broken"], vec!["stick", "broken"]]);
+    let Action::Jump(slip) = &model.modes[0].events[0].action else {
+        panic!()
+    };
+    assert_eq!((slip.to, slip.states.len()), (Some(1), 0));
+    assert_eq!(
+        model.modes[0]
+            .model
+            .explanation
+            .markdown
+            .matches("der(x) = v")
+            .count(),
+        1
+    );
+}
+
+fn messages(found: &[Located]) -> Vec<String> {
+    found.iter().map(|e| e.message.clone()).collect()
+}
+
+fn find<'a>(found: &'a [Located], needle: &str) -> &'a Located {
+    found
+        .iter()
+        .find(|e| e.message.contains(needle))
+        .unwrap_or_else(|| panic!("no `{needle}` in {:#?}", messages(found)))
+}
+
+/// The text under an error's caret, `len` characters of it.
+fn underlined(error: &Located, len: usize) -> String {
+    error
+        .source_line
+        .chars()
+        .skip(error.column - 1)
+        .take(len)
+        .collect()
+}
+
+#[test]
+fn mistakes_in_switching_are_located_and_name_the_culprit() {
+    let text = "mod m { params { e = 0.5 } states { h, v }
+        mode a { equations { der(h) = v; der(v) = -1; }
+            when hit: h < 0 -> nowhere;
+            when bounce: h < 0 { w = -e*v; } }
+        mode b { equations { der(h) = v; der(v) = 1; } } }";
+    let found = errors(text);
+    let unknown = find(&found, "unknown mode `nowhere`");
+    assert!(
+        unknown.message.contains("the modes are `a`, `b`"),
+        "{}",
+        unknown.message
+    );
+    assert_eq!(underlined(unknown, 7), "nowhere");
+    let reset = find(&found, "resets `w`, which is not a state");
+    assert!(reset.message.contains("the states are `h`, `v`"));
+    assert_eq!(underlined(reset, 1), "w");
+    assert_eq!(found.len(), 2, "{:#?}", messages(&found));
+
+    // What only the compiler sees: a guard that never changes, a mode short of an equation.
+    let text = "mod m { params { e = 0.5 } states { h, v }
+        mode a { equations { der(h) = v; der(v) = -1; } when never: e < 1 { v = 0; } }
+        mode b { equations { der(h) = v; } } }";
+    let found = errors(text);
+    let constant = find(&found, "the guard of `never` reads no state");
+    assert_eq!(underlined(constant, 5), "e < 1");
+    let missing = find(&found, "in mode `b`");
+    assert!(missing.message.contains("`v`"), "{}", missing.message);
+    assert_eq!(found.len(), 2, "{:#?}", messages(&found));
+}
+
+#[test]
+fn syntax_of_events_is_checked_where_written() {
+    let cases = [
+        ("mod m { states { x } equations { der(x) = 1; } when hit x < 0; }", "expected `:` and a guard"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x = 0; }", "not `=`"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x; }", "expected a comparison"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 -> stop { x = 1; } }", "stops the run"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0; when hit accumulates -> m; }", "resets nothing"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 { x = 1; } when miss accumulates -> m; }", "no event `miss`"),
+        ("mod m { states { x } mode state { equations { der(x) = 1; } } }", "cannot be called `state`"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } } mode a { equations { der(x) = 2; } } }", "declared twice"),
+        ("mod m { states { x } mode a { params { k } equations { der(x) = 1; } } }", "belong to the model"),
+    ];
+    for (text, expected) in cases {
+        let found = messages(&errors(text));
+        assert!(
+            found.iter().any(|m| m.contains(expected)),
+            "{text}\n{found:#?}"
+        );
+    }
+}
+
+#[test]
+fn an_error_in_a_shared_row_is_reported_once() {
+    let text = "mod m { states { x, v } equations { der(x) = vv; }
+        mode a { equations { der(v) = 1; } } mode b { equations { der(v) = -1; } } }";
+    let found = messages(&errors(text));
+    assert_eq!(found.len(), 1, "{found:#?}");
+    assert!(found[0].starts_with("unknown name `vv`"), "{found:#?}");
+}
