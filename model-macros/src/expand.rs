@@ -5,8 +5,11 @@
 //! cost of the equation compiler can be seen).
 
 use crate::emit::emit;
+use crate::emit_switched::emit_switched;
 use crate::placeholder::placeholder;
-use model_dsl::{compile_all, parse_model_recovering, validate, ModelAst};
+use model_dsl::{
+    compile_all, compile_switched, parse_model_recovering, validate, validate_switched, ModelAst,
+};
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 use syn::parse::{ParseStream, Parser};
@@ -87,6 +90,20 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
     timing.model = ast.name.to_string();
     if let Some(error) = parsed.errors {
         return (failure(error, placeholders(&ast)), timing);
+    }
+    if ast.is_switched() {
+        let plan = timing.stage("validate", || validate_switched(&ast));
+        let compiled = plan.and_then(|plan| {
+            let compiled = timing.stage("compile", || compile_switched(&plan))?;
+            Ok((plan, compiled))
+        });
+        return match compiled {
+            Ok((plan, compiled)) => {
+                let output = timing.stage("emit", || emit_switched(&plan, &compiled));
+                (output, timing)
+            }
+            Err(error) => (failure(error, placeholders(&ast)), timing),
+        };
     }
     let validated = timing.stage("validate", || validate(&ast));
     let compiled = validated.and_then(|models| {

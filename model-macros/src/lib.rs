@@ -4,6 +4,7 @@
 mod emit;
 mod emit_named;
 mod emit_program;
+mod emit_switched;
 mod expand;
 mod placeholder;
 

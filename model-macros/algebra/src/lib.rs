@@ -74,6 +74,7 @@ mod variant;
 
 pub use compile::compile;
 pub use eval::{EvalFailure, Inputs, Stores};
+pub use explain::{is_internal, latex_name};
 pub use options::{CompileOptions, PIVOT_TOLERANCE};
 pub use program::{
     CompiledModel, Explanation, Node, Operand, Ops, Program, Stmt, SumCheck, Target,

@@ -36,6 +36,7 @@ mod span;
 mod statements;
 mod switched;
 mod switched_compile;
+mod switched_show;
 mod switching;
 mod text;
 mod unchecked;
@@ -52,6 +53,7 @@ pub use switched::{
     validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
 };
 pub use switched_compile::{compile_switched, CompiledEvent, CompiledMode, CompiledSwitched, Jump};
+pub use switched_show::{switching_latex, switching_markdown};
 pub use text::{Located, LocatedErrors, Source, TextModel};
 pub use unchecked::spec_unchecked;
 pub use validate::{validate, Validated, RESERVED_MODULES};

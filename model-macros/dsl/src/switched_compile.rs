@@ -37,6 +37,8 @@ pub struct CompiledEvent {
     pub crossing: Crossing,
     /// The guard as the compiler simplified it, `lhs - rhs` in the DSL's syntax.
     pub guard: String,
+    /// The same in LaTeX.
+    pub guard_latex: String,
     /// What it does.
     pub action: Action<Jump>,
     /// What an accumulation of its resets turns into.
@@ -56,6 +58,8 @@ pub struct Jump {
     pub program: Program,
     /// Each new value as the compiler simplified it, in the DSL's syntax.
     pub texts: Vec<String>,
+    /// The same in LaTeX.
+    pub latex: Vec<String>,
 }
 
 impl CompiledSwitched {
@@ -92,6 +96,9 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
         let texts: Vec<String> = (model.explanation.outputs.iter())
             .map(|(text, _)| text.clone())
             .collect();
+        let latex: Vec<String> = (model.explanation.outputs.iter())
+            .map(|(_, latex)| latex.clone())
+            .collect();
         let n_user = mode.user_outputs;
         let spans = &mode.model.ast.spans;
         let guards = all.select_outputs(n_user..n_user + mode.events.len());
@@ -117,13 +124,15 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
                     to: plan.to,
                     states: plan.resets.iter().map(|&(s, _)| s).collect(),
                     program: all.select_outputs(range),
-                    texts: outputs.map(|o| texts[o].clone()).collect(),
+                    texts: outputs.clone().map(|o| texts[o].clone()).collect(),
+                    latex: outputs.map(|o| latex[o].clone()).collect(),
                 }
             };
             events.push(CompiledEvent {
                 name: event.name.clone(),
                 crossing: event.crossing,
                 guard: texts[event.guard_output].clone(),
+                guard_latex: latex[event.guard_output].clone(),
                 action: match &event.action {
                     Action::Record => Action::Record,
                     Action::Stop => Action::Stop,

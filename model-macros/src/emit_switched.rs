@@ -1,0 +1,288 @@
+//! A compiled switched model as Rust: one module per mode (every item a smooth model has), and
+//! around them the switched model itself, whose `SwitchedModel` implementation dispatches on
+//! the mode and runs the guards and resets the compiler derived.
+//!
+//! The modes share the states, parameters and outputs, so the parent re-exports the first
+//! mode's names for them (`State`, `Params`, `state::h`, ...) and adds the mode graph: what
+//! each event does, as `model_runtime::ModeGraph` tables that `model_runtime::Switched` follows.
+
+use crate::emit::emit;
+use crate::emit_program::{constant, statements};
+use model_dsl::{Action, CompiledSwitched, Crossing, Jump, SwitchedPlan};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+/// Emits a switched model: its modes' modules and the switched `Model`.
+pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenStream {
+    let ast = &plan.ast;
+    let vis = &ast.vis;
+    let ident = &ast.name;
+    let name = ident.to_string();
+    let default_doc = format!(" The switched model `{name}`, each mode solved at compile time.");
+    let docs = if ast.attrs.is_empty() {
+        quote! { #[doc = #default_doc] }
+    } else {
+        let attrs = &ast.attrs;
+        quote! { #(#attrs)* }
+    };
+    let mode_modules = plan.modes.iter().zip(&compiled.modes).map(|(mode, compiled)| {
+        let mut mode_ast = mode.model.ast.clone();
+        mode_ast.vis = syn::parse_quote!(pub);
+        if mode_ast.attrs.is_empty() {
+            let doc = format!(" Mode `{}` of `{name}`.", mode_ast.name);
+            mode_ast.attrs = vec![syn::parse_quote!(#[doc = #doc])];
+        }
+        emit(&mode_ast, &compiled.model)
+    });
+    let first = format_ident!("{}", compiled.modes[0].model.name);
+    let mode_idents: Vec<_> = (compiled.modes.iter())
+        .map(|m| format_ident!("{}", m.model.name))
+        .collect();
+    let mode_names: Vec<&str> = compiled.modes.iter().map(|m| m.model.name.as_str()).collect();
+    let n_modes = mode_names.len();
+    let mode_indices = 0..n_modes;
+    let initial = compiled.initial.iter().map(|v| constant(v.unwrap_or(0.0)));
+    let decls = compiled.modes.iter().map(|mode| {
+        let mode_name = &mode.model.name;
+        let events = mode.events.iter().map(|event| {
+            let event_name = &event.name;
+            let direction = match event.crossing {
+                Crossing::Up => quote! { ::model_runtime::Direction::Up },
+                Crossing::Down => quote! { ::model_runtime::Direction::Down },
+                Crossing::Both => quote! { ::model_runtime::Direction::Both },
+            };
+            let action = match &event.action {
+                Action::Record => quote! { ::model_runtime::EventAction::Record },
+                Action::Stop => quote! { ::model_runtime::EventAction::Stop },
+                Action::Jump(jump) => {
+                    let to = option_index(jump.to);
+                    let reset = !jump.states.is_empty();
+                    quote! { ::model_runtime::EventAction::Reset { to: #to, reset: #reset } }
+                }
+            };
+            let accumulation = match &event.accumulation {
+                Some(jump) => {
+                    let to = option_index(jump.to);
+                    let reset = !jump.states.is_empty();
+                    quote! {
+                        ::core::option::Option::Some(::model_runtime::AccumulationAction { to: #to, reset: #reset })
+                    }
+                }
+                None => quote! { ::core::option::Option::None },
+            };
+            quote! {
+                ::model_runtime::EventDecl {
+                    name: ::std::string::String::from(#event_name),
+                    direction: #direction,
+                    action: #action,
+                    on_accumulation: #accumulation,
+                }
+            }
+        });
+        quote! {
+            ::model_runtime::ModeDecl {
+                name: ::std::string::String::from(#mode_name),
+                events: ::std::vec![#(#events),*],
+            }
+        }
+    });
+    let rhs_arms = mode_idents.iter().enumerate().map(|(k, m)| {
+        quote! { #k => ::model_runtime::Model::<N_STATES>::rhs(&#m::Model::new(self.params), t, y, dy), }
+    });
+    let jacobian_arms = mode_idents.iter().enumerate().map(|(k, m)| {
+        quote! { #k => ::model_runtime::Model::<N_STATES>::jacobian(&#m::Model::new(self.params), t, y, jac), }
+    });
+    let guard_arms = compiled.modes.iter().enumerate().map(|(k, mode)| {
+        let n = mode.events.len();
+        let body = statements(&mode.guards);
+        quote! {
+            #k => {
+                let out: &mut [f64] = &mut values[..#n];
+                #body
+            }
+        }
+    });
+    let mut reset_arms = Vec::new();
+    for (k, mode) in compiled.modes.iter().enumerate() {
+        for (e, event) in mode.events.iter().enumerate() {
+            if let Action::Jump(jump) = &event.action {
+                reset_arms.push(reset_arm(k, e, false, jump));
+            }
+            if let Some(jump) = &event.accumulation {
+                reset_arms.push(reset_arm(k, e, true, jump));
+            }
+        }
+    }
+    let explanation = explanation(compiled);
+    let defaults = compiled.modes[0].model.params.iter().all(|(_, d)| d.is_some());
+    let default_impl = defaults.then(|| {
+        quote! {
+            impl ::core::default::Default for Model {
+                /// The model with every parameter at the DSL's default.
+                fn default() -> Self {
+                    Model::from_params(Params::default())
+                }
+            }
+        }
+    });
+    quote! {
+        #docs
+        #[allow(
+            non_upper_case_globals,
+            non_snake_case,
+            unused_variables,
+            unused_parens,
+            clippy::all,
+            clippy::pedantic,
+            clippy::nursery
+        )]
+        #vis mod #ident {
+            #(#mode_modules)*
+            pub use self::#first::{
+                output, param, state, Outputs, Params, State, N_OUTPUTS, N_PARAMS, N_STATES,
+                OUTPUT_NAMES, PARAM_DEFAULTS, PARAM_NAMES, STATE_NAMES,
+            };
+            const MODEL_NAME: &str = #name;
+            /// The number of modes.
+            pub const N_MODES: usize = #n_modes;
+            /// Mode names, in index order (the first is where a run starts).
+            pub const MODE_NAMES: [&str; N_MODES] = [#(#mode_names),*];
+            /// Index of each mode.
+            pub mod mode {
+                #(
+                    #[doc = concat!(" Index of mode `", #mode_names, "`.")]
+                    pub const #mode_idents: usize = #mode_indices;
+                )*
+            }
+            /// The initial state written in the model (`0` where none is written).
+            pub const INITIAL: [f64; N_STATES] = [#(#initial),*];
+            /// The modes, their events and what each event does, then each mode's solved
+            /// equations (Markdown).
+            pub const SWITCHING_MARKDOWN: &str = #explanation;
+            /// The switched model with its parameter values and its mode graph.
+            #[derive(Clone, Debug, PartialEq)]
+            pub struct Model {
+                /// Parameter values, indexed by the constants of [`param`].
+                pub params: [f64; N_PARAMS],
+                graph: ::model_runtime::ModeGraph,
+            }
+            impl Model {
+                /// A model with these parameter values (indexed by the constants of [`param`]).
+                pub fn new(params: [f64; N_PARAMS]) -> Self {
+                    let graph = ::model_runtime::ModeGraph::new(::std::vec![#(#decls),*])
+                        .expect("the mode graph was checked when the model was compiled");
+                    Model { params, graph }
+                }
+                /// A model with these named parameter values.
+                pub fn from_params(params: Params) -> Self {
+                    Model::new(params.to_array())
+                }
+            }
+            #default_impl
+            impl ::model_runtime::SwitchedModel<N_STATES> for Model {
+                fn graph(&self) -> &::model_runtime::ModeGraph {
+                    &self.graph
+                }
+                fn rhs(
+                    &self,
+                    mode: usize,
+                    t: f64,
+                    y: &[f64; N_STATES],
+                    dy: &mut [f64; N_STATES],
+                ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                    match mode {
+                        #(#rhs_arms)*
+                        _ => ::core::result::Result::Err(unknown_mode()),
+                    }
+                }
+                fn jacobian(
+                    &self,
+                    mode: usize,
+                    t: f64,
+                    y: &[f64; N_STATES],
+                    jac: &mut [[f64; N_STATES]; N_STATES],
+                ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                    match mode {
+                        #(#jacobian_arms)*
+                        _ => ::core::result::Result::Err(unknown_mode()),
+                    }
+                }
+                fn event_values(
+                    &self,
+                    mode: usize,
+                    t: f64,
+                    y: &[f64; N_STATES],
+                    dy: &[f64; N_STATES],
+                    values: &mut [f64],
+                ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                    let p = &self.params;
+                    match mode {
+                        #(#guard_arms)*
+                        _ => return ::core::result::Result::Err(unknown_mode()),
+                    }
+                    ::core::result::Result::Ok(())
+                }
+                fn reset(
+                    &self,
+                    mode: usize,
+                    event: usize,
+                    accumulation: bool,
+                    t: f64,
+                    y: &[f64; N_STATES],
+                    dy: &[f64; N_STATES],
+                    new: &mut [f64; N_STATES],
+                ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
+                    let p = &self.params;
+                    match (mode, event, accumulation) {
+                        #(#reset_arms)*
+                        _ => {}
+                    }
+                    ::core::result::Result::Ok(())
+                }
+            }
+            /// A mode index outside the graph: reported as a non-finite derivative of no state.
+            fn unknown_mode() -> ::model_runtime::EvalError {
+                ::model_runtime::EvalError::NonFinite {
+                    model: MODEL_NAME,
+                    quantity: "the mode index (out of range)",
+                    value: f64::NAN,
+                }
+            }
+        }
+    }
+}
+
+fn option_index(index: Option<usize>) -> TokenStream {
+    match index {
+        Some(k) => quote! { ::core::option::Option::Some(#k) },
+        None => quote! { ::core::option::Option::None },
+    }
+}
+
+/// One arm of `reset`: the program of the new values into a local array, then each into its
+/// state.
+fn reset_arm(mode: usize, event: usize, accumulation: bool, jump: &Jump) -> TokenStream {
+    let n = jump.states.len();
+    let body = statements(&jump.program);
+    let targets = jump.states.iter().enumerate().map(|(k, s)| quote! { new[#s] = values[#k]; });
+    quote! {
+        (#mode, #event, #accumulation) => {
+            let mut values = [0.0f64; #n];
+            {
+                let out = &mut values;
+                #body
+            }
+            #(#targets)*
+        }
+    }
+}
+
+/// The modes and events as Markdown, then each mode's solved equations.
+fn explanation(compiled: &CompiledSwitched) -> String {
+    let mut text = model_dsl::switching_markdown(compiled);
+    for mode in &compiled.modes {
+        text.push('\n');
+        text.push_str(&mode.model.explanation.markdown);
+    }
+    text
+}
