@@ -13,7 +13,8 @@
 //!   that limits each step can be counted ([`Stats::limiting`]).
 //! * Hybrid systems ([`HybridSystem`], run by [`HybridSolver`]): modes, guards with exact
 //!   crossing location (semantics at [`GuardSpec`]), transition maps with a typed note for the
-//!   observer, chattering detection, projection, streaming [`Observer`]s.
+//!   observer, events that only pass (reported, no restart), chattering detection,
+//!   projection, streaming [`Observer`]s.
 //!
 //! # The API by theme
 //!
