@@ -33,6 +33,15 @@ pub enum EvalError {
         /// Its value.
         value: f64,
     },
+    /// The state an event's reset assigns is not finite.
+    ResetNotFinite {
+        /// The event, as `mode.event`.
+        event: String,
+        /// The state component that is not finite.
+        component: usize,
+        /// Its value.
+        value: f64,
+    },
 }
 
 impl fmt::Display for EvalError {
@@ -51,6 +60,14 @@ impl fmt::Display for EvalError {
                 quantity,
                 value,
             } => write!(f, "model `{model}`: `{quantity}` is not finite ({value})"),
+            EvalError::ResetNotFinite {
+                event,
+                component,
+                value,
+            } => write!(
+                f,
+                "the reset of event `{event}` assigns state component {component} = {value}"
+            ),
         }
     }
 }
@@ -189,6 +206,13 @@ pub enum InputError {
         /// The window's width.
         window: f64,
     },
+    /// A number of an accumulation rule is unusable.
+    AccumulationRule {
+        /// The field, e.g. `tail`.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
 }
 
 /// Why a component group cannot be used.
@@ -289,6 +313,9 @@ impl fmt::Display for InputError {
                 f,
                 "chattering limit of {max_transitions} transitions in {window} is unusable"
             ),
+            InputError::AccumulationRule { field, value } => {
+                write!(f, "accumulation rule: `{field}` = {value} is unusable")
+            }
         }
     }
 }

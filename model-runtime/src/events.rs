@@ -63,6 +63,15 @@ pub(crate) enum Probe {
 ///   past the surface and a restart from it cannot detect the same crossing again.
 /// * **Several guards in one step.** The earliest crossing wins; equal times go to the guard
 ///   listed first. The others are not reported (the segment ends at the event).
+/// * **Passes.** An event whose transition is [`crate::Transition::Pass`] does not end the
+///   segment: the event time becomes a check point (the guard values there are exact) and the
+///   rest of the step is searched again. The guard that passed takes its value's sign there
+///   as its reference (the far side); exactly zero there, it is pending with a quiet
+///   departure. Another guard that already shows an admitted crossing at the event time (a
+///   tie, or a crossing the step-end check missed) keeps its reference and is reported next,
+///   at the event time at the earliest; every other guard's reference advances as at any
+///   check point. Every pass thus either consumes a guard's crossing at the event time or
+///   moves on to a strictly later one, so a step holds finitely many passes.
 /// * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
 ///   [`crate::HybridOptions::guard_checks`] to sample the guards at interior points of
 ///   each step on the dense output ([`InteriorChecks`]); a double crossing between two samples
@@ -182,6 +191,30 @@ impl GuardTracker {
         self.at_best.resize(values.len(), 0.0);
         self.at_third.clear();
         self.at_third.resize(values.len(), 0.0);
+    }
+
+    /// Makes the time of a pass of guard `index` the last check point, with the exact guard
+    /// `values` there (see "Passes" at [`GuardSpec`]); the next [`GuardTracker::scan`] starts
+    /// at that time.
+    pub(crate) fn pass(&mut self, index: usize, values: &[f64]) {
+        for (i, &v) in values.iter().enumerate() {
+            if i == index {
+                self.reference[i] = sign(v);
+                self.departure_fires[i] = false;
+            } else if v != 0.0
+                && sign(v) != self.reference[i]
+                && self.departure(i, v).is_none()
+                && self.admitted_crossing(i, v).is_none()
+            {
+                self.reference[i] = sign(v);
+            }
+            self.quiet[i] = QuietRange::of(
+                self.reference[i],
+                self.directions[i],
+                self.departure_fires[i],
+            );
+            self.lo_values[i] = v;
+        }
     }
 
     /// Number of guards.

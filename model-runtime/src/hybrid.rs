@@ -8,6 +8,12 @@
 //! applies the transition and restarts the integrator cleanly: no stage is reused across a
 //! transition (no first-same-as-last) and the initial step size is chosen afresh.
 //!
+//! An event can also be a mere observation ([`Transition::Pass`]: an extremum, a threshold
+//! to log). Such an event is located and reported exactly like the others, but it changes
+//! nothing, so it costs no restart: the step it fell in is kept, the rest of that step is
+//! searched again for later crossings, and the run's steps, samples and final state are
+//! those of the same run without the guard. Many such events per second are therefore cheap.
+//!
 //! The system is a trait with an enum-dispatch style (`fn rhs(&self, mode, ...)`), so the
 //! inner loop is monomorphised: no dynamic dispatch, no allocation per step.
 //!
@@ -73,8 +79,8 @@ pub trait HybridSystem<const N: usize> {
     /// Why the system asked to stop (user-defined).
     type Stop: Clone + Debug;
     /// What a transition tells the observer besides the event and the states (user-defined;
-    /// `()` for nothing): it travels in [`Transition::Switch`] and [`Transition::Continue`]
-    /// and reaches [`crate::Observer::on_transition`] in the [`crate::TransitionRecord`].
+    /// `()` for nothing): it travels in [`Transition::Switch`], [`Transition::Continue`] and
+    /// [`Transition::Pass`] and reaches [`crate::Observer::on_transition`] in the [`crate::TransitionRecord`].
     type Note;
 
     /// `dy = f(t, y)` in `mode`.
@@ -125,7 +131,10 @@ pub trait HybridSystem<const N: usize> {
     }
 
     /// The transition map, called when a guard of `mode` fires (`hit` holds the guard, the
-    /// exact time and the state there).
+    /// exact time and the state there). It is called after the samples up to the event are
+    /// delivered and the step's interpolant is built, so a map that changes what
+    /// [`HybridSystem::rhs`] computes (a parameter, a clock) cannot change the output of the
+    /// step it ends.
     fn on_event(
         &mut self,
         mode: Self::Mode,
@@ -171,6 +180,20 @@ pub enum Transition<const N: usize, Md, R, Nt = ()> {
         /// What the observer is told about it.
         note: Nt,
     },
+    /// Nothing changes: the event is reported to the observer (as
+    /// [`crate::TransitionKind::Pass`], with `note`) and the run goes on in the same step, as
+    /// if the guard were not there. The integrator is not restarted and the rest of the step
+    /// is searched again for later crossings; the guard that passed takes the sign beyond
+    /// its crossing as its reference (or, if it is exactly zero at the event, the sign of its
+    /// first nonzero value after it, without firing), so it fires again only when it crosses
+    /// back in a direction its filter admits. A pass is not a transition:
+    /// [`HybridOutcome::transitions`] and the [`ChatterLimit`] do not count it (it restarts
+    /// nothing, so it cannot trap the run at one time), [`HybridOutcome::passes`] does, and
+    /// [`crate::Observer::proceed`] is asked after the step, not after each pass.
+    Pass {
+        /// What the observer is told about it.
+        note: Nt,
+    },
     /// End the run here.
     Stop(R),
 }
@@ -184,7 +207,8 @@ pub type TransitionOf<const N: usize, H> = Transition<
 >;
 
 /// More than `max_transitions` transitions within any time window of width `window` is
-/// chattering: the run stops with [`HybridError::Chattering`] instead of looping.
+/// chattering: the run stops with [`HybridError::Chattering`] instead of looping. Passes
+/// ([`Transition::Pass`]) are not transitions and do not count.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ChatterLimit {
     /// Transitions allowed within one window.
@@ -244,6 +268,8 @@ pub struct HybridOutcome<const N: usize, Md, R> {
     pub stats: Stats,
     /// Transitions applied (switches and restarts).
     pub transitions: u64,
+    /// Events that passed ([`Transition::Pass`]): reported, nothing changed.
+    pub passes: u64,
 }
 
 /// Why a hybrid run failed.

@@ -13,7 +13,8 @@
 //!   that limits each step can be counted ([`Stats::limiting`]).
 //! * Hybrid systems ([`HybridSystem`], run by [`HybridSolver`]): modes, guards with exact
 //!   crossing location (semantics at [`GuardSpec`]), transition maps with a typed note for the
-//!   observer, chattering detection, projection, streaming [`Observer`]s.
+//!   observer, events that only pass (reported, no restart), chattering detection,
+//!   projection, streaming [`Observer`]s.
 //!
 //! # The API by theme
 //!
@@ -41,6 +42,11 @@
 //! * **Hybrid systems**: [`HybridSystem`], [`Transition`] ([`TransitionOf`]), [`HybridSolver`],
 //!   [`HybridOptions`], [`ChatterLimit`], [`HybridOutcome`], [`HybridResult`], [`StopReason`],
 //!   [`HybridError`].
+//! * **Switched models given by tables** (what `model!` and the model interpreter produce for
+//!   modes and events): [`SwitchedModel`] with its [`ModeGraph`] ([`ModeDecl`], [`EventDecl`],
+//!   [`EventAction`], [`AccumulationAction`], [`ModeId`], [`EventId`], [`GraphError`]), run as
+//!   the hybrid system [`Switched`] ([`SwitchedStop`], [`SwitchedNote`]); accumulation (Zeno)
+//!   detection, [`AccumulationDetector`] with its [`AccumulationRule`] and [`Accumulation`].
 //! * **Regularised time** (a hybrid system integrated in `τ` with `dt = s dτ`):
 //!   [`TimeScale`], [`Regularised`], [`ClockGuard`], [`Clocked`], and the observer adaptor
 //!   [`PhysicalTime`].
@@ -77,6 +83,7 @@
 // Numerical kernels index several arrays with one loop variable, as the formulas do.
 #![allow(clippy::needless_range_loop)]
 
+mod accumulation;
 mod control;
 mod dop853;
 mod dopri5;
@@ -96,9 +103,11 @@ mod solution;
 mod solve;
 mod stats;
 mod stepper;
+mod switched;
 mod tableau;
 mod tolerance;
 
+pub use accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
 pub use control::{StepControl, StepOptions};
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
@@ -125,4 +134,8 @@ pub use solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
 pub use solve::{Event, EventFunction, Method, Output, Problem};
 pub use stats::{ComponentCounts, Stats};
 pub use stepper::{Components, Rhs, StepEnd, StepStart, Stepper};
+pub use switched::graph::{
+    AccumulationAction, EventAction, EventDecl, EventId, GraphError, ModeDecl, ModeGraph, ModeId,
+};
+pub use switched::{Switched, SwitchedModel, SwitchedNote, SwitchedStop};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

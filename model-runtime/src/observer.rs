@@ -71,9 +71,12 @@ pub enum TransitionKind<Md> {
     },
     /// The same mode restarted (after a state reset).
     Continue,
+    /// Nothing changed: the event was only reported ([`crate::Transition::Pass`]); the mode,
+    /// the state (`y_after` is the event state) and the integrator's step go on as they were.
+    Pass,
 }
 
-/// A transition as it was applied: which event triggered it, the state on both sides, and what
+/// A transition as it was applied (or an event that passed): which event triggered it, the state on both sides, and what
 /// the system noted about it ([`crate::HybridSystem::Note`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TransitionRecord<const N: usize, Md, G, Nt = ()> {

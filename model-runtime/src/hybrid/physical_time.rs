@@ -98,13 +98,17 @@ where
             return;
         };
         let t = self.t_seg + record.hit.y[N];
-        self.t_seg = t;
+        // A pass restarts nothing: the clock keeps counting from the same segment start.
+        if !matches!(record.kind, TransitionKind::Pass) {
+            self.t_seg = t;
+        }
         self.inner.on_transition(TransitionRecord {
             hit: physical_hit(&record.hit, guard, t),
             from: record.from,
             kind: match record.kind {
                 TransitionKind::Switch { to } => TransitionKind::Switch { to },
                 TransitionKind::Continue => TransitionKind::Continue,
+                TransitionKind::Pass => TransitionKind::Pass,
             },
             y_after: head(&record.y_after),
             note: record.note,

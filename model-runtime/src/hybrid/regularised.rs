@@ -326,6 +326,8 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
         let physical = physical_hit(hit, guard, t);
         Ok(match self.inner.on_event(mode, &physical)? {
             Transition::Stop(r) => Transition::Stop(Clocked::Inner(r)),
+            // The segment goes on: the clock keeps its origin.
+            Transition::Pass { note } => Transition::Pass { note },
             Transition::Switch { to, y, note } => {
                 self.t_seg = t;
                 Transition::Switch {

@@ -1,6 +1,10 @@
 //! The hybrid driver: [`HybridSolver`] and one run of it, the loop that steps, looks for guard
 //! crossings, hands output to the observer and applies transitions. Split from the system's
 //! contract (the parent module) so that the contract reads alone.
+//!
+//! A step's events are handled in time order: an event that passes ([`Transition::Pass`])
+//! leaves the step as it is, becomes a check point, and the rest of the step is searched
+//! again; the first event that does anything else cuts the step there and ends the segment.
 
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
@@ -70,12 +74,14 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             opts: self.options,
             tracker: GuardTracker::default(),
             values: Vec::new(),
+            end_values: Vec::new(),
             inputs: GuardInputs::ALL,
             recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
             next_sample: 0,
             t_first: t0,
             mode,
             transitions: 0,
+            passes: 0,
         };
         run.go(sys, t0, y0, t_end, observer)
     }
@@ -103,7 +109,10 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) it: &'a mut Integrator<S, N>,
     pub(super) opts: HybridOptions,
     pub(super) tracker: GuardTracker,
+    /// Guard values at one point: a segment start, an event.
     pub(super) values: Vec<f64>,
+    /// Guard values at the end of the last accepted step.
+    pub(super) end_values: Vec<f64>,
     /// What the current mode's guards read (see [`HybridSystem::guard_inputs`]).
     pub(super) inputs: GuardInputs<N>,
     pub(super) recent: VecDeque<(f64, Md, Md)>,
@@ -111,6 +120,7 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) t_first: f64,
     pub(super) mode: Md,
     pub(super) transitions: u64,
+    pub(super) passes: u64,
 }
 
 impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, Md> {
@@ -139,23 +149,100 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             if self.it.t() >= t_end {
                 return Ok(self.outcome(StopReason::EndTime));
             }
-            match self.advance(sys, t_end).map_err(|e| self.solve_err(e))? {
-                None => self.finish_step(sys, obs)?,
-                Some(found) => {
-                    let hit = self.event_hit(sys, found)?;
-                    self.emit_samples(sys, hit.t, obs)?;
-                    if hit.t > self.it.t_prev() {
-                        self.report_step(sys, obs, hit.t, Some(&hit.y))?;
-                    }
-                    if let Some(stop) = self.transition(sys, hit, obs)? {
-                        return Ok(stop);
-                    }
-                }
+            let found = self.advance(sys, t_end).map_err(|e| self.solve_err(e))?;
+            if let Some(stop) = self.events(sys, found, obs)? {
+                return Ok(stop);
             }
             if obs.proceed().is_break() {
                 return Ok(self.outcome(StopReason::Observer));
             }
         }
+    }
+
+    /// The events of the last accepted step from the first one `found` on, in time order, and
+    /// then the end of the step: the outcome if one of them stops the run.
+    fn events<H, O>(
+        &mut self,
+        sys: &mut H,
+        mut found: Option<Found>,
+        obs: &mut O,
+    ) -> Result<Option<HybridOutcome<N, Md, H::Stop>>, HybridError<Md>>
+    where
+        H: HybridSystem<N, Mode = Md>,
+        O: Observer<N, Md, H::Guard, H::Note>,
+    {
+        while let Some(f) = found {
+            let hit = self.event_hit(sys, f)?;
+            self.emit_samples(sys, hit.t, obs)?;
+            if obs.wants_dense() {
+                // Built before the transition map runs: the map may change the right-hand
+                // side, and the step's output must not see that.
+                let m = InMode {
+                    sys: &*sys,
+                    mode: self.mode,
+                };
+                self.it.ensure_dense(&m).map_err(|e| self.solve_err(e))?;
+            }
+            let from = self.mode;
+            let transition =
+                sys.on_event(from, &hit)
+                    .map_err(|source| HybridError::Transition {
+                        mode: from,
+                        t: hit.t,
+                        source,
+                    })?;
+            let ends_segment = !matches!(transition, Transition::Pass { .. });
+            if ends_segment && hit.t > self.it.t_prev() {
+                self.report_step(sys, obs, hit.t, Some(&hit.y))?;
+            }
+            let next = match transition {
+                Transition::Pass { note } => {
+                    found = self.pass(sys, hit, note, obs)?;
+                    continue;
+                }
+                Transition::Stop(reason) => {
+                    let mut out = self.outcome(StopReason::User(reason));
+                    out.t = hit.t;
+                    out.y = hit.y;
+                    return Ok(Some(out));
+                }
+                Transition::Switch { to, y, note } => (to, TransitionKind::Switch { to }, y, note),
+                Transition::Continue { y, note } => (from, TransitionKind::Continue, y, note),
+            };
+            self.transition(sys, hit, next, obs)?;
+            return Ok(None);
+        }
+        self.finish_step(sys, obs)?;
+        Ok(None)
+    }
+
+    /// Reports an event that passed and searches the rest of the step after it.
+    fn pass<H, O>(
+        &mut self,
+        sys: &H,
+        hit: EventHit<N, H::Guard>,
+        note: H::Note,
+        obs: &mut O,
+    ) -> Result<Option<Found>, HybridError<Md>>
+    where
+        H: HybridSystem<N, Mode = Md>,
+        O: Observer<N, Md, H::Guard, H::Note>,
+    {
+        self.passes += 1;
+        // `values` holds the exact guard values at the event; at the step's end they are the
+        // end values too, so a search of the empty rest sees the same signs.
+        self.tracker.pass(hit.index, &self.values);
+        if hit.t >= self.it.t() {
+            self.end_values.copy_from_slice(&self.values);
+        }
+        obs.on_transition(TransitionRecord {
+            hit,
+            from: self.mode,
+            kind: TransitionKind::Pass,
+            y_after: hit.y,
+            note,
+        });
+        self.scan(sys, hit.t).map_err(|e| self.solve_err(e))
     }
 
     /// A step without event: samples, observer, projection.
@@ -212,36 +299,20 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         })
     }
 
-    /// Applies the transition map to an event: the outcome if it stops the run, otherwise a
-    /// fresh segment in the next mode.
+    /// Applies a switch or a restart decided at an event: the next mode, what the observer is
+    /// told it is, the state the map returned and its note. A fresh segment starts there.
     fn transition<H, O>(
         &mut self,
-        sys: &mut H,
+        sys: &H,
         hit: EventHit<N, H::Guard>,
+        (to, kind, mut y_after, note): (Md, TransitionKind<Md>, [f64; N], H::Note),
         obs: &mut O,
-    ) -> Result<Option<HybridOutcome<N, Md, H::Stop>>, HybridError<Md>>
+    ) -> Result<(), HybridError<Md>>
     where
         H: HybridSystem<N, Mode = Md>,
         O: Observer<N, Md, H::Guard, H::Note>,
     {
         let from = self.mode;
-        let transition = sys
-            .on_event(from, &hit)
-            .map_err(|source| HybridError::Transition {
-                mode: from,
-                t: hit.t,
-                source,
-            })?;
-        let (to, kind, mut y_after, note) = match transition {
-            Transition::Stop(reason) => {
-                let mut out = self.outcome(StopReason::User(reason));
-                out.t = hit.t;
-                out.y = hit.y;
-                return Ok(Some(out));
-            }
-            Transition::Switch { to, y, note } => (to, TransitionKind::Switch { to }, y, note),
-            Transition::Continue { y, note } => (from, TransitionKind::Continue, y, note),
-        };
         if let Some(component) = y_after.iter().position(|v| !v.is_finite()) {
             return Err(self.solve_err(SolveError::TransitionState {
                 t: hit.t,
@@ -254,7 +325,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         self.check_chatter(hit.t, from, to)?;
         self.mode = to;
         let quiet = match kind {
-            TransitionKind::Continue => Quiet::Guard(hit.index),
+            TransitionKind::Continue | TransitionKind::Pass => Quiet::Guard(hit.index),
             TransitionKind::Switch { .. } => Quiet::None,
         };
         // The observer hears of the transition before the next segment starts, so that a
@@ -266,8 +337,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             y_after,
             note,
         });
-        self.start_segment(sys, hit.t, &y_after, quiet)?;
-        Ok(None)
+        self.start_segment(sys, hit.t, &y_after, quiet)
     }
 
     /// One accepted step, then the search for the earliest admitted guard crossing in it.
@@ -281,11 +351,32 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             mode: self.mode,
         };
         self.it.step(&m, t_end)?;
-        let (t0, t1) = (self.it.t_prev(), self.it.t());
+        let t1 = self.it.t();
         self.it.stats_mut().guard_evals += 1;
-        sys.guard_values(self.mode, t1, self.it.y(), self.it.f(), &mut self.values)
-            .map_err(at(t1))?;
-        check_finite(t1, &self.values)?;
+        sys.guard_values(
+            self.mode,
+            t1,
+            self.it.y(),
+            self.it.f(),
+            &mut self.end_values,
+        )
+        .map_err(at(t1))?;
+        check_finite(t1, &self.end_values)?;
+        self.scan(sys, self.it.t_prev())
+    }
+
+    /// The search for the earliest admitted guard crossing in the last accepted step from
+    /// `t0` (its start, or the last event that passed) to its end.
+    fn scan<H: HybridSystem<N, Mode = Md>>(
+        &mut self,
+        sys: &H,
+        t0: f64,
+    ) -> Result<Option<Found>, SolveError> {
+        let m = InMode {
+            sys,
+            mode: self.mode,
+        };
+        let t1 = self.it.t();
         let it = &mut *self.it;
         let inputs = &self.inputs;
         let mut y = [0.0; N];
@@ -296,7 +387,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         self.tracker.scan(
             t0,
             t1,
-            &self.values,
+            &self.end_values,
             self.opts.guard_checks,
             |t, probe, out| {
                 let (y, dy) = match probe {
@@ -350,6 +441,8 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         let specs = sys.guards(self.mode);
         self.values.clear();
         self.values.resize(specs.len(), 0.0);
+        self.end_values.clear();
+        self.end_values.resize(specs.len(), 0.0);
         let (y, f) = (*self.it.y(), *self.it.f());
         self.guards_at(sys, t, &y, &f)?;
         self.tracker
@@ -495,6 +588,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             stop,
             stats: *self.it.stats(),
             transitions: self.transitions,
+            passes: self.passes,
         }
     }
 }

@@ -10,5 +10,6 @@ mod hybrid;
 mod long_runs;
 mod norm;
 mod notes;
+mod passes;
 mod properties;
 mod stiff;

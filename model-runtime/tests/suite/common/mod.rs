@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod ball;
+pub mod log;
 
 use model_runtime::{
     Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, ModelInfo, OpCounts, Transition,

@@ -1,0 +1,401 @@
+//! Switched models given by tables: the runtime side of the model language's modes, events,
+//! resets, terminal events and accumulations.
+//!
+//! Generated code and the model interpreter both describe a switched model the same way: a
+//! [`ModeGraph`] (the modes, each mode's events, what every event does) and a
+//! [`SwitchedModel`] that evaluates the numbers (right-hand sides, guard values, resets) by
+//! mode and event index. [`Switched`] turns such a model into a [`HybridSystem`] that the
+//! hybrid driver runs, so neither front end writes a transition map.
+//!
+//! # What the events do
+//!
+//! * [`EventAction::Record`]: the event is located and reported ([`SwitchedNote::Recorded`])
+//!   and nothing else happens: a [`Transition::Pass`], no restart, the run's steps unchanged.
+//! * [`EventAction::Reset`]: the model's reset assigns some states (every right-hand side of
+//!   a reset reads the state *before* the event, as Modelica's `pre()`), and the run goes on
+//!   in the target mode. A reset into the mode it fired in is a restart
+//!   ([`Transition::Continue`]: the event's own guard does not fire again on leaving its
+//!   surface); into another mode, a [`Transition::Switch`].
+//! * [`EventAction::Stop`]: the run ends with [`SwitchedStop::Event`].
+//!
+//! A reset that assigns a state that is not finite fails the run with
+//! [`EvalError::ResetNotFinite`] naming the event (inside [`crate::HybridError::Transition`]).
+//!
+//! # Accumulation
+//!
+//! A reset that restarts its own mode can fire again and again at ever shorter intervals: a
+//! bouncing ball coming to rest (Zeno behaviour). [`Switched`] feeds the times of successive
+//! restarts by one event to an [`AccumulationDetector`]: "successive" means the same event of
+//! the same mode with no transition in between (events that only pass do not interrupt; any
+//! other transition, or a restart by another event, starts the history afresh). When the
+//! detector's [`AccumulationRule`] declares an accumulation (the latest intervals shrink at a
+//! steady ratio `r < 1` and the remaining time `d_last r / (1 - r)` extrapolated from them is
+//! at most the rule's `tail`), the firing that showed it does not apply its ordinary reset:
+//!
+//! * with an [`AccumulationAction`], the model's accumulation reset is applied instead and
+//!   the run continues in the action's mode, at the firing's time; the note
+//!   ([`SwitchedNote::Accumulated`]) carries the extrapolated accumulation point `t_inf`
+//!   (within `tail` of the firing) and the ratio, for a front end that reports the resting
+//!   event at `t_inf`;
+//! * without one, the run ends with [`SwitchedStop::Accumulation`]: a normal end with a
+//!   reason, not a chattering error and not a step-size collapse.
+//!
+//! An accumulation the rule does not recognise (intervals not shrinking steadily) is not
+//! declared; if it truly accumulates, the driver's [`crate::ChatterLimit`] ends it.
+
+pub(crate) mod graph;
+
+use crate::accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
+use crate::error::{EvalError, InputError};
+use crate::events::{EventHit, GuardInputs, GuardSpec};
+use crate::hybrid::{HybridSystem, Transition};
+use crate::jacobian::finite_difference_jacobian;
+use graph::{EventAction, EventId, ModeGraph, ModeId};
+
+/// A hybrid model given by tables: implemented by the code `model!` emits and by the model
+/// interpreter. Modes and events are indices into [`SwitchedModel::graph`].
+pub trait SwitchedModel<const N: usize> {
+    /// The modes and events.
+    fn graph(&self) -> &ModeGraph;
+
+    /// `dy = f(t, y)` in `mode`.
+    fn rhs(&self, mode: usize, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError>;
+
+    /// The Jacobian in `mode`; the default uses central finite differences of
+    /// [`SwitchedModel::rhs`].
+    fn jacobian(
+        &self,
+        mode: usize,
+        t: f64,
+        y: &[f64; N],
+        jac: &mut [[f64; N]; N],
+    ) -> Result<(), EvalError> {
+        finite_difference_jacobian(|y, dy| self.rhs(mode, t, y, dy), y, jac)
+    }
+
+    /// The guard values of `mode`'s events at `(t, y)` with `dy = f(t, y)`: one slot per
+    /// event, in the graph's order.
+    fn event_values(
+        &self,
+        mode: usize,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        values: &mut [f64],
+    ) -> Result<(), EvalError>;
+
+    /// The state after event `event` of `mode` fired at `(t, y, dy)`: `out` holds a copy of
+    /// `y` on entry and the model overwrites the states the reset assigns (every right-hand
+    /// side reads the state before the event, as Modelica's `pre()`). `accumulation` selects
+    /// the event's accumulation reset ([`graph::AccumulationAction`]) instead of its ordinary
+    /// one.
+    #[allow(clippy::too_many_arguments)] // The event's coordinates and its state, as written.
+    fn reset(
+        &self,
+        mode: usize,
+        event: usize,
+        accumulation: bool,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        out: &mut [f64; N],
+    ) -> Result<(), EvalError>;
+
+    /// The components the guards of `mode` read (default: all); see
+    /// [`HybridSystem::guard_inputs`].
+    fn guard_inputs(&self, _mode: usize) -> GuardInputs<N> {
+        GuardInputs::ALL
+    }
+}
+
+/// A borrowed model is a model: [`Switched`] can own the model or borrow it.
+impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
+    fn graph(&self) -> &ModeGraph {
+        (**self).graph()
+    }
+    fn rhs(&self, mode: usize, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+        (**self).rhs(mode, t, y, dy)
+    }
+    fn jacobian(
+        &self,
+        mode: usize,
+        t: f64,
+        y: &[f64; N],
+        jac: &mut [[f64; N]; N],
+    ) -> Result<(), EvalError> {
+        (**self).jacobian(mode, t, y, jac)
+    }
+    fn event_values(
+        &self,
+        mode: usize,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        (**self).event_values(mode, t, y, dy, values)
+    }
+    fn reset(
+        &self,
+        mode: usize,
+        event: usize,
+        accumulation: bool,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        out: &mut [f64; N],
+    ) -> Result<(), EvalError> {
+        (**self).reset(mode, event, accumulation, t, y, dy, out)
+    }
+    fn guard_inputs(&self, mode: usize) -> GuardInputs<N> {
+        (**self).guard_inputs(mode)
+    }
+}
+
+/// Why a [`Switched`] run stopped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SwitchedStop {
+    /// A terminal event ([`EventAction::Stop`]) fired.
+    Event {
+        /// Its mode.
+        mode: ModeId,
+        /// Its position in the mode's events.
+        event: usize,
+        /// When it fired.
+        t: f64,
+    },
+    /// The resets of an event without an accumulation action accumulated.
+    Accumulation {
+        /// Its mode.
+        mode: ModeId,
+        /// Its position in the mode's events.
+        event: usize,
+        /// The extrapolated accumulation point (the run ends at the last firing, within the
+        /// rule's tail before it).
+        t_inf: f64,
+    },
+}
+
+impl SwitchedStop {
+    /// The event that ended the run (named by [`ModeGraph::event_name`]).
+    pub fn event(&self) -> EventId {
+        match *self {
+            SwitchedStop::Event { mode, event, .. }
+            | SwitchedStop::Accumulation { mode, event, .. } => EventId { mode, event },
+        }
+    }
+}
+
+/// What a [`Switched`] system tells the observer about an event
+/// ([`crate::TransitionRecord::note`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SwitchedNote {
+    /// A [`EventAction::Record`] event passed.
+    Recorded(EventId),
+    /// A [`EventAction::Reset`] event applied its reset.
+    Reset(EventId),
+    /// The event's resets accumulated: its accumulation reset was applied instead.
+    Accumulated {
+        /// The event.
+        event: EventId,
+        /// Where the firings accumulate and their ratio.
+        accumulation: Accumulation,
+    },
+}
+
+/// A [`SwitchedModel`] as a [`HybridSystem`] (modes [`ModeId`], guards [`EventId`]), owning or
+/// borrowing the model, with the accumulation history of the event that restarts its mode.
+#[derive(Clone, Debug)]
+pub struct Switched<M> {
+    model: M,
+    /// Each mode's guards, one per event.
+    specs: Vec<Vec<GuardSpec<EventId>>>,
+    detector: AccumulationDetector,
+    /// The event whose successive restarts the detector has seen.
+    watching: Option<EventId>,
+}
+
+impl<M> Switched<M> {
+    /// The system of `model`, watching for accumulations by `rule` (checked here).
+    pub fn new<const N: usize>(model: M, rule: AccumulationRule) -> Result<Self, InputError>
+    where
+        M: SwitchedModel<N>,
+    {
+        let graph = model.graph();
+        let specs = (0..graph.modes().len())
+            .filter_map(|m| graph.id(m))
+            .map(|mode| {
+                let events = &graph.mode(mode).events;
+                (events.iter().enumerate())
+                    .map(|(event, e)| GuardSpec {
+                        id: EventId { mode, event },
+                        direction: e.direction,
+                    })
+                    .collect()
+            })
+            .collect();
+        Ok(Switched {
+            model,
+            specs,
+            detector: AccumulationDetector::new(rule)?,
+            watching: None,
+        })
+    }
+
+    /// The model.
+    pub fn model(&self) -> &M {
+        &self.model
+    }
+
+    /// Forgets the accumulation history (before reusing the system for an unrelated run;
+    /// a run that starts earlier than the last firing restarts it anyway).
+    pub fn forget(&mut self) {
+        self.detector.reset();
+        self.watching = None;
+    }
+
+    /// Records that `event` restarted its mode at `t`: the accumulation if that shows one
+    /// (the history is then forgotten: the accumulation ends the sequence).
+    fn restarted(&mut self, event: EventId, t: f64) -> Option<Accumulation> {
+        if self.watching != Some(event) {
+            self.forget();
+            self.watching = Some(event);
+        }
+        let accumulation = self.detector.fire(t);
+        if accumulation.is_some() {
+            self.forget();
+        }
+        accumulation
+    }
+
+    /// The state after `event` fired at `hit`: the model's reset (ordinary or accumulation)
+    /// if `reset`, else the event state; an error names the event if it is not finite.
+    fn assigned<const N: usize>(
+        &self,
+        event: EventId,
+        reset: bool,
+        accumulation: bool,
+        hit: &EventHit<N, EventId>,
+    ) -> Result<[f64; N], EvalError>
+    where
+        M: SwitchedModel<N>,
+    {
+        let mut out = hit.y;
+        if reset {
+            let (m, e) = (event.mode.index(), event.event);
+            (self.model).reset(m, e, accumulation, hit.t, &hit.y, &hit.dy, &mut out)?;
+        }
+        match out.iter().position(|v| !v.is_finite()) {
+            None => Ok(out),
+            Some(component) => Err(EvalError::ResetNotFinite {
+                event: self.model.graph().event_name(event)
+                    + if accumulation { " (accumulation)" } else { "" },
+                component,
+                value: out[component],
+            }),
+        }
+    }
+}
+
+/// Continues in `to` from `y`: a restart if that is the mode the event fired in.
+fn continue_in<const N: usize>(
+    from: ModeId,
+    to: ModeId,
+    y: [f64; N],
+    note: SwitchedNote,
+) -> Transition<N, ModeId, SwitchedStop, SwitchedNote> {
+    if to == from {
+        Transition::Continue { y, note }
+    } else {
+        Transition::Switch { to, y, note }
+    }
+}
+
+impl<const N: usize, M: SwitchedModel<N>> HybridSystem<N> for Switched<M> {
+    type Mode = ModeId;
+    type Guard = EventId;
+    type Stop = SwitchedStop;
+    type Note = SwitchedNote;
+
+    fn rhs(&self, mode: ModeId, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+        self.model.rhs(mode.index(), t, y, dy)
+    }
+
+    fn jacobian(
+        &self,
+        mode: ModeId,
+        t: f64,
+        y: &[f64; N],
+        jac: &mut [[f64; N]; N],
+    ) -> Result<(), EvalError> {
+        self.model.jacobian(mode.index(), t, y, jac)
+    }
+
+    fn guards(&self, mode: ModeId) -> &[GuardSpec<EventId>] {
+        &self.specs[mode.index()]
+    }
+
+    fn guard_values(
+        &self,
+        mode: ModeId,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        self.model.event_values(mode.index(), t, y, dy, values)
+    }
+
+    fn guard_inputs(&self, mode: ModeId) -> GuardInputs<N> {
+        self.model.guard_inputs(mode.index())
+    }
+
+    fn on_event(
+        &mut self,
+        mode: ModeId,
+        hit: &EventHit<N, EventId>,
+    ) -> Result<Transition<N, ModeId, SwitchedStop, SwitchedNote>, EvalError> {
+        let id = hit.guard;
+        let graph = self.model.graph();
+        let decl = graph.event(id);
+        let on_accumulation = decl.on_accumulation;
+        let (to, reset) = match decl.action {
+            // A pass interrupts no history: nothing happened.
+            EventAction::Record => {
+                let note = SwitchedNote::Recorded(id);
+                return Ok(Transition::Pass { note });
+            }
+            EventAction::Stop => {
+                self.forget();
+                let (event, t) = (id.event, hit.t);
+                return Ok(Transition::Stop(SwitchedStop::Event { mode, event, t }));
+            }
+            EventAction::Reset { to, reset } => (graph.target(mode, to), reset),
+        };
+        let accumulated = if to == mode {
+            self.restarted(id, hit.t)
+        } else {
+            self.forget();
+            None
+        };
+        let Some(accumulation) = accumulated else {
+            let y = self.assigned(id, reset, false, hit)?;
+            return Ok(continue_in(mode, to, y, SwitchedNote::Reset(id)));
+        };
+        let Some(action) = on_accumulation else {
+            let (event, t_inf) = (id.event, accumulation.t_inf);
+            return Ok(Transition::Stop(SwitchedStop::Accumulation {
+                mode,
+                event,
+                t_inf,
+            }));
+        };
+        let to = self.model.graph().target(mode, action.to);
+        let y = self.assigned(id, action.reset, true, hit)?;
+        let note = SwitchedNote::Accumulated {
+            event: id,
+            accumulation,
+        };
+        Ok(continue_in(mode, to, y, note))
+    }
+}
