@@ -254,6 +254,12 @@ fn to_command_error(
             quantity: quantity.to_string(),
             value: *value,
         },
+        // The disk's models have no resets; said as the non-finite quantity it is.
+        EvalError::ResetNotFinite { value, .. } => EvalCommandError::NonFinite {
+            mode,
+            quantity: e.to_string(),
+            value: *value,
+        },
     }
 }
 

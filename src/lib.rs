@@ -63,6 +63,7 @@ mod model_command;
 mod model_file;
 mod model_show;
 mod model_solve;
+mod model_switched;
 mod named_numbers;
 mod output;
 mod quantity;

@@ -7,9 +7,12 @@
 
 use crate::args::{print_json, EXIT_FAILED, EXIT_INPUT};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
-use crate::model_file::{evaluate, load, params, select, state, ModelFileError};
+use crate::model_file::{
+    evaluate, initial_state, load, load_any, params, select, state, Loaded, ModelFileError,
+};
 use crate::model_show::{Format, ModelName};
 use crate::model_solve::{solve, EventSpec, FileTrajectory, SolveSettings};
+use crate::model_switched::solve_switched;
 use clap::ValueEnum;
 use model_algebra::CompiledModel;
 use model_dsl::TextModel;
@@ -97,22 +100,7 @@ fn eval(args: &ModelEvalArgs) -> ExitCode {
 }
 
 fn solve_file(args: &ModelSolveArgs) -> ExitCode {
-    let point = match Point::read(&args.point) {
-        Ok(point) => point,
-        Err(err) => return input_error(err),
-    };
-    let model = match point.model(&args.point) {
-        Ok(model) => model,
-        Err(err) => return input_error(err),
-    };
-    let events = match (args.event.iter())
-        .map(|text| EventSpec::parse(text, model))
-        .collect::<Result<Vec<_>, _>>()
-    {
-        Ok(events) => events,
-        Err(err) => return input_error(err),
-    };
-    let settings = SolveSettings {
+    let settings = |events| SolveSettings {
         t0: args.t0,
         t_end: args.t_end,
         method: args.method.into(),
@@ -121,7 +109,53 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         dt: args.dt,
         events,
     };
-    let trajectory = match solve(model, &point.params, &point.state, &settings) {
+    let switched = match load_any(&args.point.file) {
+        Ok(Loaded::Switched(model)) => Some(model),
+        Ok(Loaded::Smooth(_)) => None,
+        Err(err) => return input_error(err),
+    };
+    let (name, solved) = if let Some(model) = switched {
+        let input = (|| {
+            if let Some(chart) = &args.point.chart {
+                return Err(ModelFileError::Eval(format!(
+                    "--chart {chart}: a switched model has no charts"
+                )));
+            }
+            if let Some(event) = args.event.first() {
+                return Err(ModelFileError::Eval(format!(
+                    "--event {event}: a switched model declares its events in the file (`when NAME: GUARD`)"
+                )));
+            }
+            let params = params(&model.modes[0].model, &args.point.set)?;
+            let state = initial_state(&model, &args.point.state)?;
+            Ok((params, state))
+        })();
+        let (params, state) = match input {
+            Ok(input) => input,
+            Err(err) => return input_error(err),
+        };
+        let solved = solve_switched(&model, &params, &state, &settings(Vec::new()));
+        (model.name.clone(), solved)
+    } else {
+        let point = match Point::read(&args.point) {
+            Ok(point) => point,
+            Err(err) => return input_error(err),
+        };
+        let model = match point.model(&args.point) {
+            Ok(model) => model,
+            Err(err) => return input_error(err),
+        };
+        let events = match (args.event.iter())
+            .map(|text| EventSpec::parse(text, model))
+            .collect::<Result<Vec<_>, _>>()
+        {
+            Ok(events) => events,
+            Err(err) => return input_error(err),
+        };
+        let solved = solve(model, &point.params, &point.state, &settings(events));
+        (model.name.clone(), solved)
+    };
+    let trajectory = match solved {
         Ok(trajectory) => trajectory,
         Err(err) => {
             eprintln!("error: {err}");
@@ -144,7 +178,7 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         eprintln!("error: {err}");
         return ExitCode::from(EXIT_FAILED);
     }
-    eprintln!("{}", summary(&model.name, &trajectory, args.t0));
+    eprintln!("{}", summary(&name, &trajectory, args.t0));
     ExitCode::SUCCESS
 }
 

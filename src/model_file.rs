@@ -9,7 +9,9 @@
 
 use crate::model_show::Format;
 use model_algebra::{CompiledModel, EvalFailure};
-use model_dsl::{LocatedErrors, Source, TextModel};
+use model_dsl::{
+    switching_latex, switching_markdown, CompiledSwitched, LocatedErrors, Source, TextModel,
+};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 use std::path::{Path, PathBuf};
 
@@ -56,11 +58,51 @@ pub enum ModelFileError {
 
 /// A model file, compiled: the model, then each of its charts.
 pub fn load(path: &Path) -> Result<Vec<TextModel>, ModelFileError> {
+    match load_any(path)? {
+        Loaded::Smooth(models) => Ok(models),
+        Loaded::Switched(model) => Err(ModelFileError::Eval(format!(
+            "`{}` is a switched model (it has modes or events): use `model show` or `model solve`",
+            model.name
+        ))),
+    }
+}
+
+/// A model file as compiled: a smooth model (with its charts) or a switched one.
+pub enum Loaded {
+    /// The model, then each of its charts.
+    Smooth(Vec<TextModel>),
+    /// A model with modes and events.
+    Switched(CompiledSwitched),
+}
+
+/// Reads and compiles a model file of either kind.
+pub fn load_any(path: &Path) -> Result<Loaded, ModelFileError> {
     let source = Source::read(path).map_err(|source| ModelFileError::Read {
         path: path.to_path_buf(),
         source,
     })?;
-    source.compile().map_err(ModelFileError::Dsl)
+    let ast = source.parse().map_err(ModelFileError::Dsl)?;
+    if ast.is_switched() {
+        let model = source.compile_switched().map_err(ModelFileError::Dsl)?;
+        return Ok(Loaded::Switched(model));
+    }
+    source.compile().map(Loaded::Smooth).map_err(ModelFileError::Dsl)
+}
+
+/// The modes and events of a switched model, then each mode's solved equations.
+pub fn show_switched(model: &CompiledSwitched, format: Format) -> String {
+    let mut text = match format {
+        Format::Markdown => switching_markdown(model),
+        Format::Latex => switching_latex(model),
+    };
+    for mode in &model.modes {
+        text.push('\n');
+        text.push_str(match format {
+            Format::Markdown => &mode.model.explanation.markdown,
+            Format::Latex => &mode.model.explanation.latex,
+        });
+    }
+    text
 }
 
 /// The model called `chart` among `models` (`None`: the model itself, the first).
@@ -86,7 +128,10 @@ pub fn select<'a>(
 
 /// The solved equations of every model of the file (the model, then its charts).
 pub fn show(path: &Path, format: Format) -> Result<String, ModelFileError> {
-    let models = load(path)?;
+    let models = match load_any(path)? {
+        Loaded::Smooth(models) => models,
+        Loaded::Switched(model) => return Ok(show_switched(&model, format)),
+    };
     let texts: Vec<String> = (models.iter().map(|m| &m.compiled.explanation))
         .map(|explanation| match format {
             Format::Markdown => explanation.markdown.clone(),
@@ -145,6 +190,13 @@ pub fn params(model: &CompiledModel, set: &[String]) -> Result<Vec<f64>, ModelFi
 /// The state of `model` from `--state NAME=VALUE` (unnamed states are zero).
 pub fn state(model: &CompiledModel, state: &[String]) -> Result<Vec<f64>, ModelFileError> {
     assign("--state", &model.states, |_| Some(0.0), state)
+}
+
+/// The initial state of a switched model from `--state NAME=VALUE`: states not given start
+/// at the value the file writes on them, or zero.
+pub fn initial_state(model: &CompiledSwitched, state: &[String]) -> Result<Vec<f64>, ModelFileError> {
+    let initial = |k: usize| Some(model.initial[k].unwrap_or(0.0));
+    assign("--state", model.states(), initial, state)
 }
 
 /// Numbers under names, in the model's order (serialised as a JSON object in that order).

@@ -297,7 +297,7 @@ pub fn solve(
 }
 
 /// `t`, the states and the outputs at `(t, y)`.
-fn row(
+pub(crate) fn row(
     model: &CompiledModel,
     params: &[f64],
     t: f64,
@@ -327,7 +327,7 @@ fn event_row(
 }
 
 /// `t0, t0 + dt, ...` up to and including `t_end`.
-fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, ModelFileError> {
+pub(crate) fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, ModelFileError> {
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(ModelFileError::Eval(format!(
             "--dt {dt}: the sampling step must be positive and finite"
@@ -347,7 +347,7 @@ fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, ModelFileError
 }
 
 /// A compiled model run by the interpreter, in [`MAX_STATES`] components.
-struct Interpreted<'a> {
+pub(crate) struct Interpreted<'a> {
     model: &'a CompiledModel,
     params: &'a [f64],
     /// The runtime's names for the model: leaked once per command, as a compiled model's are
@@ -379,7 +379,7 @@ fn op_counts(ops: Ops) -> OpCounts {
 }
 
 impl<'a> Interpreted<'a> {
-    fn new(model: &'a CompiledModel, params: &'a [f64]) -> Self {
+    pub(crate) fn new(model: &'a CompiledModel, params: &'a [f64]) -> Self {
         let n = model.states.len();
         let padding = (n..MAX_STATES).map(|k| format!("(unused {k})"));
         let pivots = leak_all(model.pivots.iter().chain(&model.numeric_blocks).cloned());
@@ -403,7 +403,7 @@ impl<'a> Interpreted<'a> {
         }
     }
 
-    fn error(&self, failure: EvalFailure) -> EvalError {
+    pub(crate) fn error(&self, failure: EvalFailure) -> EvalError {
         match failure {
             EvalFailure::SingularPivot { text, value } => EvalError::SingularPivot {
                 model: self.info.name,
