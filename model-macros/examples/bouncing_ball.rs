@@ -15,10 +15,7 @@
 //! cargo run -p model-macros --example bouncing_ball
 //! ```
 
-use model_runtime::{
-    AccumulationRule, Dop853, HybridOptions, HybridSolver, ModeGraph, Recorder, Switched,
-    SwitchedModel, SwitchedNote, Tolerance,
-};
+use model_runtime::{run_switched, Dop853, Fired, HybridOptions, SwitchedRun, Tolerance};
 
 model_macros::model! {
     /// A ball dropped on a hard floor: free flight, an impact that reverses and scales its
@@ -56,63 +53,31 @@ model_macros::model! {
     }
 }
 
-/// What a run of the ball gives: the impact times, where it came to rest, and every sample.
-struct Run {
-    impacts: Vec<f64>,
-    rest: Option<f64>,
-    samples: Vec<(f64, [f64; 2])>,
-    end: f64,
-    final_mode: String,
-}
-
-fn run(t_end: f64) -> Run {
-    let model = bouncing_ball::Model::default();
-    let mut system = Switched::new(model, AccumulationRule::default()).expect("a valid rule");
+/// The ball from its initial state, sampled every millisecond.
+fn run(t_end: f64) -> SwitchedRun<2> {
     let options = HybridOptions {
         sample_rate: Some(1000.0),
         ..HybridOptions::default()
     };
-    let mut solver = HybridSolver::new(Dop853::new(), Tolerance::scalar(1e-10, 1e-12), options)
-        .expect("valid options");
-    let start = system.model().graph().id(bouncing_ball::mode::flying).expect("a mode");
-    let mut recorder = Recorder::new();
-    let outcome = solver
-        .run(&mut system, start, 0.0, &bouncing_ball::INITIAL, t_end, &mut recorder)
-        .expect("the ball runs to the end");
-    let mut impacts = Vec::new();
-    let mut rest = None;
-    for record in &recorder.transitions {
-        match record.note {
-            SwitchedNote::Reset(_) => impacts.push(record.hit.t),
-            SwitchedNote::Accumulated { accumulation, .. } => rest = Some(accumulation.t_inf),
-            SwitchedNote::Recorded(_) => {}
-        }
-    }
-    let graph: &ModeGraph = system.model().graph();
-    Run {
-        impacts,
-        rest,
-        samples: recorder.samples.iter().map(|(t, _, y)| (*t, *y)).collect(),
-        end: outcome.t,
-        final_mode: graph.mode_name(outcome.mode).to_string(),
-    }
+    let tolerance = Tolerance::scalar(1e-10, 1e-12);
+    let start = (0.0, bouncing_ball::INITIAL);
+    let model = bouncing_ball::Model::default();
+    run_switched(model, Dop853::new(), tolerance, options, start, t_end).expect("the ball runs")
 }
 
 fn main() {
     let run = run(10.0);
-    println!("t_s,event");
-    for t in &run.impacts {
-        println!("{t:.12},impact");
-    }
-    if let Some(t) = run.rest {
-        println!("{t:.12},rest");
+    println!("event,t_s,h,v");
+    for event in &run.events {
+        let [h, v] = event.y_after;
+        println!("{},{:.12},{h},{v}", event.event, event.t);
     }
     eprintln!(
         "{} impacts, at rest from t = {:?} s, run ended at t = {} s in mode {}",
-        run.impacts.len(),
-        run.rest,
-        run.end,
-        run.final_mode
+        run.times("impact", Fired::Reset).len(),
+        run.times("impact", Fired::Accumulated),
+        run.t,
+        run.mode
     );
 }
 
@@ -129,17 +94,19 @@ mod tests {
         let run = run(10.0);
         let v1 = (2.0 * G * H0).sqrt();
         let mut expected = (2.0 * H0 / G).sqrt();
-        assert!(run.impacts.len() > 50, "{} impacts", run.impacts.len());
-        for (k, &t) in run.impacts.iter().enumerate() {
+        let impacts = run.times("impact", Fired::Reset);
+        assert!(impacts.len() > 50, "{} impacts", impacts.len());
+        for (k, &t) in impacts.iter().enumerate() {
             assert!((t - expected).abs() < 1e-9, "impact {}: {t} vs {expected}", k + 1);
             expected += 2.0 * E.powi(k as i32 + 1) * v1 / G;
         }
         let t_inf = (2.0 * H0 / G).sqrt() + 2.0 * E * v1 / (G * (1.0 - E));
-        let rest = run.rest.expect("the bounces accumulate");
-        assert!((rest - t_inf).abs() < 1e-9, "rest at {rest}, closed form {t_inf}");
-        assert_eq!((run.end, run.final_mode.as_str()), (10.0, "resting"));
+        let rest = run.times("impact", Fired::Accumulated);
+        assert_eq!(rest.len(), 1, "{rest:?}");
+        assert!((rest[0] - t_inf).abs() < 1e-9, "rest at {rest:?}, closed form {t_inf}");
+        assert_eq!((run.t, run.mode.as_str()), (10.0, "resting"));
         // Never through the floor; and at rest, exactly on it.
-        for (t, y) in &run.samples {
+        for (t, _, y) in &run.samples {
             assert!(y[0] >= -1e-12, "h = {} at t = {t}", y[0]);
             if *t > t_inf + 1e-6 {
                 assert_eq!(*y, [0.0, 0.0], "at t = {t}");

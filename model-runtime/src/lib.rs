@@ -104,6 +104,7 @@ mod solve;
 mod stats;
 mod stepper;
 mod switched;
+mod switched_run;
 mod tableau;
 mod tolerance;
 
@@ -138,4 +139,5 @@ pub use switched::graph::{
     AccumulationAction, EventAction, EventDecl, EventId, GraphError, ModeDecl, ModeGraph, ModeId,
 };
 pub use switched::{Switched, SwitchedModel, SwitchedNote, SwitchedStop};
+pub use switched_run::{name_modes, run_switched, EventRecord, Fired, SwitchedRun};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

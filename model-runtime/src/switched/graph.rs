@@ -139,6 +139,11 @@ impl ModeGraph {
         Ok(ModeGraph { modes })
     }
 
+    /// The first mode, where a run starts (a graph always has one).
+    pub fn first(&self) -> ModeId {
+        ModeId(0)
+    }
+
     /// The modes, in order.
     pub fn modes(&self) -> &[ModeDecl] {
         &self.modes

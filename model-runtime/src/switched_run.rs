@@ -1,0 +1,217 @@
+//! One call from a switched model to what a person asks of it: every event by name, with its
+//! time and the state there, the samples, and how the run ended — the switched counterpart of
+//! [`crate::Problem`].
+//!
+//! Each transition the driver applies becomes an [`EventRecord`]: an event that fired (with
+//! the state just before it and the state the run continues from), or an accumulation of an
+//! event's resets, reported at its extrapolated accumulation point `t_inf` (where, say, a ball
+//! comes to rest) rather than at the firing that revealed it.
+
+use crate::accumulation::AccumulationRule;
+use crate::hybrid::run::HybridSolver;
+use crate::hybrid::{HybridError, HybridOptions, StopReason};
+use crate::observer::{Observer, Sample, StepView, TransitionRecord};
+use crate::stats::Stats;
+use crate::stepper::Stepper;
+use crate::switched::graph::{EventId, ModeGraph, ModeId};
+use crate::switched::{Switched, SwitchedModel, SwitchedNote, SwitchedStop};
+use crate::tolerance::Tolerance;
+
+/// What happened at an event.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fired {
+    /// A record-only event passed; nothing changed.
+    Recorded,
+    /// The event applied its reset and the run went on (in its target mode).
+    Reset,
+    /// The event's resets accumulated; its accumulation reset applied, the run went on in the
+    /// accumulation's mode.
+    Accumulated,
+    /// A terminal event ended the run.
+    Stopped,
+    /// The event's resets accumulated with no rule for it: the run ended.
+    AccumulatedStop,
+}
+
+/// One event of a run, by name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRecord<const N: usize> {
+    /// The event's name (as declared in its mode).
+    pub event: String,
+    /// The mode it fired in.
+    pub mode: String,
+    /// What it did.
+    pub fired: Fired,
+    /// When: the located crossing, or for an accumulation its extrapolated point `t_inf`.
+    pub t: f64,
+    /// The state at the event, before any reset.
+    pub y: [f64; N],
+    /// The state the run went on from (equal to `y` for a record or a stop).
+    pub y_after: [f64; N],
+}
+
+/// The outcome of [`run_switched`].
+#[derive(Clone, Debug)]
+pub struct SwitchedRun<const N: usize> {
+    /// Every event, in time order.
+    pub events: Vec<EventRecord<N>>,
+    /// `(t, mode name, state)` at every sample (`options.sample_rate`), or at every step end
+    /// (and the start) when no rate is set.
+    pub samples: Vec<(f64, String, [f64; N])>,
+    /// Final time.
+    pub t: f64,
+    /// Final state.
+    pub y: [f64; N],
+    /// Final mode's name.
+    pub mode: String,
+    /// The terminal event, if one ended the run (`None`: the end time).
+    pub stopped_by: Option<String>,
+    /// Work done.
+    pub stats: Stats,
+}
+
+impl<const N: usize> SwitchedRun<N> {
+    /// The times of the events named `event` that did `fired`.
+    pub fn times(&self, event: &str, fired: Fired) -> Vec<f64> {
+        (self.events.iter())
+            .filter(|e| e.event == event && e.fired == fired)
+            .map(|e| e.t)
+            .collect()
+    }
+}
+
+/// Runs `model` from `(t0, y0)` in its first mode to `t_end` with `stepper`, the tolerances
+/// and options given and the default [`AccumulationRule`]; the failure names the mode.
+pub fn run_switched<const N: usize, M: SwitchedModel<N>, S: Stepper<N>>(
+    model: M,
+    stepper: S,
+    tolerance: Tolerance<N>,
+    options: HybridOptions,
+    (t0, y0): (f64, [f64; N]),
+    t_end: f64,
+) -> Result<SwitchedRun<N>, HybridError<String>> {
+    let mut system = Switched::new(model, AccumulationRule::default()).map_err(|error| {
+        HybridError::Solve {
+            mode: String::new(),
+            error: error.into(),
+        }
+    })?;
+    let graph = system.model().graph().clone();
+    let start = graph.first();
+    let named = |error: HybridError<ModeId>| name_modes(&graph, error);
+    let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(|error| {
+        HybridError::Solve {
+            mode: graph.mode_name(start).to_string(),
+            error: error.into(),
+        }
+    })?;
+    let mut collector = Collector {
+        graph: &graph,
+        every_step: options.sample_rate.is_none(),
+        events: Vec::new(),
+        samples: Vec::new(),
+    };
+    let outcome = (solver.run(&mut system, start, t0, &y0, t_end, &mut collector)).map_err(named)?;
+    let mut events = collector.events;
+    let samples = collector.samples;
+    let stopped_by = match outcome.stop {
+        StopReason::User(stop) => {
+            let (fired, t) = match stop {
+                SwitchedStop::Event { t, .. } => (Fired::Stopped, t),
+                SwitchedStop::Accumulation { t_inf, .. } => (Fired::AccumulatedStop, t_inf),
+            };
+            let event = stop.event();
+            let name = graph.mode(event.mode).events[event.event].name.clone();
+            events.push(EventRecord {
+                event: name.clone(),
+                mode: graph.mode_name(event.mode).to_string(),
+                fired,
+                t,
+                y: outcome.y,
+                y_after: outcome.y,
+            });
+            Some(name)
+        }
+        StopReason::EndTime | StopReason::Observer => None,
+    };
+    Ok(SwitchedRun {
+        events,
+        samples,
+        t: outcome.t,
+        y: outcome.y,
+        mode: graph.mode_name(outcome.mode).to_string(),
+        stopped_by,
+        stats: outcome.stats,
+    })
+}
+
+/// A hybrid error with its modes named.
+pub fn name_modes(graph: &ModeGraph, error: HybridError<ModeId>) -> HybridError<String> {
+    let name = |mode: ModeId| graph.mode_name(mode).to_string();
+    match error {
+        HybridError::Solve { mode, error } => HybridError::Solve {
+            mode: name(mode),
+            error,
+        },
+        HybridError::Transition { mode, t, source } => HybridError::Transition {
+            mode: name(mode),
+            t,
+            source,
+        },
+        HybridError::Chattering {
+            t,
+            transitions,
+            window,
+            modes,
+        } => HybridError::Chattering {
+            t,
+            transitions,
+            window,
+            modes: modes.into_iter().map(name).collect(),
+        },
+    }
+}
+
+struct Collector<'g, const N: usize> {
+    graph: &'g ModeGraph,
+    every_step: bool,
+    events: Vec<EventRecord<N>>,
+    samples: Vec<(f64, String, [f64; N])>,
+}
+
+impl<const N: usize> Observer<N, ModeId, EventId, SwitchedNote> for Collector<'_, N> {
+    fn on_step(&mut self, step: &StepView<'_, N, ModeId>) {
+        if !self.every_step {
+            return;
+        }
+        let mode = self.graph.mode_name(step.mode);
+        if self.samples.last().is_none_or(|(t, ..)| *t < step.t0) {
+            self.samples.push((step.t0, mode.to_string(), *step.y0));
+        }
+        self.samples.push((step.t1, mode.to_string(), *step.y1));
+    }
+
+    fn on_sample(&mut self, sample: &Sample<'_, N, ModeId>) {
+        let mode = self.graph.mode_name(sample.mode).to_string();
+        self.samples.push((sample.t, mode, *sample.y));
+    }
+
+    fn on_transition(&mut self, record: TransitionRecord<N, ModeId, EventId, SwitchedNote>) {
+        let (event, fired, t) = match record.note {
+            SwitchedNote::Recorded(event) => (event, Fired::Recorded, record.hit.t),
+            SwitchedNote::Reset(event) => (event, Fired::Reset, record.hit.t),
+            SwitchedNote::Accumulated {
+                event,
+                accumulation,
+            } => (event, Fired::Accumulated, accumulation.t_inf),
+        };
+        self.events.push(EventRecord {
+            event: self.graph.mode(event.mode).events[event.event].name.clone(),
+            mode: self.graph.mode_name(record.from).to_string(),
+            fired,
+            t,
+            y: record.hit.y,
+            y_after: record.y_after,
+        });
+    }
+}
