@@ -178,6 +178,9 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         eprintln!("error: {err}");
         return ExitCode::from(EXIT_FAILED);
     }
+    for note in &trajectory.notes {
+        eprintln!("{note}");
+    }
     eprintln!("{}", summary(&name, &trajectory, args.t0));
     ExitCode::SUCCESS
 }

@@ -194,6 +194,9 @@ pub struct FileTrajectory {
     pub stop: Termination,
     /// The work done.
     pub stats: Stats,
+    /// What the run said beside its rows and events (an accumulation and where the run went
+    /// on), one sentence each, for the terminal.
+    pub notes: Vec<String>,
 }
 
 impl FileTrajectory {
@@ -293,6 +296,7 @@ pub fn solve(
         events,
         stop: solved.stop,
         stats: solved.stats,
+        notes: Vec::new(),
     })
 }
 

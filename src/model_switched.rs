@@ -15,13 +15,10 @@ use crate::model_solve::{row, sample_times, FileEvent, FileTrajectory, Interpret
 use model_algebra::Inputs;
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
-    AccumulationAction, AccumulationRule, Direction, Dop853, Dopri5, EvalError, EventAction,
-    EventDecl, HybridError, HybridOptions, HybridSolver, Method, Model, ModeDecl, ModeGraph,
-    ModeId, Observer, Rk4, Rodas4, Sample, StepView, Stepper, StopReason, Switched, SwitchedModel,
-    SwitchedNote, SwitchedStop, Termination, Tolerance, TransitionRecord,
+    run_switched, AccumulationAction, Direction, Dop853, Dopri5, EvalError, EventAction,
+    EventDecl, EventRecord, Fired, HybridError, HybridOptions, Method, Model, ModeDecl, ModeGraph,
+    Rk4, Rodas4, SwitchedModel, SwitchedRun, Termination, Tolerance,
 };
-use model_runtime::{EventId, SolveError, TransitionKind};
-use std::ops::ControlFlow;
 
 /// The runtime's mode graph of a compiled switched model.
 pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, ModelFileError> {
@@ -158,40 +155,10 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
     }
 }
 
-/// Collects the rows (at samples or at step ends) and the transitions of a switched run.
-struct Collector {
-    every_step: bool,
-    points: Vec<(f64, usize, [f64; MAX_STATES])>,
-    transitions: Vec<TransitionRecord<MAX_STATES, ModeId, EventId, SwitchedNote>>,
-    steps: u64,
-}
-
-impl Observer<MAX_STATES, ModeId, EventId, SwitchedNote> for Collector {
-    fn on_step(&mut self, step: &StepView<'_, MAX_STATES, ModeId>) {
-        self.steps += 1;
-        if self.every_step {
-            if self.points.last().is_none_or(|(t, ..)| *t < step.t0) {
-                self.points.push((step.t0, step.mode.index(), *step.y0));
-            }
-            self.points.push((step.t1, step.mode.index(), *step.y1));
-        }
-    }
-
-    fn on_sample(&mut self, sample: &Sample<'_, MAX_STATES, ModeId>) {
-        self.points.push((sample.t, sample.mode.index(), *sample.y));
-    }
-
-    fn on_transition(&mut self, record: TransitionRecord<MAX_STATES, ModeId, EventId, SwitchedNote>) {
-        self.transitions.push(record);
-    }
-
-    fn proceed(&mut self) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
-}
-
 /// Integrates a switched model from `y0` in its first mode; `settings.events` must be empty
-/// (a switched model declares its events in the file).
+/// (a switched model declares its events in the file). The trajectory's rows are those of the
+/// mode in force; the events are every event the run met, an accumulation under `NAME
+/// accumulates` at its extrapolated point, and a terminal event last.
 pub fn solve_switched(
     model: &CompiledSwitched,
     params: &[f64],
@@ -220,154 +187,97 @@ pub fn solve_switched(
         sample_rate: settings.dt.map(|dt| 1.0 / dt),
         ..HybridOptions::default()
     };
-    let mut collector = Collector {
-        every_step: settings.dt.is_none(),
-        points: Vec::new(),
-        transitions: Vec::new(),
-        steps: 0,
-    };
-    let outcome = match settings.method {
-        Method::Dopri5 => run(Dopri5::new(), &interpreted, tolerance, options, start, settings, &mut collector),
-        Method::Dop853 => run(Dop853::new(), &interpreted, tolerance, options, start, settings, &mut collector),
-        Method::Rodas4 => run(Rodas4::new(), &interpreted, tolerance, options, start, settings, &mut collector),
-        Method::Rk4 { h } => run(Rk4::new(h), &interpreted, tolerance, options, start, settings, &mut collector),
-    };
-    let graph = &interpreted.graph;
-    let (t_end, mode_end, y_end, stop, stats) = match outcome {
-        Ok(outcome) => (outcome.t, outcome.mode, outcome.y, outcome.stop, outcome.stats),
-        Err(error) => {
-            return Err(ModelFileError::Eval(format!(
-                "{} (after {} steps and {} transitions)",
-                describe_error(graph, &error),
-                collector.steps,
-                collector.transitions.len()
-            )))
-        }
-    };
-    let mode_model = |mode: usize| &model.modes[mode].model;
-    let mut rows = Vec::with_capacity(collector.points.len() + 1);
-    for (t, mode, y) in &collector.points {
-        rows.push(row(mode_model(*mode), params, *t, &y[..n])?);
+    let start = (settings.t0, start);
+    let t_end = settings.t_end;
+    let run = match settings.method {
+        Method::Dopri5 => run_switched(&interpreted, Dopri5::new(), tolerance, options, start, t_end),
+        Method::Dop853 => run_switched(&interpreted, Dop853::new(), tolerance, options, start, t_end),
+        Method::Rodas4 => run_switched(&interpreted, Rodas4::new(), tolerance, options, start, t_end),
+        Method::Rk4 { h } => run_switched(&interpreted, Rk4::new(h), tolerance, options, start, t_end),
     }
-    if rows.last().is_none_or(|r| r[0] < t_end) {
-        rows.push(row(mode_model(mode_end.index()), params, t_end, &y_end[..n])?);
+    .map_err(|error| ModelFileError::Eval(describe_error(&error)))?;
+    let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
+    let mut rows = Vec::with_capacity(run.samples.len() + 1);
+    for (t, mode, y) in &run.samples {
+        rows.push(row(mode_model(mode), params, *t, &y[..n])?);
     }
-    let mut events = Vec::new();
-    for record in &collector.transitions {
-        let (name, t, y, mode) = match record.note {
-            SwitchedNote::Accumulated { event, accumulation } => (
-                format!("{} accumulates", graph.event(event).name),
-                accumulation.t_inf,
-                record.y_after,
-                match record.kind {
-                    TransitionKind::Switch { to } => to.index(),
-                    _ => record.from.index(),
-                },
-            ),
-            SwitchedNote::Reset(event) | SwitchedNote::Recorded(event) => (
-                graph.event(event).name.clone(),
-                record.hit.t,
-                record.hit.y,
-                record.from.index(),
-            ),
+    if rows.last().is_none_or(|r| r[0] < run.t) {
+        rows.push(row(mode_model(&run.mode), params, run.t, &run.y[..n])?);
+    }
+    let mut events = Vec::with_capacity(run.events.len());
+    let mut notes = Vec::new();
+    for event in &run.events {
+        let accumulated = matches!(event.fired, Fired::Accumulated | Fired::AccumulatedStop);
+        let (name, y, mode) = if accumulated {
+            let name = format!("{} accumulates", event.event);
+            let continued = match event.fired {
+                Fired::Accumulated => format!("the run goes on in `{}`", mode_after(&run, event)),
+                _ => format!(
+                    "the run stops there (`when {} accumulates -> MODE {{ .. }}` says where it goes on)",
+                    event.event
+                ),
+            };
+            notes.push(format!(
+                "the firings of `{}` accumulate at t = {}: {continued}",
+                event.event, event.t
+            ));
+            (name, &event.y_after, mode_after(&run, event))
+        } else {
+            (event.event.clone(), &event.y, event.mode.as_str())
         };
         events.push(FileEvent {
             name,
-            row: row(mode_model(mode), params, t, &y[..n])?,
+            row: row(mode_model(mode), params, event.t, &y[..n])?,
         });
     }
-    let stop = match stop {
-        StopReason::EndTime | StopReason::Observer => Termination::EndTime,
-        StopReason::User(SwitchedStop::Event { mode, event, t }) => {
-            let name = graph.mode(mode).events[event].name.clone();
-            events.push(FileEvent {
-                name: name.clone(),
-                row: row(mode_model(mode.index()), params, t, &y_end[..n])?,
-            });
-            Termination::Event { name }
-        }
-        StopReason::User(SwitchedStop::Accumulation { mode, event, t_inf }) => {
-            let name = format!("{} accumulates", graph.mode(mode).events[event].name);
-            events.push(FileEvent {
-                name: name.clone(),
-                row: row(mode_model(mode.index()), params, t_inf, &y_end[..n])?,
-            });
-            Termination::Event { name }
-        }
+    let stop = match &run.stopped_by {
+        None => Termination::EndTime,
+        Some(name) => Termination::Event {
+            name: match run.events.last().map(|e| e.fired) {
+                Some(Fired::AccumulatedStop) => format!("{name} accumulates"),
+                _ => name.clone(),
+            },
+        },
     };
     let mut header = vec!["t".to_string()];
     header.extend(model.states().iter().cloned());
-    header.extend(mode_model(0).outputs.iter().cloned());
+    header.extend(model.modes[0].model.outputs.iter().cloned());
     Ok(FileTrajectory {
         header,
         rows,
         events,
         stop,
-        stats,
+        stats: run.stats,
+        notes,
     })
 }
 
-type Outcome = Result<
-    model_runtime::HybridOutcome<MAX_STATES, ModeId, SwitchedStop>,
-    HybridError<ModeId>,
->;
-
-fn run<S: Stepper<MAX_STATES>>(
-    stepper: S,
-    model: &InterpretedSwitched<'_>,
-    tolerance: Tolerance<MAX_STATES>,
-    options: HybridOptions,
-    start: [f64; MAX_STATES],
-    settings: &SolveSettings,
-    collector: &mut Collector,
-) -> Outcome {
-    let mut system = match Switched::new(model, AccumulationRule::default()) {
-        Ok(system) => system,
-        Err(error) => {
-            return Err(HybridError::Solve {
-                mode: first_mode(model),
-                error: SolveError::InvalidInput(error),
-            })
-        }
-    };
-    let mut solver = match HybridSolver::new(stepper, tolerance, options) {
-        Ok(solver) => solver,
-        Err(error) => {
-            return Err(HybridError::Solve {
-                mode: first_mode(model),
-                error: SolveError::InvalidInput(error),
-            })
-        }
-    };
-    solver.run(&mut system, first_mode(model), settings.t0, &start, settings.t_end, collector)
+/// The mode the run continued in after `event` (its own, for an event that ended the run).
+fn mode_after<'a>(run: &'a SwitchedRun<MAX_STATES>, event: &'a EventRecord<MAX_STATES>) -> &'a str {
+    let later = run.events.iter().skip_while(|e| !std::ptr::eq(*e, event)).nth(1);
+    match later {
+        Some(next) => next.mode.as_str(),
+        None if event.fired == Fired::Accumulated => run.mode.as_str(),
+        None => event.mode.as_str(),
+    }
 }
 
-fn first_mode(model: &InterpretedSwitched<'_>) -> ModeId {
-    model.graph.id(0).expect("a switched model has a mode")
-}
-
-/// A failed run in the model's words: modes and events by name.
-fn describe_error(graph: &ModeGraph, error: &HybridError<ModeId>) -> String {
+/// A failed run in the model's words: modes by name, and what resolves a chatter.
+fn describe_error(error: &HybridError<String>) -> String {
     match error {
-        HybridError::Solve { mode, error } => {
-            format!("in mode `{}`: {error}", graph.mode_name(*mode))
-        }
-        HybridError::Transition { mode, t, source } => format!(
-            "at an event of mode `{}` at t = {t}: {source}",
-            graph.mode_name(*mode)
-        ),
         HybridError::Chattering {
             t,
             transitions,
             window,
             modes,
         } => {
-            let names: Vec<String> = modes.iter().map(|m| format!("`{}`", graph.mode_name(*m))).collect();
+            let names: Vec<String> = modes.iter().map(|m| format!("`{m}`")).collect();
             format!(
                 "chattering at t = {t}: {transitions} transitions within {window:e} between modes {} \
-                 (no accumulation rule resolved it: intervals that shrink steadily end in `when EVENT accumulates -> MODE`)",
+                 (an event whose firings shrink steadily is resolved by `when EVENT accumulates -> MODE`)",
                 names.join(", ")
             )
         }
+        other => other.to_string(),
     }
 }

@@ -61,7 +61,7 @@ mod ops;
 mod options;
 mod print;
 mod program;
-mod select;
+mod program_part;
 mod simplify;
 mod solve;
 mod solved;
