@@ -153,15 +153,8 @@ impl<'s> Lowerer<'s> {
 
     fn lower(&mut self, ast: &Ast, ctx: Context) -> Option<Lowered> {
         let mut children: Vec<Lowered> = Vec::new();
-        let sub: Vec<&Ast> = match ast {
-            Ast::Neg(_, a) | Ast::Der(_, a) => vec![a],
-            Ast::Bin(_, _, a, b) => vec![a, b],
-            Ast::Call(_, _, args) => args.iter().collect(),
-            Ast::If(_, c, a, b) => vec![&c.lhs, &c.rhs, a, b],
-            Ast::Num(..) | Ast::Name(..) => vec![],
-        };
         let mut failed = false;
-        for a in sub {
+        for a in ast.children() {
             match self.lower(a, ctx) {
                 Some(l) => children.push(l),
                 None => failed = true,

@@ -167,6 +167,17 @@ impl Ast {
             | Ast::If(id, ..) => *id,
         }
     }
+
+    /// The direct subexpressions, in source order (an `if`'s comparison sides first).
+    pub fn children(&self) -> Vec<&Ast> {
+        match self {
+            Ast::Num(..) | Ast::Name(..) => vec![],
+            Ast::Neg(_, a) | Ast::Der(_, a) => vec![a],
+            Ast::Bin(_, _, a, b) => vec![a, b],
+            Ast::Call(_, _, args) => args.iter().collect(),
+            Ast::If(_, c, a, b) => vec![&c.lhs, &c.rhs, a, b],
+        }
+    }
 }
 
 /// A named item with its source node.

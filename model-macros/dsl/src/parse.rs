@@ -508,7 +508,9 @@ fn skip_past_semicolon(input: ParseStream) {
     });
 }
 
-fn skip_all(input: ParseStream) {
+/// Consumes the rest of `input` (after an error inside a group, so that the group's unparsed
+/// tokens add no second error).
+pub(crate) fn skip_all(input: ParseStream) {
     let _ = input.step(|cursor| {
         let mut rest = *cursor;
         while let Some((_, next)) = rest.token_tree() {
