@@ -8,7 +8,7 @@
 //! too (unlike `f64::max`, which would hide it from the finiteness checks), and their
 //! derivative is that of the selected argument with no extra rule. Like the other constructors
 //! these fold what is known: a comparison of two constants picks its branch, equal branches
-//! need no comparison, an inner select on the same comparison is decided by the outer one, and
+//! need no comparison, an expression is not greater than itself, an inner select on the same comparison is decided by the outer one, and
 //! `max(b, a)` is the same node as `max(a, b)`.
 
 use crate::expr::{call_value, ExprId, Node, Pool};
@@ -241,13 +241,20 @@ mod tests {
         let d = partial(&mut p, m, Sym::State(0));
         assert_eq!(at(&p, d, 3.0, 1.0), 6.0);
         assert_eq!(at(&p, d, 0.5, 1.0), 0.0);
+        // d min(x*y, 1)/dy = x where x*y < 1, else 0.
+        let xy = p.mul2(x, y);
+        let m = p.min_max(Func::Min, xy, ExprId::ONE);
+        let d = partial(&mut p, m, Sym::State(1));
+        assert_eq!(at(&p, d, 0.5, 1.0), 0.5);
+        assert_eq!(at(&p, d, 2.0, 1.0), 0.0);
         // d if(x > y, x*y, -x)/dy = x or 0.
-        let (xy, nx) = (p.mul2(x, y), p.neg(x));
+        let nx = p.neg(x);
         let e = p.compare(x, CmpOp::Gt, y, xy, nx);
         let d = partial(&mut p, e, Sym::State(1));
         assert_eq!(at(&p, d, 2.0, 1.0), 2.0);
         assert_eq!(at(&p, d, 1.0, 2.0), 0.0);
         // Differences away from the kink agree with the partials.
+        let m = p.min_max(Func::Max, x2, y);
         let dx = partial(&mut p, m, Sym::State(0));
         for (xv, yv) in [(1.3, 0.4), (0.2, 0.9), (-1.7, 0.5)] {
             let h = 1e-6;

@@ -116,7 +116,8 @@ fn a_nan_input_is_not_hidden_by_min_max_or_if() {
 
 #[test]
 fn the_solution_prints_the_functions_as_written() {
-    let markdown = belt().explanation.markdown;
+    let explanation = belt().explanation;
+    let markdown = explanation.markdown;
     for text in [
         "sign(v - vb)",
         "max(0, ",
@@ -125,6 +126,12 @@ fn the_solution_prints_the_functions_as_written() {
         "sign(der(v))",
     ] {
         assert!(markdown.contains(text), "`{text}` not in\n{markdown}");
+    }
+    let latex = explanation.latex;
+    let sign = r"\operatorname{sign}\left(v - \mathrm{vb}\right)";
+    let min = r"\min\left(F, \mathrm{Fmax}\right)";
+    for text in [sign, min, r"\max\left(0, ", r"\begin{cases}"] {
+        assert!(latex.contains(text), "`{text}` not in\n{latex}");
     }
 }
 
