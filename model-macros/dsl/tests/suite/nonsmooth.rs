@@ -180,3 +180,14 @@ fn derivatives_inside_the_functions_are_located_at_their_tokens() {
         assert!(found[0].message.contains(message), "{}", found[0].message);
     }
 }
+
+#[test]
+fn der_of_a_kink_is_linear_piecewise() {
+    // der(x + max(x, 0)) = 1: the coefficient of der(x) is 2 right of the kink and 1 left of it.
+    let text = "mod m { states { x } equations { der(x + max(x, 0)) = 1; } }";
+    let model = compile(&model(text), &CompileOptions::default()).unwrap();
+    assert_eq!(model.pivots, ["1 + if(0 > x, 0, 1)"]);
+    for (x, der) in [(1.0, 0.5), (-1.0, 1.0), (0.0, 0.5)] {
+        assert_eq!(model.derivatives(0.0, &[x], &[]).unwrap(), [der], "x = {x}");
+    }
+}
