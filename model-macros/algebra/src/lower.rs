@@ -2,9 +2,9 @@
 //!
 //! This is the last place that still knows the user's nodes, so every problem that can be
 //! pinned to a token is found here: a derivative used nonlinearly (`der(x)*der(y)`,
-//! `sin(der(x))`, `1/der(x)`, `der(x)^2`, `max(der(x), 0)`, `if(der(x) > 0, ..)`), a division by a literal zero, a constant
-//! subexpression that is not finite (`ln(0)`), a non-finite literal, a name that does not
-//! resolve. Lets are substituted (they are macros), each lowered once; fixed parameters of a
+//! `sin(der(x))`, `1/der(x)`, `der(x)^2`, `max(der(x), 0)`, `if(der(x) > 0, ..)`), a division
+//! by a literal zero, a constant subexpression that is not finite (`ln(0)`), a non-finite
+//! literal, a name that does not resolve. Lets are substituted (they are macros), each lowered once; fixed parameters of a
 //! variant become constants here, before any algebra, so terms they zero out never exist.
 
 use std::collections::HashMap;

@@ -2,14 +2,15 @@
 //! `if`, `min` and `max`.
 //!
 //! Every condition becomes a [`Node::Select`] `lhs > rhs ? then : otherwise`: `<` swaps the
-//! operands, `>=` and `<=` swap the branches. That is exact because a select whose comparison
-//! has no answer (an operand is NaN) is NaN, whichever way it is written ([`select_value`]).
-//! `max(a, b)` is `a > b ? a : b` and `min(a, b)` is `b > a ? a : b`, so they propagate a NaN
-//! too (unlike `f64::max`, which would hide it from the finiteness checks), and their
-//! derivative is that of the selected argument with no extra rule. Like the other constructors
-//! these fold what is known: a comparison of two constants picks its branch, equal branches
-//! need no comparison, an expression is not greater than itself, an inner select on the same comparison is decided by the outer one, and
-//! `max(b, a)` is the same node as `max(a, b)`.
+//! operands, `<=` the branches, `>=` both. That is exact because a select whose comparison has
+//! no answer (an operand is NaN) is NaN, whichever way it is written
+//! ([`crate::expr::select_value`]). `max(a, b)` is `a > b ? a : b` and `min(a, b)` is
+//! `b > a ? a : b`, so they propagate a NaN too (unlike `f64::max`, which would hide it from the
+//! finiteness checks), and their derivative is that of the selected argument with no extra
+//! rule. Like the other constructors these fold what is known: a comparison of two constants
+//! picks its branch, equal branches need no comparison, an expression is not greater than
+//! itself, an inner select on the same comparison is decided by the outer one, and `max(b, a)`
+//! is the same node as `max(a, b)`.
 
 use crate::expr::{call_value, ExprId, Node, Pool};
 use crate::spec::{CmpOp, Func};
