@@ -134,6 +134,11 @@ fn node(node: &Node) -> String {
         Node::Div(a, b) => format!("{} / {}", operand(a), operand(b)),
         Node::Powi(a, n) => format!("{}.powi({n})", operand(a)),
         Node::Powf(a, b) => format!("{}.powf({})", operand(a), operand(b)),
+        Node::Call(Func::Sign, a) => {
+            // `f64::signum` is 1 at zero; the DSL's `sign` is 0 there (and NaN stays NaN).
+            let a = operand(a);
+            format!("if {a} > 0.0 {{ 1.0 }} else if {a} < 0.0 {{ -1.0 }} else {{ {a} }}")
+        }
         Node::Call(func, a) => {
             let method = match func {
                 Func::Sin => "sin",
@@ -143,14 +148,26 @@ fn node(node: &Node) -> String {
                 Func::Exp => "exp",
                 Func::Ln => "ln",
                 Func::Abs => "abs",
-                Func::Atan2 => {
-                    return "::core::compile_error!(\"the equation compiler emitted a one-argument `atan2`\")"
-                        .to_string()
+                Func::Atan2 | Func::Min | Func::Max | Func::Sign => {
+                    return format!(
+                    "::core::compile_error!(\"the equation compiler emitted a one-argument `{}`\")",
+                    func.name()
+                )
                 }
             };
             format!("{}.{method}()", operand(a))
         }
         Node::Atan2(a, b) => format!("{}.atan2({})", operand(a), operand(b)),
+        // NaN when the comparison has no answer, so a NaN input is not hidden by the branch
+        // taken (`f64::max(NaN, 1.0)` would be 1.0): the finiteness checks still see it.
+        Node::Select(a, b, then, otherwise) => {
+            let (a, b) = (operand(a), operand(b));
+            format!(
+                "if {a} > {b} {{ {} }} else if {a} <= {b} {{ {} }} else {{ f64::NAN }}",
+                operand(then),
+                operand(otherwise)
+            )
+        }
     }
 }
 

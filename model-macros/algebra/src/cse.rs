@@ -191,6 +191,10 @@ impl<'a> Emitter<'a> {
                 let (y, x) = (self.operand(y)?, self.operand(x)?);
                 self.let_(Op::Atan2(y, x))
             }
+            Node::Select(s) => {
+                let [a, b, c, d] = s.map(|x| self.operand(x));
+                self.let_(Op::Select(a?, b?, c?, d?))
+            }
         };
         self.value.insert(e, v);
         Ok(v)
@@ -488,6 +492,7 @@ enum ValueKey {
     Binary(u8, OperandKey, OperandKey),
     Powi(OperandKey, i32),
     Call(Func, OperandKey),
+    Select([OperandKey; 4]),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -531,6 +536,7 @@ impl ValueKey {
             Op::Atan2(a, b) => ValueKey::Binary(7, k(a), k(b)),
             Op::Powi(a, n) => ValueKey::Powi(k(a), n),
             Op::Call(f, a) => ValueKey::Call(f, k(a)),
+            Op::Select(a, b, c, d) => ValueKey::Select([a, b, c, d].map(k)),
         }
     }
 }

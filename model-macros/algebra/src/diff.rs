@@ -127,14 +127,17 @@ fn node_derivative(
                 }
                 Func::Exp => id,
                 Func::Ln => pool.pow(a, ExprId::MINUS_ONE),
-                // d|a| = a/|a| (undefined at 0, like the derivative itself).
-                Func::Abs => pool.div(a, id),
+                // d|a| = sign(a) da (0 at a = 0, where |a| has a kink).
+                Func::Abs => pool.call(Func::Sign, a),
                 Func::Sqrt => {
                     let r = pool.powf(a, -0.5);
                     let half = pool.num(0.5);
                     pool.mul2(half, r)
                 }
-                Func::Atan2 => ExprId::ZERO,
+                // Piecewise constant: its derivative is zero wherever it exists.
+                Func::Sign => return ExprId::ZERO,
+                // Two-argument functions are never a `Call`.
+                Func::Atan2 | Func::Min | Func::Max => ExprId::ZERO,
             };
             pool.mul2(outer, da)
         }
@@ -148,6 +151,11 @@ fn node_derivative(
             let y2 = pool.powf(y, 2.0);
             let den = pool.add2(x2, y2);
             pool.div(num, den)
+        }
+        // The derivative of the branch taken (the comparison itself is piecewise constant).
+        Node::Select([l, r, a, b]) => {
+            let (da, db) = (d(&a), d(&b));
+            pool.select(l, r, da, db)
         }
     }
 }

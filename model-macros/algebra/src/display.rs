@@ -30,6 +30,7 @@ impl fmt::Display for Node {
             Node::Powf(a, b) => write!(f, "{a}.powf({b})"),
             Node::Call(func, a) => write!(f, "{a}.{}()", func.name()),
             Node::Atan2(a, b) => write!(f, "{a}.atan2({b})"),
+            Node::Select(a, b, c, d) => write!(f, "if {a} > {b} {{ {c} }} else {{ {d} }}"),
         }
     }
 }

@@ -58,6 +58,10 @@ pub enum Node {
     Call(Func, [ExprId; 1]),
     /// `[y, x]` of `atan2(y, x)`.
     Atan2([ExprId; 2]),
+    /// `[lhs, rhs, then, otherwise]`: `then` where `lhs > rhs`, else `otherwise`; NaN when
+    /// `lhs` or `rhs` is NaN (see [`select_value`]). Every condition of the DSL, and `min` and
+    /// `max`, are this one comparison, with the operands or the branches swapped.
+    Select([ExprId; 4]),
 }
 
 impl Node {
@@ -68,6 +72,7 @@ impl Node {
             Node::Add(ts) | Node::Mul(ts) => ts,
             Node::Pow(ab) | Node::Atan2(ab) => ab,
             Node::Call(_, a) => a,
+            Node::Select(s) => s,
         }
     }
 
@@ -85,7 +90,7 @@ impl Node {
         match self {
             Node::Const(_) | Node::Sym(_) => 0,
             Node::Add(ts) | Node::Mul(ts) => ts.len() as u32 - 1,
-            Node::Pow(_) | Node::Call(..) | Node::Atan2(_) => 1,
+            Node::Pow(_) | Node::Call(..) | Node::Atan2(_) | Node::Select(_) => 1,
         }
     }
 }
@@ -260,6 +265,7 @@ impl Pool {
                 Node::Pow(_) => pow_value(arg(0), arg(1)),
                 Node::Call(f, _) => call_value(*f, arg(0)),
                 Node::Atan2(_) => arg(0).atan2(arg(1)),
+                Node::Select(_) => select_value(arg(0), arg(1), arg(2), arg(3)),
             };
             memo.insert(id, v);
         }
@@ -298,8 +304,35 @@ pub fn call_value(f: Func, x: f64) -> f64 {
         Func::Exp => x.exp(),
         Func::Ln => x.ln(),
         Func::Abs => x.abs(),
-        // Not a one-argument function; never built as a `Call`.
-        Func::Atan2 => f64::NAN,
+        Func::Sign => sign_value(x),
+        // Not one-argument functions; never built as a `Call`.
+        Func::Atan2 | Func::Min | Func::Max => f64::NAN,
+    }
+}
+
+/// `sign(x)` as emitted code computes it: `-1`, `1`, or `x` itself at zero (`±0`) and NaN.
+pub fn sign_value(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        x
+    }
+}
+
+/// A [`Node::Select`] as emitted code computes it: `then` where `lhs > rhs`, `otherwise` where
+/// `lhs <= rhs`, NaN where the comparison has no answer (an operand is NaN). Propagating the NaN
+/// keeps a bad input visible to the finiteness checks (a plain `if lhs > rhs` would pick
+/// `otherwise` and hide it), and makes `lhs >= rhs ? a : b` the same as `rhs > lhs ? b : a`, so
+/// every comparison is this one.
+pub fn select_value(lhs: f64, rhs: f64, then: f64, otherwise: f64) -> f64 {
+    if lhs > rhs {
+        then
+    } else if lhs <= rhs {
+        otherwise
+    } else {
+        f64::NAN
     }
 }
 

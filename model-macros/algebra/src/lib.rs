@@ -10,8 +10,9 @@
 //! that would swell or no safe pivot exists), `trig` (identities that take `atan2` and
 //! `sin_cos` calls out of the solution), `jacobian` (chain rule through the solution), `cse`
 //! (the DAG as a program, counted by `ops`), `solved` (the model after the algebra) and
-//! `variant` (reduced models), chained by [`compile()`]. `expr`, `simplify`, `expand`, `diff`
-//! and `print` are the algebra underneath; the interpreter ([`Program::eval`],
+//! `variant` (reduced models), chained by [`compile()`]. `expr`, `simplify`, `select` (the
+//! non-smooth `sign`, `min`, `max` and `if`), `expand`, `diff` and `print` are the algebra
+//! underneath; the interpreter ([`Program::eval`],
 //! [`CompiledModel::derivatives`]) runs a program, so the emitted code can be tested without
 //! compiling it and a model can be evaluated without compiling Rust.
 //!
@@ -62,6 +63,7 @@ mod options;
 mod print;
 mod program;
 mod program_part;
+mod select;
 mod simplify;
 mod solve;
 mod solved;
@@ -79,7 +81,10 @@ pub use options::{CompileOptions, PIVOT_TOLERANCE};
 pub use program::{
     CompiledModel, Explanation, Node, Operand, Ops, Program, Stmt, SumCheck, Target,
 };
-pub use spec::{Ast, BinOp, Diagnostic, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
+pub use spec::{
+    Ast, BinOp, CmpOp, Condition, Diagnostic, EquationSpec, Func, ModelSpec, Named, NodeId,
+    VariantSpec,
+};
 
 #[cfg(test)]
 mod tests;

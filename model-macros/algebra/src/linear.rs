@@ -5,7 +5,7 @@
 //! split still refuses them (returning the offending subexpression) so that it is total on
 //! any input.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use crate::expr::{ExprId, Node, Pool, Sym};
 
@@ -84,6 +84,32 @@ fn split_memo(
                 rest: pool.mul2(scale, f.rest),
             }
         }
+        // A derivative in a branch (not in the comparison) is linear piecewise: each
+        // coefficient is the select of the branches' coefficients.
+        Node::Select([l, r, a, b]) if !pool.has_der(l) && !pool.has_der(r) => {
+            let (fa, fb) = (split_memo(pool, memo, a)?, split_memo(pool, memo, b)?);
+            let vars: BTreeSet<usize> = fa
+                .coefficients
+                .keys()
+                .chain(fb.coefficients.keys())
+                .copied()
+                .collect();
+            let coefficient =
+                |f: &LinearForm, j| f.coefficients.get(&j).copied().unwrap_or(ExprId::ZERO);
+            LinearForm {
+                coefficients: vars
+                    .into_iter()
+                    .map(|j| {
+                        (
+                            j,
+                            pool.select(l, r, coefficient(&fa, j), coefficient(&fb, j)),
+                        )
+                    })
+                    .filter(|(_, c)| *c != ExprId::ZERO)
+                    .collect(),
+                rest: pool.select(l, r, fa.rest, fb.rest),
+            }
+        }
         _ => return Err(NonLinear(e)),
     };
     memo.insert(e, form.clone());
@@ -93,7 +119,7 @@ fn split_memo(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spec::Func;
+    use crate::spec::{CmpOp, Func};
 
     #[test]
     fn splits_a_mass_matrix_row() {
@@ -124,10 +150,34 @@ mod tests {
             p.call(Func::Sin, dx),
             p.powf(dx, 2.0),
             p.div(ExprId::ONE, dx),
+            p.call(Func::Sign, dx),
+            p.min_max(Func::Max, dx, ExprId::ZERO),
+            p.compare(dx, CmpOp::Gt, ExprId::ZERO, ExprId::ONE, dy),
         ];
         for e in cases {
             assert_eq!(split(&mut p, e), Err(NonLinear(e)));
         }
+    }
+
+    #[test]
+    fn derivatives_in_branches_are_linear_piecewise() {
+        // if(x > 0, 2 der(x), der(y) - x): coefficients if(x > 0, 2, 0), if(x > 0, 0, 1).
+        let mut p = Pool::new();
+        let x = p.sym(Sym::State(0));
+        let (dx, dy) = (p.sym(Sym::Der(0)), p.sym(Sym::Der(1)));
+        let two = p.num(2.0);
+        let a = p.mul2(two, dx);
+        let b = p.sub(dy, x);
+        let e = p.compare(x, CmpOp::Gt, ExprId::ZERO, a, b);
+        let f = split(&mut p, e).unwrap();
+        let c0 = p.compare(x, CmpOp::Gt, ExprId::ZERO, two, ExprId::ZERO);
+        let c1 = p.compare(x, CmpOp::Gt, ExprId::ZERO, ExprId::ZERO, ExprId::ONE);
+        assert_eq!(f.coefficients, BTreeMap::from([(0, c0), (1, c1)]));
+        let nx = p.neg(x);
+        assert_eq!(
+            f.rest,
+            p.compare(x, CmpOp::Gt, ExprId::ZERO, ExprId::ZERO, nx)
+        );
     }
 
     #[test]

@@ -2,16 +2,16 @@
 //!
 //! This is the last place that still knows the user's nodes, so every problem that can be
 //! pinned to a token is found here: a derivative used nonlinearly (`der(x)*der(y)`,
-//! `sin(der(x))`, `1/der(x)`, `der(x)^2`), a division by a literal zero, a constant
-//! subexpression that is not finite (`ln(0)`), a non-finite literal, a name that does not
-//! resolve. Lets are substituted (they are macros), each lowered once; fixed parameters of a
+//! `sin(der(x))`, `1/der(x)`, `der(x)^2`, `max(der(x), 0)`, `if(der(x) > 0, ..)`), a division
+//! by a literal zero, a constant subexpression that is not finite (`ln(0)`), a non-finite
+//! literal, a name that does not resolve. Lets are substituted (they are macros), each lowered once; fixed parameters of a
 //! variant become constants here, before any algebra, so terms they zero out never exist.
 
 use std::collections::HashMap;
 
 use crate::diff::time_derivative;
 use crate::expr::{ExprId, Pool, Sym};
-use crate::spec::{Ast, BinOp, Diagnostic, ModelSpec, NodeId};
+use crate::spec::{Ast, BinOp, Diagnostic, Func, ModelSpec, NodeId};
 
 /// What a name in the model stands for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -153,14 +153,8 @@ impl<'s> Lowerer<'s> {
 
     fn lower(&mut self, ast: &Ast, ctx: Context) -> Option<Lowered> {
         let mut children: Vec<Lowered> = Vec::new();
-        let sub: Vec<&Ast> = match ast {
-            Ast::Neg(_, a) | Ast::Der(_, a) => vec![a],
-            Ast::Bin(_, _, a, b) => vec![a, b],
-            Ast::Call(_, _, args) => args.iter().collect(),
-            Ast::Num(..) | Ast::Name(..) => vec![],
-        };
         let mut failed = false;
-        for a in sub {
+        for a in ast.children() {
             match self.lower(a, ctx) {
                 Some(l) => children.push(l),
                 None => failed = true,
@@ -233,9 +227,18 @@ impl<'s> Lowerer<'s> {
                     nonlinear.push(nonlinear_at(id, &what));
                 }
                 match f {
-                    crate::spec::Func::Atan2 => self.pool.atan2(e[0], e[1]),
+                    Func::Atan2 => self.pool.atan2(e[0], e[1]),
+                    Func::Min | Func::Max => self.pool.min_max(*f, e[0], e[1]),
                     _ => self.pool.call(*f, e[0]),
                 }
+            }
+            Ast::If(_, c, ..) => {
+                // A derivative in a branch is linear piecewise; in the comparison it decides
+                // which equation holds, which no linear solve can express.
+                if has_der(&self.pool, 0) || has_der(&self.pool, 1) {
+                    nonlinear.push(nonlinear_at(c.id, "a condition on a derivative"));
+                }
+                self.pool.compare(e[0], c.op, e[1], e[2], e[3])
             }
             Ast::Der(..) => match time_derivative(&mut self.pool, e[0]) {
                 Some(d) => d,
@@ -319,7 +322,7 @@ fn nonlinear_at(id: NodeId, what: &str) -> Diagnostic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spec::{BinOp, EquationSpec, Func, ModelSpec, Named};
+    use crate::spec::{BinOp, EquationSpec, ModelSpec, Named};
 
     // Specs built by hand: the front end that reads DSL text depends on this crate, so the
     // stage's own unit tests spell their small models as trees.

@@ -17,6 +17,8 @@ impl Ops {
             Func::Sin | Func::Cos | Func::Tan | Func::Atan2 => self.trig += 1,
             Func::Sqrt => self.sqrt += 1,
             Func::Exp | Func::Ln => self.transcendental += 1,
+            // A comparison (two for `sign`, taken as one) costs what a subtraction does.
+            Func::Sign | Func::Min | Func::Max => self.add += 1,
             Func::Abs => {}
         }
     }
@@ -73,6 +75,7 @@ impl Program {
                     Node::Powf(..) => ops.transcendental += 1,
                     Node::Call(f, _) => ops.call(*f),
                     Node::Atan2(..) => ops.trig += 1,
+                    Node::Select(..) => ops.add += 1,
                 },
                 Stmt::SinCos { .. } => ops.trig += 1,
                 Stmt::SolveBlock { n, .. } => {
@@ -119,5 +122,33 @@ mod tests {
         // factor 1, update a11 and b1: 2 mul 2 add; back: x1 = b1*r1 (1 mul),
         // x0 = (b0 - a01 x1)*r0 (1 mul, 1 add, 1 mul).
         assert_eq!((two.add, two.mul, two.div), (3, 6, 2));
+    }
+
+    #[test]
+    fn comparisons_count_as_additions() {
+        use crate::program::Operand;
+        let let_ = |tmp, node| Stmt::Let { tmp, node };
+        let program = Program {
+            stmts: vec![
+                let_(0, Node::Call(Func::Sign, Operand::State(0))),
+                let_(1, Node::Call(Func::Abs, Operand::State(0))),
+                let_(
+                    2,
+                    Node::Select(
+                        Operand::State(0),
+                        Operand::Const(0.0),
+                        Operand::Tmp(0),
+                        Operand::Tmp(1),
+                    ),
+                ),
+            ],
+        };
+        assert_eq!(
+            program.ops(),
+            Ops {
+                add: 2,
+                ..Ops::default()
+            }
+        );
     }
 }

@@ -59,10 +59,21 @@ impl Notation {
                     }
                     Func::Sqrt => return self.sqrt(&args.join(", ")),
                     Func::Abs => return format!("\\left|{}\\right|", args.join(", ")),
-                    Func::Atan2 => "\\operatorname{atan2}".to_string(),
+                    Func::Atan2 | Func::Sign => format!("\\operatorname{{{}}}", func.name()),
+                    Func::Min | Func::Max => format!("\\{}", func.name()),
                 };
                 format!("{name}{}", self.paren(&args.join(", ")))
             }
+        }
+    }
+
+    /// `then` where `condition` holds, else `otherwise`.
+    fn select(self, condition: &str, then: &str, otherwise: &str) -> String {
+        match self {
+            Notation::Dsl => format!("if({condition}, {then}, {otherwise})"),
+            Notation::Latex => format!(
+                "\\begin{{cases}} {then} & \\text{{if }} {condition} \\\\ {otherwise} & \\text{{otherwise}} \\end{{cases}}"
+            ),
         }
     }
 
@@ -164,6 +175,14 @@ fn print(n: Notation, pool: &Pool, id: ExprId, name: Name) -> (String, Prec) {
             ),
             Prec::Atom,
         ),
+        Node::Select([l, r, a, b]) => {
+            let text = |e: &ExprId| print(n, pool, *e, name).0;
+            if let Some((f, x, y)) = pool.as_min_max(id) {
+                return (n.call(f, &[text(&x), text(&y)]), Prec::Atom);
+            }
+            let condition = format!("{} > {}", text(l), text(r));
+            (n.select(&condition, &text(a), &text(b)), Prec::Atom)
+        }
     }
 }
 
@@ -273,5 +292,30 @@ mod tests {
         let prod = p.mul(&[two, a2, th]);
         let diff = p.sub(ExprId::ONE, prod);
         assert_eq!(to_latex(&p, diff, &names), "1 - 2 theta {p0}^{2}");
+    }
+
+    #[test]
+    fn prints_sign_min_max_and_conditions() {
+        let mut p = Pool::new();
+        let th = p.sym(Sym::State(0));
+        let a = p.sym(Sym::Param(0));
+        let s = p.call(Func::Sign, th);
+        assert_eq!(to_dsl(&p, s, &names), "sign(theta)");
+        assert_eq!(
+            to_latex(&p, s, &names),
+            "\\operatorname{sign}\\left(theta\\right)"
+        );
+        let m = p.min_max(Func::Max, ExprId::ZERO, a);
+        assert_eq!(to_dsl(&p, m, &names), "max(0, p0)");
+        assert_eq!(to_latex(&p, m, &names), "\\max\\left(0, p0\\right)");
+        let m = p.min_max(Func::Min, a, th);
+        assert_eq!(to_dsl(&p, m, &names), "min(theta, p0)");
+        let two = p.num(2.0);
+        let c = p.compare(th, crate::spec::CmpOp::Ge, a, two, s);
+        assert_eq!(to_dsl(&p, c, &names), "if(p0 > theta, sign(theta), 2)");
+        assert_eq!(
+            to_latex(&p, c, &names),
+            "\\begin{cases} \\operatorname{sign}\\left(theta\\right) & \\text{if } p0 > theta \\\\ 2 & \\text{otherwise} \\end{cases}"
+        );
     }
 }

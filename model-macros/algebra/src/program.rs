@@ -41,10 +41,13 @@ pub enum Node {
     Powi(Operand, i32),
     /// `a.powf(b)`
     Powf(Operand, Operand),
-    /// A one-argument function (never `Atan2`).
+    /// A one-argument function (never `Atan2`, `Min` or `Max`).
     Call(crate::spec::Func, Operand),
     /// `a.atan2(b)` (that is, `atan2(a, b)` in the DSL)
     Atan2(Operand, Operand),
+    /// `if a > b { c } else if a <= b { d } else { NaN }`: a condition, `min` or `max`, NaN when
+    /// `a` or `b` is NaN (`crate::expr::select_value`).
+    Select(Operand, Operand, Operand, Operand),
 }
 
 /// A sum inside a pivot (the pivot itself, or one factor of it) with the scale of its
@@ -134,7 +137,8 @@ pub enum Stmt {
 /// Operation counts of a program (mirrors `model_runtime::OpCounts`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Ops {
-    /// `+`, `-` and negation.
+    /// `+`, `-` and negation; also the comparisons of `sign`, `min`, `max` and `if` (one each:
+    /// a comparison costs what a subtraction does).
     pub add: u32,
     /// `*` (and the multiplications of `powi`).
     pub mul: u32,

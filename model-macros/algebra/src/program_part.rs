@@ -92,6 +92,7 @@ fn node_operands(node: &Node) -> Vec<Operand> {
         | Node::Div(a, b)
         | Node::Powf(a, b)
         | Node::Atan2(a, b) => vec![*a, *b],
+        Node::Select(a, b, c, d) => vec![*a, *b, *c, *d],
     }
 }
 

@@ -291,6 +291,9 @@ impl Pool {
 
     /// `f(arg)` for a one-argument function (`sqrt` becomes a power of one half).
     pub fn call(&mut self, f: Func, arg: ExprId) -> ExprId {
+        if f == Func::Sign {
+            return self.sign(arg);
+        }
         if f == Func::Sqrt {
             let half = self.num(0.5);
             return self.pow(arg, half);

@@ -28,6 +28,12 @@ pub enum Func {
     Abs,
     /// `atan2(y, x)` (two arguments)
     Atan2,
+    /// `sign(x)`: `-1`, `0` or `1` (`0` at zero, NaN stays NaN)
+    Sign,
+    /// `min(a, b)` (two arguments; NaN if either is NaN)
+    Min,
+    /// `max(a, b)` (two arguments; NaN if either is NaN)
+    Max,
 }
 
 impl Func {
@@ -42,6 +48,9 @@ impl Func {
             Func::Ln => "ln",
             Func::Abs => "abs",
             Func::Atan2 => "atan2",
+            Func::Sign => "sign",
+            Func::Min => "min",
+            Func::Max => "max",
         }
     }
 
@@ -56,6 +65,9 @@ impl Func {
             "ln" => Func::Ln,
             "abs" => Func::Abs,
             "atan2" => Func::Atan2,
+            "sign" => Func::Sign,
+            "min" => Func::Min,
+            "max" => Func::Max,
             _ => return None,
         })
     }
@@ -63,7 +75,7 @@ impl Func {
     /// How many arguments the function takes.
     pub fn arity(self) -> usize {
         match self {
-            Func::Atan2 => 2,
+            Func::Atan2 | Func::Min | Func::Max => 2,
             _ => 1,
         }
     }
@@ -84,6 +96,45 @@ pub enum BinOp {
     Pow,
 }
 
+/// The comparison of a condition (`==` has no place in one: two computed values are
+/// practically never equal).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CmpOp {
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+}
+
+impl CmpOp {
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CmpOp::Lt => "<",
+            CmpOp::Le => "<=",
+            CmpOp::Gt => ">",
+            CmpOp::Ge => ">=",
+        }
+    }
+}
+
+/// A condition `lhs op rhs`, as in `if(v > vb, a, b)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Condition {
+    /// The node of the whole comparison.
+    pub id: NodeId,
+    /// Left-hand side.
+    pub lhs: Ast,
+    /// The comparison.
+    pub op: CmpOp,
+    /// Right-hand side.
+    pub rhs: Ast,
+}
+
 /// An expression as written, with the source node of every part.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Ast {
@@ -99,6 +150,8 @@ pub enum Ast {
     Call(NodeId, Func, Vec<Ast>),
     /// `der(x)`
     Der(NodeId, Box<Ast>),
+    /// `if(condition, then, otherwise)`: `then` where the condition holds, else `otherwise`.
+    If(NodeId, Box<Condition>, Box<Ast>, Box<Ast>),
 }
 
 impl Ast {
@@ -110,7 +163,19 @@ impl Ast {
             | Ast::Neg(id, _)
             | Ast::Bin(id, ..)
             | Ast::Call(id, ..)
-            | Ast::Der(id, _) => *id,
+            | Ast::Der(id, _)
+            | Ast::If(id, ..) => *id,
+        }
+    }
+
+    /// The direct subexpressions, in source order (an `if`'s comparison sides first).
+    pub fn children(&self) -> Vec<&Ast> {
+        match self {
+            Ast::Num(..) | Ast::Name(..) => vec![],
+            Ast::Neg(_, a) | Ast::Der(_, a) => vec![a],
+            Ast::Bin(_, _, a, b) => vec![a, b],
+            Ast::Call(_, _, args) => args.iter().collect(),
+            Ast::If(_, c, a, b) => vec![&c.lhs, &c.rhs, a, b],
         }
     }
 }

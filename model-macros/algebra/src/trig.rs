@@ -190,6 +190,7 @@ impl<'p> Identities<'p> {
                 Node::Pow(_) => self.pool.pow(kids[0], kids[1]),
                 Node::Call(f, _) => self.pool.call(f, kids[0]),
                 Node::Atan2(_) => self.pool.atan2(kids[0], kids[1]),
+                Node::Select(_) => self.pool.select(kids[0], kids[1], kids[2], kids[3]),
             };
             self.memo.insert(n, new);
         }

@@ -5,7 +5,7 @@
 //! carries a [`NodeId`] whose source range lives in [`Spans`].
 
 use crate::span::Spans;
-use model_algebra::{BinOp, Named, NodeId};
+use model_algebra::{BinOp, CmpOp, Named, NodeId};
 use std::collections::BTreeMap;
 
 /// An expression before name resolution.
@@ -21,6 +21,17 @@ pub enum Expr {
     Bin(NodeId, BinOp, Box<Expr>, Box<Expr>),
     /// `f(args..)`, including `der(..)`.
     Call(Call),
+    /// `if(cond, then, otherwise)`: `then` where the comparison holds, else `otherwise`.
+    If {
+        /// The whole `if(..)`.
+        id: NodeId,
+        /// The comparison (never `==`: the parser refuses it).
+        cond: Box<Relation>,
+        /// The value where `cond` holds.
+        then: Box<Expr>,
+        /// The value where it does not.
+        otherwise: Box<Expr>,
+    },
 }
 
 /// A call `f(args..)` as written.
@@ -42,6 +53,7 @@ impl Expr {
         match self {
             Expr::Num(id, _) | Expr::Name(id, _) | Expr::Neg(id, _) | Expr::Bin(id, ..) => *id,
             Expr::Call(call) => call.id,
+            Expr::If { id, .. } => *id,
         }
     }
 
@@ -56,11 +68,22 @@ impl Expr {
                 rhs.walk(visit);
             }
             Expr::Call(call) => call.args.iter().for_each(|arg| arg.walk(visit)),
+            Expr::If {
+                cond,
+                then,
+                otherwise,
+                ..
+            } => {
+                cond.lhs.walk(visit);
+                cond.rhs.walk(visit);
+                then.walk(visit);
+                otherwise.walk(visit);
+            }
         }
     }
 }
 
-/// A comparison, `lhs < rhs` and the like: the condition of a `when` guard.
+/// A comparison, `lhs < rhs` and the like: the condition of a `when` guard or of an `if`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Relation {
     /// The whole comparison.
@@ -97,6 +120,17 @@ impl RelOp {
             RelOp::Gt => ">",
             RelOp::Ge => ">=",
             RelOp::Eq => "==",
+        }
+    }
+
+    /// The algebra's comparison, for the orderings (`None` for `==`).
+    pub fn ordering(self) -> Option<CmpOp> {
+        match self {
+            RelOp::Lt => Some(CmpOp::Lt),
+            RelOp::Le => Some(CmpOp::Le),
+            RelOp::Gt => Some(CmpOp::Gt),
+            RelOp::Ge => Some(CmpOp::Ge),
+            RelOp::Eq => None,
         }
     }
 }

@@ -123,6 +123,9 @@ fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         }
         return Ok(inner);
     }
+    if input.peek(Token![if]) {
+        return parse_if(input, spans);
+    }
     if input.peek(syn::Lit) {
         let (value, span) = parse_number(input)?;
         return Ok(Expr::Num(spans.push(SpanRange::single(span)), value));
@@ -154,6 +157,61 @@ fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         }));
     }
     Err(input.error("expected a number, a name, `(` or `-`"))
+}
+
+/// `if(COND, then, otherwise)`, where `COND` is an ordering comparison (`==` is refused at its
+/// token: computed values are practically never exactly equal).
+fn parse_if(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    let keyword: Token![if] = input.parse()?;
+    let start = SpanRange::single(keyword.span);
+    if !input.peek(token::Paren) {
+        return Err(start.error("`if` is written like a function: `if(x > y, a, b)`"));
+    }
+    let content;
+    let parens = syn::parenthesized!(content in input);
+    let parsed = parse_if_arguments(&content, spans);
+    if parsed.is_err() {
+        crate::statements::skip_all(&content);
+    }
+    let (cond, values) = parsed?;
+    let range = start.to(SpanRange::single(parens.span.close()));
+    let [then, otherwise]: [Expr; 2] = values.try_into().map_err(|values: Vec<Expr>| {
+        range.error(format!(
+            "`if` takes a condition and 2 values, `if(x > y, a, b)`, found {} value(s)",
+            values.len()
+        ))
+    })?;
+    Ok(Expr::If {
+        id: spans.push(range),
+        cond: Box::new(cond),
+        then: Box::new(then),
+        otherwise: Box::new(otherwise),
+    })
+}
+
+/// The condition and the values inside `if(..)`.
+fn parse_if_arguments(input: ParseStream, spans: &mut Spans) -> syn::Result<(Relation, Vec<Expr>)> {
+    let cond = parse_condition(input, spans)?;
+    let mut values = Vec::new();
+    while !input.is_empty() {
+        input.parse::<Token![,]>()?;
+        values.push(parse_expr(input, spans)?);
+    }
+    Ok((cond, values))
+}
+
+/// The condition of an `if`: a comparison other than `==`.
+fn parse_condition(input: ParseStream, spans: &mut Spans) -> syn::Result<Relation> {
+    let ahead = input.fork();
+    if parse_expr(&ahead, &mut Spans::default()).is_ok() && ahead.peek(Token![==]) {
+        let eq: Token![==] = ahead.parse()?;
+        let range = SpanRange::single(eq.spans[0]).to(SpanRange::single(eq.spans[1]));
+        return Err(range.error(
+            "`if` cannot test `==`: computed values are practically never exactly equal; \
+             compare with `<`, `<=`, `>` or `>=`",
+        ));
+    }
+    parse_relation(input, spans)
 }
 
 /// The error for `x.sin()`: the DSL has functions, not methods (Rust's spelling is a natural

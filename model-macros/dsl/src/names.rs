@@ -190,7 +190,7 @@ impl Default for Names {
 }
 
 /// Every function of the DSL except `der`.
-pub const ALL_FUNCS: [Func; 8] = [
+pub const ALL_FUNCS: [Func; 11] = [
     Func::Sin,
     Func::Cos,
     Func::Tan,
@@ -199,12 +199,15 @@ pub const ALL_FUNCS: [Func; 8] = [
     Func::Ln,
     Func::Abs,
     Func::Atan2,
+    Func::Sign,
+    Func::Min,
+    Func::Max,
 ];
 
-/// `sin, cos, ..., atan2 and der`, for messages.
+/// `sin, cos, ..., max, der and if(x > y, a, b)`, for messages.
 pub fn function_list() -> String {
     let names: Vec<&str> = ALL_FUNCS.iter().map(|func| func.name()).collect();
-    format!("{} and `{DER}`", quoted(&names))
+    format!("{}, `{DER}` and `if(x > y, a, b)`", quoted(&names))
 }
 
 fn builtin(kind: Kind) -> Decl {

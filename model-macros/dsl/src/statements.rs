@@ -152,6 +152,8 @@ pub(crate) fn skip_past_semicolon(input: ParseStream) {
     });
 }
 
+/// Consumes the rest of `input` (after an error inside a group, so that the group's unparsed
+/// tokens add no second error).
 pub(crate) fn skip_all(input: ParseStream) {
     let _ = input.step(|cursor| {
         let mut rest = *cursor;

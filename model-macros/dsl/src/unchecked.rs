@@ -8,10 +8,11 @@
 
 use crate::ast::{Expr, ModelAst};
 use crate::names::DER;
-use model_algebra::{Ast, EquationSpec, Func, ModelSpec, Named, VariantSpec};
+use model_algebra::{Ast, Condition, EquationSpec, Func, ModelSpec, Named, VariantSpec};
 
 /// Converts the model to the compiler's spec without checking it. Only a call of a function
-/// the DSL does not have (which the spec cannot express) is an error, at the function's name.
+/// the DSL does not have and an `if` testing `==` (which the spec cannot express) are errors, at
+/// the function's name or the comparison.
 pub fn spec_unchecked(ast: &ModelAst) -> syn::Result<ModelSpec> {
     let named = |item: &Named<Expr>| -> syn::Result<Named<Ast>> {
         Ok(Named {
@@ -65,6 +66,24 @@ fn convert(ast: &ModelAst, expr: &Expr) -> syn::Result<Ast> {
             })?;
             let args = call.args.iter().map(|arg| convert(ast, arg));
             Ast::Call(call.id, func, args.collect::<syn::Result<_>>()?)
+        }
+        Expr::If {
+            id,
+            cond,
+            then,
+            otherwise,
+        } => {
+            let op = cond
+                .op
+                .ordering()
+                .ok_or_else(|| (ast.spans.range(cond.id)).error("`if` cannot test `==`"))?;
+            let cond = Condition {
+                id: cond.id,
+                lhs: convert(ast, &cond.lhs)?,
+                op,
+                rhs: convert(ast, &cond.rhs)?,
+            };
+            Ast::If(*id, Box::new(cond), boxed(then)?, boxed(otherwise)?)
         }
     })
 }

@@ -9,7 +9,7 @@ use crate::names::{function_list, Decl, Kind, Names, DER};
 use crate::options::compile_options;
 use crate::span::{Errors, SpanRange};
 use model_algebra::CompileOptions;
-use model_algebra::{Ast, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
+use model_algebra::{Ast, Condition, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Module names the emitter uses inside every model, so a variant cannot take them.
@@ -285,6 +285,16 @@ impl<'a> Validator<'a> {
                 }
                 props
             }
+            Expr::If {
+                cond,
+                then,
+                otherwise,
+                ..
+            } => [&cond.lhs, &cond.rhs, then, otherwise]
+                .into_iter()
+                .fold(Props::default(), |props, e| {
+                    props.or(self.expr_props(e, let_props))
+                }),
         }
     }
 
@@ -371,6 +381,32 @@ impl<'a> Validator<'a> {
                 Some(Ast::Bin(*id, *op, Box::new(lhs?), Box::new(rhs?)))
             }
             Expr::Call(call) => self.resolve_call(call, scope),
+            Expr::If {
+                id,
+                cond,
+                then,
+                otherwise,
+            } => {
+                let [lhs, rhs, then, otherwise] =
+                    [&cond.lhs, &cond.rhs, then, otherwise].map(|e| self.resolve(e, scope));
+                let Some(op) = cond.op.ordering() else {
+                    let message = "`if` cannot test `==`: compare with `<`, `<=`, `>` or `>=`";
+                    self.errors.at(self.range(cond.id), message);
+                    return None;
+                };
+                let cond = Condition {
+                    id: cond.id,
+                    lhs: lhs?,
+                    op,
+                    rhs: rhs?,
+                };
+                Some(Ast::If(
+                    *id,
+                    Box::new(cond),
+                    Box::new(then?),
+                    Box::new(otherwise?),
+                ))
+            }
         }
     }
 

@@ -70,9 +70,22 @@ fn compiled() -> CompiledModel {
                 tmp: 0,
                 node: Node::Atan2(Operand::Der(0), Operand::State(1)),
             },
+            Stmt::Let {
+                tmp: 1,
+                node: Node::Call(Func::Sign, Operand::State(0)),
+            },
+            Stmt::Let {
+                tmp: 2,
+                node: Node::Select(
+                    Operand::Tmp(0),
+                    Operand::Const(0.5),
+                    Operand::Tmp(1),
+                    Operand::Param(0),
+                ),
+            },
             Stmt::Store {
                 target: Target::Output(0),
-                value: Operand::Tmp(0),
+                value: Operand::Tmp(2),
             },
         ],
     };
@@ -158,6 +171,8 @@ fn each_statement_kind_is_translated() {
         "let [t5 , t6] = :: model_runtime :: solve_block ::< 2 > ([[t2 , 1.0_f64] , [1.0_f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\") ?;",
         "dy [0] = t5 ;",
         "let t0 : f64 = dy [0] . atan2 (y [1]) ;",
+        "let t1 : f64 = if y [0] > 0.0 { 1.0 } else if y [0] < 0.0 { - 1.0 } else { y [0] } ;",
+        "let t2 : f64 = if t0 > 0.5_f64 { t1 } else if t0 <= 0.5_f64 { p [0] } else { f64 :: NAN } ;",
         "jac [0] [0] = 0.0 ;",
         "jac [1] [0] = 0.5_f64 ;",
         "pub const a : usize = 0usize ;",

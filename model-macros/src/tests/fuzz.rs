@@ -21,6 +21,7 @@ const VALID: &str = "
         outputs {
             energy = m / 2 * (l * omega)^2 + m * g * y;
             power = der(energy) * 0 + m * l^2 * omega * der(omega);
+            side = if(phi >= 0, max(x, y), sign(omega) * min(x, der(omega)));
         }
         variant small { keep { omega } fix { m = 1 } }
         chart scaled { states { w } replace { omega } let omega = 2*w; }
@@ -46,6 +47,10 @@ const ALPHABET: &[&str] = &[
     "der",
     "sin",
     "atan2",
+    "sign",
+    "min",
+    "max",
+    "if",
     "t",
     "pi",
     "x",
@@ -74,6 +79,8 @@ const ALPHABET: &[&str] = &[
     "]",
     "::",
     "==",
+    "<",
+    ">=",
     "-1",
 ];
 

@@ -1,6 +1,7 @@
 //! Every integration test of the equation compiler in one test binary, one module per former file: one
 //! link instead of one per file, which is most of a cold `cargo test`.
 
+mod belt;
 mod cart_pendulum;
 mod cartesian_pendulum;
 mod common;

@@ -11,7 +11,9 @@ use crate::diff::partial;
 use crate::eval::Inputs;
 use crate::expr::{call_value, ExprId, Sym};
 use crate::lower::Lowerer;
-use crate::spec::{Ast, BinOp, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec};
+use crate::spec::{
+    Ast, BinOp, CmpOp, Condition, EquationSpec, Func, ModelSpec, Named, NodeId, VariantSpec,
+};
 use crate::{compile, CompileOptions};
 
 /// `x`, `y` are states 0, 1; `z` is parameter 0.
@@ -38,7 +40,12 @@ fn func() -> impl Strategy<Value = Func> {
         Func::Exp,
         Func::Ln,
         Func::Abs,
+        Func::Sign,
     ])
+}
+
+fn cmp_op() -> impl Strategy<Value = CmpOp> {
+    prop::sample::select(vec![CmpOp::Lt, CmpOp::Le, CmpOp::Gt, CmpOp::Ge])
 }
 
 fn binop() -> impl Strategy<Value = BinOp> {
@@ -67,6 +74,26 @@ pub fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
                     .boxed(),
                 (inner.clone(), inner.clone())
                     .prop_map(|(a, c)| Ast::Call(NodeId(6), Func::Atan2, vec![a, c]))
+                    .boxed(),
+                (
+                    inner.clone(),
+                    inner.clone(),
+                    prop::sample::select(vec![Func::Min, Func::Max]),
+                )
+                    .prop_map(|(a, c, f)| Ast::Call(NodeId(9), f, vec![a, c]))
+                    .boxed(),
+                (
+                    inner.clone(),
+                    cmp_op(),
+                    inner.clone(),
+                    inner.clone(),
+                    inner.clone(),
+                )
+                    .prop_map(|(lhs, op, rhs, a, b)| {
+                        let id = NodeId(16);
+                        let c = Condition { id, lhs, op, rhs };
+                        Ast::If(NodeId(15), Box::new(c), Box::new(a), Box::new(b))
+                    })
                     .boxed(),
                 (
                     inner.clone(),
@@ -104,13 +131,19 @@ pub fn eval_ast(a: &Ast, v: &[f64; 3]) -> f64 {
 const ROUND_OFF: f64 = 1e-9;
 
 /// Whether evaluating `a` at `v` passes a point where the value is not determined to
-/// round-off by its inputs: `atan2` on its branch cut (`y = 0`, `x ≤ 0`, where the sign of a
+/// round-off by its inputs: a comparison (`sign`, `min`, `max`, `if`) of values equal to
+/// round-off, `atan2` on its branch cut (`y = 0`, `x ≤ 0`, where the sign of a
 /// zero, which `-(a - b)` and `b - a` give differently, picks `±π`), a square root, logarithm,
 /// fractional power or division of a round-off-sized number, or `tan` next to a pole. Two
 /// correct evaluation orders may disagree there by far more than any tolerance.
 pub fn ill_conditioned(a: &Ast, v: &[f64; 3]) -> bool {
     let tiny = |x: f64| x.abs() < ROUND_OFF;
+    let near = |x: f64, y: f64| (x - y).abs() < ROUND_OFF * (1.0 + x.abs() + y.abs());
     match a {
+        Ast::If(_, c, x, y) => {
+            near(eval_ast(&c.lhs, v), eval_ast(&c.rhs, v))
+                || [&c.lhs, &c.rhs, x, y].iter().any(|e| ill_conditioned(e, v))
+        }
         Ast::Num(..) | Ast::Name(..) | Ast::Der(..) => false,
         Ast::Neg(_, x) => ill_conditioned(x, v),
         Ast::Bin(_, op, l, r) => {
@@ -128,7 +161,8 @@ pub fn ill_conditioned(a: &Ast, v: &[f64; 3]) -> bool {
                     let along = eval_ast(&args[1], v);
                     tiny(x) && along <= ROUND_OFF
                 }
-                Func::Sqrt | Func::Ln => tiny(x),
+                Func::Sqrt | Func::Ln | Func::Sign => tiny(x),
+                Func::Min | Func::Max => near(x, eval_ast(&args[1], v)),
                 Func::Tan => tiny(x.cos()),
                 _ => false,
             };
@@ -153,6 +187,36 @@ fn eval_signed(a: &Ast, v: &[f64; 3]) -> f64 {
             }
         }
         Ast::Call(_, Func::Atan2, args) => eval_ast(&args[0], v).atan2(eval_ast(&args[1], v)),
+        Ast::Call(_, f @ (Func::Min | Func::Max), args) => {
+            let (x, y) = (eval_ast(&args[0], v), eval_ast(&args[1], v));
+            match (x.is_nan() || y.is_nan(), f) {
+                (true, _) => f64::NAN,
+                (false, Func::Min) => x.min(y),
+                (false, _) => x.max(y),
+            }
+        }
+        Ast::Call(_, Func::Sign, args) => {
+            let x = eval_ast(&args[0], v);
+            if x == 0.0 || x.is_nan() {
+                x
+            } else {
+                x.signum()
+            }
+        }
+        Ast::If(_, c, x, y) => {
+            let (l, r) = (eval_ast(&c.lhs, v), eval_ast(&c.rhs, v));
+            let holds = match c.op {
+                CmpOp::Lt => l < r,
+                CmpOp::Le => l <= r,
+                CmpOp::Gt => l > r,
+                CmpOp::Ge => l >= r,
+            };
+            match (l.is_nan() || r.is_nan(), holds) {
+                (true, _) => f64::NAN,
+                (false, true) => eval_ast(x, v),
+                (false, false) => eval_ast(y, v),
+            }
+        }
         Ast::Call(_, f, args) => call_value(*f, eval_ast(&args[0], v)),
         Ast::Der(..) => f64::NAN,
     }

@@ -1,5 +1,6 @@
 //! Unit tests of the front end's stages, run on `proc_macro2` tokens.
 
+mod nonsmooth;
 mod parse;
 mod validate;
 
@@ -26,6 +27,19 @@ pub fn show(expr: &Expr) -> String {
             let args: Vec<String> = call.args.iter().map(show).collect();
             format!("{}({})", call.func, args.join(","))
         }
+        Expr::If {
+            cond,
+            then,
+            otherwise,
+            ..
+        } => format!(
+            "if({}{}{},{},{})",
+            show(&cond.lhs),
+            cond.op.symbol(),
+            show(&cond.rhs),
+            show(then),
+            show(otherwise)
+        ),
     }
 }
 

@@ -70,7 +70,7 @@ rejects! {
     } => ["`atan2` takes 2 arguments, found 1", "`sin` takes 1 argument, found 2"];
     unknown_function: {
         states { x } equations { der(x) = sine(x); }
-    } => ["unknown function `sine` (did you mean `sin`?); the functions are `sin`, `cos`, `tan`, `sqrt`, `exp`, `ln`, `abs`, `atan2` and `der`"];
+    } => ["unknown function `sine` (did you mean `sin`?); the functions are `sin`, `cos`, `tan`, `sqrt`, `exp`, `ln`, `abs`, `atan2`, `sign`, `min`, `max`, `der` and `if(x > y, a, b)`"];
     a_misspelt_name_gets_a_suggestion: {
         states { theta, omega } equations { der(theta) = omgea; der(omega) = -sin(theta); }
     } => ["unknown name `omgea` (did you mean `omega`?); usable here: states `theta`, `omega`"];
@@ -153,14 +153,8 @@ fn a_valid_model_resolves_to_the_spec() {
     let mut ids = Vec::new();
     fn collect(ast: &Ast, ids: &mut Vec<u32>) {
         ids.push(ast.id().0);
-        match ast {
-            Ast::Num(..) | Ast::Name(..) => {}
-            Ast::Neg(_, a) | Ast::Der(_, a) => collect(a, ids),
-            Ast::Bin(_, _, a, b) => {
-                collect(a, ids);
-                collect(b, ids);
-            }
-            Ast::Call(_, _, args) => args.iter().for_each(|a| collect(a, ids)),
+        for child in ast.children() {
+            collect(child, ids);
         }
     }
     for eq in &spec.equations {

@@ -16,14 +16,8 @@ fn find<'a>(ast: &'a Ast, pred: &dyn Fn(&Ast) -> bool, out: &mut Vec<&'a Ast>) {
     if pred(ast) {
         out.push(ast);
     }
-    match ast {
-        Ast::Neg(_, a) | Ast::Der(_, a) => find(a, pred, out),
-        Ast::Bin(_, _, a, b) => {
-            find(a, pred, out);
-            find(b, pred, out);
-        }
-        Ast::Call(_, _, args) => args.iter().for_each(|a| find(a, pred, out)),
-        Ast::Num(..) | Ast::Name(..) => {}
+    for child in ast.children() {
+        find(child, pred, out);
     }
 }
 
@@ -56,6 +50,12 @@ rejected! {
     function_of_derivative: "mod m { states { x } equations { a: sin(der(x)) = 1; } }" => "`sin` of a derivative";
     division_by_derivative: "mod m { states { x } equations { a: 1/der(x) = 1; } }" => "a division by a derivative";
     square_of_derivative: "mod m { states { x } equations { a: der(x)^2 = 1; } }" => "a power of a derivative";
+    sign_of_derivative: "mod m { states { x } equations { a: sign(der(x)) = 1; } }" => "`sign` of a derivative";
+    max_of_derivative: "mod m { states { x } equations { a: max(der(x), 0) = 1; } }" => "`max` of a derivative";
+    min_of_derivative_through_let: "mod m { states { x } let d = der(x); equations { a: min(1, d) = x; } }"
+        => "`min` of a derivative";
+    condition_on_derivative: "mod m { states { x } equations { a: if(der(x) > 0, 1, 2) + der(x) = 0; } }"
+        => "a condition on a derivative";
     nonlinear_through_let: "mod m { states { x, y } let v = der(x); equations { a: v*der(y) = 1; b: der(y) = 1; } }"
         => "a product of two derivatives";
     second_derivative: "mod m { states { x } equations { a: der(der(x)) = 1; } }" => "only first derivatives";
