@@ -64,14 +64,16 @@ pub(crate) enum Probe {
 /// * **Several guards in one step.** The earliest crossing wins; equal times go to the guard
 ///   listed first. The others are not reported (the segment ends at the event).
 /// * **Passes.** An event whose transition is [`crate::Transition::Pass`] does not end the
-///   segment: the event time becomes a check point (the guard values there are exact) and the
-///   rest of the step is searched again. The guard that passed takes its value's sign there
-///   as its reference (the far side); exactly zero there, it is pending with a quiet
-///   departure. Another guard that already shows an admitted crossing at the event time (a
-///   tie, or a crossing the step-end check missed) keeps its reference and is reported next,
-///   at the event time at the earliest; every other guard's reference advances as at any
-///   check point. Every pass thus either consumes a guard's crossing at the event time or
-///   moves on to a strictly later one, so a step holds finitely many passes.
+///   segment, and it changes nothing for the other guards: the search of the step resumes
+///   at the check point where the event was found, with the same check points, values and
+///   brackets as if the guard that passed did not exist, so every later event is located
+///   exactly where it would be without it (to the bit). Only the guard that passed moves on:
+///   its reference becomes its sign at the event (the far side; exactly zero there, it is
+///   pending with a quiet departure) and its next crossing is searched from the event time,
+///   so it fires again only when it crosses back in a direction its filter admits. Events
+///   after a pass are reported no earlier than it (a tie located a few ulps before it is
+///   reported at its time), and every pass consumes one guard's crossing, so a step holds
+///   finitely many.
 /// * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
 ///   [`crate::HybridOptions::guard_checks`] to sample the guards at interior points of
 ///   each step on the dense output ([`InteriorChecks`]); a double crossing between two samples
@@ -136,6 +138,22 @@ pub(crate) struct Found {
     pub direction: Crossed,
 }
 
+/// How far the search of a step has come: its check points and the next one to look at.
+#[derive(Clone, Copy, Debug, Default)]
+struct Walk {
+    t0: f64,
+    t1: f64,
+    /// Interior check points (the step end is check point `points + 1`).
+    points: u32,
+    screened: bool,
+    /// The next check point.
+    k: u32,
+    /// The last check point passed without an event.
+    lo: f64,
+    /// The time of the last pass in this step (`t0` before any): no event is earlier.
+    floor: f64,
+}
+
 /// Per-guard reference signs and the guard values at the last check point.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct GuardTracker {
@@ -147,8 +165,12 @@ pub(crate) struct GuardTracker {
     /// Per guard, the values that cannot fire it against its current reference sign
     /// ([`QuietRange`]), kept in step with `reference`.
     quiet: Vec<QuietRange>,
-    /// Guard values at the last check point.
+    /// Guard values at the last check point (for a guard that passed since: at the pass).
     lo_values: Vec<f64>,
+    /// The times of `lo_values`.
+    lo_at: Vec<f64>,
+    /// Where the search of the current step stands.
+    walk: Walk,
     scratch: Vec<f64>,
     at_best: Vec<f64>,
     /// Screening estimates at a third of the step.
@@ -185,6 +207,8 @@ impl GuardTracker {
         }));
         self.lo_values.clear();
         self.lo_values.extend_from_slice(values);
+        self.lo_at.clear();
+        self.lo_at.resize(values.len(), 0.0);
         self.scratch.clear();
         self.scratch.resize(values.len(), 0.0);
         self.at_best.clear();
@@ -193,28 +217,15 @@ impl GuardTracker {
         self.at_third.resize(values.len(), 0.0);
     }
 
-    /// Makes the time of a pass of guard `index` the last check point, with the exact guard
-    /// `values` there (see "Passes" at [`GuardSpec`]); the next [`GuardTracker::scan`] starts
-    /// at that time.
-    pub(crate) fn pass(&mut self, index: usize, values: &[f64]) {
-        for (i, &v) in values.iter().enumerate() {
-            if i == index {
-                self.reference[i] = sign(v);
-                self.departure_fires[i] = false;
-            } else if v != 0.0
-                && sign(v) != self.reference[i]
-                && self.departure(i, v).is_none()
-                && self.admitted_crossing(i, v).is_none()
-            {
-                self.reference[i] = sign(v);
-            }
-            self.quiet[i] = QuietRange::of(
-                self.reference[i],
-                self.directions[i],
-                self.departure_fires[i],
-            );
-            self.lo_values[i] = v;
-        }
+    /// Records that the event last found, guard `index` at `t` with exact value `value` there,
+    /// passed (see "Passes" at [`GuardSpec`]); [`GuardTracker::resume`] then goes on.
+    pub(crate) fn pass(&mut self, index: usize, t: f64, value: f64) {
+        self.reference[index] = sign(value);
+        self.departure_fires[index] = false;
+        self.quiet[index] = QuietRange::of(self.reference[index], self.directions[index], false);
+        self.lo_values[index] = value;
+        self.lo_at[index] = t;
+        self.walk.floor = t;
     }
 
     /// Number of guards.
@@ -245,8 +256,37 @@ impl GuardTracker {
         } else {
             checks.points()
         };
-        let mut lo = t0;
-        for k in 1..=points + 1 {
+        self.lo_at.fill(t0);
+        self.walk = Walk {
+            t0,
+            t1,
+            points,
+            screened,
+            k: 1,
+            lo: t0,
+            floor: t0,
+        };
+        self.resume(end_values, eval)
+    }
+
+    /// Goes on searching the step of the last [`GuardTracker::scan`] from the check point at
+    /// which the last event was found (after a [`GuardTracker::pass`]); `end_values` are the
+    /// guard values at the step's end, as for the scan.
+    pub(crate) fn resume<E>(
+        &mut self,
+        end_values: &[f64],
+        mut eval: impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
+    ) -> Result<Option<Found>, E> {
+        let n = self.len();
+        let Walk {
+            t0,
+            t1,
+            points,
+            screened,
+            ..
+        } = self.walk;
+        while self.walk.k <= points + 1 {
+            let (k, lo) = (self.walk.k, self.walk.lo);
             let tk = if k == points + 1 {
                 self.scratch.copy_from_slice(end_values);
                 t1
@@ -255,6 +295,7 @@ impl GuardTracker {
                 if screened {
                     eval(tk, Probe::Estimate, &mut self.scratch)?;
                     if !self.may_fire() {
+                        self.walk.k += 1;
                         continue;
                     }
                 }
@@ -265,18 +306,19 @@ impl GuardTracker {
             // per guard); otherwise find out what fires.
             if self.may_fire() {
                 // A departure from zero happened at `lo` at the latest: before any crossing.
+                let at = lo.max(self.walk.floor);
                 for i in 0..n {
                     if let Some(c) = self.departure(i, self.scratch[i]) {
                         return Ok(Some(Found {
                             index: i,
-                            t: lo,
-                            before: lo,
+                            t: at,
+                            before: at,
                             direction: c,
                         }));
                     }
                 }
                 if (0..n).any(|i| self.admitted_crossing(i, self.scratch[i]).is_some()) {
-                    return self.locate(lo, tk, &mut eval);
+                    return self.locate(tk, &mut eval);
                 }
             }
             for i in 0..n {
@@ -290,8 +332,10 @@ impl GuardTracker {
                     );
                 }
                 self.lo_values[i] = v;
+                self.lo_at[i] = tk;
             }
-            lo = tk;
+            self.walk.lo = tk;
+            self.walk.k += 1;
         }
         Ok(None)
     }
@@ -352,11 +396,12 @@ impl GuardTracker {
         crossing(self.reference[i], v).filter(|&c| self.directions[i].admits(c))
     }
 
-    /// Locates the earliest admitted crossing in `[lo, hi]`; `self.scratch` holds the values
-    /// at `hi` and `self.lo_values` those at `lo`.
+    /// Locates the earliest admitted crossing before `hi`, each guard's from its own last
+    /// value (`self.lo_values` at `self.lo_at`: the last check point, or its pass since);
+    /// `self.scratch` holds the values at `hi`. Nothing is reported before the step's last
+    /// pass.
     fn locate<E>(
         &mut self,
-        lo: f64,
         hi: f64,
         eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
     ) -> Result<Option<Found>, E> {
@@ -385,15 +430,16 @@ impl GuardTracker {
                 r * f64::MIN_POSITIVE
             };
             let scratch = &mut self.at_best;
-            let root = crate::root::find_crossing(lo, f_lo, upper, f_upper, r, |t| {
+            let root = crate::root::find_crossing(self.lo_at[i], f_lo, upper, f_upper, r, |t| {
                 eval(t, Probe::Exact, scratch)?;
                 Ok(scratch[i])
             })?;
+            let floor = self.walk.floor;
             let b = match best {
-                Some(b) if b.t <= root.t => b,
+                Some(b) if b.t <= root.t.max(floor) => b,
                 _ => Found {
                     index: i,
-                    t: root.t,
+                    t: root.t.max(floor),
                     before: root.before,
                     direction: c,
                 },

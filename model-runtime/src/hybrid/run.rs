@@ -3,8 +3,9 @@
 //! contract (the parent module) so that the contract reads alone.
 //!
 //! A step's events are handled in time order: an event that passes ([`Transition::Pass`])
-//! leaves the step as it is, becomes a check point, and the rest of the step is searched
-//! again; the first event that does anything else cuts the step there and ends the segment.
+//! leaves the step as it is and the search of the step resumes where it found the event (see
+//! "Passes" at [`crate::GuardSpec`]); the first event that does anything else cuts the step
+//! there and ends the segment.
 
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
@@ -102,6 +103,13 @@ impl<const N: usize, H: HybridSystem<N>> Rhs<N> for InMode<'_, H, H::Mode> {
     fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
         self.sys.jacobian(self.mode, t, y, jac)
     }
+}
+
+/// Which search of a step's guards: from its start, or on after an event that passed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Search {
+    Step,
+    Resume,
 }
 
 /// The state of one run.
@@ -229,11 +237,12 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         O: Observer<N, Md, H::Guard, H::Note>,
     {
         self.passes += 1;
-        // `values` holds the exact guard values at the event; at the step's end they are the
-        // end values too, so a search of the empty rest sees the same signs.
-        self.tracker.pass(hit.index, &self.values);
+        // `values` holds the exact guard values at the event; at the step's end, the guard's
+        // value there is its end value too, so the resumed search sees the same sign.
+        let value = self.values[hit.index];
+        self.tracker.pass(hit.index, hit.t, value);
         if hit.t >= self.it.t() {
-            self.end_values.copy_from_slice(&self.values);
+            self.end_values[hit.index] = value;
         }
         obs.on_transition(TransitionRecord {
             hit,
@@ -242,7 +251,8 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             y_after: hit.y,
             note,
         });
-        self.scan(sys, hit.t).map_err(|e| self.solve_err(e))
+        self.search(sys, Search::Resume)
+            .map_err(|e| self.solve_err(e))
     }
 
     /// A step without event: samples, observer, projection.
@@ -362,21 +372,20 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         )
         .map_err(at(t1))?;
         check_finite(t1, &self.end_values)?;
-        self.scan(sys, self.it.t_prev())
+        self.search(sys, Search::Step)
     }
 
-    /// The search for the earliest admitted guard crossing in the last accepted step from
-    /// `t0` (its start, or the last event that passed) to its end.
-    fn scan<H: HybridSystem<N, Mode = Md>>(
+    /// The search for the earliest admitted guard crossing in the last accepted step.
+    fn search<H: HybridSystem<N, Mode = Md>>(
         &mut self,
         sys: &H,
-        t0: f64,
+        search: Search,
     ) -> Result<Option<Found>, SolveError> {
         let m = InMode {
             sys,
             mode: self.mode,
         };
-        let t1 = self.it.t();
+        let (t0, t1) = (self.it.t_prev(), self.it.t());
         let it = &mut *self.it;
         let inputs = &self.inputs;
         let mut y = [0.0; N];
@@ -384,40 +393,39 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         // Estimates fill only the declared inputs: a guard that reads anything else sees NaN.
         let mut y_est = [f64::NAN; N];
         let mut dy_est = [f64::NAN; N];
-        self.tracker.scan(
-            t0,
-            t1,
-            &self.end_values,
-            self.opts.guard_checks,
-            |t, probe, out| {
-                let (y, dy) = match probe {
-                    Probe::Exact => {
-                        it.interpolate(&m, t, &mut y)?;
-                        eval(&m, t, &y, &mut dy, it.stats_mut())?;
-                        it.stats_mut().guard_evals += 1;
-                        (&y, &dy)
-                    }
-                    Probe::Estimate => {
-                        it.interpolate_components(
-                            &m,
-                            t,
-                            &inputs.state,
-                            &inputs.rates,
-                            &mut y_est,
-                            &mut dy_est,
-                        )?;
-                        it.stats_mut().guard_estimates += 1;
-                        (&y_est, &dy_est)
-                    }
-                };
-                sys.guard_values(m.mode, t, y, dy, out).map_err(at(t))?;
-                match probe {
-                    Probe::Exact => check_finite(t, out),
-                    // A non-finite estimate only asks for the exact check.
-                    Probe::Estimate => Ok(()),
+        let probe_at = |t: f64, probe: Probe, out: &mut [f64]| {
+            let (y, dy) = match probe {
+                Probe::Exact => {
+                    it.interpolate(&m, t, &mut y)?;
+                    eval(&m, t, &y, &mut dy, it.stats_mut())?;
+                    it.stats_mut().guard_evals += 1;
+                    (&y, &dy)
                 }
-            },
-        )
+                Probe::Estimate => {
+                    it.interpolate_components(
+                        &m,
+                        t,
+                        &inputs.state,
+                        &inputs.rates,
+                        &mut y_est,
+                        &mut dy_est,
+                    )?;
+                    it.stats_mut().guard_estimates += 1;
+                    (&y_est, &dy_est)
+                }
+            };
+            sys.guard_values(m.mode, t, y, dy, out).map_err(at(t))?;
+            match probe {
+                Probe::Exact => check_finite(t, out),
+                // A non-finite estimate only asks for the exact check.
+                Probe::Estimate => Ok(()),
+            }
+        };
+        let (checks, end) = (self.opts.guard_checks, &self.end_values);
+        match search {
+            Search::Step => self.tracker.scan(t0, t1, end, checks, probe_at),
+            Search::Resume => self.tracker.resume(end, probe_at),
+        }
     }
 
     /// Starts a segment in the current mode at `(t, y)`: fresh integrator, guards armed
