@@ -254,6 +254,12 @@ fn to_command_error(
             quantity: quantity.to_string(),
             value: *value,
         },
+        // The disk's equations have no resets; named all the same.
+        EvalError::ResetNotFinite { event, value, .. } => EvalCommandError::NonFinite {
+            mode,
+            quantity: format!("reset of {event}"),
+            value: *value,
+        },
     }
 }
 

@@ -55,7 +55,8 @@ use graph::{EventAction, EventId, ModeGraph, ModeId};
 /// A hybrid model given by tables: implemented by the code `model!` emits and by the model
 /// interpreter. Modes and events are indices into [`SwitchedModel::graph`].
 pub trait SwitchedModel<const N: usize> {
-    /// The modes and events.
+    /// The modes and events (the same graph for as long as the model lives: [`Switched`]
+    /// reads it once for the guards).
     fn graph(&self) -> &ModeGraph;
 
     /// `dy = f(t, y)` in `mode`.
@@ -222,8 +223,7 @@ impl<M> Switched<M> {
         M: SwitchedModel<N>,
     {
         let graph = model.graph();
-        let specs = (0..graph.modes().len())
-            .filter_map(|m| graph.id(m))
+        let specs = (graph.ids())
             .map(|mode| {
                 let events = &graph.mode(mode).events;
                 (events.iter().enumerate())
@@ -245,6 +245,11 @@ impl<M> Switched<M> {
     /// The model.
     pub fn model(&self) -> &M {
         &self.model
+    }
+
+    /// The model, given back.
+    pub fn into_model(self) -> M {
+        self.model
     }
 
     /// Forgets the accumulation history (before reusing the system for an unrelated run;

@@ -7,6 +7,7 @@
 //! "Passes" at [`crate::GuardSpec`]); the first event that does anything else cuts the step
 //! there and ends the segment.
 
+use super::chatter::RecentTransitions;
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
 };
@@ -16,7 +17,6 @@ use crate::integrator::Integrator;
 use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::stepper::{eval, Rhs, Stepper};
 use crate::tolerance::Tolerance;
-use std::collections::VecDeque;
 use std::fmt::Debug;
 
 /// Runs hybrid systems with one stepper and one set of options.
@@ -77,7 +77,7 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             values: Vec::new(),
             end_values: Vec::new(),
             inputs: GuardInputs::ALL,
-            recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
+            recent: RecentTransitions::new(self.options.chatter),
             next_sample: 0,
             t_first: t0,
             mode,
@@ -123,7 +123,7 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) end_values: Vec<f64>,
     /// What the current mode's guards read (see [`HybridSystem::guard_inputs`]).
     pub(super) inputs: GuardInputs<N>,
-    pub(super) recent: VecDeque<(f64, Md, Md)>,
+    pub(super) recent: RecentTransitions<Md>,
     pub(super) next_sample: u64,
     pub(super) t_first: f64,
     pub(super) mode: Md,
@@ -332,7 +332,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         }
         sys.project(to, hit.t, &mut y_after);
         self.transitions += 1;
-        self.check_chatter(hit.t, from, to)?;
+        self.recent.record(hit.t, from, to)?;
         self.mode = to;
         let quiet = match kind {
             TransitionKind::Continue | TransitionKind::Pass => Quiet::Guard(hit.index),
@@ -556,35 +556,6 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             },
         };
         obs.on_step(&view);
-        Ok(())
-    }
-
-    fn check_chatter(&mut self, t: f64, from: Md, to: Md) -> Result<(), HybridError<Md>> {
-        let limit = self.opts.chatter;
-        self.recent.push_back((t, from, to));
-        while let Some(&(t_old, _, _)) = self.recent.front() {
-            if t_old < t - limit.window {
-                self.recent.pop_front();
-            } else {
-                break;
-            }
-        }
-        if self.recent.len() > limit.max_transitions {
-            let mut modes = Vec::new();
-            for &(_, a, b) in &self.recent {
-                for m in [a, b] {
-                    if !modes.contains(&m) {
-                        modes.push(m);
-                    }
-                }
-            }
-            return Err(HybridError::Chattering {
-                t,
-                transitions: self.recent.len(),
-                window: limit.window,
-                modes,
-            });
-        }
         Ok(())
     }
 

@@ -3,9 +3,9 @@
 
 use crate::common::log::RunLog;
 use model_runtime::{
-    ChatterLimit, Crossed, Direction, Dop853, EvalError, EventHit, GuardSpec, HybridOptions,
-    HybridOutcome, HybridSolver, HybridSystem, InteriorChecks, StopReason, Tolerance, Transition,
-    TransitionKind,
+    ChatterLimit, Clocked, Crossed, Direction, Dop853, EvalError, EventHit, GuardSpec,
+    HybridOptions, HybridOutcome, HybridSolver, HybridSystem, InteriorChecks, PhysicalTime,
+    Regularised, StopReason, TimeScale, Tolerance, Transition, TransitionKind,
 };
 use std::f64::consts::PI;
 
@@ -254,4 +254,41 @@ fn guards_that_pass_at_the_same_time_are_reported_in_priority_order() {
         "{first:?} {second:?}"
     );
     assert!((first.t - 1.0).abs() <= 4.0 * f64::EPSILON);
+}
+
+/// Regularised time with a clock that runs at half speed where `x = -1`.
+impl TimeScale<2> for Watched {
+    fn time_scale(&self, _: (), y: &[f64; 2]) -> f64 {
+        (3.0 + y[0]) / 4.0
+    }
+}
+
+#[test]
+fn passes_keep_the_segment_clock_of_regularised_time() {
+    let t_end = 7.0;
+    let mut sys = Watched::new(passing_watches()[..1].to_vec());
+    let mut clocked = Regularised::<_, 2, 3>::new(&mut sys, &[()], 0.0, t_end);
+    let tol = clocked.tolerance(&Tolerance::scalar(1e-10, 1e-12), (1e-10, 1e-12));
+    let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+    let mut log = RunLog::new();
+    let mut physical = PhysicalTime::<_, 2, 3>::new(&mut log, 0.0, None);
+    let z0 = Regularised::<Watched, 2, 3>::start(&[1.0, 0.0]);
+    let out = solver
+        .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut physical)
+        .unwrap();
+    assert_eq!(out.stop, StopReason::User(Clocked::EndTime));
+    // Every pass in physical time, on the one clock the segment started with.
+    let expected: Vec<_> = expected_passes(t_end)
+        .into_iter()
+        .filter(|e| e.1 == 0)
+        .collect();
+    assert_eq!((out.passes, out.transitions), (expected.len() as u64, 0));
+    assert_eq!(log.records.len(), expected.len());
+    for (r, &(t, _, how)) in log.records.iter().zip(&expected) {
+        assert_eq!((r.kind, r.hit.direction), (TransitionKind::Pass, how));
+        assert!((r.hit.t - t).abs() < 1e-8, "{} against {t}", r.hit.t);
+        assert!((r.hit.y[0]).abs() < 1e-8 && (r.hit.dy[0] - r.hit.y[1]).abs() < 1e-12);
+    }
+    let last = log.steps.last().unwrap();
+    assert!((last.1 - t_end).abs() < 1e-12, "{last:?}");
 }
