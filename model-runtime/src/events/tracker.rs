@@ -499,6 +499,64 @@ mod tests {
         assert!(f.is_none());
     }
 
+    /// The events of one step `[0, 1]` of guards `g` with `checks`, every one passing.
+    fn passes(
+        dirs: &[Direction],
+        g: impl Fn(f64, &mut [f64]),
+        checks: InteriorChecks,
+    ) -> Vec<Found> {
+        let mut tr = GuardTracker::default();
+        let (mut start, mut end) = (vec![0.0; dirs.len()], vec![0.0; dirs.len()]);
+        g(0.0, &mut start);
+        g(1.0, &mut end);
+        tr.start(dirs.iter().copied(), &start, Quiet::None);
+        let mut eval = |t: f64, _: Probe, out: &mut [f64]| -> Result<(), ()> {
+            g(t, out);
+            Ok(())
+        };
+        let mut found = tr.scan(0.0, 1.0, &end, checks, &mut eval).unwrap();
+        let mut all = Vec::new();
+        let mut at = vec![0.0; dirs.len()];
+        while let Some(f) = found {
+            assert!(all.len() < 10, "{all:?}");
+            g(f.t, &mut at);
+            tr.pass(f.index, f.t, at[f.index]);
+            all.push(f);
+            found = tr.resume(&end, &mut eval).unwrap();
+        }
+        all
+    }
+
+    #[test]
+    fn a_guard_that_passed_fires_again_only_when_it_crosses_back() {
+        // Down at 0.3 and back up at 0.6 in one step, and another guard up at 0.8.
+        let g = |t: f64, o: &mut [f64]| {
+            o[0] = (t - 0.3) * (t - 0.6);
+            o[1] = t - 0.8;
+        };
+        let found = passes(
+            &[Direction::Both, Direction::Up],
+            g,
+            InteriorChecks::Exact(4),
+        );
+        let seen: Vec<_> = found.iter().map(|f| (f.index, f.direction)).collect();
+        assert_eq!(
+            seen,
+            [(0, Crossed::Down), (0, Crossed::Up), (1, Crossed::Up)]
+        );
+        for (f, t) in found.iter().zip([0.3, 0.6, 0.8]) {
+            assert!((f.t - t).abs() < 1e-14, "{f:?}");
+        }
+        // Exactly zero at the pass (a check point): pending, and its departure is quiet.
+        let found = passes(
+            &[Direction::Both],
+            |t, o| o[0] = t - 0.5,
+            InteriorChecks::Exact(1),
+        );
+        assert_eq!(found.len(), 1);
+        assert_eq!((found[0].t, found[0].direction), (0.5, Crossed::Up));
+    }
+
     fn g0(g: impl Fn(f64, &mut [f64])) -> f64 {
         let mut o = [0.0];
         g(0.0, &mut o);
