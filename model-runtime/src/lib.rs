@@ -137,5 +137,6 @@ pub use stepper::{Components, Rhs, StepEnd, StepStart, Stepper};
 pub use switched::graph::{
     AccumulationAction, EventAction, EventDecl, EventId, GraphError, ModeDecl, ModeGraph, ModeId,
 };
-pub use switched::{Switched, SwitchedModel, SwitchedNote, SwitchedStop};
+pub use switched::outcome::{SwitchedNote, SwitchedStop};
+pub use switched::{Switched, SwitchedModel};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};
