@@ -182,9 +182,9 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         while let Some(f) = found {
             let hit = self.event_hit(sys, f)?;
             self.emit_samples(sys, hit.t, obs)?;
-            if obs.wants_dense() {
+            if obs.wants_dense() && hit.t > self.it.t_prev() {
                 // Built before the transition map runs: the map may change the right-hand
-                // side, and the step's output must not see that.
+                // side, and the step's output (cut at the event or not) must not see that.
                 let m = InMode {
                     sys: &*sys,
                     mode: self.mode,
