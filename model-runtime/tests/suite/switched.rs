@@ -121,15 +121,16 @@ impl SwitchedModel<2> for SwitchedBall {
 type Log = RunLog<2, ModeId, EventId, SwitchedNote>;
 type Outcome = HybridOutcome<2, ModeId, SwitchedStop>;
 
-/// DOP853 at rtol 1e-10, atol 1e-12, 100 samples per second, from `(H0, 0)` in `flying` to 10.
-fn drop(ball: SwitchedBall) -> (Result<Outcome, HybridError<ModeId>>, Log) {
+/// DOP853 at rtol 1e-10, atol 1e-12, 100 samples per second, from `(H0, 0)` in `flying` to 10;
+/// `ball` is a [`SwitchedBall`], owned or borrowed.
+fn drop(ball: impl SwitchedModel<2>) -> (Result<Outcome, HybridError<ModeId>>, Log) {
     let options = HybridOptions {
         sample_rate: Some(100.0),
         ..HybridOptions::default()
     };
     let mut solver =
         HybridSolver::new(Dop853::new(), Tolerance::scalar(1e-10, 1e-12), options).unwrap();
-    let flying = ball.graph.mode_id("flying").unwrap();
+    let flying = ball.graph().mode_id("flying").unwrap();
     let mut system = Switched::new(ball, AccumulationRule::default()).unwrap();
     let mut log = RunLog::new();
     let out = solver.run(&mut system, flying, 0.0, &[H0, 0.0], 10.0, &mut log);
@@ -268,14 +269,13 @@ fn a_terminal_event_ends_the_run_with_its_name() {
         on_accumulation: None,
         ..RESTS
     });
-    let graph = ball.graph.clone();
-    let (out, log) = drop(ball);
+    let (out, log) = drop(&ball);
     let out = out.unwrap();
     let StopReason::User(stop) = out.stop else {
         panic!("{:?}", out.stop);
     };
     assert!(matches!(stop, SwitchedStop::Event { event: 0, t, .. } if t == out.t));
-    assert_eq!(graph.event_name(stop.event()), "flying.impact");
+    assert_eq!(ball.graph.event_name(stop.event()), "flying.impact");
     assert!((out.t - flights().t1).abs() < 1e-9 && log.records.is_empty());
 }
 
