@@ -290,8 +290,8 @@ proptest! {
         let t_end = 7.0;
         let (plain, plain_log) = run(&mut Watched::new(Vec::new()), InteriorChecks::None, t_end);
         let fast = watch(0, direction, move |t, _| (freq * t + phase).sin(), Action::Pass);
-        let slow = passing_watches().swap_remove(0);
-        let mut watched = Watched::new(vec![fast, (GuardSpec { id: 1, ..slow.0 }, slow.1, slow.2)]);
+        let zeros_of_x = watch(1, Direction::Both, |_, y| y[0], Action::Pass);
+        let mut watched = Watched::new(vec![fast, zeros_of_x]);
         let (out, log) = run(&mut watched, InteriorChecks::Exact(points), t_end);
         prop_assert_eq!(&log.steps, &plain_log.steps);
         prop_assert_eq!(&log.samples, &plain_log.samples);
