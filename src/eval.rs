@@ -254,10 +254,10 @@ fn to_command_error(
             quantity: quantity.to_string(),
             value: *value,
         },
-        // The disk's models have no resets; said as the non-finite quantity it is.
-        EvalError::ResetNotFinite { value, .. } => EvalCommandError::NonFinite {
+        // The disk's equations have no resets; named all the same.
+        EvalError::ResetNotFinite { event, value, .. } => EvalCommandError::NonFinite {
             mode,
-            quantity: e.to_string(),
+            quantity: format!("reset of {event}"),
             value: *value,
         },
     }

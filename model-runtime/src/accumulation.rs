@@ -116,9 +116,14 @@ impl AccumulationDetector {
     }
 
     /// Records a firing at `t` and returns the accumulation if the history now shows one. A
-    /// time that is not after the last one (or not finite) starts the history afresh.
+    /// time that is not after the last one starts the history afresh; one that is not finite
+    /// leaves it empty.
     pub fn fire(&mut self, t: f64) -> Option<Accumulation> {
-        if !t.is_finite() || self.times.last().is_some_and(|&last| t <= last) {
+        if !t.is_finite() {
+            self.times.clear();
+            return None;
+        }
+        if self.times.last().is_some_and(|&last| t <= last) {
             self.times.clear();
         }
         if self.times.len() == self.rule.events + 1 {
@@ -128,9 +133,9 @@ impl AccumulationDetector {
         self.accumulation()
     }
 
-    /// The accumulation the full history shows, if any.
+    /// The accumulation the full history (finite, increasing times) shows, if any.
     fn accumulation(&self) -> Option<Accumulation> {
-        if self.times.len() < self.rule.events + 1 || self.times.iter().any(|t| !t.is_finite()) {
+        if self.times.len() < self.rule.events + 1 {
             return None;
         }
         let intervals = self.times.windows(2).map(|w| w[1] - w[0]);
@@ -236,9 +241,12 @@ mod tests {
         for &t in &times[..4] {
             assert_eq!(det.fire(t), None);
         }
-        // Not after the last firing: the history restarts there.
+        // Not after the last firing: the history restarts there; not finite: it is emptied.
         assert_eq!(det.fire(times[2]), None);
         assert_eq!(det.len(), 1);
+        assert_eq!(det.fire(f64::NAN), None);
+        assert!(det.is_empty());
+        assert_eq!(det.fire(times[2]), None);
         let acc = (0..5).filter_map(|k| det.fire(10.0 + geometric(0.0, 1.0, 0.5, k)));
         assert_eq!(acc.count(), 1);
     }

@@ -25,6 +25,7 @@
 
 // The children use this file's types; this file uses none of theirs (the crate root
 // re-exports them), so the module and its children form no import circle.
+mod chatter;
 pub(crate) mod physical_time;
 pub(crate) mod regularised;
 pub(crate) mod run;
@@ -182,11 +183,12 @@ pub enum Transition<const N: usize, Md, R, Nt = ()> {
     },
     /// Nothing changes: the event is reported to the observer (as
     /// [`crate::TransitionKind::Pass`], with `note`) and the run goes on in the same step, as
-    /// if the guard were not there. The integrator is not restarted and the rest of the step
-    /// is searched again for later crossings; the guard that passed takes the sign beyond
-    /// its crossing as its reference (or, if it is exactly zero at the event, the sign of its
-    /// first nonzero value after it, without firing), so it fires again only when it crosses
-    /// back in a direction its filter admits. A pass is not a transition:
+    /// if the guard were not there. The integrator is not restarted, and the search of the
+    /// step resumes where it found the event, so later events are located exactly where they
+    /// would be without it; the guard that passed takes the sign beyond its crossing as its
+    /// reference (or, if it is exactly zero at the event, the sign of its first nonzero value
+    /// after it, without firing), so it fires again only when it crosses back in a direction
+    /// its filter admits (see "Passes" at [`crate::GuardSpec`]). A pass is not a transition:
     /// [`HybridOutcome::transitions`] and the [`ChatterLimit`] do not count it (it restarts
     /// nothing, so it cannot trap the run at one time), [`HybridOutcome::passes`] does, and
     /// [`crate::Observer::proceed`] is asked after the step, not after each pass.

@@ -138,6 +138,7 @@ pub use stepper::{Components, Rhs, StepEnd, StepStart, Stepper};
 pub use switched::graph::{
     AccumulationAction, EventAction, EventDecl, EventId, GraphError, ModeDecl, ModeGraph, ModeId,
 };
-pub use switched::{Switched, SwitchedModel, SwitchedNote, SwitchedStop};
+pub use switched::outcome::{SwitchedNote, SwitchedStop};
+pub use switched::{Switched, SwitchedModel};
 pub use switched_run::{name_modes, run_switched, EventRecord, Fired, SwitchedRun};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

@@ -20,7 +20,7 @@ pub struct Stats {
     /// Guard estimates from the dense output (no model evaluation; see
     /// [`crate::InteriorChecks::Screened`]).
     pub guard_estimates: u64,
-    /// Events located (guards that fired).
+    /// Events located (guards that fired, passes included).
     pub events: u64,
     /// Accepted steps of an adaptive method by the component with the largest scaled error,
     /// the one that limited the step size. Counted only when the tolerance asks for it

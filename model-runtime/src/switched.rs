@@ -44,6 +44,7 @@
 //! declared; if it truly accumulates, the driver's [`crate::ChatterLimit`] ends it.
 
 pub(crate) mod graph;
+pub(crate) mod outcome;
 
 use crate::accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
 use crate::error::{EvalError, InputError};
@@ -51,11 +52,13 @@ use crate::events::{EventHit, GuardInputs, GuardSpec};
 use crate::hybrid::{HybridSystem, Transition};
 use crate::jacobian::finite_difference_jacobian;
 use graph::{EventAction, EventId, ModeGraph, ModeId};
+use outcome::{SwitchedNote, SwitchedStop};
 
 /// A hybrid model given by tables: implemented by the code `model!` emits and by the model
 /// interpreter. Modes and events are indices into [`SwitchedModel::graph`].
 pub trait SwitchedModel<const N: usize> {
-    /// The modes and events.
+    /// The modes and events (the same graph for as long as the model lives: [`Switched`]
+    /// reads it once for the guards).
     fn graph(&self) -> &ModeGraph;
 
     /// `dy = f(t, y)` in `mode`.
@@ -152,59 +155,53 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
     }
 }
 
-/// Why a [`Switched`] run stopped.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SwitchedStop {
-    /// A terminal event ([`EventAction::Stop`]) fired.
-    Event {
-        /// Its mode.
-        mode: ModeId,
-        /// Its position in the mode's events.
-        event: usize,
-        /// When it fired.
-        t: f64,
-    },
-    /// The resets of an event without an accumulation action accumulated.
-    Accumulation {
-        /// Its mode.
-        mode: ModeId,
-        /// Its position in the mode's events.
-        event: usize,
-        /// The extrapolated accumulation point (the run ends at the last firing, within the
-        /// rule's tail before it).
-        t_inf: f64,
-    },
-}
-
-impl SwitchedStop {
-    /// The event that ended the run (named by [`ModeGraph::event_name`]).
-    pub fn event(&self) -> EventId {
-        match *self {
-            SwitchedStop::Event { mode, event, .. }
-            | SwitchedStop::Accumulation { mode, event, .. } => EventId { mode, event },
-        }
-    }
-}
-
-/// What a [`Switched`] system tells the observer about an event
-/// ([`crate::TransitionRecord::note`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SwitchedNote {
-    /// A [`EventAction::Record`] event passed.
-    Recorded(EventId),
-    /// A [`EventAction::Reset`] event applied its reset.
-    Reset(EventId),
-    /// The event's resets accumulated: its accumulation reset was applied instead.
-    Accumulated {
-        /// The event.
-        event: EventId,
-        /// Where the firings accumulate and their ratio.
-        accumulation: Accumulation,
-    },
-}
-
 /// A [`SwitchedModel`] as a [`HybridSystem`] (modes [`ModeId`], guards [`EventId`]), owning or
 /// borrowing the model, with the accumulation history of the event that restarts its mode.
+///
+/// ```
+/// use model_runtime::{
+///     AccumulationRule, Direction, Dop853, EvalError, EventAction, EventDecl, HybridOptions,
+///     HybridSolver, ModeDecl, ModeGraph, StopReason, Switched, SwitchedModel, SwitchedStop,
+///     Tolerance,
+/// };
+///
+/// /// A ball, y = (height, velocity), bouncing with restitution 0.5.
+/// struct Ball(ModeGraph);
+/// impl SwitchedModel<2> for Ball {
+///     fn graph(&self) -> &ModeGraph { &self.0 }
+///     fn rhs(&self, _: usize, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
+///         *dy = [y[1], -9.81];
+///         Ok(())
+///     }
+///     fn event_values(&self, _: usize, _t: f64, y: &[f64; 2], _dy: &[f64; 2], g: &mut [f64])
+///         -> Result<(), EvalError> { g[0] = y[0]; Ok(()) }
+///     fn reset(&self, _: usize, _: usize, _: bool, _t: f64, y: &[f64; 2], _dy: &[f64; 2],
+///              out: &mut [f64; 2]) -> Result<(), EvalError> {
+///         out[1] = -0.5 * y[1];
+///         Ok(())
+///     }
+/// }
+///
+/// let impact = EventDecl {
+///     name: "impact".into(),
+///     direction: Direction::Down,
+///     action: EventAction::Reset { to: None, reset: true },
+///     on_accumulation: None,
+/// };
+/// let graph = ModeGraph::new(vec![ModeDecl { name: "flying".into(), events: vec![impact] }]);
+/// let graph = graph.unwrap();
+/// let flying = graph.mode_id("flying").unwrap();
+/// let mut ball = Switched::new(Ball(graph), AccumulationRule::default()).unwrap();
+/// let mut solver = HybridSolver::new(Dop853::new(), Tolerance::scalar(1e-10, 1e-12),
+///                                    HybridOptions::default()).unwrap();
+/// let out = solver.run(&mut ball, flying, 0.0, &[1.0, 0.0], 10.0, &mut ()).unwrap();
+/// // Dropped from 1 m, it would bounce forever before 3 sqrt(2 / g) ≈ 1.355 s.
+/// let StopReason::User(SwitchedStop::Accumulation { t_inf, .. }) = out.stop else {
+///     panic!("{:?}", out.stop)
+/// };
+/// assert!((t_inf - 3.0 * (2.0f64 / 9.81).sqrt()).abs() < 1e-9);
+/// assert!(out.transitions > 20);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Switched<M> {
     model: M,
@@ -222,8 +219,7 @@ impl<M> Switched<M> {
         M: SwitchedModel<N>,
     {
         let graph = model.graph();
-        let specs = (0..graph.modes().len())
-            .filter_map(|m| graph.id(m))
+        let specs = (graph.ids())
             .map(|mode| {
                 let events = &graph.mode(mode).events;
                 (events.iter().enumerate())
@@ -245,6 +241,11 @@ impl<M> Switched<M> {
     /// The model.
     pub fn model(&self) -> &M {
         &self.model
+    }
+
+    /// The model, given back.
+    pub fn into_model(self) -> M {
+        self.model
     }
 
     /// Forgets the accumulation history (before reusing the system for an unrelated run;

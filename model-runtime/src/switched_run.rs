@@ -14,7 +14,8 @@ use crate::observer::{Observer, Sample, StepView, TransitionRecord};
 use crate::stats::Stats;
 use crate::stepper::Stepper;
 use crate::switched::graph::{EventId, ModeGraph, ModeId};
-use crate::switched::{Switched, SwitchedModel, SwitchedNote, SwitchedStop};
+use crate::switched::outcome::{SwitchedNote, SwitchedStop};
+use crate::switched::{Switched, SwitchedModel};
 use crate::tolerance::Tolerance;
 
 /// What happened at an event.

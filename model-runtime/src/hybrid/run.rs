@@ -3,9 +3,11 @@
 //! contract (the parent module) so that the contract reads alone.
 //!
 //! A step's events are handled in time order: an event that passes ([`Transition::Pass`])
-//! leaves the step as it is, becomes a check point, and the rest of the step is searched
-//! again; the first event that does anything else cuts the step there and ends the segment.
+//! leaves the step as it is and the search of the step resumes where it found the event (see
+//! "Passes" at [`crate::GuardSpec`]); the first event that does anything else cuts the step
+//! there and ends the segment.
 
+use super::chatter::RecentTransitions;
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
 };
@@ -15,7 +17,6 @@ use crate::integrator::Integrator;
 use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::stepper::{eval, Rhs, Stepper};
 use crate::tolerance::Tolerance;
-use std::collections::VecDeque;
 use std::fmt::Debug;
 
 /// Runs hybrid systems with one stepper and one set of options.
@@ -76,7 +77,7 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             values: Vec::new(),
             end_values: Vec::new(),
             inputs: GuardInputs::ALL,
-            recent: VecDeque::with_capacity(self.options.chatter.max_transitions + 1),
+            recent: RecentTransitions::new(self.options.chatter),
             next_sample: 0,
             t_first: t0,
             mode,
@@ -104,6 +105,13 @@ impl<const N: usize, H: HybridSystem<N>> Rhs<N> for InMode<'_, H, H::Mode> {
     }
 }
 
+/// Which search of a step's guards: from its start, or on after an event that passed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Search {
+    Step,
+    Resume,
+}
+
 /// The state of one run.
 pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) it: &'a mut Integrator<S, N>,
@@ -115,7 +123,7 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) end_values: Vec<f64>,
     /// What the current mode's guards read (see [`HybridSystem::guard_inputs`]).
     pub(super) inputs: GuardInputs<N>,
-    pub(super) recent: VecDeque<(f64, Md, Md)>,
+    pub(super) recent: RecentTransitions<Md>,
     pub(super) next_sample: u64,
     pub(super) t_first: f64,
     pub(super) mode: Md,
@@ -174,9 +182,9 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         while let Some(f) = found {
             let hit = self.event_hit(sys, f)?;
             self.emit_samples(sys, hit.t, obs)?;
-            if obs.wants_dense() {
+            if obs.wants_dense() && hit.t > self.it.t_prev() {
                 // Built before the transition map runs: the map may change the right-hand
-                // side, and the step's output must not see that.
+                // side, and the step's output (cut at the event or not) must not see that.
                 let m = InMode {
                     sys: &*sys,
                     mode: self.mode,
@@ -229,11 +237,12 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         O: Observer<N, Md, H::Guard, H::Note>,
     {
         self.passes += 1;
-        // `values` holds the exact guard values at the event; at the step's end they are the
-        // end values too, so a search of the empty rest sees the same signs.
-        self.tracker.pass(hit.index, &self.values);
+        // `values` holds the exact guard values at the event; at the step's end, the guard's
+        // value there is its end value too, so the resumed search sees the same sign.
+        let value = self.values[hit.index];
+        self.tracker.pass(hit.index, hit.t, value);
         if hit.t >= self.it.t() {
-            self.end_values.copy_from_slice(&self.values);
+            self.end_values[hit.index] = value;
         }
         obs.on_transition(TransitionRecord {
             hit,
@@ -242,7 +251,8 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             y_after: hit.y,
             note,
         });
-        self.scan(sys, hit.t).map_err(|e| self.solve_err(e))
+        self.search(sys, Search::Resume)
+            .map_err(|e| self.solve_err(e))
     }
 
     /// A step without event: samples, observer, projection.
@@ -322,7 +332,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         }
         sys.project(to, hit.t, &mut y_after);
         self.transitions += 1;
-        self.check_chatter(hit.t, from, to)?;
+        self.recent.record(hit.t, from, to)?;
         self.mode = to;
         let quiet = match kind {
             TransitionKind::Continue | TransitionKind::Pass => Quiet::Guard(hit.index),
@@ -362,21 +372,20 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         )
         .map_err(at(t1))?;
         check_finite(t1, &self.end_values)?;
-        self.scan(sys, self.it.t_prev())
+        self.search(sys, Search::Step)
     }
 
-    /// The search for the earliest admitted guard crossing in the last accepted step from
-    /// `t0` (its start, or the last event that passed) to its end.
-    fn scan<H: HybridSystem<N, Mode = Md>>(
+    /// The search for the earliest admitted guard crossing in the last accepted step.
+    fn search<H: HybridSystem<N, Mode = Md>>(
         &mut self,
         sys: &H,
-        t0: f64,
+        search: Search,
     ) -> Result<Option<Found>, SolveError> {
         let m = InMode {
             sys,
             mode: self.mode,
         };
-        let t1 = self.it.t();
+        let (t0, t1) = (self.it.t_prev(), self.it.t());
         let it = &mut *self.it;
         let inputs = &self.inputs;
         let mut y = [0.0; N];
@@ -384,40 +393,39 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         // Estimates fill only the declared inputs: a guard that reads anything else sees NaN.
         let mut y_est = [f64::NAN; N];
         let mut dy_est = [f64::NAN; N];
-        self.tracker.scan(
-            t0,
-            t1,
-            &self.end_values,
-            self.opts.guard_checks,
-            |t, probe, out| {
-                let (y, dy) = match probe {
-                    Probe::Exact => {
-                        it.interpolate(&m, t, &mut y)?;
-                        eval(&m, t, &y, &mut dy, it.stats_mut())?;
-                        it.stats_mut().guard_evals += 1;
-                        (&y, &dy)
-                    }
-                    Probe::Estimate => {
-                        it.interpolate_components(
-                            &m,
-                            t,
-                            &inputs.state,
-                            &inputs.rates,
-                            &mut y_est,
-                            &mut dy_est,
-                        )?;
-                        it.stats_mut().guard_estimates += 1;
-                        (&y_est, &dy_est)
-                    }
-                };
-                sys.guard_values(m.mode, t, y, dy, out).map_err(at(t))?;
-                match probe {
-                    Probe::Exact => check_finite(t, out),
-                    // A non-finite estimate only asks for the exact check.
-                    Probe::Estimate => Ok(()),
+        let probe_at = |t: f64, probe: Probe, out: &mut [f64]| {
+            let (y, dy) = match probe {
+                Probe::Exact => {
+                    it.interpolate(&m, t, &mut y)?;
+                    eval(&m, t, &y, &mut dy, it.stats_mut())?;
+                    it.stats_mut().guard_evals += 1;
+                    (&y, &dy)
                 }
-            },
-        )
+                Probe::Estimate => {
+                    it.interpolate_components(
+                        &m,
+                        t,
+                        &inputs.state,
+                        &inputs.rates,
+                        &mut y_est,
+                        &mut dy_est,
+                    )?;
+                    it.stats_mut().guard_estimates += 1;
+                    (&y_est, &dy_est)
+                }
+            };
+            sys.guard_values(m.mode, t, y, dy, out).map_err(at(t))?;
+            match probe {
+                Probe::Exact => check_finite(t, out),
+                // A non-finite estimate only asks for the exact check.
+                Probe::Estimate => Ok(()),
+            }
+        };
+        let (checks, end) = (self.opts.guard_checks, &self.end_values);
+        match search {
+            Search::Step => self.tracker.scan(t0, t1, end, checks, probe_at),
+            Search::Resume => self.tracker.resume(end, probe_at),
+        }
     }
 
     /// Starts a segment in the current mode at `(t, y)`: fresh integrator, guards armed
@@ -548,35 +556,6 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             },
         };
         obs.on_step(&view);
-        Ok(())
-    }
-
-    fn check_chatter(&mut self, t: f64, from: Md, to: Md) -> Result<(), HybridError<Md>> {
-        let limit = self.opts.chatter;
-        self.recent.push_back((t, from, to));
-        while let Some(&(t_old, _, _)) = self.recent.front() {
-            if t_old < t - limit.window {
-                self.recent.pop_front();
-            } else {
-                break;
-            }
-        }
-        if self.recent.len() > limit.max_transitions {
-            let mut modes = Vec::new();
-            for &(_, a, b) in &self.recent {
-                for m in [a, b] {
-                    if !modes.contains(&m) {
-                        modes.push(m);
-                    }
-                }
-            }
-            return Err(HybridError::Chattering {
-                t,
-                transitions: self.recent.len(),
-                window: limit.window,
-                modes,
-            });
-        }
         Ok(())
     }
 

@@ -149,6 +149,11 @@ impl ModeGraph {
         &self.modes
     }
 
+    /// Every mode, in order.
+    pub fn ids(&self) -> impl Iterator<Item = ModeId> {
+        (0..self.modes.len()).map(ModeId)
+    }
+
     /// The mode at position `index`, if there is one.
     pub fn id(&self, index: usize) -> Option<ModeId> {
         (index < self.modes.len()).then_some(ModeId(index))

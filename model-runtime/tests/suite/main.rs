@@ -13,3 +13,4 @@ mod notes;
 mod passes;
 mod properties;
 mod stiff;
+mod switched;

@@ -3,11 +3,13 @@
 
 use crate::common::log::RunLog;
 use model_runtime::{
-    ChatterLimit, Crossed, Direction, Dop853, EvalError, EventHit, GuardSpec, HybridOptions,
-    HybridOutcome, HybridSolver, HybridSystem, InteriorChecks, StopReason, Tolerance, Transition,
-    TransitionKind,
+    ChatterLimit, Clocked, Crossed, Direction, Dop853, EvalError, EventHit, GuardSpec,
+    HybridOptions, HybridOutcome, HybridSolver, HybridSystem, InteriorChecks, PhysicalTime,
+    Regularised, StopReason, TimeScale, Tolerance, Transition, TransitionKind,
 };
+use proptest::prelude::*;
 use std::f64::consts::PI;
+use std::rc::Rc;
 
 /// What a watched guard does when it fires.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,7 +19,17 @@ enum Action {
 }
 
 /// A guard of the oscillator: its value at `(t, y)` and its action.
-type Watch = (GuardSpec<usize>, fn(f64, &[f64; 2]) -> f64, Action);
+type Watch = (GuardSpec<usize>, Rc<dyn Fn(f64, &[f64; 2]) -> f64>, Action);
+
+/// A watch of guard `id` with `direction` and `value`.
+fn watch(
+    id: usize,
+    direction: Direction,
+    value: impl Fn(f64, &[f64; 2]) -> f64 + 'static,
+    action: Action,
+) -> Watch {
+    (GuardSpec { id, direction }, Rc::new(value), action)
+}
 
 /// The harmonic oscillator `x' = v, v' = -x` from `(1, 0)`, i.e. `x = cos t`, watched by some
 /// guards.
@@ -77,22 +89,8 @@ impl HybridSystem<2> for Watched {
 /// passing.
 fn passing_watches() -> Vec<Watch> {
     vec![
-        (
-            GuardSpec {
-                id: 0,
-                direction: Direction::Both,
-            },
-            |_, y| y[0],
-            Action::Pass,
-        ),
-        (
-            GuardSpec {
-                id: 1,
-                direction: Direction::Up,
-            },
-            |t, _| (50.0 * t).sin(),
-            Action::Pass,
-        ),
+        watch(0, Direction::Both, |_, y| y[0], Action::Pass),
+        watch(1, Direction::Up, |t, _| (50.0 * t).sin(), Action::Pass),
     ]
 }
 
@@ -194,14 +192,7 @@ fn passing_events_leave_steps_samples_and_state_bit_for_bit_unchanged() {
 fn a_stop_after_passes_in_one_step_cuts_that_step_at_the_stop() {
     let t_stop = 2.0;
     let mut watches = passing_watches();
-    watches.push((
-        GuardSpec {
-            id: 2,
-            direction: Direction::Up,
-        },
-        |t, _| t - 2.0,
-        Action::Stop,
-    ));
+    watches.push(watch(2, Direction::Up, |t, _| t - 2.0, Action::Stop));
     let (out, log) = run(&mut Watched::new(watches), InteriorChecks::Exact(8), 7.0);
     let (_, plain_log) = run(&mut Watched::new(Vec::new()), InteriorChecks::None, 7.0);
     assert_eq!(out.stop, StopReason::User(2));
@@ -230,16 +221,7 @@ fn a_stop_after_passes_in_one_step_cuts_that_step_at_the_stop() {
 
 #[test]
 fn guards_that_pass_at_the_same_time_are_reported_in_priority_order() {
-    let at_one = |id| {
-        (
-            GuardSpec {
-                id,
-                direction: Direction::Up,
-            },
-            (|t, _| t - 1.0) as fn(f64, &[f64; 2]) -> f64,
-            Action::Pass,
-        )
-    };
+    let at_one = |id| watch(id, Direction::Up, |t, _| t - 1.0, Action::Pass);
     let (out, log) = run(
         &mut Watched::new(vec![at_one(0), at_one(1)]),
         InteriorChecks::None,
@@ -254,4 +236,82 @@ fn guards_that_pass_at_the_same_time_are_reported_in_priority_order() {
         "{first:?} {second:?}"
     );
     assert!((first.t - 1.0).abs() <= 4.0 * f64::EPSILON);
+}
+
+/// Regularised time with a clock that runs at half speed where `x = -1`.
+impl TimeScale<2> for Watched {
+    fn time_scale(&self, _: (), y: &[f64; 2]) -> f64 {
+        (3.0 + y[0]) / 4.0
+    }
+}
+
+#[test]
+fn passes_keep_the_segment_clock_of_regularised_time() {
+    let t_end = 7.0;
+    let mut sys = Watched::new(passing_watches()[..1].to_vec());
+    let mut clocked = Regularised::<_, 2, 3>::new(&mut sys, &[()], 0.0, t_end);
+    let tol = clocked.tolerance(&Tolerance::scalar(1e-10, 1e-12), (1e-10, 1e-12));
+    let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+    let mut log = RunLog::new();
+    let mut physical = PhysicalTime::<_, 2, 3>::new(&mut log, 0.0, None);
+    let z0 = Regularised::<Watched, 2, 3>::start(&[1.0, 0.0]);
+    let out = solver
+        .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut physical)
+        .unwrap();
+    assert_eq!(out.stop, StopReason::User(Clocked::EndTime));
+    // Every pass in physical time, on the one clock the segment started with.
+    let expected: Vec<_> = expected_passes(t_end)
+        .into_iter()
+        .filter(|e| e.1 == 0)
+        .collect();
+    assert_eq!((out.passes, out.transitions), (expected.len() as u64, 0));
+    assert_eq!(log.records.len(), expected.len());
+    for (r, &(t, _, how)) in log.records.iter().zip(&expected) {
+        assert_eq!((r.kind, r.hit.direction), (TransitionKind::Pass, how));
+        assert!((r.hit.t - t).abs() < 1e-8, "{} against {t}", r.hit.t);
+        assert!((r.hit.y[0]).abs() < 1e-8 && (r.hit.dy[0] - r.hit.y[1]).abs() < 1e-12);
+    }
+    let last = log.steps.last().unwrap();
+    assert!((last.1 - t_end).abs() < 1e-12, "{last:?}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Any fast guard that passes, checked densely enough to see all its crossings: the run is
+    /// the plain one, and the events are the guard's admitted zeros, in order.
+    #[test]
+    fn any_passing_guard_leaves_the_run_unchanged(
+        freq in 2.0..40.0f64,
+        phase in 0.1..6.1f64,
+        direction in prop::sample::select(vec![Direction::Up, Direction::Down, Direction::Both]),
+        points in 4..10u32,
+    ) {
+        let t_end = 7.0;
+        let (plain, plain_log) = run(&mut Watched::new(Vec::new()), InteriorChecks::None, t_end);
+        let fast = watch(0, direction, move |t, _| (freq * t + phase).sin(), Action::Pass);
+        let zeros_of_x = watch(1, Direction::Both, |_, y| y[0], Action::Pass);
+        let mut watched = Watched::new(vec![fast, zeros_of_x]);
+        let (out, log) = run(&mut watched, InteriorChecks::Exact(points), t_end);
+        prop_assert_eq!(&log.steps, &plain_log.steps);
+        prop_assert_eq!(&log.samples, &plain_log.samples);
+        prop_assert_eq!((out.t, out.y), (plain.t, plain.y));
+        // The fast guard's admitted zeros, at (kπ - phase) / freq in (0, t_end].
+        let zeros: Vec<f64> = (0..)
+            .map(|k| (k, (k as f64 * PI - phase) / freq))
+            .skip_while(|&(_, t)| t <= 0.0)
+            .take_while(|&(_, t)| t <= t_end)
+            // sin crosses up at even multiples of π, down at odd ones.
+            .filter(|&(k, _)| direction.admits(if k % 2 == 0 { Crossed::Up } else { Crossed::Down }))
+            .map(|(_, t)| t)
+            .collect();
+        let fast_hits: Vec<f64> =
+            log.records.iter().filter(|r| r.hit.index == 0).map(|r| r.hit.t).collect();
+        prop_assert_eq!(fast_hits.len(), zeros.len());
+        for (t, zero) in fast_hits.iter().zip(&zeros) {
+            prop_assert!((t - zero).abs() < 1e-12, "{} against {}", t, zero);
+        }
+        let times: Vec<f64> = log.records.iter().map(|r| r.hit.t).collect();
+        prop_assert!(times.windows(2).all(|w| w[0] <= w[1]), "{:?}", times);
+    }
 }
