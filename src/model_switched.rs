@@ -195,7 +195,14 @@ pub fn solve_switched(
         Method::Rodas4 => run_switched(&interpreted, Rodas4::new(), tolerance, options, start, t_end),
         Method::Rk4 { h } => run_switched(&interpreted, Rk4::new(h), tolerance, options, start, t_end),
     }
-    .map_err(|error| ModelFileError::Eval(describe_error(&error)))?;
+    .map_err(|failure| {
+        ModelFileError::Eval(format!(
+            "{} (after {} steps and {} events)",
+            describe_error(&failure.error),
+            failure.steps,
+            failure.events.len()
+        ))
+    })?;
     let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
     let mut rows = Vec::with_capacity(run.samples.len() + 1);
     for (t, mode, y) in &run.samples {

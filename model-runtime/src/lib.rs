@@ -140,5 +140,7 @@ pub use switched::graph::{
 };
 pub use switched::outcome::{SwitchedNote, SwitchedStop};
 pub use switched::{Switched, SwitchedModel};
-pub use switched_run::{name_modes, run_switched, EventRecord, Fired, SwitchedRun};
+pub use switched_run::{
+    name_modes, run_switched, EventRecord, Fired, SwitchedFailure, SwitchedRun,
+};
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};

@@ -81,8 +81,34 @@ impl<const N: usize> SwitchedRun<N> {
     }
 }
 
+/// A run that failed: why (with its modes named), and the work it did until then.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SwitchedFailure<const N: usize> {
+    /// What went wrong.
+    pub error: HybridError<String>,
+    /// The events met before the failure, in time order.
+    pub events: Vec<EventRecord<N>>,
+    /// The steps accepted before the failure.
+    pub steps: u64,
+}
+
+impl<const N: usize> std::fmt::Display for SwitchedFailure<N> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} (after {} steps and {} events)",
+            self.error,
+            self.steps,
+            self.events.len()
+        )
+    }
+}
+
+impl<const N: usize> std::error::Error for SwitchedFailure<N> {}
+
 /// Runs `model` from `(t0, y0)` in its first mode to `t_end` with `stepper`, the tolerances
-/// and options given and the default [`AccumulationRule`]; the failure names the mode.
+/// and options given and the default [`AccumulationRule`]; a failure names the mode and keeps
+/// the work done.
 pub fn run_switched<const N: usize, M: SwitchedModel<N>, S: Stepper<N>>(
     model: M,
     stepper: S,
@@ -90,29 +116,36 @@ pub fn run_switched<const N: usize, M: SwitchedModel<N>, S: Stepper<N>>(
     options: HybridOptions,
     (t0, y0): (f64, [f64; N]),
     t_end: f64,
-) -> Result<SwitchedRun<N>, HybridError<String>> {
-    let mut system = Switched::new(model, AccumulationRule::default()).map_err(|error| {
-        HybridError::Solve {
-            mode: String::new(),
-            error: error.into(),
-        }
-    })?;
-    let graph = system.model().graph().clone();
+) -> Result<SwitchedRun<N>, SwitchedFailure<N>> {
+    let graph = model.graph().clone();
     let start = graph.first();
-    let named = |error: HybridError<ModeId>| name_modes(&graph, error);
-    let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(|error| {
-        HybridError::Solve {
+    let input = |error: crate::error::InputError| SwitchedFailure {
+        error: HybridError::Solve {
             mode: graph.mode_name(start).to_string(),
             error: error.into(),
-        }
-    })?;
+        },
+        events: Vec::new(),
+        steps: 0,
+    };
+    let mut system = Switched::new(model, AccumulationRule::default()).map_err(input)?;
+    let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input)?;
     let mut collector = Collector {
         graph: &graph,
         every_step: options.sample_rate.is_none(),
         events: Vec::new(),
         samples: Vec::new(),
+        steps: 0,
     };
-    let outcome = (solver.run(&mut system, start, t0, &y0, t_end, &mut collector)).map_err(named)?;
+    let outcome = match solver.run(&mut system, start, t0, &y0, t_end, &mut collector) {
+        Ok(outcome) => outcome,
+        Err(error) => {
+            return Err(SwitchedFailure {
+                error: name_modes(&graph, error),
+                events: collector.events,
+                steps: collector.steps,
+            })
+        }
+    };
     let mut events = collector.events;
     let samples = collector.samples;
     let stopped_by = match outcome.stop {
@@ -178,10 +211,12 @@ struct Collector<'g, const N: usize> {
     every_step: bool,
     events: Vec<EventRecord<N>>,
     samples: Vec<(f64, String, [f64; N])>,
+    steps: u64,
 }
 
 impl<const N: usize> Observer<N, ModeId, EventId, SwitchedNote> for Collector<'_, N> {
     fn on_step(&mut self, step: &StepView<'_, N, ModeId>) {
+        self.steps += 1;
         if !self.every_step {
             return;
         }
