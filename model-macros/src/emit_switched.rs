@@ -8,13 +8,17 @@
 
 use crate::emit::emit;
 use crate::emit_program::{constant, statements};
-use model_dsl::{Action, CompiledSwitched, Crossing, Jump, SwitchedPlan};
+use model_dsl::{Action, CompiledSwitched, Crossing, Jump, ModelAst};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-/// Emits a switched model: its modes' modules and the switched `Model`.
-pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenStream {
-    let ast = &plan.ast;
+/// Emits a switched model: its modes' modules and the switched `Model`. `modes` holds each
+/// mode's model as written (names, docs), in the order of `compiled.modes`.
+pub fn emit_switched(
+    ast: &ModelAst,
+    modes: &[&ModelAst],
+    compiled: &CompiledSwitched,
+) -> TokenStream {
     let vis = &ast.vis;
     let ident = &ast.name;
     let name = ident.to_string();
@@ -25,8 +29,8 @@ pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenS
         let attrs = &ast.attrs;
         quote! { #(#attrs)* }
     };
-    let mode_modules = plan.modes.iter().zip(&compiled.modes).map(|(mode, compiled)| {
-        let mut mode_ast = mode.model.ast.clone();
+    let mode_modules = modes.iter().zip(&compiled.modes).map(|(mode, compiled)| {
+        let mut mode_ast = (*mode).clone();
         mode_ast.vis = syn::parse_quote!(pub);
         if mode_ast.attrs.is_empty() {
             let doc = format!(" Mode `{}` of `{name}`.", mode_ast.name);
@@ -38,7 +42,11 @@ pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenS
     let mode_idents: Vec<_> = (compiled.modes.iter())
         .map(|m| format_ident!("{}", m.model.name))
         .collect();
-    let mode_names: Vec<&str> = compiled.modes.iter().map(|m| m.model.name.as_str()).collect();
+    let mode_names: Vec<&str> = compiled
+        .modes
+        .iter()
+        .map(|m| m.model.name.as_str())
+        .collect();
     let n_modes = mode_names.len();
     let mode_indices = 0..n_modes;
     let initial = compiled.initial.iter().map(|v| constant(v.unwrap_or(0.0)));
@@ -114,7 +122,11 @@ pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenS
         }
     }
     let explanation = explanation(compiled);
-    let defaults = compiled.modes[0].model.params.iter().all(|(_, d)| d.is_some());
+    let defaults = compiled.modes[0]
+        .model
+        .params
+        .iter()
+        .all(|(_, d)| d.is_some());
     let default_impl = defaults.then(|| {
         quote! {
             impl ::core::default::Default for Model {
@@ -264,7 +276,11 @@ fn option_index(index: Option<usize>) -> TokenStream {
 fn reset_arm(mode: usize, event: usize, accumulation: bool, jump: &Jump) -> TokenStream {
     let n = jump.states.len();
     let body = statements(&jump.program);
-    let targets = jump.states.iter().enumerate().map(|(k, s)| quote! { new[#s] = values[#k]; });
+    let targets = jump
+        .states
+        .iter()
+        .enumerate()
+        .map(|(k, s)| quote! { new[#s] = values[#k]; });
     quote! {
         (#mode, #event, #accumulation) => {
             let mut values = [0.0f64; #n];

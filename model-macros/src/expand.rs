@@ -6,7 +6,7 @@
 
 use crate::emit::emit;
 use crate::emit_switched::emit_switched;
-use crate::placeholder::placeholder;
+use crate::placeholder::{placeholder, switched_placeholder};
 use model_dsl::{
     compile_all, compile_switched, parse_model_recovering, validate, validate_switched, ModelAst,
 };
@@ -99,7 +99,8 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
         });
         return match compiled {
             Ok((plan, compiled)) => {
-                let output = timing.stage("emit", || emit_switched(&plan, &compiled));
+                let modes: Vec<&ModelAst> = plan.modes.iter().map(|m| &m.model.ast).collect();
+                let output = timing.stage("emit", || emit_switched(&plan.ast, &modes, &compiled));
                 (output, timing)
             }
             Err(error) => (failure(error, placeholders(&ast)), timing),
@@ -123,8 +124,12 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
     }
 }
 
-/// The placeholders of the model and of each chart with a name of its own.
+/// The placeholders of the model and of each chart with a name of its own (for a switched
+/// model, the switched placeholder).
 fn placeholders(ast: &ModelAst) -> TokenStream {
+    if ast.is_switched() {
+        return switched_placeholder(ast);
+    }
     let mut names = std::collections::BTreeSet::from([ast.name.to_string()]);
     let charts = (ast.charts.iter())
         .filter(|chart| names.insert(chart.name.to_string()))

@@ -10,8 +10,10 @@
 //! items cannot drift from the real ones.
 
 use crate::emit::emit;
+use crate::emit_switched::emit_switched;
 use model_algebra::Explanation;
 use model_algebra::{CompiledModel, Program};
+use model_dsl::{CompiledMode, CompiledSwitched};
 use model_dsl::{ModelAst, RESERVED_MODULES};
 use proc_macro2::TokenStream;
 use std::collections::BTreeSet;
@@ -30,6 +32,67 @@ pub fn placeholder(ast: &ModelAst) -> TokenStream {
     }
     let stub = stub(&ast);
     emit(&ast, &stub)
+}
+
+/// The placeholder of a switched model: the same items as a real one (the modes' modules, the
+/// mode indices, `INITIAL`, `Model` implementing `SwitchedModel`), with modes that have no
+/// events and bodies that compute nothing.
+pub fn switched_placeholder(ast: &ModelAst) -> TokenStream {
+    let mut ast = ast.clone();
+    ast.attrs.retain(|attr| attr.path().is_ident("doc"));
+    ast.variants.clear();
+    ast.charts.clear();
+    let mut names = BTreeSet::new();
+    let mut modes: Vec<ModelAst> = Vec::new();
+    let written: Vec<(syn::Ident, Vec<syn::Attribute>)> = if ast.modes.is_empty() {
+        vec![(ast.name.clone(), Vec::new())]
+    } else {
+        (ast.modes.iter())
+            .map(|mode| (mode.name.clone(), mode.attrs.clone()))
+            .collect()
+    };
+    for (name, mut attrs) in written {
+        let text = name.to_string();
+        let reserved =
+            RESERVED_MODULES.contains(&text.as_str()) || text == "mode" || text == "stop";
+        if reserved || !names.insert(text) {
+            continue;
+        }
+        attrs.retain(|attr| attr.path().is_ident("doc"));
+        let mut mode = ast.clone();
+        mode.name = name;
+        mode.attrs = attrs;
+        mode.modes.clear();
+        mode.events.clear();
+        mode.accumulations.clear();
+        modes.push(mode);
+    }
+    if modes.is_empty() {
+        let mut mode = ast.clone();
+        mode.name = syn::Ident::new("placeholder_mode", ast.name.span());
+        modes.push(mode);
+    }
+    let stub = stub(&ast);
+    let initial = (stub.states.iter())
+        .map(|s| ast.initial.iter().find(|i| &i.name == s).map(|i| i.value))
+        .collect();
+    let compiled = CompiledSwitched {
+        name: ast.name.to_string(),
+        initial,
+        modes: (modes.iter())
+            .map(|mode| {
+                let mut model = stub.clone();
+                model.name = mode.name.to_string();
+                CompiledMode {
+                    model,
+                    guards: Program::default(),
+                    events: Vec::new(),
+                }
+            })
+            .collect(),
+    };
+    let refs: Vec<&ModelAst> = modes.iter().collect();
+    emit_switched(&ast, &refs, &compiled)
 }
 
 /// A compiled model with the declared names (each once) and no code.

@@ -46,7 +46,9 @@
 //!   modes and events): [`SwitchedModel`] with its [`ModeGraph`] ([`ModeDecl`], [`EventDecl`],
 //!   [`EventAction`], [`AccumulationAction`], [`ModeId`], [`EventId`], [`GraphError`]), run as
 //!   the hybrid system [`Switched`] ([`SwitchedStop`], [`SwitchedNote`]); accumulation (Zeno)
-//!   detection, [`AccumulationDetector`] with its [`AccumulationRule`] and [`Accumulation`].
+//!   detection, [`AccumulationDetector`] with its [`AccumulationRule`] and [`Accumulation`];
+//!   one call from such a model to its named events and samples, [`run_switched`]
+//!   ([`SwitchedRun`], [`EventRecord`], [`Fired`], [`SwitchedFailure`], [`name_modes`]).
 //! * **Regularised time** (a hybrid system integrated in `τ` with `dt = s dτ`):
 //!   [`TimeScale`], [`Regularised`], [`ClockGuard`], [`Clocked`], and the observer adaptor
 //!   [`PhysicalTime`].

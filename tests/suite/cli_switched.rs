@@ -7,7 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn example(name: &str) -> String {
-    format!("{}/model-macros/examples/{name}.dsl", env!("CARGO_MANIFEST_DIR"))
+    format!(
+        "{}/model-macros/examples/{name}.dsl",
+        env!("CARGO_MANIFEST_DIR")
+    )
 }
 
 fn model(args: &[&str]) -> Output {
@@ -56,23 +59,37 @@ fn solve(file: &str, extra: &[&str]) -> (Vec<Vec<String>>, Vec<(String, f64)>, S
 fn the_ball_from_its_file_bounces_at_the_closed_form_times_and_rests() {
     let (rows, events, stderr) = solve(
         &example("bouncing_ball"),
-        &["--t-end", "6", "--dt", "0.01", "--method", "dop853", "--rtol", "1e-10", "--atol", "1e-12"],
+        &[
+            "--t-end", "6", "--dt", "0.01", "--method", "dop853", "--rtol", "1e-10", "--atol",
+            "1e-12",
+        ],
     );
     assert_eq!(rows[0], ["t", "h", "v", "energy"]);
     let (g, e, h0) = (9.81f64, 0.8f64, 1.0f64);
     let v1 = (2.0 * g * h0).sqrt();
     let mut expected = (2.0 * h0 / g).sqrt();
-    let impacts: Vec<f64> = events.iter().filter(|(n, _)| n == "impact").map(|(_, t)| *t).collect();
+    let impacts: Vec<f64> = events
+        .iter()
+        .filter(|(n, _)| n == "impact")
+        .map(|(_, t)| *t)
+        .collect();
     assert!(impacts.len() > 50, "{events:?}");
     for (k, t) in impacts.iter().enumerate() {
-        assert!((t - expected).abs() < 1e-9, "impact {}: {t} vs {expected}", k + 1);
+        assert!(
+            (t - expected).abs() < 1e-9,
+            "impact {}: {t} vs {expected}",
+            k + 1
+        );
         expected += 2.0 * e.powi(k as i32 + 1) * v1 / g;
     }
     let t_inf = (2.0 * h0 / g).sqrt() + 2.0 * e * v1 / (g * (1.0 - e));
     let (name, rest) = events.last().unwrap();
     assert_eq!(name, "impact accumulates");
     assert!((rest - t_inf).abs() < 1e-9, "{rest} vs {t_inf}");
-    assert!(stderr.contains("the firings of `impact` accumulate at t = 4.0637"), "{stderr}");
+    assert!(
+        stderr.contains("the firings of `impact` accumulate at t = 4.0637"),
+        "{stderr}"
+    );
     assert!(stderr.contains("the run goes on in `resting`"), "{stderr}");
     // Never through the floor; at rest on it to the end.
     for row in &rows[1..] {
@@ -87,7 +104,9 @@ fn the_ball_from_its_file_bounces_at_the_closed_form_times_and_rests() {
 
 #[test]
 fn the_belt_and_the_block_from_their_files_name_every_event() {
-    let tight = ["--t-end", "5", "--method", "dop853", "--rtol", "1e-11", "--atol", "1e-13"];
+    let tight = [
+        "--t-end", "5", "--method", "dop853", "--rtol", "1e-11", "--atol", "1e-13",
+    ];
     let (_, events, _) = solve(&example("stick_slip"), &tight);
     let names: Vec<&str> = events.iter().map(|(n, _)| n.as_str()).collect();
     assert_eq!(names, ["slip_back", "stick", "slip_back", "stick"]);
@@ -99,7 +118,10 @@ fn the_belt_and_the_block_from_their_files_name_every_event() {
     assert!((events[1].1 - t1 - slipping).abs() < 1e-9, "{events:?}");
 
     let (_, events, stderr) = solve(&example("rocking_block"), &tight);
-    assert!(events.iter().filter(|(n, _)| n == "impact").count() > 30, "{events:?}");
+    assert!(
+        events.iter().filter(|(n, _)| n == "impact").count() > 30,
+        "{events:?}"
+    );
     assert_eq!(events.last().unwrap().0, "impact accumulates");
     assert!(stderr.contains("the run goes on in `standing`"), "{stderr}");
 }
@@ -120,7 +142,10 @@ fn a_terminal_event_and_an_unresolved_accumulation_end_the_run_by_name() {
     let (rows, events, stderr) = solve(arg(&path), &["--t-end", "10"]);
     assert_eq!(events.last().unwrap().0, "impact accumulates", "{events:?}");
     assert!(stderr.contains("the run stops there"), "{stderr}");
-    assert!(stderr.contains("stopped by event `impact accumulates`"), "{stderr}");
+    assert!(
+        stderr.contains("stopped by event `impact accumulates`"),
+        "{stderr}"
+    );
     let t_end: f64 = rows.last().unwrap()[0].parse().unwrap();
     assert!(t_end < 2.0, "{t_end}");
 }
@@ -146,14 +171,28 @@ fn show_prints_the_modes_and_events_in_markdown_and_latex() {
     let out = model(&["show", &example("stick_slip")]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success());
-    assert!(text.starts_with("# `stick_slip`: modes and events"), "{text}");
+    assert!(
+        text.starts_with("# `stick_slip`: modes and events"),
+        "{text}"
+    );
     assert!(text.contains("## Mode `stuck`"), "{text}");
-    assert!(text.contains("| `slip_back` | `x*k - mu_s*m*g` crosses 0 upwards | `s := -1`, go to `slipping` |"), "{text}");
-    assert!(text.contains("# `slipping`: the solved equations"), "{text}");
+    assert!(
+        text.contains(
+            "| `slip_back` | `x*k - mu_s*m*g` crosses 0 upwards | `s := -1`, go to `slipping` |"
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains("# `slipping`: the solved equations"),
+        "{text}"
+    );
     let out = model(&["show", &example("bouncing_ball"), "--format", "latex"]);
     let latex = String::from_utf8_lossy(&out.stdout);
     assert!(latex.starts_with("\\begin{align*}"), "{latex}");
-    assert!(latex.contains("h &\\downarrow 0 \\;\\Rightarrow\\; v^{+} = "), "{latex}");
+    assert!(
+        latex.contains("h &\\downarrow 0 \\;\\Rightarrow\\; v^{+} = "),
+        "{latex}"
+    );
 }
 
 #[test]
@@ -165,8 +204,18 @@ fn a_mistake_in_a_switched_file_is_located_and_exits_2() {
     let out = model(&["solve", arg(&path), "--t-end", "1"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("model.dsl:2:80: unknown mode `nowhere`: the modes are `a`"), "{stderr}");
-    let out = model(&["solve", &example("bouncing_ball"), "--t-end", "1", "--event", "h"]);
+    assert!(
+        stderr.contains("model.dsl:2:80: unknown mode `nowhere`: the modes are `a`"),
+        "{stderr}"
+    );
+    let out = model(&[
+        "solve",
+        &example("bouncing_ball"),
+        "--t-end",
+        "1",
+        "--event",
+        "h",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("declares its events in the file"));
 }
