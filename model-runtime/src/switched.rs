@@ -109,6 +109,20 @@ pub trait SwitchedModel<const N: usize> {
     fn guard_inputs(&self, _mode: usize) -> GuardInputs<N> {
         GuardInputs::ALL
     }
+
+    /// How much physical time one unit of regularised time is at `y` in `mode` (default 1):
+    /// what [`crate::Regularised`] integrates a [`Switched`] model with (see
+    /// [`crate::TimeScale`]).
+    fn time_scale(&self, _mode: usize, _y: &[f64; N]) -> f64 {
+        1.0
+    }
+}
+
+/// A switched model in regularised time: its [`SwitchedModel::time_scale`].
+impl<const N: usize, M: SwitchedModel<N>> crate::hybrid::regularised::TimeScale<N> for Switched<M> {
+    fn time_scale(&self, mode: ModeId, y: &[f64; N]) -> f64 {
+        self.model.time_scale(mode.index(), y)
+    }
 }
 
 /// A borrowed model is a model: [`Switched`] can own the model or borrow it.
@@ -152,6 +166,9 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
     }
     fn guard_inputs(&self, mode: usize) -> GuardInputs<N> {
         (**self).guard_inputs(mode)
+    }
+    fn time_scale(&self, mode: usize, y: &[f64; N]) -> f64 {
+        (**self).time_scale(mode, y)
     }
 }
 

@@ -14,3 +14,4 @@ mod passes;
 mod properties;
 mod stiff;
 mod switched;
+mod switched_regularised;
