@@ -60,6 +60,21 @@ struct Header<'a> {
     item_docs: &'a ItemDocs,
 }
 
+/// The lints that generated straight-line code trips, allowed on every emitted module.
+pub fn generated_allows() -> TokenStream {
+    quote! {
+        #[allow(
+            non_upper_case_globals,
+            non_snake_case,
+            unused_variables,
+            unused_parens,
+            clippy::all,
+            clippy::pedantic,
+            clippy::nursery
+        )]
+    }
+}
+
 /// The doc attributes written by the user, or one default line.
 fn docs_or(attrs: &[syn::Attribute], default: &str) -> TokenStream {
     if attrs.is_empty() {
@@ -110,17 +125,10 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
     );
     let model_impl = model_impl(model);
     let outputs_impl = outputs_impl(model);
+    let allows = generated_allows();
     quote! {
         #docs
-        #[allow(
-            non_upper_case_globals,
-            non_snake_case,
-            unused_variables,
-            unused_parens,
-            clippy::all,
-            clippy::pedantic,
-            clippy::nursery
-        )]
+        #allows
         #vis mod #ident {
             /// The number of states.
             pub const N_STATES: usize = #n_states;

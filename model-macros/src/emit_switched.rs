@@ -6,7 +6,7 @@
 //! mode's names for them (`State`, `Params`, `state::h`, ...) and adds the mode graph: what
 //! each event does, as `model_runtime::ModeGraph` tables that `model_runtime::Switched` follows.
 
-use crate::emit::emit;
+use crate::emit::{emit, generated_allows};
 use crate::emit_program::{constant, statements};
 use model_dsl::{Action, CompiledSwitched, Crossing, Jump, ModelAst};
 use proc_macro2::TokenStream;
@@ -137,17 +137,10 @@ pub fn emit_switched(
             }
         }
     });
+    let allows = generated_allows();
     quote! {
         #docs
-        #[allow(
-            non_upper_case_globals,
-            non_snake_case,
-            unused_variables,
-            unused_parens,
-            clippy::all,
-            clippy::pedantic,
-            clippy::nursery
-        )]
+        #allows
         #vis mod #ident {
             #(#mode_modules)*
             pub use self::#first::{
