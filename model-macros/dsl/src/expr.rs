@@ -171,7 +171,7 @@ fn parse_if(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
     let parens = syn::parenthesized!(content in input);
     let parsed = parse_if_arguments(&content, spans);
     if parsed.is_err() {
-        crate::statements::skip_all(&content);
+        crate::skip::skip_all(&content);
     }
     let (cond, values) = parsed?;
     let range = start.to(SpanRange::single(parens.span.close()));

@@ -32,6 +32,7 @@ mod expr;
 mod names;
 mod options;
 mod parse;
+mod skip;
 mod span;
 mod statements;
 mod switched;

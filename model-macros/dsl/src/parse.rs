@@ -5,11 +5,11 @@
 
 use crate::ast::{Chart, ModelAst, Variant};
 use crate::expr::{parse_default, parse_signed_number};
+use crate::skip::skip_all;
 use crate::span::{Errors, SpanRange, Spans};
 use crate::statements::{
     braced, check_docs_only, no_docs_here, once, parse_binding, parse_documented_name,
-    parse_equation, parse_list, parse_name, recover_section, recover_statement, skip_all,
-    with_value,
+    parse_equation, parse_list, parse_name, recover_section, recover_statement, with_value,
 };
 use crate::switching::{parse_mode, parse_when, Events};
 use proc_macro2::TokenStream;

@@ -4,9 +4,9 @@
 
 use crate::ast::Equation;
 use crate::expr::{parse_expr, range_of};
+use crate::skip::{skip_all, skip_past_semicolon};
 use crate::span::{Errors, SpanRange, Spans};
 use model_algebra::Named;
-use proc_macro2::TokenTree;
 use std::collections::BTreeMap;
 use syn::parse::ParseStream;
 use syn::{token, Token};
@@ -137,31 +137,6 @@ pub(crate) fn recover_section(
         errors.push(error);
         skip_all(input);
     }
-}
-
-pub(crate) fn skip_past_semicolon(input: ParseStream) {
-    let _ = input.step(|cursor| {
-        let mut rest = *cursor;
-        while let Some((tree, next)) = rest.token_tree() {
-            rest = next;
-            if matches!(&tree, TokenTree::Punct(p) if p.as_char() == ';') {
-                break;
-            }
-        }
-        Ok(((), rest))
-    });
-}
-
-/// Consumes the rest of `input` (after an error inside a group, so that the group's unparsed
-/// tokens add no second error).
-pub(crate) fn skip_all(input: ParseStream) {
-    let _ = input.step(|cursor| {
-        let mut rest = *cursor;
-        while let Some((_, next)) = rest.token_tree() {
-            rest = next;
-        }
-        Ok(((), rest))
-    });
 }
 
 pub(crate) fn once(

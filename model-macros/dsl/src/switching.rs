@@ -11,9 +11,10 @@
 
 use crate::ast::{Accumulates, Mode, Target, When};
 use crate::expr::parse_relation;
+use crate::skip::skip_all;
 use crate::span::{Errors, SpanRange, Spans};
 use crate::statements::{
-    braced, check_docs_only, parse_binding, parse_equation, parse_name, recover_statement, skip_all,
+    braced, check_docs_only, parse_binding, parse_equation, parse_name, recover_statement,
 };
 use model_algebra::Named;
 use syn::parse::ParseStream;
