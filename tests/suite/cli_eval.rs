@@ -238,3 +238,27 @@ proptest! {
         let _ = parse_named_numbers("--state", &text, &["theta"]);
     }
 }
+
+/// A closed standard output (the reader of a pipe gone, as `| head` leaves it) makes the
+/// answer unprintable: a failure said on standard error, exit 1, not a panic (exit 101).
+#[test]
+fn a_closed_standard_output_is_a_failure_not_a_panic() {
+    use std::process::Stdio;
+    for args in [
+        &["eval", "--mode", "rolling", "--state", PAPER_STATE][..],
+        &["scenes"][..],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains("cannot write to standard output"), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
