@@ -396,6 +396,44 @@ fn ctrl_c_keeps_what_was_complete() {
     );
 }
 
+/// SIGTERM (what a service manager or `timeout` sends) stops the run as Ctrl-C does: the
+/// files are completed and renamed, none is left under its temporary `.partial-*` name.
+#[test]
+fn a_termination_signal_keeps_what_was_complete() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--quiet", "--rtol", "1e-13", "--atol", "1e-15"])
+        .args(["--out", out.to_str().unwrap()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let waiting = Instant::now();
+    while !out.exists() && waiting.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(500));
+    let sent = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    let names: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        names.iter().all(|n| !n.starts_with(".partial-")),
+        "{names:?}"
+    );
+    let summary = fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"stop_reason\": \"interrupted\""));
+}
+
 #[test]
 fn every_builtin_scene_is_listed() {
     let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
