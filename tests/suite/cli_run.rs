@@ -434,6 +434,35 @@ fn a_termination_signal_keeps_what_was_complete() {
     assert!(summary.contains("\"stop_reason\": \"interrupted\""));
 }
 
+/// The paper's slip reading loses contact while sliding at t = 18.159 s, a completed run. At
+/// the located instant N is zero to round-off, and T/N of the computed forces was 0/0 (NaN) or
+/// −μ_d; ν is the friction law's μ_d on every sliding row, the last one included.
+#[test]
+fn the_friction_ratio_at_contact_loss_is_the_laws() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--quiet", "--no-figures", "--t-end", "20"])
+        .args([
+            "--set",
+            "run.slip_sign=paper",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.contains("contact_lost"), "{err}");
+    let (header, rows) = csv(&out.join("trajectory.csv"));
+    let nu = header.iter().position(|h| h == "nu_ratio").unwrap();
+    for row in rows.iter().filter(|r| r[1] == "sliding") {
+        assert_eq!(row[nu], "0.115", "{row:?}");
+    }
+    let text = fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    assert!(!text.to_lowercase().contains("nan"));
+}
+
 #[test]
 fn every_builtin_scene_is_listed() {
     let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
