@@ -55,7 +55,7 @@ pub enum ParamError {
         value: f64,
     },
     /// Finite parameters whose products (`m a²`, `m g a`) overflow.
-    #[error("parameter `{name}` = {value} makes the disk's inertia or weight moment (m a^2, m g a) overflow")]
+    #[error("parameter `{name}` = {value} makes the disk's inertia m a^2 or weight moment m g a overflow")]
     Overflow {
         /// The parameter's name.
         name: &'static str,
@@ -112,11 +112,19 @@ impl DiskParams {
         let (inertia, weight_moment) = (self.m * self.a * self.a, self.m * self.g * self.a);
         if sizes_ok && !(inertia.is_finite() && weight_moment.is_finite()) {
             // Every model multiplies by them: a radius of 1e308 m passed every other rule and
-            // started the disk with an infinite velocity.
+            // started the disk with an infinite velocity. The largest factor is blamed.
+            let key = [(m, self.m), (a, self.a), (g, self.g)]
+                .into_iter()
+                .fold(
+                    (a, 0.0),
+                    |best, (k, v)| if v > best.1 { (k, v) } else { best },
+                )
+                .0;
             c.push(
-                a,
+                key,
                 Rule::Overflows {
-                    what: "the disk's inertia m a^2 or weight moment m g a",
+                    what: "the inertia `disk.m` × `disk.a`^2 or the weight moment \
+                           `disk.m` × `disk.g` × `disk.a`",
                 },
             );
         }

@@ -158,7 +158,7 @@ fn each_rule_names_its_key() {
     expect_key(
         with_override("disk.a=1.7976931348623157e308"),
         "disk.a",
-        "m a^2 or weight moment m g a overflows",
+        "the inertia `disk.m` × `disk.a`^2 or the weight moment",
     );
     // Every rule holds for each value, but the completed velocity a × Ω is infinite.
     expect_key(
