@@ -23,14 +23,28 @@ pub const EXIT_FAILED: u8 = 1;
 /// Exit code of an interrupted run (128 + SIGINT, as shells report it).
 pub const EXIT_INTERRUPTED: u8 = 130;
 
+/// Writes `text` to standard output. A full or closed standard output is a failure said on
+/// standard error, `Err` with exit code 1 for the command to return (`println!` would panic).
+/// The one way commands print their answers.
+pub fn print_out(text: &str) -> Result<(), std::process::ExitCode> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|err| {
+            eprintln!("error: cannot write to standard output: {err}");
+            std::process::ExitCode::from(EXIT_FAILED)
+        })
+}
+
 /// Prints `value` as pretty JSON on standard output: success, or a failure naming why it could
 /// not be printed. The one way `eval` and `model eval` answer.
 pub fn print_json<T: serde::Serialize>(value: &T) -> std::process::ExitCode {
     match serde_json::to_string_pretty(value) {
-        Ok(json) => {
-            println!("{json}");
-            std::process::ExitCode::SUCCESS
-        }
+        Ok(json) => match print_out(&format!("{json}\n")) {
+            Ok(()) => std::process::ExitCode::SUCCESS,
+            Err(code) => code,
+        },
         Err(err) => {
             eprintln!("error: cannot print the result: {err}");
             std::process::ExitCode::from(EXIT_FAILED)

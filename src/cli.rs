@@ -126,13 +126,13 @@ pub struct ModelSolveArgs {
     #[arg(long, value_enum, default_value = "dop853")]
     pub method: MethodName,
     /// Relative tolerance.
-    #[arg(long, default_value_t = 1e-8)]
+    #[arg(long, default_value_t = 1e-8, allow_negative_numbers = true)]
     pub rtol: f64,
     /// Absolute tolerance.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_negative_numbers = true)]
     pub atol: f64,
     /// Record every DT (and at the end time) instead of at every step.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// The CSV file (`-`: standard output).
     #[arg(long, default_value = "-")]

@@ -138,7 +138,8 @@ fn param_error(source: ParamError) -> EvalCommandError {
     let key = match source {
         ParamError::NotPositive { name, .. }
         | ParamError::NotFinite { name, .. }
-        | ParamError::Negative { name, .. } => name,
+        | ParamError::Negative { name, .. }
+        | ParamError::Overflow { name, .. } => name,
         ParamError::DynamicAboveStatic { .. } => "mu_d",
     };
     EvalCommandError::Param { key, source }

@@ -76,15 +76,15 @@ mod sweep;
 
 // The command line: the parsed arguments, the exit codes, the pieces every command shares.
 pub use args::{
-    backend, interrupt_on_ctrl_c, print_json, progress_style, RunArgs, EXIT_FAILED, EXIT_INPUT,
-    EXIT_INTERRUPTED,
+    backend, interrupt_on_ctrl_c, print_json, print_out, progress_style, RunArgs, EXIT_FAILED,
+    EXIT_INPUT, EXIT_INTERRUPTED,
 };
 pub use cli::{Cli, Command, EvalArgs};
 
 // Scenes: loading, parsing and overriding a scene file.
 pub use scene::{
     load as load_scene, parse as parse_scene, CliTables, OutputTable, Override, Scene, SceneError,
-    SceneFile, BUILTIN as BUILTIN_SCENES, DEFAULT_SCENE,
+    SceneFile, BUILTIN as BUILTIN_SCENES, DEFAULT_SCENE, MAX_LISTED_ISSUES,
 };
 
 // Running a scene: options, report, the model chosen, one simulation and what it keeps.

@@ -5,8 +5,8 @@ use std::process::ExitCode;
 use clap::Parser;
 use eulerdisk::{
     backend, evaluate, interrupt_on_ctrl_c, load_scene, parse_params, parse_scene, parse_state,
-    print_json, progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance, RunArgs,
-    RunOptions, BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    print_json, print_out, progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance,
+    RunArgs, RunOptions, BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
 };
 
 fn main() -> ExitCode {
@@ -28,7 +28,9 @@ fn main() -> ExitCode {
                     .ok()
                     .and_then(|s| s.file.cli.description)
                     .unwrap_or_default();
-                println!("{name:<20} {description}");
+                if let Err(code) = print_out(&format!("{name:<20} {description}\n")) {
+                    return code;
+                }
             }
             ExitCode::SUCCESS
         }
@@ -88,12 +90,15 @@ fn run(args: RunArgs) -> ExitCode {
     match run_scene(&scene, &opts, &interrupt) {
         Ok(report) => {
             if !args.quiet {
-                print!("{}", report.summary.table());
-                println!(
-                    "wrote {} files into {}",
+                let said = format!(
+                    "{}wrote {} files into {}\n",
+                    report.summary.table(),
                     report.files.len(),
                     args.out.display()
                 );
+                if let Err(code) = print_out(&said) {
+                    return code;
+                }
             }
             let s = &report.summary;
             match report.ending {

@@ -2,10 +2,11 @@
 //!
 //! `show` takes a disk model's name or a DSL file; `eval` and `solve` take a file. A mistake
 //! in the file, an unknown name in `--state`/`--set`, a malformed `--event` or a state where
-//! the model is singular is an input error (exit 2); a failed integration or an unwritable output is a failure
-//! (exit 1).
+//! the model is singular is an input error (exit 2), and so is an unusable setting of `solve`
+//! (an empty time span, a sampling step or tolerance that is not positive, too many states);
+//! a failed integration or an unwritable output is a failure (exit 1).
 
-use crate::args::{print_json, EXIT_FAILED, EXIT_INPUT};
+use crate::args::{print_json, print_out, EXIT_FAILED, EXIT_INPUT};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
 use crate::model_file::{
     evaluate, initial_state, load, load_any, params, select, state, Loaded, ModelFileError,
@@ -38,10 +39,10 @@ fn input_error(error: impl std::fmt::Display) -> ExitCode {
 fn show(model: &str, format: Format) -> ExitCode {
     if let Ok(name) = ModelName::from_str(model, true) {
         return match crate::model_show::show(name, format) {
-            Ok(text) => {
-                print!("{text}");
-                ExitCode::SUCCESS
-            }
+            Ok(text) => match print_out(&text) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(code) => code,
+            },
             Err(err) => {
                 eprintln!("error: {err}");
                 ExitCode::from(EXIT_FAILED)
@@ -55,10 +56,10 @@ fn show(model: &str, format: Format) -> ExitCode {
         ));
     }
     match crate::model_file::show(path, format) {
-        Ok(text) => {
-            print!("{text}");
-            ExitCode::SUCCESS
-        }
+        Ok(text) => match print_out(&text) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(code) => code,
+        },
         Err(err) => input_error(err),
     }
 }
@@ -157,6 +158,7 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
     };
     let trajectory = match solved {
         Ok(trajectory) => trajectory,
+        Err(err @ ModelFileError::Setting(_)) => return input_error(err),
         Err(err) => {
             eprintln!("error: {err}");
             return ExitCode::from(EXIT_FAILED);

@@ -54,6 +54,11 @@ pub enum ModelFileError {
     /// failed integration), said in the model's terms.
     #[error("{0}")]
     Eval(String),
+    /// A setting of `model solve` is unusable (an empty or non-finite time span, a sampling
+    /// step, a tolerance, a model with too many states): an input error, found before any
+    /// integration.
+    #[error("{0}")]
+    Setting(String),
 }
 
 /// A model file, compiled: the model, then each of its charts.

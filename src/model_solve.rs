@@ -17,7 +17,7 @@ use crate::model_file::{describe, ModelFileError};
 use model_algebra::{CompiledModel, EvalFailure, Inputs, Ops};
 use model_runtime::{
     Direction, EvalError, Event, LocatedEvent, Method, Model, ModelInfo, OpCounts, Output, Problem,
-    Stats, Termination, Tolerance, WithOutputs,
+    SolveError, SolveFailure, Stats, Termination, Tolerance, WithOutputs,
 };
 use std::io::Write;
 use std::sync::Arc;
@@ -241,7 +241,7 @@ pub fn solve(
 ) -> Result<FileTrajectory, ModelFileError> {
     let n = model.states.len();
     if n > MAX_STATES {
-        return Err(ModelFileError::Eval(format!(
+        return Err(ModelFileError::Setting(format!(
             "`{}` has {n} states; `model solve` integrates at most {MAX_STATES} (compile the model with `model!` instead)",
             model.name
         )));
@@ -271,9 +271,15 @@ pub fn solve(
             problem = problem.event(spec.event(&shared));
         }
     }
-    let solved = problem
-        .solve::<0>()
-        .map_err(|failure| ModelFileError::Eval(failure.to_string()))?;
+    let solved = problem.solve::<0>().map_err(|failure| match failure {
+        // Unusable settings (a time span, a tolerance) are the caller's input, not a failed run.
+        SolveFailure::Solve {
+            error: SolveError::InvalidInput(_),
+            ..
+        }
+        | SolveFailure::OutputTime { .. } => ModelFileError::Setting(failure.to_string()),
+        failure => ModelFileError::Eval(failure.to_string()),
+    })?;
     let mut header = vec!["t".to_string()];
     header.extend(model.states.iter().cloned());
     header.extend(model.outputs.iter().cloned());
@@ -333,13 +339,13 @@ fn event_row(
 /// `t0, t0 + dt, ...` up to and including `t_end`.
 pub(crate) fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, ModelFileError> {
     if !(dt > 0.0 && dt.is_finite()) {
-        return Err(ModelFileError::Eval(format!(
+        return Err(ModelFileError::Setting(format!(
             "--dt {dt}: the sampling step must be positive and finite"
         )));
     }
     let count = ((t_end - t0) / dt).floor();
     if !(0.0..1e8).contains(&count) {
-        return Err(ModelFileError::Eval(format!(
+        return Err(ModelFileError::Setting(format!(
             "--dt {dt} from {t0} to {t_end}: gives no samples or too many (at most 1e8)"
         )));
     }

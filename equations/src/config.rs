@@ -206,6 +206,17 @@ impl DiskConfig {
                 },
             );
         }
+        let points = self.guard_checks.points();
+        if points > InteriorChecks::MAX_POINTS {
+            // The guard-check limit (a scene's spelling refuses it already when read).
+            c.in_range(
+                "solver.guard_checks",
+                f64::from(points),
+                0.0,
+                f64::from(InteriorChecks::MAX_POINTS),
+                false,
+            );
+        }
         c.positive("chatter.window", self.chatter.window);
         if self.chatter.max_transitions == 0 {
             c.push("chatter.max_transitions", Rule::NotPositive { value: 0.0 });

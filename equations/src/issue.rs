@@ -147,6 +147,16 @@ pub enum Rule {
         /// `run.sample_rate` (1/s).
         sample_rate: f64,
     },
+    /// Finite values whose products overflow.
+    Overflows {
+        /// The product that overflows.
+        what: &'static str,
+    },
+    /// A value completed from finite given ones is not finite: their products overflow.
+    CompletesNonFinite {
+        /// The completed value.
+        value: f64,
+    },
 }
 
 impl fmt::Display for Issue {
@@ -156,6 +166,15 @@ impl fmt::Display for Issue {
             Rule::Missing => write!(f, "is required"),
             Rule::RequiredWith { other } => write!(f, "is required when `{other}` is given"),
             Rule::NotFinite { value } => write!(f, "must be a finite number, got {value}"),
+            Rule::Overflows { what } => write!(
+                f,
+                "is too large: {what} overflows (is not a finite number)"
+            ),
+            Rule::CompletesNonFinite { value } => write!(
+                f,
+                "completes to {value} from the radius `disk.a` and the given angles and rates \
+                 (their products overflow): give smaller values"
+            ),
             Rule::NotPositive { value } => write!(f, "must be > 0, got {}", number(*value)),
             Rule::Negative { value } => write!(f, "must be >= 0, got {}", number(*value)),
             Rule::OutOfRange {
@@ -207,9 +226,15 @@ impl fmt::Display for Issue {
                 sample_rate,
             } => write!(
                 f,
-                "would record {samples:.3e} samples ({} s × {} per s), more than {limit:.0e}: \
+                "would record {} samples ({} s × {} per s), more than the sample limit {limit:.0e}: \
                  shorten `run.t_end` to at most {} s (`--t-end`), or lower `run.sample_rate` \
                  to at most {} per s (`--set run.sample_rate=...`)",
+                if samples.is_finite() {
+                    format!("{samples:.3e}")
+                } else {
+                    // The product overflowed.
+                    format!("over {:.3e}", f64::MAX)
+                },
                 number(*t_end),
                 number(*sample_rate),
                 number(limit / sample_rate),

@@ -54,6 +54,14 @@ pub enum ParamError {
         /// Its value.
         value: f64,
     },
+    /// Finite parameters whose products (`m a²`, `m g a`) overflow.
+    #[error("parameter `{name}` = {value} makes the disk's inertia m a^2 or weight moment m g a overflow")]
+    Overflow {
+        /// The parameter's name.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// Dynamic friction exceeds static friction.
     #[error("dynamic friction mu_d = {mu_d} exceeds static friction mu_st = {mu_st}")]
     DynamicAboveStatic {
@@ -93,15 +101,33 @@ impl DiskParams {
     ];
 
     /// Every rule the parameters break, each with its scene key ([`DiskParams::KEYS`]): `m`,
-    /// `a`, `g` finite and > 0; `mu_d`, `mu_st`, `mu_a` finite and >= 0; `mu_st >= mu_d`;
+    /// `a`, `g` finite and > 0, with `m a²` and `m g a` finite; `mu_d`, `mu_st`, `mu_a` finite
+    /// and >= 0; `mu_st >= mu_d`;
     /// `w_z` finite. The one set of rules for parameters, whether a scene or a program gives
     /// them.
     pub fn issues(&self) -> Vec<Issue> {
         let mut c = Checks::default();
         let [m, a, g, mu_d, mu_st, mu_a, w_z] = Self::KEYS;
-        c.positive(m, self.m);
-        c.positive(a, self.a);
-        c.positive(g, self.g);
+        let sizes_ok = c.positive(m, self.m) & c.positive(a, self.a) & c.positive(g, self.g);
+        let (inertia, weight_moment) = (self.m * self.a * self.a, self.m * self.g * self.a);
+        if sizes_ok && !(inertia.is_finite() && weight_moment.is_finite()) {
+            // Every model multiplies by them: a radius of 1e308 m passed every other rule and
+            // started the disk with an infinite velocity. The largest factor is blamed.
+            let key = [(m, self.m), (a, self.a), (g, self.g)]
+                .into_iter()
+                .fold(
+                    (a, 0.0),
+                    |best, (k, v)| if v > best.1 { (k, v) } else { best },
+                )
+                .0;
+            c.push(
+                key,
+                Rule::Overflows {
+                    what: "the inertia `disk.m` × `disk.a`^2 or the weight moment \
+                           `disk.m` × `disk.g` × `disk.a`",
+                },
+            );
+        }
         let mu_d_ok = c.non_negative(mu_d, self.mu_d);
         if c.non_negative(mu_st, self.mu_st) && mu_d_ok && self.mu_st < self.mu_d {
             c.push(
@@ -128,6 +154,10 @@ impl DiskParams {
         Err(match issue.rule {
             Rule::NotFinite { value } => ParamError::NotFinite { name, value },
             Rule::NotPositive { value } => ParamError::NotPositive { name, value },
+            Rule::Overflows { .. } => ParamError::Overflow {
+                name,
+                value: self.to_array()[index],
+            },
             Rule::BelowOther { .. } => ParamError::DynamicAboveStatic {
                 mu_d: self.mu_d,
                 mu_st: self.mu_st,

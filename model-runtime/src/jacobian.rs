@@ -6,7 +6,13 @@
 
 use crate::error::EvalError;
 
-/// Central-difference Jacobian of `f` at `y`.
+/// The model name a non-finite entry is reported under; [`crate::Model::jacobian`] replaces it
+/// with the model's own.
+pub(crate) const FD_MODEL: &str = "finite differences";
+
+/// Central-difference Jacobian of `f` at `y`. An entry that is not finite (the right-hand
+/// sides at `y ± h` overflow, or their difference does) is an [`EvalError::NonFinite`], never
+/// an `Ok` with an infinite or NaN Jacobian.
 pub fn finite_difference_jacobian<const N: usize>(
     mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), EvalError>,
     y: &[f64; N],
@@ -23,8 +29,42 @@ pub fn finite_difference_jacobian<const N: usize>(
         f(&yp, &mut fm)?;
         yp[j] = y[j];
         for i in 0..N {
-            jac[i][j] = (fp[i] - fm[i]) / (2.0 * h);
+            let entry = (fp[i] - fm[i]) / (2.0 * h);
+            if !entry.is_finite() {
+                return Err(EvalError::NonFinite {
+                    model: FD_MODEL,
+                    quantity: "an entry of the Jacobian",
+                    value: entry,
+                });
+            }
+            jac[i][j] = entry;
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_jacobian_that_overflows_is_an_error() {
+        // Finite values on both sides whose difference overflows to -inf.
+        let f = |y: &[f64; 1], dy: &mut [f64; 1]| {
+            dy[0] = if y[0] > 0.0 { -f64::MAX } else { f64::MAX };
+            Ok(())
+        };
+        let mut jac = [[0.0; 1]; 1];
+        let result = finite_difference_jacobian(f, &[0.0], &mut jac);
+        assert!(
+            matches!(result, Err(EvalError::NonFinite { value, .. }) if value == f64::NEG_INFINITY),
+            "{result:?}"
+        );
+        let linear = |y: &[f64; 1], dy: &mut [f64; 1]| {
+            dy[0] = 3.0 * y[0];
+            Ok(())
+        };
+        finite_difference_jacobian(linear, &[1.0], &mut jac).unwrap();
+        assert!((jac[0][0] - 3.0).abs() < 1e-9);
+    }
 }

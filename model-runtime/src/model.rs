@@ -6,7 +6,7 @@
 //! States live in fixed-size arrays so that a step allocates nothing.
 
 use crate::error::EvalError;
-use crate::jacobian::finite_difference_jacobian;
+use crate::jacobian::{finite_difference_jacobian, FD_MODEL};
 
 /// Operation counts of one emitted function, after common-subexpression elimination.
 ///
@@ -73,7 +73,19 @@ pub trait Model<const N: usize> {
     /// The Jacobian `jac[i][j] = ∂f_i/∂y_j`. The default uses central finite differences;
     /// emitted models override it with the symbolic derivative of the solved system.
     fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
-        finite_difference_jacobian(|y, dy| self.rhs(t, y, dy), y, jac)
+        finite_difference_jacobian(|y, dy| self.rhs(t, y, dy), y, jac).map_err(|e| match e {
+            // A non-finite entry is the model's, named as such.
+            EvalError::NonFinite {
+                model: FD_MODEL,
+                quantity,
+                value,
+            } => EvalError::NonFinite {
+                model: self.info().name,
+                quantity,
+                value,
+            },
+            e => e,
+        })
     }
 }
 

@@ -11,12 +11,19 @@ use std::ops::Range;
 /// sums of float steps, so a zero tick arrives as e.g. `-5.6e-17`.
 const ZERO_TICK: f64 = 1e-9;
 
+/// The largest magnitude an axis bound may have: the span of an axis between `-AXIS_MAX` and
+/// `AXIS_MAX` (and the steps of its ticks) stays finite. Values beyond it are clipped.
+const AXIS_MAX: f64 = f64::MAX / 8.0;
+
 /// The range of the finite values of `values`, padded by 5% (or by 1 when flat). On a
 /// logarithmic axis only positive values count, and the range is widened by a factor 1.5.
-/// Without any such value: `0..1`, or `1e-6..1` on a logarithmic axis.
+/// Without any such value: `0..1`, or `1e-6..1` on a logarithmic axis. The bounds lie within
+/// `±f64::MAX / 8` whatever the values, so that the span is finite (an infinite one never
+/// finishes drawing).
 pub fn padded_range(values: impl Iterator<Item = f64>, log: bool) -> Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && (!log || *v > 0.0))
+        .map(|v| v.clamp(-AXIS_MAX, AXIS_MAX))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
             (l.min(v), h.max(v))
         });
@@ -24,14 +31,14 @@ pub fn padded_range(values: impl Iterator<Item = f64>, log: bool) -> Range<f64> 
         return if log { 1e-6..1.0 } else { 0.0..1.0 };
     }
     if log {
-        return lo / 1.5..hi * 1.5;
+        return lo / 1.5..(hi * 1.5).min(AXIS_MAX);
     }
     let pad = if hi > lo {
         0.05 * (hi - lo)
     } else {
         1.0f64.max(hi.abs() * 0.1)
     };
-    lo - pad..hi + pad
+    (lo - pad).max(-AXIS_MAX)..(hi + pad).min(AXIS_MAX)
 }
 
 /// The extent of `values` without padding (for a time axis drawn edge to edge), or `None`
@@ -143,5 +150,23 @@ mod tests {
         assert_eq!(data_range([4.0].into_iter()), Some(3.5..4.5));
         assert_eq!(usable_span(1.0, 0.5), 0.5..1.5);
         assert_eq!(usable_span(0.0, 2.0), 0.0..2.0);
+    }
+
+    /// A reference line at `μ_st = f64::MAX` made the ν axis end at infinity, and drawing it
+    /// never finished.
+    #[test]
+    fn ranges_of_extreme_values_have_a_finite_span() {
+        for values in [
+            vec![0.115, f64::MAX],
+            vec![-f64::MAX, f64::MAX],
+            vec![f64::MAX],
+            vec![-f64::MAX, 0.0],
+        ] {
+            for log in [false, true] {
+                let r = padded_range(values.iter().copied(), log);
+                assert!((r.end - r.start).is_finite(), "{values:?} {log}: {r:?}");
+                assert!(r.start < r.end, "{values:?} {log}: {r:?}");
+            }
+        }
     }
 }

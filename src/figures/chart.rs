@@ -487,6 +487,18 @@ mod tests {
         assert_eq!(c.x_axis(), 0.2..0.5);
     }
 
+    /// `friction.mu_st = 1.7976931348623157e308` put that value on the ν axis, and drawing
+    /// never finished.
+    #[test]
+    fn a_reference_line_at_the_largest_float_is_drawn() {
+        let data = Line::new("ν", vec![(0.0, 0.1), (1.0, 0.115)], colors::BLUE);
+        let reference = Line::new("μ_st", vec![(0.0, f64::MAX), (1.0, f64::MAX)], colors::RED);
+        let c = chart_of(vec![reference.thin(), data], false);
+        let dir = tempfile::tempdir().unwrap();
+        render(&c, dir.path()).unwrap();
+        assert!(std::fs::metadata(dir.path().join("t.png")).unwrap().len() > 1000);
+    }
+
     #[test]
     fn an_empty_chart_is_drawn_with_its_note() {
         let mut c = chart_of(Vec::new(), true);

@@ -15,7 +15,7 @@ use std::thread::Scope;
 
 use equations::DIM;
 use equations::{
-    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState,
+    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState, Mode,
     RunOutcome, StopReason, TransitionRecord, Trigger,
 };
 use model_runtime::Model;
@@ -52,10 +52,18 @@ pub struct Outcome {
     pub last: Sample,
 }
 
-/// Converts one simulation sample.
-pub fn convert_sample(s: &DiskSample) -> Sample {
+/// Converts one simulation sample of a disk with dynamic friction `mu_d`.
+///
+/// The friction ratio ν is the friction law's: `μ_d` while sliding (where `T = μ_d N` holds by
+/// construction; `T/N` of the computed forces would be `0/0`, or `−μ_d` from round-off, at the
+/// located instant the contact is lost), `T/N` while rolling.
+pub fn convert_sample(s: &DiskSample, mu_d: f64) -> Sample {
     let f = &s.force;
     let friction = f.r_x.hypot(f.r_y);
+    let nu = match s.mode {
+        Mode::Sliding => mu_d,
+        Mode::Rolling => friction / f.normal,
+    };
     Sample {
         t: s.t,
         mode: s.mode,
@@ -67,7 +75,7 @@ pub fn convert_sample(s: &DiskSample) -> Sample {
         forces: ContactForces {
             normal: f.normal,
             friction,
-            nu: friction / f.normal,
+            nu,
             r_x: f.r_x,
             r_y: f.r_y,
         },
@@ -93,7 +101,7 @@ pub fn convert_event(r: &TransitionRecord) -> EventRow {
 }
 
 /// Converts the simulation's stop reason; `allowed` are the modes the run was allowed.
-pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes) -> Outcome {
+pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, mu_d: f64) -> Outcome {
     let mut mode = o.last.mode;
     let (reason, detail) = match o.stop {
         StopReason::ModeNotAllowed { t, mode: entered } => {
@@ -135,7 +143,7 @@ pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes) -> Outcome {
         steps: o.stats.steps,
         rhs_evals: o.stats.rhs_evals,
         constraint_drift_max: o.max_drift.max_abs(),
-        last: convert_sample(&o.last),
+        last: convert_sample(&o.last, mu_d),
     }
 }
 
@@ -166,6 +174,8 @@ struct ChannelObserver<'a, O> {
     flush_every: f64,
     /// States the models do not integrate: blanked in every sample.
     frozen: Vec<&'static str>,
+    /// Dynamic friction, the friction ratio of every sliding sample.
+    mu_d: f64,
     stop: &'a AtomicBool,
     /// Whether this observer stopped the run (the caller's stop flag or a closed channel).
     interrupted: bool,
@@ -192,7 +202,7 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     }
 
     fn on_sample(&mut self, sample: &DiskSample) {
-        let mut s = convert_sample(sample);
+        let mut s = convert_sample(sample, self.mu_d);
         if !self.frozen.is_empty() {
             s.forget(&self.frozen);
         }
@@ -230,7 +240,7 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
         simulate(models, self.config, self.initial, self.observer)
-            .map(|o| convert_outcome(&o, self.config.allowed))
+            .map(|o| convert_outcome(&o, self.config.allowed, models.params.mu_d))
             .map_err(|e| e.to_string())
     }
 }
@@ -267,6 +277,7 @@ pub fn simulate_into<O: Outlet>(
         flush_at: flush_every,
         flush_every,
         frozen: choice.frozen.clone(),
+        mu_d: scene.params.mu_d,
         stop,
         interrupted: false,
     };

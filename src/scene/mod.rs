@@ -103,13 +103,31 @@ pub enum SceneError {
         message: String,
     },
     /// One or more rules are broken.
-    #[error("scene `{name}` is invalid:\n  {}", issues.iter().map(|i| i.to_string()).collect::<Vec<_>>().join("\n  "))]
+    #[error("scene `{name}` is invalid:\n  {}", listed(issues))]
     Invalid {
         /// The scene.
         name: String,
         /// Every broken rule.
         issues: Vec<Issue>,
     },
+}
+
+/// The most issues an invalid scene lists; the rest are counted (a scene repeating one bad
+/// entry millions of times must not print a line for each).
+pub const MAX_LISTED_ISSUES: usize = 50;
+
+/// The issues one per line, the first [`MAX_LISTED_ISSUES`] of them, then how many more.
+fn listed(issues: &[Issue]) -> String {
+    let mut lines: Vec<String> = (issues.iter().take(MAX_LISTED_ISSUES))
+        .map(Issue::to_string)
+        .collect();
+    if issues.len() > MAX_LISTED_ISSUES {
+        lines.push(format!(
+            "... and {} more issues",
+            issues.len() - MAX_LISTED_ISSUES
+        ));
+    }
+    lines.join("\n  ")
 }
 
 impl SceneError {

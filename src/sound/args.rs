@@ -110,12 +110,15 @@ pub fn command(args: &SoundArgs) -> ExitCode {
     ) {
         Ok(report) => {
             if !args.run.quiet {
-                print!("{}", report.summary.table());
-                println!(
-                    "wrote {} files into {}",
+                let said = format!(
+                    "{}wrote {} files into {}\n",
+                    report.summary.table(),
                     report.files.len(),
                     args.run.out.display()
                 );
+                if let Err(code) = crate::args::print_out(&said) {
+                    return code;
+                }
             }
             ExitCode::SUCCESS
         }

@@ -180,7 +180,7 @@ impl ModelsTask for Recording<'_> {
             ..self.scene.config
         };
         let outcome = simulate(models, &config, &self.scene.initial, self.observer)?;
-        let stop = convert_outcome(&outcome, config.allowed).stop;
+        let stop = convert_outcome(&outcome, config.allowed, models.params.mu_d).stop;
         Ok((stop.reason, stop.detail))
     }
 }

@@ -12,7 +12,9 @@ use super::merge::merge;
 use super::run_sweep;
 use super::shard::Shard;
 use super::spec::{self, BUILTIN};
-use crate::args::{interrupt_on_ctrl_c, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED};
+use crate::args::{
+    interrupt_on_ctrl_c, print_out, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+};
 
 /// `eulerdisk sweep`.
 #[derive(Debug, Args)]
@@ -75,7 +77,9 @@ pub fn command(args: &SweepArgs) -> ExitCode {
                     .ok()
                     .and_then(|s| s.description)
                     .unwrap_or_default();
-                println!("{name:<20} {description}");
+                if let Err(code) = print_out(&format!("{name:<20} {description}\n")) {
+                    return code;
+                }
             }
             ExitCode::SUCCESS
         }
@@ -115,11 +119,14 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
         for (i, values) in d.points.iter().enumerate() {
             if Shard::selects(shard, i) {
                 let sets = run_arguments(d, values).join(" --set ");
-                println!(
-                    "{} run {} --set {sets}",
+                let line = format!(
+                    "{} run {} --set {sets}\n",
                     super::expand::PointId(i).name(),
                     d.scene_name
                 );
+                if let Err(code) = print_out(&line) {
+                    return code;
+                }
             }
         }
         return ExitCode::SUCCESS;
@@ -154,14 +161,17 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
         Ok(report) => {
             let e = report.exec;
             if !args.quiet {
-                println!(
-                    "{} of {} runs done now ({} failed or timed out), {} already done; table in {}",
+                let said = format!(
+                    "{} of {} runs done now ({} failed or timed out), {} already done; table in {}\n",
                     e.ran,
                     e.points,
                     e.failed,
                     e.skipped,
                     report.dir.join(super::store::TABLE_FILE).display()
                 );
+                if let Err(code) = print_out(&said) {
+                    return code;
+                }
             }
             if e.interrupted {
                 eprintln!(
@@ -185,8 +195,8 @@ fn merge_command(args: &MergeArgs) -> ExitCode {
         Ok((_, _, report)) => report,
         Err(e) => return input_error(e),
     };
-    println!(
-        "merged {} rows of {} points from {} folders into {}",
+    let mut said = format!(
+        "merged {} rows of {} points from {} folders into {}\n",
         report.rows,
         report.points,
         report.inputs.len(),
@@ -194,12 +204,12 @@ fn merge_command(args: &MergeArgs) -> ExitCode {
     );
     if !report.missing.is_empty() {
         let names: Vec<String> = report.missing.iter().map(|p| p.name()).collect();
-        println!("missing ({}): {}", names.len(), names.join(" "));
+        said += &format!("missing ({}): {}\n", names.len(), names.join(" "));
     }
     for d in &report.duplicates {
         let dirs: Vec<String> = d.dirs.iter().map(|p| p.display().to_string()).collect();
-        println!(
-            "duplicated: {} in {} ({})",
+        said += &format!(
+            "duplicated: {} in {} ({})\n",
             d.point.name(),
             dirs.join(", "),
             if d.agree {
@@ -208,6 +218,9 @@ fn merge_command(args: &MergeArgs) -> ExitCode {
                 "DIFFERENT numbers: the first is kept"
             }
         );
+    }
+    if let Err(code) = print_out(&said) {
+        return code;
     }
     if report.complete() {
         ExitCode::SUCCESS

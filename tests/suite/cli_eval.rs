@@ -238,3 +238,30 @@ proptest! {
         let _ = parse_named_numbers("--state", &text, &["theta"]);
     }
 }
+
+/// A full standard output (the device that is always full stands for a full disk) makes the
+/// answer unprintable: a failure said on standard error, exit 1, not a panic (exit 101). A
+/// closed pipe fails the same way (`EPIPE` instead of `ENOSPC`) but cannot be tested without a
+/// race: a concurrently forked process may hold the pipe's read end open for a moment.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_standard_output_is_a_failure_not_a_panic() {
+    for args in [
+        &["eval", "--mode", "rolling", "--state", PAPER_STATE][..],
+        &["scenes"][..],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+            .args(args)
+            .stdout(full)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains("cannot write to standard output"), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}

@@ -447,3 +447,35 @@ fn bad_event_specs_are_input_errors_naming_the_problem() {
         assert!(out.stdout.is_empty(), "{spec:?}");
     }
 }
+
+/// Settings `model solve` cannot use are input errors (exit 2) naming the setting, found
+/// before any integration: an end time before the start, a negative sampling step (read as
+/// the step, not as a flag), a negative tolerance, a model with too many states.
+#[test]
+fn unusable_solve_settings_are_input_errors() {
+    let (_dir, path) = file(DROP);
+    let states: Vec<String> = (0..33).map(|i| format!("x{i}")).collect();
+    let many = format!(
+        "mod many {{ states {{ {} }} equations {{ {} }} }}",
+        states.join(", "),
+        states
+            .iter()
+            .map(|s| format!("der({s}) = 0;"))
+            .collect::<String>()
+    );
+    let (_many_dir, many_path) = file(&many);
+    for (file, args, needle) in [
+        (&path, &["--t-end", "-1"][..], "time span [0, -1]"),
+        (&path, &["--t-end", "1", "--dt", "-0.1"], "--dt -0.1"),
+        (&path, &["--t-end", "1", "--rtol", "-1"], "-1"),
+        (&many_path, &["--t-end", "1"], "has 33 states"),
+    ] {
+        let mut all = vec!["solve", arg(file)];
+        all.extend_from_slice(args);
+        let out = model(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+}

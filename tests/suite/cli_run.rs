@@ -396,6 +396,73 @@ fn ctrl_c_keeps_what_was_complete() {
     );
 }
 
+/// SIGTERM (what a service manager or `timeout` sends) stops the run as Ctrl-C does: the
+/// files are completed and renamed, none is left under its temporary `.partial-*` name.
+#[test]
+fn a_termination_signal_keeps_what_was_complete() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--quiet", "--rtol", "1e-13", "--atol", "1e-15"])
+        .args(["--out", out.to_str().unwrap()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let waiting = Instant::now();
+    while !out.exists() && waiting.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(500));
+    let sent = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    let names: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        names.iter().all(|n| !n.starts_with(".partial-")),
+        "{names:?}"
+    );
+    let summary = fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"stop_reason\": \"interrupted\""));
+}
+
+/// The paper's slip reading loses contact while sliding at t = 18.159 s, a completed run. At
+/// the located instant N is zero to round-off, and T/N of the computed forces was 0/0 (NaN) or
+/// −μ_d; ν is the friction law's μ_d on every sliding row, the last one included.
+#[test]
+fn the_friction_ratio_at_contact_loss_is_the_laws() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--quiet", "--no-figures", "--t-end", "20"])
+        .args([
+            "--set",
+            "run.slip_sign=paper",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.contains("contact_lost"), "{err}");
+    let (header, rows) = csv(&out.join("trajectory.csv"));
+    let nu = header.iter().position(|h| h == "nu_ratio").unwrap();
+    for row in rows.iter().filter(|r| r[1] == "sliding") {
+        assert_eq!(row[nu], "0.115", "{row:?}");
+    }
+    let text = fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    assert!(!text.to_lowercase().contains("nan"));
+}
+
 #[test]
 fn every_builtin_scene_is_listed() {
     let o = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))

@@ -148,6 +148,36 @@ fn each_rule_names_its_key() {
         "run.t_end",
         "shorten `run.t_end` to at most 5000 s",
     );
+    // t_end × rate overflows to infinity: over the sample limit too, not past its check.
+    expect_key(
+        with_override("run.t_end=1e306"),
+        "run.t_end",
+        "more than the sample limit",
+    );
+    // Finite, but the inertia m a² is not (the run started with V_X = inf).
+    expect_key(
+        with_override("disk.a=1.7976931348623157e308"),
+        "disk.a",
+        "the inertia `disk.m` × `disk.a`^2 or the weight moment",
+    );
+    // Every rule holds for each value, but the completed velocity a × Ω is infinite.
+    expect_key(
+        parse_scene(
+            "t",
+            PAPER,
+            &[
+                Override::parse("disk.a=1e150").unwrap(),
+                Override::parse("initial.Omega_z=1e160").unwrap(),
+            ],
+        ),
+        "initial.V_Y",
+        "(their products overflow)",
+    );
+    expect_key(
+        with_override("solver.guard_checks=\"exact:4294967295\""),
+        "solver.guard_checks",
+        "the guard-check limit",
+    );
     expect_key(
         with_override("initial.Z=0.02"),
         "initial.Z",
@@ -356,4 +386,20 @@ proptest! {
     fn random_text_never_panics(text in ".{0,200}") {
         let _ = parse_scene("t", &text, &[]);
     }
+}
+
+/// A scene repeating one entry a thousand times gets one issue per repeat, but the error lists
+/// the first `MAX_LISTED_ISSUES` and counts the rest (11 M repeats printed 522 MB).
+#[test]
+fn a_long_list_of_issues_is_capped_and_counted() {
+    let list = vec!["\"theta\""; 1000].join(", ");
+    let err = with_override(&format!("output.quantities=[{list}]")).unwrap_err();
+    let text = err.to_string();
+    assert_eq!(err.keys().len(), 999);
+    let limit = eulerdisk::MAX_LISTED_ISSUES;
+    assert_eq!(text.lines().count(), 1 + limit + 1, "{text}");
+    assert!(
+        text.ends_with(&format!("... and {} more issues", 999 - limit)),
+        "{text}"
+    );
 }

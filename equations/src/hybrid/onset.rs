@@ -29,11 +29,18 @@ pub struct SlipOnset {
     pub direction: f64,
     /// The first guess: the direction of the friction rolling needed, `α_r`.
     pub guess: f64,
-    /// Contact acceleration at `α0`; `across` is zero to round-off, `along > 0`.
+    /// Contact acceleration at `α0`; `across` is zero to round-off, and `along > 0` unless the
+    /// onset is of second order.
     pub acceleration: SlipAcceleration,
     /// Whether small deviations from `α0` die out as the slip grows (`dw/dα < 0` at the root),
     /// so that the onset does not depend on how exactly sliding is started.
     pub attracting: bool,
+    /// Whether the slip leaves zero at second order: `|v̇_C|` at `α0` is below 1e-9 of the
+    /// contact acceleration with the friction reversed, i.e. zero to round-off. This is the
+    /// onset at `μ_st = μ_d` (docs/physics.md §7.1): sliding friction equals the friction that
+    /// rolling needed, the contact accelerates by nothing at first order, and the slip grows as
+    /// `½ v̈_C s²` from the friction limit on. `acceleration.along` is then no usable rate.
+    pub second_order: bool,
     /// Evaluations of the sliding model spent.
     pub evaluations: u32,
 }
@@ -41,25 +48,12 @@ pub struct SlipOnset {
 /// Why no consistent onset direction exists.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum OnsetError {
-    /// No direction has `w = 0` with `v̇_C > 0`: the slip cannot start in any direction.
+    /// No direction has `w = 0` with `v̇_C > 0` (or `v̇_C` zero to round-off): the slip cannot
+    /// start in any direction.
     #[error("no consistent slip direction: no root of w(alpha) with dv_C/dt > 0 (searched around alpha_r = {guess})")]
     NoConsistentDirection {
         /// The direction of the friction rolling needed.
         guess: f64,
-    },
-    /// A consistent direction exists but the slip would not grow from it: its rate `v̇_C` is
-    /// below 1e-9 of the contact acceleration (as when `μ_st = μ_d`, where the friction sliding
-    /// gets is the friction rolling needed, and the slip grows only at second order). Sliding
-    /// cannot be started by a bridge at constant slip acceleration: it would last
-    /// `2δ / v̇_C`, seconds to hours, unguarded.
-    #[error("the slip would not grow at onset: dv_C/dt = {along:e} m/s^2 at alpha = {direction} is below 1e-9 of the contact acceleration with friction reversed, {scale:e} m/s^2 (static and dynamic friction (nearly) equal?)")]
-    NoSlipGrowth {
-        /// The consistent direction found (rad).
-        direction: f64,
-        /// `v̇_C` there (m/s²).
-        along: f64,
-        /// The size of the contact acceleration with the friction reversed (m/s²).
-        scale: f64,
     },
     /// The sliding model failed at a probed direction.
     #[error("sliding model failed at alpha = {alpha}: {source}")]
@@ -74,42 +68,38 @@ pub enum OnsetError {
 /// Angular resolution of the outward scan: two roots closer than this may be seen as none.
 const SCAN_STEP: f64 = PI / 90.0;
 
-/// A slip rate `v̇_C` at onset below this fraction of the contact acceleration's size does not
-/// start the slip at first order: it is round-off (~1e-15 of it) or a friction jump
-/// `μ_st − μ_d` below ~1e-10, and a bridge to the stick threshold would last seconds.
+/// A slip rate `|v̇_C|` at onset below this fraction of the contact acceleration's size is zero
+/// to round-off (~1e-15 of it) or a friction jump `μ_st − μ_d` below ~1e-10: the slip leaves
+/// zero at second order ([`SlipOnset::second_order`]).
 const DEGENERATE_GROWTH: f64 = 1e-9;
 
 /// Finds the consistent slip direction nearest `guess` (docs/physics.md §7.1).
 ///
 /// `accel(α)` must return the contact acceleration at zero slip with friction direction `α`.
-/// If `w(guess)` already vanishes to round-off (e.g. by symmetry) `guess` is returned as is.
-/// Otherwise the scan walks outward from `guess` in both directions in steps of 2°, and the
-/// first bracket of a sign change of `w` whose root has `v̇_C > 0` is refined to a few ulps.
-/// A root whose `v̇_C` is below 1e-9 of the size of the contact acceleration with the friction
-/// reversed (one more evaluation, at `α0 + π`) is refused as [`OnsetError::NoSlipGrowth`]:
-/// the slip would not leave zero at first order.
+/// The size of the contact acceleration with the friction reversed (at `guess + π`) sets the
+/// scale of round-off. If `w(guess)` already vanishes to round-off (e.g. by symmetry) `guess`
+/// is returned as is. Otherwise the scan walks outward from `guess` in both directions in steps
+/// of 2°, and the first bracket of a sign change of `w` whose root has `v̇_C > 0` is refined to
+/// a few ulps. A root whose `|v̇_C|` is below 1e-9 of the scale counts as `v̇_C = 0` (its sign
+/// is round-off) and is admissible: the slip leaves it at second order, which the caller must
+/// start differently ([`SlipOnset::second_order`]).
 pub fn consistent_slip_direction(
     guess: f64,
     mut accel: impl FnMut(f64) -> Result<SlipAcceleration, EvalError>,
 ) -> Result<SlipOnset, OnsetError> {
-    let mut onset = nearest_root(guess, &mut accel)?;
-    let alpha = onset.direction + PI;
+    let alpha = guess + PI;
     let reversed = accel(alpha).map_err(|source| OnsetError::Model { alpha, source })?;
+    let floor = DEGENERATE_GROWTH * reversed.along.hypot(reversed.across);
+    let mut onset = nearest_root(guess, floor, &mut accel)?;
     onset.evaluations += 1;
-    let scale = reversed.along.hypot(reversed.across);
-    if onset.acceleration.along <= DEGENERATE_GROWTH * scale {
-        return Err(OnsetError::NoSlipGrowth {
-            direction: onset.direction,
-            along: onset.acceleration.along,
-            scale,
-        });
-    }
+    onset.second_order = onset.acceleration.along <= floor;
     Ok(onset)
 }
 
-/// The root of `w` with `v̇_C > 0` nearest `guess` (see [`consistent_slip_direction`]).
+/// The root of `w` with `v̇_C > -floor` nearest `guess` (see [`consistent_slip_direction`]).
 fn nearest_root(
     guess: f64,
+    floor: f64,
     mut accel: impl FnMut(f64) -> Result<SlipAcceleration, EvalError>,
 ) -> Result<SlipOnset, OnsetError> {
     let mut evaluations = 0u32;
@@ -119,13 +109,14 @@ fn nearest_root(
     };
     let at_guess = eval(guess)?;
     let scale = at_guess.along.hypot(at_guess.across);
-    if at_guess.along > 0.0 && at_guess.across.abs() <= 8.0 * f64::EPSILON * scale {
+    if at_guess.along > -floor && at_guess.across.abs() <= 8.0 * f64::EPSILON * scale {
         let right = eval(guess + SCAN_STEP)?;
         return Ok(SlipOnset {
             direction: guess,
             guess,
             acceleration: at_guess,
             attracting: right.across < 0.0,
+            second_order: false,
             evaluations,
         });
     }
@@ -152,7 +143,7 @@ fn nearest_root(
                 None => true,
                 Some((b, _, _)) => (root - guess).abs() < (b - guess).abs(),
             };
-            if at_root.along > 0.0 && nearer {
+            if at_root.along > -floor && nearer {
                 // w falls through zero as alpha grows: deviations shrink (dα/d ln t = w/v̇_C).
                 best = Some((root, at_root, f_lo.across > 0.0));
             }
@@ -163,6 +154,7 @@ fn nearest_root(
                 guess,
                 acceleration,
                 attracting,
+                second_order: false,
                 evaluations,
             });
         }
@@ -252,22 +244,26 @@ mod tests {
         ));
     }
 
+    /// Sliding friction equal to what rolling needed (`μ_st = μ_d`): the contact acceleration
+    /// vanishes at `α_r` itself, `v̇_C` there is round-off of either sign, and the root is
+    /// still the onset, of second order. A `v̇_C` just above round-off is first order.
     #[test]
-    fn a_slip_that_would_not_grow_is_a_typed_error() {
-        // The consistent root at π has v̇_C at round-off; reversed, the contact accelerates
-        // at 2 m/s².
-        let f = |alpha: f64| {
-            Ok(SlipAcceleration {
-                along: 1e-13 - (1.0 + 1e-13) * (1.0 + alpha.cos()),
-                across: (alpha - PI).sin(),
-            })
-        };
-        let result = consistent_slip_direction(PI + 0.1, f);
-        assert!(
-            matches!(result, Err(OnsetError::NoSlipGrowth { along, scale, .. })
-                if along.abs() < 1e-12 && (scale - 2.0).abs() < 1e-9),
-            "{result:?}"
-        );
+    fn a_slip_rate_at_round_off_is_a_second_order_onset() {
+        for (jump, second_order) in [(0.0, true), (-3e-14, true), (3e-14, true), (1e-6, false)] {
+            // G f − G f_r, with G the isotropic unit response and f_r along α_r = π, plus a
+            // friction jump along the slip.
+            let f = move |alpha: f64| {
+                let (s, c) = f64::sin_cos(alpha);
+                let acc = [c + 1.0, s];
+                Ok(SlipAcceleration {
+                    along: jump - (acc[0] * c + acc[1] * s),
+                    across: acc[0] * s - acc[1] * c,
+                })
+            };
+            let onset = consistent_slip_direction(PI + 0.1, f).unwrap();
+            assert!((onset.direction - PI).abs() < 1e-12, "{jump}: {onset:?}");
+            assert_eq!(onset.second_order, second_order, "{jump}: {onset:?}");
+        }
     }
 
     #[test]

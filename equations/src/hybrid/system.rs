@@ -249,7 +249,8 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
     }
 
     /// Starts sliding from zero slip at `state` (rolling variables, on the constraints): finds
-    /// the consistent direction nearest `guess` and plans the bridge of the slip to `2δ`.
+    /// the consistent direction nearest `guess` and plans the bridge of the slip to `2δ` (none
+    /// for an onset of second order: sliding proper starts at once with the slip `2δ`).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn begin_sliding(
         &mut self,
@@ -285,8 +286,14 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             },
             counted,
         );
-        let next =
-            self.bridge_into_sliding(t, &state, onset.direction, onset.acceleration.along)?;
+        // A second-order onset (μ_st = μ_d at the friction limit, docs/physics.md §7.1) has
+        // no first-order rate to bridge with: sliding starts at once.
+        let along = if onset.second_order {
+            0.0
+        } else {
+            onset.acceleration.along
+        };
+        let next = self.bridge_into_sliding(t, &state, onset.direction, along)?;
         Ok(SlidingStart { decision, next })
     }
 

@@ -158,11 +158,32 @@ impl InitialTable {
             return None;
         }
 
-        let no_slip = no_slip_velocity(p, &state.y);
-        if gives_velocity {
+        let start = self.finish(p, state);
+        // Finite values can still complete to infinite ones (a radius of 1e308 times a rate).
+        let completed = self.named().map(|(name, index, _)| {
+            let value = match (index, name) {
+                (Some(i), _) => start.state.y[i],
+                (None, "v_C") => start.state.slip.speed,
+                (None, _) => start.state.slip.direction,
+            };
+            (name, value)
+        });
+        for (name, value) in completed {
+            if !value.is_finite() {
+                c.push(&key(name), Rule::CompletesNonFinite { value });
+            }
+        }
+        (c.issues.len() == before).then_some(start)
+    }
+
+    /// The completed start from `state`, which holds the given values and satisfies the
+    /// height and vertical-velocity constraints.
+    fn finish(&self, p: &DiskParams, mut state: PhysicalState) -> InitialState {
+        if self.V_X.is_some() || self.V_Y.is_some() {
+            let no_slip = no_slip_velocity(p, &state.y);
             state.y[V_X] = self.V_X.unwrap_or(no_slip[0]);
             state.y[V_Y] = self.V_Y.unwrap_or(no_slip[1]);
-            return Some(InitialState::from_velocity(p, 0.0, state.y));
+            return InitialState::from_velocity(p, 0.0, state.y);
         }
         match self.v_C.filter(|v| *v > 0.0) {
             Some(speed) => {
@@ -170,11 +191,11 @@ impl InitialTable {
                     speed,
                     direction: self.alpha.unwrap_or(0.0),
                 };
-                Some(InitialState::sliding(p, 0.0, state.y, slip))
+                InitialState::sliding(p, 0.0, state.y, slip)
             }
             None => {
                 state.project(p, Mode::Rolling);
-                Some(InitialState::rolling(0.0, state.y))
+                InitialState::rolling(0.0, state.y)
             }
         }
     }
@@ -226,6 +247,29 @@ mod tests {
         assert!(vc_x.abs() < 1e-15 && vc_y.abs() < 1e-15);
         assert_eq!(start.state.slip.speed, 0.0);
         assert_eq!(start.state.residuals(&p, Mode::Rolling).max_abs(), 0.0);
+    }
+
+    /// Every given value is finite and every rule holds, but `a × Ω` overflows: the completed
+    /// velocity is named, and no state comes out.
+    #[test]
+    fn a_start_that_completes_to_infinity_is_refused_naming_the_value() {
+        let p = DiskParams {
+            a: f64::MAX,
+            ..params()
+        };
+        let spinning = InitialTable {
+            Omega_z: Some(-20.0),
+            ..table(0.5)
+        };
+        let mut c = Checks::default();
+        assert!(spinning.complete(&p, &mut c).is_none());
+        let keys: Vec<&str> = c.issues.iter().map(|i| i.key.as_str()).collect();
+        assert!(keys.contains(&"initial.V_X"), "{keys:?}");
+        let text = c.issues[0].to_string();
+        assert!(
+            text.contains("`disk.a`") && text.contains("overflow"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -174,8 +174,13 @@ impl SceneSettings {
         if !c.positive("run.sample_rate", run.sample_rate) {
             return;
         }
+        if !(run.t_end.is_finite() && run.t_end > 0.0) {
+            // `run.t_end` has its own issue.
+            return;
+        }
+        // May overflow to infinity, which is over the limit too.
         let samples = run.t_end * run.sample_rate;
-        if samples.is_finite() && samples > MAX_RECORDED_SAMPLES {
+        if samples > MAX_RECORDED_SAMPLES {
             // Blame the key that left its usual value: a raised rate, else the duration.
             let key = if run.sample_rate > RunTable::DEFAULT_SAMPLE_RATE {
                 "run.sample_rate"

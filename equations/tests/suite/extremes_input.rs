@@ -127,5 +127,8 @@ fn an_absurd_sample_rate_is_rejected_by_name() {
     let result = simulate(&models(p), &config, &InitialState::paper(&p), &mut ());
     let error = result.unwrap_err();
     assert_eq!(keys(&error), ["run.sample_rate"], "{error}");
-    assert!(error.to_string().contains("more than 1e9"), "{error}");
+    assert!(
+        error.to_string().contains("more than the sample limit 1e9"),
+        "{error}"
+    );
 }

@@ -18,6 +18,11 @@ pub enum InteriorChecks {
 }
 
 impl InteriorChecks {
+    /// The guard-check limit: the most interior points a step may be checked at. Each exact
+    /// point costs an evaluation of the model per step; at this limit that is already a
+    /// hundred times the work of a Runge–Kutta step, and `exact:4294967295` would never finish.
+    pub const MAX_POINTS: u32 = 1024;
+
     /// Number of interior points.
     pub fn points(self) -> u32 {
         match self {
@@ -42,15 +47,23 @@ impl std::str::FromStr for InteriorChecks {
     type Err = ParseSettingError;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = || ParseSettingError {
+        let bad = || {
+            ParseSettingError {
             setting: "guard checks",
             text: s.to_owned(),
-            expected: "none, exact:N or screened:N with N a whole number",
+            expected: "none, exact:N or screened:N with N a whole number up to 1024 (the guard-check limit)",
+        }
+        };
+        let points = |n: &str| {
+            n.parse::<u32>()
+                .ok()
+                .filter(|&n| n <= Self::MAX_POINTS)
+                .ok_or_else(bad)
         };
         match s.split_once(':') {
             None if s == "none" => Ok(InteriorChecks::None),
-            Some(("exact", n)) => n.parse().map(InteriorChecks::Exact).map_err(|_| bad()),
-            Some(("screened", n)) => n.parse().map(InteriorChecks::Screened).map_err(|_| bad()),
+            Some(("exact", n)) => points(n).map(InteriorChecks::Exact),
+            Some(("screened", n)) => points(n).map(InteriorChecks::Screened),
             _ => Err(bad()),
         }
     }
@@ -211,9 +224,18 @@ mod tests {
             "exact:-1",
             "screened:2.5",
             "fast:3",
+            "exact:1025",
+            "exact:4294967295",
+            "screened:4294967296",
         ] {
             let e = bad.parse::<InteriorChecks>().unwrap_err();
             assert!(e.to_string().contains(&format!("{bad:?}")), "{e}");
+            let limit = format!(
+                "up to {} (the guard-check limit)",
+                InteriorChecks::MAX_POINTS
+            );
+            assert!(e.to_string().contains(&limit), "{e}");
         }
+        assert_eq!("exact:1024".parse(), Ok(InteriorChecks::Exact(1024)));
     }
 }

@@ -12,11 +12,11 @@ use model_runtime::{EvalError, EventHit, Model, Transition};
 
 /// The longest bridge (s). A bridge moves the state along a constant derivative, so it is exact
 /// only while the state barely changes; its duration is `2δ / |v̇_C|`, about `2e-9` s at the
-/// usual accelerations. When the slip's acceleration vanishes to round-off (a degenerate onset,
-/// e.g. `μ_st = μ_d` at the friction limit) the duration runs away — hours, during which the
-/// disk would fly on a straight line with no other guard. Beyond this bound sliding starts at
-/// once with the slip `2δ`, an error of `2δ` in the slip speed: the size the stick threshold
-/// already accepts.
+/// usual accelerations. When the slip's acceleration is small (static friction barely above
+/// dynamic friction) the duration runs away — at `μ_st − μ_d = 1e-9` it would be seconds, during
+/// which the disk would fly on a straight line with no other guard. Beyond this bound, and at an
+/// onset of second order (`v̇_C = 0`, docs/physics.md §7.1), sliding starts at once with the
+/// slip `2δ`, an error of `2δ` in the slip speed: the size the stick threshold already accepts.
 const MAX_BRIDGE: f64 = 1e-6;
 
 /// What happens when a bridge ends.
@@ -51,7 +51,8 @@ pub(crate) type BridgeStart = Result<Entry, Halt>;
 
 impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
     /// Plans a bridge from zero slip to `|v_C| = 2δ` along `e_s(direction)`, the slip speed
-    /// signed like `along` (its rate), and returns the bridge's first state.
+    /// signed like `along` (its rate), and returns the bridge's first state. A rate of `+0.0`
+    /// (an onset of second order) starts sliding proper at once with the slip `+2δ`.
     pub(super) fn bridge_into_sliding(
         &mut self,
         t: f64,
@@ -59,7 +60,7 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
         direction: f64,
         along: f64,
     ) -> Result<BridgeStart, EvalError> {
-        if !(along != 0.0 && along.is_finite()) {
+        if !along.is_finite() {
             return Ok(Err(Halt::Onset {
                 t,
                 source: OnsetError::NoConsistentDirection { guess: direction },
