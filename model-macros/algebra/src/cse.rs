@@ -302,7 +302,10 @@ impl<'a> Emitter<'a> {
     ) -> Option<ExprId> {
         let mut uses: HashMap<u64, (usize, usize)> = HashMap::new();
         for (c, factors) in split {
-            if c.abs() != 1.0 && !factors.is_empty() {
+            // Only a finite coefficient can be pulled out: `c / common` is exactly `±1` for a
+            // finite one, but NaN for an infinite one (`1e308*10` folds to inf), and a NaN
+            // coefficient would be refactored again without end.
+            if c.abs() != 1.0 && c.is_finite() && !factors.is_empty() {
                 let entry = uses.entry(c.abs().to_bits()).or_default();
                 entry.0 += 1;
                 entry.1 += usize::from(*c < 0.0);

@@ -1,0 +1,61 @@
+//! Hostile models: whatever the text, the front end and the compiler answer (a model or located
+//! errors) without a panic, a hang or a stack overflow, and within the limits they state.
+
+use model_algebra::CompiledModel;
+use model_dsl::{Located, Source};
+
+/// Compiles `text` on a thread with a 2 MiB stack (the test harness's default, smaller than
+/// rustc's or a program's main thread), so that a recursion the limits do not bound fails here.
+fn compile(text: &str) -> Result<Vec<CompiledModel>, Vec<Located>> {
+    let text = text.to_string();
+    std::thread::Builder::new()
+        .stack_size(2 << 20)
+        .spawn(move || {
+            Source::new("hostile.dsl", text)
+                .compile()
+                .map(|models| models.into_iter().map(|m| m.compiled).collect())
+                .map_err(|errors| errors.0)
+        })
+        .unwrap()
+        .join()
+        .expect("no panic")
+}
+
+fn errors(text: &str) -> Vec<Located> {
+    match compile(text) {
+        Ok(_) => panic!("must be rejected: {text}"),
+        Err(errors) => errors,
+    }
+}
+
+#[test]
+fn constants_that_fold_to_infinity_are_errors_at_their_tokens() {
+    for (text, at, message) in [
+        (
+            "mod m { states { x, y } equations { der(x) = 1e308*10*x + 1e308*10*y; der(y) = x; } }",
+            "1e308*10",
+            "this constant expression is not finite",
+        ),
+        (
+            "mod m { states { x, y } equations { der(x) = 2^1e16*x + 2^1e16*y; der(y) = x; } }",
+            "2^1e16",
+            "this constant expression is not finite",
+        ),
+        (
+            "mod m { states { x, y } equations { der(x) = x*1e308*10 - y*1e308*10; der(y) = x; } }",
+            "x*1e308*10",
+            "a constant factor or term of this expression is not finite",
+        ),
+        (
+            "mod m { params { a = 1 } states { x, y } equations { der(x) = a*10*x + a*10*y; der(y) = x; }
+                 variant v { keep { x } fix { a = 1e308 } } }",
+            "a*10",
+            "this constant expression is not finite",
+        ),
+    ] {
+        let found = errors(text);
+        let column = text.find(at).unwrap() + 1;
+        assert_eq!((found[0].column, found[0].width), (column, at.len()), "{text}: {found:#?}");
+        assert!(found[0].message.contains(message), "{found:#?}");
+    }
+}
