@@ -29,6 +29,7 @@ mod ast;
 mod chart;
 mod compile;
 mod expr;
+mod limits;
 mod names;
 mod options;
 mod parse;
@@ -47,6 +48,7 @@ pub use ast::{
     When,
 };
 pub use compile::{compile, compile_all};
+pub use limits::{MAX_DEPTH, MAX_TOKENS};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
 pub use switched::{

@@ -59,14 +59,31 @@ impl ToTokens for SpanRange {
 #[derive(Clone, Debug, Default)]
 pub struct Spans {
     ranges: Vec<SpanRange>,
+    /// The depth of the expression each node roots (1 for a leaf).
+    depths: Vec<u32>,
+    /// How many expressions the parser is inside of (see [`crate::limits::MAX_DEPTH`]).
+    pub(crate) nesting: u32,
 }
 
 impl Spans {
     /// Hands out a fresh id for a node covering `range`.
     pub fn push(&mut self, range: SpanRange) -> NodeId {
+        self.push_over(range, &[])
+    }
+
+    /// Hands out a fresh id for a node covering `range` whose operands are `children`.
+    pub(crate) fn push_over(&mut self, range: SpanRange, children: &[NodeId]) -> NodeId {
         let id = NodeId(self.ranges.len() as u32);
+        let below = children.iter().map(|&c| self.depth(c)).max().unwrap_or(0);
         self.ranges.push(range);
+        self.depths.push(below.saturating_add(1));
         id
+    }
+
+    /// The depth of the expression node `id` roots: 1 for a number or a name, one more than
+    /// its deepest operand otherwise (0 for an id this table never handed out).
+    pub fn depth(&self, id: NodeId) -> u32 {
+        self.depths.get(id.0 as usize).copied().unwrap_or(0)
     }
 
     /// The range of `id`; `None` for an id this table never handed out.

@@ -54,6 +54,7 @@ pub(crate) fn validate_one(ast: &ModelAst) -> syn::Result<Validated> {
         let_props: BTreeMap::new(),
         output_props: Vec::new(),
     };
+    crate::limits::check_let_depth(ast)?;
     validator.check_item_docs();
     validator.declare_all();
     validator.check_let_cycles();

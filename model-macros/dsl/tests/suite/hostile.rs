@@ -59,3 +59,67 @@ fn constants_that_fold_to_infinity_are_errors_at_their_tokens() {
         assert!(found[0].message.contains(message), "{found:#?}");
     }
 }
+
+/// `der(x) = EXPR;` in a one-state model.
+fn with_rhs(rhs: &str) -> String {
+    format!("mod m {{ states {{ x }} equations {{ der(x) = {rhs}; }} }}")
+}
+
+#[test]
+fn deep_nesting_is_an_error_naming_the_limit() {
+    let n = 10_000;
+    let tower: Vec<&str> = vec!["x"; n];
+    let sum: Vec<&str> = vec!["x"; 100_000];
+    for text in [
+        with_rhs(&format!("{}x{}", "(".repeat(n), ")".repeat(n))),
+        with_rhs(&format!("{}x{}", "sin(".repeat(n), ")".repeat(n))),
+        with_rhs(&format!("{}x", "-".repeat(n))),
+        with_rhs(&tower.join("^")),
+        with_rhs(&sum.join(" + ")),
+        with_rhs(&format!("{}x{}", "der(".repeat(n), ")".repeat(n))),
+        with_rhs(&format!("{}x{}", "if(x > 0, ".repeat(n), ", 1)".repeat(n))),
+        with_rhs(&format!("{}x{}", "if(".repeat(n), " > 0, 1, 2)".repeat(n))),
+    ] {
+        let found = errors(&text);
+        assert_eq!(found.len(), 1, "{found:#?}");
+        assert!(
+            found[0].message.contains("limit MAX_DEPTH is 256"),
+            "{}",
+            found[0]
+        );
+    }
+}
+
+#[test]
+fn a_long_chain_of_lets_is_an_error_naming_the_limit() {
+    let lets: String = (1..10_000)
+        .map(|k| format!("let a{k} = sin(a{});\n", k - 1))
+        .collect();
+    let text =
+        format!("mod m {{ states {{ x }} let a0 = x;\n{lets} equations {{ der(x) = a9999; }} }}");
+    let found = errors(&text);
+    assert_eq!(found.len(), 1, "{found:#?}");
+    assert!(found[0].message.starts_with("let `a"), "{}", found[0]);
+    assert!(
+        found[0].message.contains("limit MAX_DEPTH is 256"),
+        "{}",
+        found[0]
+    );
+}
+
+#[test]
+fn nesting_up_to_the_limit_compiles() {
+    // The deepest expression allowed, through every stage, on a 2 MiB stack.
+    let depth = model_dsl::MAX_DEPTH as usize - 3;
+    let text = with_rhs(&format!("{}x{}", "sin(".repeat(depth), ")".repeat(depth)));
+    assert!(compile(&text).is_ok());
+    let terms: Vec<&str> = vec!["x"; 200];
+    assert!(compile(&with_rhs(&terms.join(" - "))).is_ok());
+    // Lets of lets, up to the limit.
+    let lets: String = (1..120)
+        .map(|k| format!("let a{k} = 2*a{};\n", k - 1))
+        .collect();
+    let text =
+        format!("mod m {{ states {{ x }} let a0 = x;\n{lets} equations {{ der(x) = a119; }} }}");
+    assert!(compile(&text).is_ok());
+}
