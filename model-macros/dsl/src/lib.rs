@@ -29,6 +29,7 @@ mod ast;
 mod chart;
 mod compile;
 mod expr;
+mod lexical;
 mod limits;
 mod names;
 mod options;

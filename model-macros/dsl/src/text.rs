@@ -90,10 +90,13 @@ impl Source {
 
     /// The model's tokens; a lexical error (an unclosed brace, a stray quote) is located.
     pub fn tokens(&self) -> Result<TokenStream, LocatedErrors> {
-        let tokens = self
-            .text
-            .parse::<TokenStream>()
-            .map_err(|error| LocatedErrors(vec![self.locate(error.span(), &error.to_string())]))?;
+        let tokens = self.text.parse::<TokenStream>().map_err(|error| {
+            let located = match crate::lexical::first_problem(&self.text, self.rust) {
+                Some(problem) => self.located_at(problem),
+                None => self.locate(error.span(), &error.to_string()),
+            };
+            LocatedErrors(vec![located])
+        })?;
         if !self.rust {
             return Ok(tokens);
         }
@@ -148,6 +151,23 @@ impl Source {
                 .map(|error| self.locate(error.span(), &error.to_string()))
                 .collect(),
         )
+    }
+
+    /// A lexical problem, under its one character.
+    fn located_at(&self, problem: crate::lexical::LexProblem) -> Located {
+        Located {
+            name: self.name.clone(),
+            line: problem.line,
+            column: problem.column,
+            width: 1,
+            message: problem.message,
+            source_line: self
+                .text
+                .lines()
+                .nth(problem.line - 1)
+                .unwrap_or("")
+                .to_string(),
+        }
     }
 
     /// One message under `span`. A span that is not in this text (the call site, which a

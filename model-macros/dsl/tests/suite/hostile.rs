@@ -123,3 +123,60 @@ fn nesting_up_to_the_limit_compiles() {
         format!("mod m {{ states {{ x }} let a0 = x;\n{lets} equations {{ der(x) = a119; }} }}");
     assert!(compile(&text).is_ok());
 }
+
+#[test]
+fn lexical_errors_name_the_problem_at_its_character() {
+    let cases = [
+        (
+            "mod m { states { x }\n  equations { der(x = -x; }\n}\n",
+            (2, 18),
+            "this `(` is never closed: the `}` at line 2, column 27 comes before its `)`",
+        ),
+        (
+            "mod m { states { x } equations { der(x) = -x; }\n",
+            (1, 7),
+            "this `{` is never closed: the text ends before its `}`",
+        ),
+        (
+            "mod m { states { x } equations { der(x) = x²; } }",
+            (1, 44),
+            "`²` is not a character of the DSL: write a power as `x^2`",
+        ),
+        (
+            "mod m { states { x } equations { x' = -x; } }",
+            (1, 35),
+            "`'` is not part of the DSL: a derivative is written `der(x)`",
+        ),
+        (
+            "mod m { states { x } /* the state\n equations { der(x) = -x; } }",
+            (1, 22),
+            "unterminated comment: this `/*` is never closed by `*/`",
+        ),
+        (
+            "mod m { states { x } # the pendulum's angle\n equations { der(x) = -x; } }",
+            (1, 22),
+            "`#` does not start a comment in the DSL",
+        ),
+        (
+            "mod m { states { x } # the angle\n equations { der(x) = -x; } }",
+            (1, 22),
+            "`#` does not start a comment in the DSL",
+        ),
+        (
+            "mod m { states { x } equations { der(x) = -x; } ) }",
+            (1, 7),
+            "this `{` is never closed: the `)` at line 1, column 49 comes before its `}`",
+        ),
+        (
+            "mod m { states { x } equations { der(x) = -x; } } )",
+            (1, 51),
+            "`)` closes nothing",
+        ),
+    ];
+    for (text, place, message) in cases {
+        let found = errors(text);
+        assert_eq!(found.len(), 1, "{found:#?}");
+        assert_eq!((found[0].line, found[0].column), place, "{}", found[0]);
+        assert!(found[0].message.starts_with(message), "{}", found[0]);
+    }
+}
