@@ -8,6 +8,7 @@ use crate::ast::{Call, Expr, RelOp, Relation};
 use crate::limits::{too_deep, MAX_DEPTH};
 use crate::span::{SpanRange, Spans};
 use model_algebra::{BinOp, NodeId};
+use syn::ext::IdentExt as _;
 use syn::parse::ParseStream;
 use syn::{token, Token};
 
@@ -148,8 +149,9 @@ fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         let (value, span) = parse_number(input)?;
         return Ok(Expr::Num(spans.push(SpanRange::single(span)), value));
     }
-    if input.peek(syn::Ident) {
-        let ident: syn::Ident = input.parse()?;
+    if input.peek(syn::Ident::peek_any) {
+        // A keyword is read as a name here: its declaration is where it is refused.
+        let ident = syn::Ident::parse_any(input)?;
         let name_range = SpanRange::single(ident.span());
         let name = ident.to_string();
         if !input.peek(token::Paren) {

@@ -52,6 +52,7 @@ pub use compile::{compile, compile_all};
 pub use limits::{MAX_DEPTH, MAX_TOKENS};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
+pub use statements::is_rust_keyword;
 pub use switched::{
     validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
 };

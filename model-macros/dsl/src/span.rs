@@ -63,6 +63,9 @@ pub struct Spans {
     depths: Vec<u32>,
     /// How many expressions the parser is inside of (see [`crate::limits::MAX_DEPTH`]).
     pub(crate) nesting: u32,
+    /// Errors found while a name was still read (a Rust keyword used as a name), reported
+    /// with the syntax errors.
+    pub(crate) deferred: Vec<syn::Error>,
 }
 
 impl Spans {
@@ -114,6 +117,11 @@ impl Errors {
     /// Records an error underlining `range`.
     pub fn at(&mut self, range: SpanRange, message: impl std::fmt::Display) {
         self.push(range.error(message));
+    }
+
+    /// Records every error of `other` after these.
+    pub fn extend(&mut self, other: Errors) {
+        self.errors.extend(other.errors);
     }
 
     /// `Ok(())` when nothing was recorded, otherwise all errors combined into one.

@@ -180,3 +180,19 @@ fn lexical_errors_name_the_problem_at_its_character() {
         assert!(found[0].message.starts_with(message), "{}", found[0]);
     }
 }
+
+#[test]
+fn a_rust_keyword_as_a_name_is_one_error_at_its_token() {
+    let text = "mod m { params { in = 1.0 } states { x, type } let loop = in*x;
+        equations { der(x) = -loop; der(type) = x + type; } outputs { final = loop; } }";
+    let found = errors(text);
+    let words: Vec<&str> = found
+        .iter()
+        .map(|e| &e.source_line[e.column - 1..e.column - 1 + e.width])
+        .collect();
+    assert_eq!(words, ["in", "type", "loop", "final"], "{found:#?}");
+    for error in &found {
+        assert!(error.message.contains("is a Rust keyword"), "{error}");
+    }
+    assert!(model_dsl::is_rust_keyword("box") && !model_dsl::is_rust_keyword("x"));
+}
