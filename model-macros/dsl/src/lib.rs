@@ -36,6 +36,7 @@ mod options;
 mod parse;
 mod span;
 mod statements;
+mod states;
 mod switched;
 mod switched_compile;
 mod switched_show;

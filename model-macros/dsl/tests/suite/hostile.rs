@@ -196,3 +196,16 @@ fn a_rust_keyword_as_a_name_is_one_error_at_its_token() {
     }
     assert!(model_dsl::is_rust_keyword("box") && !model_dsl::is_rust_keyword("x"));
 }
+
+#[test]
+fn a_missing_states_block_is_the_one_error() {
+    let text = "mod m {\n    params { k = 1 }\n    equations { der(x) = -k*x; der(y) = x; }\n    outputs { e = x^2; }\n}\n";
+    let found = errors(text);
+    assert_eq!(found.len(), 1, "{found:#?}");
+    assert_eq!((found[0].line, found[0].column), (1, 5));
+    assert_eq!(
+        found[0].message,
+        "the model has no states: declare them in `states { .. }` (the equations differentiate \
+         `x`, `y`)"
+    );
+}
