@@ -240,9 +240,10 @@ fn reading_model_after_model_keeps_no_text() {
 
 #[test]
 fn decoupled_states_compile_in_linear_time() {
-    // Each Jacobian column costs what depends on its state: 3,000 decoupled states took
-    // minutes when every column differentiated the whole system.
-    let n = 3_000;
+    // Each Jacobian column, and each block's pivot sampling, costs what its state touches:
+    // 10,000 decoupled states took minutes when every one of them went through the whole
+    // system (now about a second).
+    let n = 10_000;
     let states: Vec<String> = (0..n).map(|k| format!("x{k}")).collect();
     let equations: String = (0..n).map(|k| format!("der(x{k}) = -x{k}*x{k};")).collect();
     let text = format!(
@@ -253,5 +254,5 @@ fn decoupled_states_compile_in_linear_time() {
     let models = compile(&text).unwrap();
     assert_eq!(models[0].states.len(), n);
     let seconds = started.elapsed().as_secs_f64();
-    assert!(seconds < 20.0, "{seconds} s");
+    assert!(seconds < 30.0, "{seconds} s");
 }
