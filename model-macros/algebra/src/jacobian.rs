@@ -37,6 +37,7 @@ pub fn jacobian(
     cols: &[usize],
 ) -> Vec<JacobianEntry> {
     let readers = readers(pool, &system.groups);
+    let is_row: std::collections::HashSet<usize> = rows.iter().copied().collect();
     let mut entries = Vec::new();
     for &j in cols {
         let mut memo: HashMap<ExprId, ExprId> = HashMap::new();
@@ -104,14 +105,17 @@ pub fn jacobian(
                 }
             }
         }
-        for &i in rows {
-            let v = dsym.get(&Sym::Der(i)).copied().unwrap_or(ExprId::ZERO);
-            if v != ExprId::ZERO {
-                entries.push(JacobianEntry {
-                    row: i,
-                    col: j,
-                    value: v,
-                });
+        // The column's entries are what was differentiated (not a lookup per row).
+        for (&s, &v) in &dsym {
+            match s {
+                Sym::Der(i) if v != ExprId::ZERO && is_row.contains(&i) => {
+                    entries.push(JacobianEntry {
+                        row: i,
+                        col: j,
+                        value: v,
+                    })
+                }
+                _ => {}
             }
         }
     }
