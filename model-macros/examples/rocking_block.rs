@@ -16,7 +16,7 @@
 //! cargo run -p model-macros --example rocking_block
 //! ```
 
-use model_runtime::{run_switched, Dop853, Fired, HybridOptions, SwitchedRun, Tolerance};
+use model_runtime::{run_switched, Dop853, HybridOptions, SwitchedRun, Tolerance};
 
 model_macros::model! {
     /// A slender rigid block rocking on a hard floor (Housner's model, for small angles): it tips
@@ -85,6 +85,7 @@ fn main() {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use model_runtime::Fired;
 
     #[test]
     fn impacts_at_their_closed_form_times_then_the_block_stands() {
