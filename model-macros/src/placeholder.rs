@@ -13,8 +13,7 @@ use crate::emit::emit;
 use crate::emit_switched::emit_switched;
 use model_algebra::Explanation;
 use model_algebra::{CompiledModel, Program};
-use model_dsl::{CompiledMode, CompiledSwitched};
-use model_dsl::{ModelAst, RESERVED_MODULES};
+use model_dsl::{is_rust_keyword, CompiledMode, CompiledSwitched, ModelAst, RESERVED_MODULES};
 use proc_macro2::TokenStream;
 use std::collections::BTreeSet;
 
@@ -131,10 +130,11 @@ fn stub(ast: &ModelAst) -> CompiledModel {
     compiled
 }
 
-/// The first declaration of each name, in order (a name declared twice is already an error).
+/// The first declaration of each name, in order (a name declared twice is already an error);
+/// a Rust keyword (already an error) is left out, since no Rust item can be named by it.
 fn unique<T>(items: impl Iterator<Item = (String, T)>) -> Vec<(String, T)> {
     let mut seen = BTreeSet::new();
     items
-        .filter(|(name, _)| seen.insert(name.clone()))
+        .filter(|(name, _)| !is_rust_keyword(name) && seen.insert(name.clone()))
         .collect()
 }

@@ -302,7 +302,10 @@ impl<'a> Emitter<'a> {
     ) -> Option<ExprId> {
         let mut uses: HashMap<u64, (usize, usize)> = HashMap::new();
         for (c, factors) in split {
-            if c.abs() != 1.0 && !factors.is_empty() {
+            // Only a finite coefficient can be pulled out: `c / common` is exactly `±1` for a
+            // finite one, but NaN for an infinite one (`1e308*10` folds to inf), and a NaN
+            // coefficient would be refactored again without end.
+            if c.abs() != 1.0 && c.is_finite() && !factors.is_empty() {
                 let entry = uses.entry(c.abs().to_bits()).or_default();
                 entry.0 += 1;
                 entry.1 += usize::from(*c < 0.0);
@@ -358,46 +361,57 @@ impl<'a> Emitter<'a> {
             }
         }
         let mut plus = Vec::new();
+        // Each subtracted term: the term, and the magnitude that is subtracted.
         let mut minus = Vec::new();
         for &t in terms {
             let (c, rest) = self.pool.split_coefficient(t);
             if c >= 0.0 {
                 plus.push(t);
             } else if c == -1.0 {
-                minus.push(rest);
+                minus.push((t, rest));
             } else if rest == ExprId::ONE {
                 let m = self.pool.num(-c);
-                minus.push(m);
+                minus.push((t, m));
             } else {
                 let m = self.pool.num(-c);
                 let magnitude = self.pool.mul2(m, rest);
-                minus.push(magnitude);
+                minus.push((t, magnitude));
             }
         }
         let mut parts = Vec::with_capacity(terms.len());
+        let mut added = Vec::with_capacity(terms.len());
         let mut acc = match plus.first() {
             Some(&t) => {
                 let v = self.operand(t)?;
                 parts.push(v);
+                added.push(t);
                 v
             }
             None => {
-                let first = self.operand(minus.remove(0))?;
+                let (t, m) = minus.remove(0);
+                let first = self.operand(m)?;
                 parts.push(first);
+                added.push(t);
                 self.let_(Op::Neg(first))
             }
         };
         for &t in plus.iter().skip(1) {
             let v = self.operand(t)?;
             parts.push(v);
+            added.push(t);
             acc = self.let_(Op::Add(acc, v));
         }
-        for t in minus {
-            let v = self.operand(t)?;
+        for (t, m) in minus {
+            let v = self.operand(m)?;
             parts.push(v);
+            added.push(t);
             acc = self.let_(Op::Sub(acc, v));
         }
-        Ok(EmittedSum::Added { value: acc, parts })
+        Ok(EmittedSum::Added {
+            value: acc,
+            parts,
+            terms: added,
+        })
     }
 
     /// A product as `(a * b / (d * e)) * c`: the constant last, so products that differ only
@@ -482,6 +496,8 @@ enum EmittedSum {
         value: Operand,
         /// The operands added (subtracted ones by their magnitude).
         parts: Vec<Operand>,
+        /// The term each operand comes from.
+        terms: Vec<ExprId>,
     },
 }
 

@@ -36,12 +36,16 @@ pub fn jacobian(
     rows: &[usize],
     cols: &[usize],
 ) -> Vec<JacobianEntry> {
-    let solved_groups = system.groups.len();
+    let readers = readers(pool, &system.groups);
+    let is_row: std::collections::HashSet<usize> = rows.iter().copied().collect();
     let mut entries = Vec::new();
     for &j in cols {
         let mut memo: HashMap<ExprId, ExprId> = HashMap::new();
         let mut dsym: HashMap<Sym, ExprId> = HashMap::new();
-        for g in 0..solved_groups {
+        // Only the groups that read `y_j`, directly or through what other such groups define,
+        // have a derivative by `y_j` that is not zero: a column costs what depends on `y_j`,
+        // not the whole system (decoupled states would make the Jacobian quadratic).
+        for g in affected(&readers, &system.groups, j) {
             let group = system.groups[g].clone();
             match group.body {
                 Body::Symbolic(defs) => {
@@ -101,19 +105,53 @@ pub fn jacobian(
                 }
             }
         }
-        for &i in rows {
-            let v = dsym.get(&Sym::Der(i)).copied().unwrap_or(ExprId::ZERO);
-            if v != ExprId::ZERO {
-                entries.push(JacobianEntry {
-                    row: i,
-                    col: j,
-                    value: v,
-                });
+        // The column's entries are what was differentiated (not a lookup per row).
+        for (&s, &v) in &dsym {
+            match s {
+                Sym::Der(i) if v != ExprId::ZERO && is_row.contains(&i) => {
+                    entries.push(JacobianEntry {
+                        row: i,
+                        col: j,
+                        value: v,
+                    })
+                }
+                _ => {}
             }
         }
     }
     entries.sort_by_key(|e| (e.row, e.col));
     entries
+}
+
+/// For each symbol, the groups whose expressions read it.
+fn readers(pool: &Pool, groups: &[Group]) -> HashMap<Sym, Vec<usize>> {
+    let mut readers: HashMap<Sym, Vec<usize>> = HashMap::new();
+    for (g, group) in groups.iter().enumerate() {
+        let roots: Vec<ExprId> = match &group.body {
+            Body::Symbolic(defs) => defs.iter().map(|&(_, e)| e).collect(),
+            Body::Numeric { matrix, rhs, .. } => matrix.iter().chain(rhs).copied().collect(),
+        };
+        for e in pool.reachable(&roots) {
+            if let Node::Sym(s) = *pool.node(e) {
+                readers.entry(s).or_default().push(g);
+            }
+        }
+    }
+    readers
+}
+
+/// The groups that depend on state `j`, in order.
+fn affected(readers: &HashMap<Sym, Vec<usize>>, groups: &[Group], j: usize) -> Vec<usize> {
+    let mut found = std::collections::BTreeSet::new();
+    let mut stack: Vec<usize> = readers.get(&Sym::State(j)).cloned().unwrap_or_default();
+    while let Some(g) = stack.pop() {
+        if found.insert(g) {
+            for s in groups[g].defines() {
+                stack.extend(readers.get(&s).into_iter().flatten());
+            }
+        }
+    }
+    found.into_iter().collect()
 }
 
 fn leaf_derivative(dsym: &HashMap<Sym, ExprId>, j: usize, leaf: Sym) -> ExprId {

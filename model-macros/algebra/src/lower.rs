@@ -253,9 +253,24 @@ impl<'s> Lowerer<'s> {
                 }
             },
         };
-        let bad = |pool: &Pool, x: ExprId| !pool.has_sym(x) && pool.as_const(x).is_none();
-        if bad(&self.pool, expr) && !e.iter().any(|&c| bad(&self.pool, c)) {
+        // Every child is finite (a child that is not was reported and returned `None`), so
+        // a non-finite constant here was made by this node's folding: `1e308*10`, `2^1e16`,
+        // or the coefficient `inf` of `x*1e308*10`.
+        let infinite = |pool: &Pool, x: ExprId| pool.as_const(x).is_some_and(|v| !v.is_finite());
+        let unfolded = |pool: &Pool, x: ExprId| !pool.has_sym(x) && pool.as_const(x).is_none();
+        let fresh = !e.iter().any(|&c| unfolded(&self.pool, c));
+        if fresh && (unfolded(&self.pool, expr) || infinite(&self.pool, expr)) {
             self.diag(id, "this constant expression is not finite".into());
+            return None;
+        }
+        let operands = self.pool.node(expr).children();
+        if operands.iter().any(|&c| infinite(&self.pool, c)) {
+            self.diag(
+                id,
+                "a constant factor or term of this expression is not finite (it overflows \
+                 an f64)"
+                    .into(),
+            );
             return None;
         }
         if ctx == Context::Equation || ctx == Context::Let {

@@ -20,7 +20,7 @@
 //! time as well.
 
 use crate::expand::expand_if_smaller;
-use crate::expr::{ExprId, Pool, Sym};
+use crate::expr::{ExprId, Node, Pool, Sym};
 use crate::system::{Body, Group, Pivot};
 
 /// One block to solve: `matrix · x = rhs` with `x_k = der(y_{vars[k]})`.
@@ -67,9 +67,23 @@ pub struct Sampler<'a> {
 }
 
 impl Sampler<'_> {
-    /// The number of sample points.
-    pub fn count(&self) -> usize {
-        TYPICAL_SAMPLES + 2 * self.n_states
+    /// The sample points that can tell `roots` apart: the typical ones, and those that put a
+    /// state the expressions read at `0` or `π/2` (any other sample equals the last typical
+    /// one there). A block costs what it reads, not the model's size.
+    pub fn samples_for(&self, pool: &Pool, roots: &[ExprId]) -> Vec<usize> {
+        let mut read: Vec<usize> = pool
+            .reachable(roots)
+            .into_iter()
+            .filter_map(|e| match *pool.node(e) {
+                Node::Sym(Sym::State(i)) if i < self.n_states => Some(i),
+                _ => None,
+            })
+            .collect();
+        read.sort_unstable();
+        let special = [0, self.n_states]
+            .into_iter()
+            .flat_map(|offset| read.iter().map(move |&i| TYPICAL_SAMPLES + offset + i));
+        (0..TYPICAL_SAMPLES).chain(special).collect()
     }
 
     /// The value of `s` at sample `k`.
@@ -239,9 +253,11 @@ fn eliminate(
     let mut col_done = vec![false; n];
     let mut steps: Vec<(usize, usize, ExprId)> = Vec::with_capacity(n);
     let mut pivots = Vec::new();
+    let samples = sampler.samples_for(pool, &block.matrix);
     for _ in 0..n {
-        let magnitudes: Vec<Vec<f64>> = (0..sampler.count())
-            .map(|k| {
+        let magnitudes: Vec<Vec<f64>> = samples
+            .iter()
+            .map(|&k| {
                 pool.eval_many(&a, &|s| sampler.value(s, k))
                     .into_iter()
                     .map(f64::abs)

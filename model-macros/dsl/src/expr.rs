@@ -5,8 +5,10 @@
 //! an exponent may itself be negated, `2^-x = 2^(-x)`.
 
 use crate::ast::{Call, Expr, RelOp, Relation};
+use crate::limits::{too_deep, MAX_DEPTH};
 use crate::span::{SpanRange, Spans};
-use model_algebra::BinOp;
+use model_algebra::{BinOp, NodeId};
+use syn::ext::IdentExt as _;
 use syn::parse::ParseStream;
 use syn::{token, Token};
 
@@ -24,13 +26,18 @@ pub fn parse_expr(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
             return Ok(lhs);
         };
         let rhs = parse_product(input, spans)?;
-        lhs = binary(spans, op, lhs, rhs);
+        lhs = binary(spans, op, lhs, rhs)?;
     }
 }
 
 /// Parses a comparison `EXPR OP EXPR` with `OP` one of `<`, `<=`, `>`, `>=`, `==`.
 pub fn parse_relation(input: ParseStream, spans: &mut Spans) -> syn::Result<Relation> {
     let lhs = parse_expr(input, spans)?;
+    relation_after(input, spans, lhs)
+}
+
+/// The comparison operator and right-hand side of a relation whose left-hand side is parsed.
+fn relation_after(input: ParseStream, spans: &mut Spans, lhs: Expr) -> syn::Result<Relation> {
     let op = if input.peek(Token![<=]) {
         input.parse::<Token![<=]>()?;
         RelOp::Le
@@ -58,7 +65,7 @@ pub fn parse_relation(input: ParseStream, spans: &mut Spans) -> syn::Result<Rela
     let rhs = parse_expr(input, spans)?;
     let range = range_of(spans, &lhs).to(range_of(spans, &rhs));
     Ok(Relation {
-        id: spans.push(range),
+        id: node(spans, range, &[lhs.id(), rhs.id()])?,
         lhs,
         op,
         rhs,
@@ -85,16 +92,28 @@ fn parse_product(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
             return Ok(lhs);
         };
         let rhs = parse_unary(input, spans)?;
-        lhs = binary(spans, op, lhs, rhs);
+        lhs = binary(spans, op, lhs, rhs)?;
     }
 }
 
+/// Every nested expression goes through here (a parenthesis, an argument, a sign, an
+/// exponent), so this is where the parser's own recursion is bounded by [`MAX_DEPTH`].
 fn parse_unary(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
+    if spans.nesting >= MAX_DEPTH {
+        return Err(too_deep(SpanRange::single(input.span())));
+    }
+    spans.nesting += 1;
+    let parsed = parse_unary_nested(input, spans);
+    spans.nesting -= 1;
+    parsed
+}
+
+fn parse_unary_nested(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
     if input.peek(Token![-]) {
         let minus: Token![-] = input.parse()?;
         let arg = parse_unary(input, spans)?;
         let range = SpanRange::single(minus.span).to(range_of(spans, &arg));
-        return Ok(Expr::Neg(spans.push(range), Box::new(arg)));
+        return Ok(Expr::Neg(node(spans, range, &[arg.id()])?, Box::new(arg)));
     }
     parse_power(input, spans)
 }
@@ -108,7 +127,7 @@ fn parse_power(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         input.parse::<Token![^]>()?;
         // The exponent may be negated and is itself a power: right-associative.
         let exponent = parse_unary(input, spans)?;
-        return Ok(binary(spans, BinOp::Pow, base, exponent));
+        return binary(spans, BinOp::Pow, base, exponent);
     }
     Ok(base)
 }
@@ -130,8 +149,9 @@ fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
         let (value, span) = parse_number(input)?;
         return Ok(Expr::Num(spans.push(SpanRange::single(span)), value));
     }
-    if input.peek(syn::Ident) {
-        let ident: syn::Ident = input.parse()?;
+    if input.peek(syn::Ident::peek_any) {
+        // A keyword is read as a name here: its declaration is where it is refused.
+        let ident = syn::Ident::parse_any(input)?;
         let name_range = SpanRange::single(ident.span());
         let name = ident.to_string();
         if !input.peek(token::Paren) {
@@ -149,8 +169,9 @@ fn parse_atom(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
             content.parse::<Token![,]>()?;
         }
         let range = name_range.to(SpanRange::single(parens.span.close()));
+        let ids: Vec<_> = args.iter().map(Expr::id).collect();
         return Ok(Expr::Call(Call {
-            id: spans.push(range),
+            id: node(spans, range, &ids)?,
             func: name,
             func_id,
             args,
@@ -181,8 +202,9 @@ fn parse_if(input: ParseStream, spans: &mut Spans) -> syn::Result<Expr> {
             values.len()
         ))
     })?;
+    let ids = [cond.id, then.id(), otherwise.id()];
     Ok(Expr::If {
-        id: spans.push(range),
+        id: node(spans, range, &ids)?,
         cond: Box::new(cond),
         then: Box::new(then),
         otherwise: Box::new(otherwise),
@@ -202,16 +224,18 @@ fn parse_if_arguments(input: ParseStream, spans: &mut Spans) -> syn::Result<(Rel
 
 /// The condition of an `if`: a comparison other than `==`.
 fn parse_condition(input: ParseStream, spans: &mut Spans) -> syn::Result<Relation> {
-    let ahead = input.fork();
-    if parse_expr(&ahead, &mut Spans::default()).is_ok() && ahead.peek(Token![==]) {
-        let eq: Token![==] = ahead.parse()?;
+    // The left-hand side is parsed once (not on a fork first): a condition may hold an `if`
+    // whose condition holds an `if`, and a second parse per level would be exponential.
+    let lhs = parse_expr(input, spans)?;
+    if input.peek(Token![==]) {
+        let eq: Token![==] = input.parse()?;
         let range = SpanRange::single(eq.spans[0]).to(SpanRange::single(eq.spans[1]));
         return Err(range.error(
             "`if` cannot test `==`: computed values are practically never exactly equal; \
              compare with `<`, `<=`, `>` or `>=`",
         ));
     }
-    parse_relation(input, spans)
+    relation_after(input, spans, lhs)
 }
 
 /// The error for `x.sin()`: the DSL has functions, not methods (Rust's spelling is a natural
@@ -303,7 +327,18 @@ pub fn range_of(spans: &Spans, expr: &Expr) -> SpanRange {
         .unwrap_or_else(|| SpanRange::single(proc_macro2::Span::call_site()))
 }
 
-fn binary(spans: &mut Spans, op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
+fn binary(spans: &mut Spans, op: BinOp, lhs: Expr, rhs: Expr) -> syn::Result<Expr> {
     let range = range_of(spans, &lhs).to(range_of(spans, &rhs));
-    Expr::Bin(spans.push(range), op, Box::new(lhs), Box::new(rhs))
+    let id = node(spans, range, &[lhs.id(), rhs.id()])?;
+    Ok(Expr::Bin(id, op, Box::new(lhs), Box::new(rhs)))
+}
+
+/// A node over `children`, refused when it nests deeper than [`MAX_DEPTH`] (a chain of
+/// operators nests one level per operator).
+fn node(spans: &mut Spans, range: SpanRange, children: &[NodeId]) -> syn::Result<NodeId> {
+    let id = spans.push_over(range, children);
+    if spans.depth(id) > MAX_DEPTH {
+        return Err(too_deep(range));
+    }
+    Ok(id)
 }

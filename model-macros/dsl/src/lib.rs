@@ -29,12 +29,15 @@ mod ast;
 mod chart;
 mod compile;
 mod expr;
+mod lexical;
+mod limits;
 mod names;
 mod options;
 mod parse;
 mod skip;
 mod span;
 mod statements;
+mod states;
 mod switched;
 mod switched_compile;
 mod switched_show;
@@ -48,8 +51,10 @@ pub use ast::{
     When,
 };
 pub use compile::{compile, compile_all};
+pub use limits::{MAX_DEPTH, MAX_TOKENS};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
+pub use statements::is_rust_keyword;
 pub use switched::{
     validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
 };

@@ -39,10 +39,25 @@ pub struct Parsed {
 /// Parses as much as can be read: after an error the placeholder emitted in the model's place
 /// still declares every name that did parse, so code using them reports nothing more.
 pub fn parse_model_recovering(tokens: TokenStream) -> Parsed {
+    if let Err(error) = crate::limits::check_tokens(&tokens) {
+        return Parsed {
+            model: None,
+            errors: Some(error),
+        };
+    }
     let mut errors = Errors::default();
     let parsed = (|input: ParseStream| parse_module(input, &mut errors)).parse2(tokens);
     let (model, fatal) = match parsed {
-        Ok(model) => (Some(model), None),
+        Ok(mut model) => {
+            // Errors found while names were read come first: they are about declarations.
+            let mut all = Errors::default();
+            for error in std::mem::take(&mut model.spans.deferred) {
+                all.push(error);
+            }
+            all.extend(errors);
+            errors = all;
+            (Some(model), None)
+        }
         Err(error) => (None, Some(error)),
     };
     let errors = match (errors.finish(), fatal) {

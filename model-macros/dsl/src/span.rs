@@ -59,14 +59,34 @@ impl ToTokens for SpanRange {
 #[derive(Clone, Debug, Default)]
 pub struct Spans {
     ranges: Vec<SpanRange>,
+    /// The depth of the expression each node roots (1 for a leaf).
+    depths: Vec<u32>,
+    /// How many expressions the parser is inside of (see [`crate::limits::MAX_DEPTH`]).
+    pub(crate) nesting: u32,
+    /// Errors found while a name was still read (a Rust keyword used as a name), reported
+    /// with the syntax errors.
+    pub(crate) deferred: Vec<syn::Error>,
 }
 
 impl Spans {
     /// Hands out a fresh id for a node covering `range`.
     pub fn push(&mut self, range: SpanRange) -> NodeId {
+        self.push_over(range, &[])
+    }
+
+    /// Hands out a fresh id for a node covering `range` whose operands are `children`.
+    pub(crate) fn push_over(&mut self, range: SpanRange, children: &[NodeId]) -> NodeId {
         let id = NodeId(self.ranges.len() as u32);
+        let below = children.iter().map(|&c| self.depth(c)).max().unwrap_or(0);
         self.ranges.push(range);
+        self.depths.push(below.saturating_add(1));
         id
+    }
+
+    /// The depth of the expression node `id` roots: 1 for a number or a name, one more than
+    /// its deepest operand otherwise (0 for an id this table never handed out).
+    pub fn depth(&self, id: NodeId) -> u32 {
+        self.depths.get(id.0 as usize).copied().unwrap_or(0)
     }
 
     /// The range of `id`; `None` for an id this table never handed out.
@@ -97,6 +117,11 @@ impl Errors {
     /// Records an error underlining `range`.
     pub fn at(&mut self, range: SpanRange, message: impl std::fmt::Display) {
         self.push(range.error(message));
+    }
+
+    /// Records every error of `other` after these.
+    pub fn extend(&mut self, other: Errors) {
+        self.errors.extend(other.errors);
     }
 
     /// `Ok(())` when nothing was recorded, otherwise all errors combined into one.

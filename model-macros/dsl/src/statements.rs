@@ -8,6 +8,7 @@ use crate::skip::{skip_all, skip_past_semicolon};
 use crate::span::{Errors, SpanRange, Spans};
 use model_algebra::Named;
 use std::collections::BTreeMap;
+use syn::ext::IdentExt as _;
 use syn::parse::ParseStream;
 use syn::{token, Token};
 
@@ -59,7 +60,7 @@ pub(crate) fn parse_binding(
 }
 
 pub(crate) fn parse_name(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<()>> {
-    let ident: syn::Ident = input.parse()?;
+    let ident = parse_any_name(input, spans)?;
     Ok(Named {
         name: ident.to_string(),
         id: spans.push(SpanRange::single(ident.span())),
@@ -175,4 +176,28 @@ pub(crate) fn no_docs_here(attrs: &[syn::Attribute], what: &str, errors: &mut Er
             ),
         ));
     }
+}
+
+/// A name, which may be spelled like a Rust keyword: the keyword is read as the name (so that
+/// its uses resolve and nothing else is reported) and refused once, here, since the generated
+/// Rust code uses every name as an identifier.
+pub(crate) fn parse_any_name(input: ParseStream, spans: &mut Spans) -> syn::Result<syn::Ident> {
+    if input.peek(syn::Ident) || !input.peek(syn::Ident::peek_any) {
+        return input.parse();
+    }
+    let ident = syn::Ident::parse_any(input)?;
+    spans.deferred.push(syn::Error::new(
+        ident.span(),
+        format!(
+            "`{ident}` is a Rust keyword, which cannot name anything in the DSL (the generated \
+             Rust code uses every name as an identifier): choose another name, e.g. `{ident}_`"
+        ),
+    ));
+    Ok(ident)
+}
+
+/// Whether `name` is a Rust keyword (and so cannot name anything in the DSL).
+pub fn is_rust_keyword(name: &str) -> bool {
+    syn::parse_str::<syn::Ident>(name).is_err()
+        && syn::parse_str::<syn::Ident>(&format!("{name}_")).is_ok()
 }

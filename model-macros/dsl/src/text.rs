@@ -12,6 +12,7 @@ use crate::switched::validate_switched;
 use crate::switched_compile::{compile_switched, CompiledSwitched};
 use crate::validate::validate;
 use crate::ModelAst;
+extern crate proc_macro;
 use model_algebra::CompiledModel;
 use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
 use std::fmt;
@@ -89,11 +90,22 @@ impl Source {
     }
 
     /// The model's tokens; a lexical error (an unclosed brace, a stray quote) is located.
+    ///
+    /// Lexing text records it on the current thread to give every token its line and column;
+    /// each call first releases what earlier calls recorded there, so that a long-lived
+    /// process reading model after model keeps only the last. The spans of what an earlier
+    /// call returned (a [`ModelAst`], a `syn::Error`) are then no longer valid: use them (or
+    /// keep the [`Located`] errors, which are plain text) before reading the next source on
+    /// the same thread.
     pub fn tokens(&self) -> Result<TokenStream, LocatedErrors> {
-        let tokens = self
-            .text
-            .parse::<TokenStream>()
-            .map_err(|error| LocatedErrors(vec![self.locate(error.span(), &error.to_string())]))?;
+        release_earlier_texts();
+        let tokens = self.text.parse::<TokenStream>().map_err(|error| {
+            let located = match crate::lexical::first_problem(&self.text, self.rust) {
+                Some(problem) => self.located_at(problem),
+                None => self.locate(error.span(), &error.to_string()),
+            };
+            LocatedErrors(vec![located])
+        })?;
         if !self.rust {
             return Ok(tokens);
         }
@@ -150,6 +162,23 @@ impl Source {
         )
     }
 
+    /// A lexical problem, under its one character.
+    fn located_at(&self, problem: crate::lexical::LexProblem) -> Located {
+        Located {
+            name: self.name.clone(),
+            line: problem.line,
+            column: problem.column,
+            width: 1,
+            message: problem.message,
+            source_line: self
+                .text
+                .lines()
+                .nth(problem.line - 1)
+                .unwrap_or("")
+                .to_string(),
+        }
+    }
+
     /// One message under `span`. A span that is not in this text (the call site, which a
     /// parse of text uses for "the whole model") points at the first line.
     fn locate(&self, span: Span, message: &str) -> Located {
@@ -173,6 +202,14 @@ impl Source {
             message: message.to_string(),
             source_line,
         }
+    }
+}
+
+/// Releases the texts lexed earlier on this thread (outside a procedural macro, where the
+/// compiler owns the spans and there is nothing to release).
+fn release_earlier_texts() {
+    if !proc_macro::is_available() {
+        proc_macro2::extra::invalidate_current_thread_spans();
     }
 }
 

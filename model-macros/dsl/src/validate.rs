@@ -54,6 +54,12 @@ pub(crate) fn validate_one(ast: &ModelAst) -> syn::Result<Validated> {
         let_props: BTreeMap::new(),
         output_props: Vec::new(),
     };
+    crate::limits::check_let_depth(ast)?;
+    // A model needs states (whether the equations match them one to one is the compiler's
+    // structure analysis); without any, every use of one would be an unknown name.
+    if let Some(error) = crate::states::missing_states(ast) {
+        return Err(error);
+    }
     validator.check_item_docs();
     validator.declare_all();
     validator.check_let_cycles();
@@ -61,7 +67,6 @@ pub(crate) fn validate_one(ast: &ModelAst) -> syn::Result<Validated> {
     let lets = validator.resolve_lets();
     let equations = validator.resolve_equations();
     let outputs = validator.resolve_outputs();
-    validator.check_states();
     validator.check_labels();
     let variants = validator.check_variants();
     let options = compile_options(&ast.options, &ast.spans, &mut validator.errors);
@@ -515,18 +520,6 @@ impl<'a> Validator<'a> {
             return None;
         }
         Some(())
-    }
-
-    /// A model needs states; whether the equations match them one to one is the compiler's
-    /// structure analysis, which can name the state left without an equation or the equation
-    /// too many.
-    fn check_states(&mut self) {
-        if self.ast.states.is_empty() {
-            self.errors.at(
-                SpanRange::single(self.ast.name.span()),
-                "the model has no states: declare them in `states { .. }`",
-            );
-        }
     }
 
     fn check_labels(&mut self) {

@@ -62,8 +62,12 @@ impl Emitter<'_> {
             Node::Add(terms) if self.same_sign(&terms) => Vec::new(),
             Node::Add(terms) => match self.emitted_sum(&terms)? {
                 EmittedSum::Refactored(f) => self.sum_checks(f)?,
-                EmittedSum::Added { value, parts } => {
-                    let magnitude = self.magnitude(&parts);
+                EmittedSum::Added {
+                    value,
+                    parts,
+                    terms,
+                } => {
+                    let magnitude = self.magnitude(&parts, &terms)?;
                     vec![SumCheck {
                         sum: value,
                         magnitude,
@@ -87,7 +91,7 @@ impl Emitter<'_> {
                 // tested like any other: `sin(x)` at `x = π` (1.2e-16) is refused.
                 let value = self.operand(e)?;
                 let argument = self.operand(arg)?;
-                let magnitude = self.magnitude(&[argument]);
+                let magnitude = self.abs(argument);
                 let mut checks = vec![SumCheck {
                     sum: value,
                     magnitude,
@@ -126,19 +130,84 @@ impl Emitter<'_> {
         signs.all(|s| s == Some(first))
     }
 
-    /// `Σ |part|`.
-    fn magnitude(&mut self, parts: &[Operand]) -> Operand {
+    /// `Σ |part|`, where a term that holds a sum of its own (a common factor was pulled out
+    /// of it, `m1 + m2*(1 - cos(d)^2)`) counts with that sum's magnitude, not its value: the
+    /// terms as written before the factoring can cancel as much as the sum shown.
+    fn magnitude(&mut self, parts: &[Operand], terms: &[ExprId]) -> Result<Operand, Unbound> {
         let mut acc: Option<Operand> = None;
-        for &p in parts {
-            let a = match p {
-                Operand::Const(c) => Operand::Const(c.abs()),
-                other => self.let_(Op::Call(Func::Abs, other)),
+        for (&p, &t) in parts.iter().zip(terms) {
+            let a = if self.holds_sum(t) {
+                self.bound(t)?
+            } else {
+                self.abs(p)
             };
             acc = Some(match acc {
                 None => a,
                 Some(s) => self.let_(Op::Add(s, a)),
             });
         }
-        acc.unwrap_or(Operand::Const(0.0))
+        Ok(acc.unwrap_or(Operand::Const(0.0)))
+    }
+
+    /// Whether `e` is a sum whose terms can cancel, or a product or positive integer power of
+    /// one.
+    fn holds_sum(&mut self, e: ExprId) -> bool {
+        match self.pool.node(e).clone() {
+            Node::Add(terms) => !self.same_sign(&terms),
+            Node::Mul(factors) => factors.iter().any(|&f| self.holds_sum(f)),
+            Node::Pow([base, k]) => {
+                let k = self.pool.as_const(k).and_then(integer_exponent);
+                k.is_some_and(|k| k > 0) && self.holds_sum(base)
+            }
+            _ => false,
+        }
+    }
+
+    /// The magnitude of `e` with every sum inside it replaced by `Σ |term|`: a bound on what
+    /// its rounding error is relative to.
+    fn bound(&mut self, e: ExprId) -> Result<Operand, Unbound> {
+        if !self.holds_sum(e) {
+            let v = self.operand(e)?;
+            return Ok(self.abs(v));
+        }
+        Ok(match self.pool.node(e).clone() {
+            Node::Add(terms) => {
+                let mut acc = self.bound(terms[0])?;
+                for &t in &terms[1..] {
+                    let b = self.bound(t)?;
+                    acc = self.let_(Op::Add(acc, b));
+                }
+                acc
+            }
+            Node::Mul(factors) => {
+                let mut acc = self.bound(factors[0])?;
+                for &f in &factors[1..] {
+                    let b = self.bound(f)?;
+                    acc = self.let_(Op::Mul(acc, b));
+                }
+                acc
+            }
+            Node::Pow([base, k]) => {
+                let k = self
+                    .pool
+                    .as_const(k)
+                    .and_then(integer_exponent)
+                    .unwrap_or(1);
+                let b = self.bound(base)?;
+                self.let_(Op::Powi(b, k))
+            }
+            _ => {
+                let v = self.operand(e)?;
+                self.abs(v)
+            }
+        })
+    }
+
+    /// `|v|`.
+    fn abs(&mut self, v: Operand) -> Operand {
+        match v {
+            Operand::Const(c) => Operand::Const(c.abs()),
+            other => self.let_(Op::Call(Func::Abs, other)),
+        }
     }
 }

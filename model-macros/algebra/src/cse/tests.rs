@@ -124,3 +124,21 @@ fn equal_partial_products_are_computed_once() {
         "{prog}"
     );
 }
+
+#[test]
+fn an_infinite_coefficient_is_not_pulled_out() {
+    // inf*x + inf*y: `inf / inf` is NaN, so pulling `inf` out would give a sum of NaN
+    // coefficients to refactor again without end; the sum is emitted as written.
+    let mut p = Pool::new();
+    let x = p.sym(Sym::State(0));
+    let y = p.sym(Sym::State(1));
+    let inf = p.num(f64::INFINITY);
+    let minus_inf = p.num(f64::NEG_INFINITY);
+    let a = p.mul2(inf, x);
+    let b = p.mul2(inf, y);
+    let c = p.mul2(minus_inf, y);
+    let sum = p.add(&[a, b]);
+    let difference = p.add(&[a, c]);
+    let prog = emit(&mut p, &[sum, difference]);
+    assert!(prog.ops().add >= 2, "{prog}");
+}

@@ -80,9 +80,9 @@ fn sliding_counts() {
         &model(&crate::common::sliding()),
         DiskCounts {
             variant: "pruned",
-            rhs: [39, 100, 5, 0, 3, 0],
-            jacobian: [169, 465, 9, 0, 3, 0],
-            variant_rhs: [24, 41, 4, 0, 2, 0],
+            rhs: [41, 103, 5, 0, 3, 0],
+            jacobian: [171, 468, 9, 0, 3, 0],
+            variant_rhs: [25, 42, 4, 0, 2, 0],
         },
     );
 }
@@ -94,9 +94,9 @@ fn cartesian_sliding_counts() {
         &crate::cartesian_disk::cartesian(),
         DiskCounts {
             variant: "pruned",
-            rhs: [43, 111, 5, 1, 2, 0],
-            jacobian: [230, 617, 9, 1, 2, 0],
-            variant_rhs: [28, 67, 5, 1, 2, 0],
+            rhs: [46, 115, 5, 1, 2, 0],
+            jacobian: [233, 621, 9, 1, 2, 0],
+            variant_rhs: [31, 71, 5, 1, 2, 0],
         },
     );
 }

@@ -98,3 +98,47 @@ fn sums_of_one_sign_and_factors_are_tested_where_they_can_cancel() {
     assert!(run(3.0 * (1.0 + f64::EPSILON)).is_err());
     assert!(run(3.001).is_ok());
 }
+
+/// The double pendulum in mass-matrix form, with a massless upper rod.
+const DOUBLE_PENDULUM: &str = "
+pub mod dp {
+    params { m1 = 0.0, m2 = 0.7, l1 = 1.0, l2 = 0.6, g = 9.81 }
+    states { th1, th2, om1, om2 }
+    let d = th1 - th2;
+    equations {
+        der(th1) = om1;
+        der(th2) = om2;
+        (m1 + m2)*l1^2*der(om1) + m2*l1*l2*cos(d)*der(om2)
+            = -m2*l1*l2*sin(d)*om2^2 - (m1 + m2)*g*l1*sin(th1);
+        m2*l1*l2*cos(d)*der(om1) + m2*l2^2*der(om2) = m2*l1*l2*sin(d)*om1^2 - m2*g*l2*sin(th2);
+    }
+}
+";
+
+#[test]
+fn a_determinant_cancelled_by_a_zero_mass_is_singular() {
+    // The pivot is emitted as `m1 + m2*(1 - cos(d)^2)` (`m2` pulled out): with `m1 = 0` the
+    // cancellation is inside the term, and is measured against the terms before the factoring.
+    let m = compile(&model(DOUBLE_PENDULUM), &CompileOptions::default()).unwrap();
+    assert_eq!(m.pivots[1], "l1^2*(m1 + m2 - m2*cos(th1 - th2)^2)");
+    let run = |m1: f64, th1: f64| {
+        m.rhs.eval(&Inputs {
+            t: 0.0,
+            states: &[th1, 0.5, 0.0, 0.0],
+            params: &[m1, 0.7, 1.0, 0.6, 9.81],
+            ders: &[],
+        })
+    };
+    // At th1 - th2 = 1e-7 the determinant's `1 - cos(d)^2` has 2 digits left of 16.
+    assert!(
+        matches!(run(0.0, 0.5000001), Err(EvalFailure::SingularPivot { ref text, .. }) if *text == m.pivots[1]),
+        "{:?}",
+        run(0.0, 0.5000001)
+    );
+    assert!(run(0.0, 0.5001).is_ok());
+    // With a massive upper rod the determinant is `m1` plus a round-off-sized term: accurate,
+    // however aligned the rods (exactly aligned included).
+    for th1 in [0.5000001, 0.5] {
+        assert!(run(1.0, th1).is_ok(), "{th1}: {:?}", run(1.0, th1));
+    }
+}
