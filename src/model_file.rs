@@ -86,7 +86,10 @@ pub fn load_any(path: &Path) -> Result<Loaded, ModelFileError> {
         let model = source.compile_switched().map_err(ModelFileError::Dsl)?;
         return Ok(Loaded::Switched(model));
     }
-    source.compile().map(Loaded::Smooth).map_err(ModelFileError::Dsl)
+    source
+        .compile()
+        .map(Loaded::Smooth)
+        .map_err(ModelFileError::Dsl)
 }
 
 /// The modes and events of a switched model, then each mode's solved equations.
@@ -194,7 +197,10 @@ pub fn state(model: &CompiledModel, state: &[String]) -> Result<Vec<f64>, ModelF
 
 /// The initial state of a switched model from `--state NAME=VALUE`: states not given start
 /// at the value the file writes on them, or zero.
-pub fn initial_state(model: &CompiledSwitched, state: &[String]) -> Result<Vec<f64>, ModelFileError> {
+pub fn initial_state(
+    model: &CompiledSwitched,
+    state: &[String],
+) -> Result<Vec<f64>, ModelFileError> {
     let initial = |k: usize| Some(model.initial[k].unwrap_or(0.0));
     assign("--state", model.states(), initial, state)
 }

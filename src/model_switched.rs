@@ -11,13 +11,15 @@
 //! accumulation point, with the state its rule sets.
 
 use crate::model_file::ModelFileError;
-use crate::model_solve::{row, sample_times, FileEvent, FileTrajectory, Interpreted, SolveSettings, MAX_STATES};
+use crate::model_solve::{
+    row, sample_times, FileEvent, FileTrajectory, Interpreted, SolveSettings, MAX_STATES,
+};
 use model_algebra::Inputs;
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
-    run_switched, AccumulationAction, Direction, Dop853, Dopri5, EvalError, EventAction,
-    EventDecl, EventRecord, Fired, HybridError, HybridOptions, Method, Model, ModeDecl, ModeGraph,
-    Rk4, Rodas4, SwitchedModel, SwitchedRun, Termination, Tolerance,
+    run_switched, AccumulationAction, Direction, Dop853, Dopri5, EvalError, EventAction, EventDecl,
+    EventRecord, Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Model, Rk4,
+    Rodas4, SwitchedModel, SwitchedRun, Termination, Tolerance,
 };
 
 /// The runtime's mode graph of a compiled switched model.
@@ -125,7 +127,8 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         let guards = &self.model.modes[mode].guards;
-        let stores = (guards.eval(&self.inputs(t, y, dy))).map_err(|e| self.modes[mode].error(e))?;
+        let stores =
+            (guards.eval(&self.inputs(t, y, dy))).map_err(|e| self.modes[mode].error(e))?;
         values.copy_from_slice(&stores.outputs(values.len()));
         Ok(())
     }
@@ -146,8 +149,8 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
             (Action::Jump(jump), _, false) => jump,
             _ => return Ok(()),
         };
-        let stores = (jump.program.eval(&self.inputs(t, y, dy)))
-            .map_err(|e| self.modes[mode].error(e))?;
+        let stores =
+            (jump.program.eval(&self.inputs(t, y, dy))).map_err(|e| self.modes[mode].error(e))?;
         for (&state, value) in jump.states.iter().zip(stores.outputs(jump.states.len())) {
             out[state] = value;
         }
@@ -190,10 +193,33 @@ pub fn solve_switched(
     let start = (settings.t0, start);
     let t_end = settings.t_end;
     let run = match settings.method {
-        Method::Dopri5 => run_switched(&interpreted, Dopri5::new(), tolerance, options, start, t_end),
-        Method::Dop853 => run_switched(&interpreted, Dop853::new(), tolerance, options, start, t_end),
-        Method::Rodas4 => run_switched(&interpreted, Rodas4::new(), tolerance, options, start, t_end),
-        Method::Rk4 { h } => run_switched(&interpreted, Rk4::new(h), tolerance, options, start, t_end),
+        Method::Dopri5 => run_switched(
+            &interpreted,
+            Dopri5::new(),
+            tolerance,
+            options,
+            start,
+            t_end,
+        ),
+        Method::Dop853 => run_switched(
+            &interpreted,
+            Dop853::new(),
+            tolerance,
+            options,
+            start,
+            t_end,
+        ),
+        Method::Rodas4 => run_switched(
+            &interpreted,
+            Rodas4::new(),
+            tolerance,
+            options,
+            start,
+            t_end,
+        ),
+        Method::Rk4 { h } => {
+            run_switched(&interpreted, Rk4::new(h), tolerance, options, start, t_end)
+        }
     }
     .map_err(|error| ModelFileError::Eval(describe_error(&error)))?;
     let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
@@ -254,7 +280,11 @@ pub fn solve_switched(
 
 /// The mode the run continued in after `event` (its own, for an event that ended the run).
 fn mode_after<'a>(run: &'a SwitchedRun<MAX_STATES>, event: &'a EventRecord<MAX_STATES>) -> &'a str {
-    let later = run.events.iter().skip_while(|e| !std::ptr::eq(*e, event)).nth(1);
+    let later = run
+        .events
+        .iter()
+        .skip_while(|e| !std::ptr::eq(*e, event))
+        .nth(1);
     match later {
         Some(next) => next.mode.as_str(),
         None if event.fired == Fired::Accumulated => run.mode.as_str(),

@@ -97,13 +97,20 @@ mod tests {
         let impacts = run.times("impact", Fired::Reset);
         assert!(impacts.len() > 50, "{} impacts", impacts.len());
         for (k, &t) in impacts.iter().enumerate() {
-            assert!((t - expected).abs() < 1e-9, "impact {}: {t} vs {expected}", k + 1);
+            assert!(
+                (t - expected).abs() < 1e-9,
+                "impact {}: {t} vs {expected}",
+                k + 1
+            );
             expected += 2.0 * E.powi(k as i32 + 1) * v1 / G;
         }
         let t_inf = (2.0 * H0 / G).sqrt() + 2.0 * E * v1 / (G * (1.0 - E));
         let rest = run.times("impact", Fired::Accumulated);
         assert_eq!(rest.len(), 1, "{rest:?}");
-        assert!((rest[0] - t_inf).abs() < 1e-9, "rest at {rest:?}, closed form {t_inf}");
+        assert!(
+            (rest[0] - t_inf).abs() < 1e-9,
+            "rest at {rest:?}, closed form {t_inf}"
+        );
         assert_eq!((run.t, run.mode.as_str()), (10.0, "resting"));
         // Never through the floor; and at rest, exactly on it.
         for (t, _, y) in &run.samples {

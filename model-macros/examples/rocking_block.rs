@@ -99,14 +99,21 @@ mod tests {
         assert!(impacts.len() > 30, "{} impacts", impacts.len());
         let mut expected = t1;
         for (k, &t) in impacts.iter().enumerate() {
-            assert!((t - expected).abs() < 1e-9, "impact {}: {t} vs {expected}", k + 1);
+            assert!(
+                (t - expected).abs() < 1e-9,
+                "impact {}: {t} vs {expected}",
+                k + 1
+            );
             expected += rock(k as i32 + 1);
         }
         let t_inf = t1 + (1..400).map(rock).sum::<f64>();
         let stands = run.times("impact", Fired::Accumulated);
         assert_eq!(stands.len(), 1, "{stands:?}");
         assert!((stands[0] - t_inf).abs() < 1e-9, "{} vs {t_inf}", stands[0]);
-        assert_eq!((run.t, run.mode.as_str(), run.y), (10.0, "standing", [0.0, 0.0]));
+        assert_eq!(
+            (run.t, run.mode.as_str(), run.y),
+            (10.0, "standing", [0.0, 0.0])
+        );
         // Between impacts the tilt keeps its sign: the sign of omega flips at no other time.
         for (t, _, y) in &run.samples {
             assert!(y[0].abs() < alpha, "tilt {} at t = {t}", y[0]);
@@ -121,8 +128,15 @@ mod tests {
         let model = rocking_block::Model::from_params(params);
         let tolerance = Tolerance::scalar(1e-12, 1e-15);
         let start = (0.0, [theta0, omega0]);
-        let run = run_switched(model, Dop853::new(), tolerance, HybridOptions::default(), start, 10.0)
-            .unwrap();
+        let run = run_switched(
+            model,
+            Dop853::new(),
+            tolerance,
+            HybridOptions::default(),
+            start,
+            10.0,
+        )
+        .unwrap();
         assert_eq!(run.stopped_by.as_deref(), Some("overturns"));
         let fall = ((alpha - theta0) * p / omega0).atanh() / p;
         assert_eq!(run.times("overturns", Fired::Stopped).len(), 1);

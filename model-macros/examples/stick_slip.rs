@@ -118,19 +118,29 @@ mod tests {
             t += stuck;
         }
         assert!(expected.len() >= 16, "{}", expected.len());
-        let found: Vec<(&str, f64, f64)> =
-            (run.events.iter()).map(|e| (e.event.as_str(), e.t, e.y[0])).collect();
+        let found: Vec<(&str, f64, f64)> = (run.events.iter())
+            .map(|e| (e.event.as_str(), e.t, e.y[0]))
+            .collect();
         assert_eq!(found.len(), expected.len(), "{found:?}");
         for ((name, t, x), (want_name, want_t, want_x)) in found.iter().zip(&expected) {
             assert_eq!(name, want_name);
-            assert!((t - want_t).abs() < 1e-9, "{name} at {t}, closed form {want_t}");
-            assert!((x - want_x).abs() < 1e-9, "{name} at x = {x}, closed form {want_x}");
+            assert!(
+                (t - want_t).abs() < 1e-9,
+                "{name} at {t}, closed form {want_t}"
+            );
+            assert!(
+                (x - want_x).abs() < 1e-9,
+                "{name} at x = {x}, closed form {want_x}"
+            );
         }
         // Stuck, the mass moves with the belt exactly; the friction it needs stays within mu_s m g.
         for (t, mode, y) in &run.samples {
             if mode == "stuck" {
                 assert_eq!(y[1], p.vb, "at t = {t}");
-                assert!(p.k * y[0].abs() <= p.mu_s * p.m * p.g * (1.0 + 1e-12), "at t = {t}");
+                assert!(
+                    p.k * y[0].abs() <= p.mu_s * p.m * p.g * (1.0 + 1e-12),
+                    "at t = {t}"
+                );
             }
         }
     }

@@ -25,20 +25,28 @@ pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenS
         let attrs = &ast.attrs;
         quote! { #(#attrs)* }
     };
-    let mode_modules = plan.modes.iter().zip(&compiled.modes).map(|(mode, compiled)| {
-        let mut mode_ast = mode.model.ast.clone();
-        mode_ast.vis = syn::parse_quote!(pub);
-        if mode_ast.attrs.is_empty() {
-            let doc = format!(" Mode `{}` of `{name}`.", mode_ast.name);
-            mode_ast.attrs = vec![syn::parse_quote!(#[doc = #doc])];
-        }
-        emit(&mode_ast, &compiled.model)
-    });
+    let mode_modules = plan
+        .modes
+        .iter()
+        .zip(&compiled.modes)
+        .map(|(mode, compiled)| {
+            let mut mode_ast = mode.model.ast.clone();
+            mode_ast.vis = syn::parse_quote!(pub);
+            if mode_ast.attrs.is_empty() {
+                let doc = format!(" Mode `{}` of `{name}`.", mode_ast.name);
+                mode_ast.attrs = vec![syn::parse_quote!(#[doc = #doc])];
+            }
+            emit(&mode_ast, &compiled.model)
+        });
     let first = format_ident!("{}", compiled.modes[0].model.name);
     let mode_idents: Vec<_> = (compiled.modes.iter())
         .map(|m| format_ident!("{}", m.model.name))
         .collect();
-    let mode_names: Vec<&str> = compiled.modes.iter().map(|m| m.model.name.as_str()).collect();
+    let mode_names: Vec<&str> = compiled
+        .modes
+        .iter()
+        .map(|m| m.model.name.as_str())
+        .collect();
     let n_modes = mode_names.len();
     let mode_indices = 0..n_modes;
     let initial = compiled.initial.iter().map(|v| constant(v.unwrap_or(0.0)));
@@ -114,7 +122,11 @@ pub fn emit_switched(plan: &SwitchedPlan, compiled: &CompiledSwitched) -> TokenS
         }
     }
     let explanation = explanation(compiled);
-    let defaults = compiled.modes[0].model.params.iter().all(|(_, d)| d.is_some());
+    let defaults = compiled.modes[0]
+        .model
+        .params
+        .iter()
+        .all(|(_, d)| d.is_some());
     let default_impl = defaults.then(|| {
         quote! {
             impl ::core::default::Default for Model {
@@ -264,7 +276,11 @@ fn option_index(index: Option<usize>) -> TokenStream {
 fn reset_arm(mode: usize, event: usize, accumulation: bool, jump: &Jump) -> TokenStream {
     let n = jump.states.len();
     let body = statements(&jump.program);
-    let targets = jump.states.iter().enumerate().map(|(k, s)| quote! { new[#s] = values[#k]; });
+    let targets = jump
+        .states
+        .iter()
+        .enumerate()
+        .map(|(k, s)| quote! { new[#s] = values[#k]; });
     quote! {
         (#mode, #event, #accumulation) => {
             let mut values = [0.0f64; #n];

@@ -91,28 +91,27 @@ pub fn run_switched<const N: usize, M: SwitchedModel<N>, S: Stepper<N>>(
     (t0, y0): (f64, [f64; N]),
     t_end: f64,
 ) -> Result<SwitchedRun<N>, HybridError<String>> {
-    let mut system = Switched::new(model, AccumulationRule::default()).map_err(|error| {
-        HybridError::Solve {
+    let mut system =
+        Switched::new(model, AccumulationRule::default()).map_err(|error| HybridError::Solve {
             mode: String::new(),
             error: error.into(),
-        }
-    })?;
+        })?;
     let graph = system.model().graph().clone();
     let start = graph.first();
     let named = |error: HybridError<ModeId>| name_modes(&graph, error);
-    let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(|error| {
-        HybridError::Solve {
+    let mut solver =
+        HybridSolver::new(stepper, tolerance, options).map_err(|error| HybridError::Solve {
             mode: graph.mode_name(start).to_string(),
             error: error.into(),
-        }
-    })?;
+        })?;
     let mut collector = Collector {
         graph: &graph,
         every_step: options.sample_rate.is_none(),
         events: Vec::new(),
         samples: Vec::new(),
     };
-    let outcome = (solver.run(&mut system, start, t0, &y0, t_end, &mut collector)).map_err(named)?;
+    let outcome =
+        (solver.run(&mut system, start, t0, &y0, t_end, &mut collector)).map_err(named)?;
     let mut events = collector.events;
     let samples = collector.samples;
     let stopped_by = match outcome.stop {

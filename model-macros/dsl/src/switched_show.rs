@@ -10,8 +10,16 @@ use std::fmt::Write;
 pub fn switching_markdown(model: &CompiledSwitched) -> String {
     let states = model.states();
     let mut md = format!("# `{}`: modes and events\n\n", model.name);
-    let modes: Vec<String> = model.modes.iter().map(|m| format!("`{}`", m.model.name)).collect();
-    let _ = writeln!(md, "Modes: {} (a run starts in the first).", modes.join(", "));
+    let modes: Vec<String> = model
+        .modes
+        .iter()
+        .map(|m| format!("`{}`", m.model.name))
+        .collect();
+    let _ = writeln!(
+        md,
+        "Modes: {} (a run starts in the first).",
+        modes.join(", ")
+    );
     let initial: Vec<String> = (states.iter().zip(&model.initial))
         .filter_map(|(s, v)| v.map(|v| format!("{s} = {v}")))
         .collect();
@@ -57,7 +65,11 @@ pub fn switching_latex(model: &CompiledSwitched) -> String {
     let states = model.states();
     let mut tex = String::from("\\begin{align*}\n");
     for mode in &model.modes {
-        let _ = writeln!(tex, "&\\textbf{{{}}} \\\\", mode.model.name.replace('_', "\\_"));
+        let _ = writeln!(
+            tex,
+            "&\\textbf{{{}}} \\\\",
+            mode.model.name.replace('_', "\\_")
+        );
         for event in &mode.events {
             let _ = writeln!(
                 tex,
@@ -83,7 +95,10 @@ fn action_latex(model: &CompiledSwitched, event: &CompiledEvent, states: &[Strin
             .map(|(&s, v)| format!("{}^{{+}} = {v}", latex_name(&states[s])))
             .collect();
         if let Some(to) = jump.to {
-            parts.push(format!("\\to \\text{{{}}}", model.modes[to].model.name.replace('_', "\\_")));
+            parts.push(format!(
+                "\\to \\text{{{}}}",
+                model.modes[to].model.name.replace('_', "\\_")
+            ));
         }
         parts.join(",\\ ")
     };
