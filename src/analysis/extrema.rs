@@ -99,18 +99,25 @@ impl Located {
         let sign = if at == ExtremumKind::Min { 1.0 } else { -1.0 };
         let mut out = Vec::new();
         let mut candidate: Option<&Extremum> = None;
+        // The farthest opposite turn since the last commit: a candidate the window ends on
+        // counts if θ came to it from a swing away.
+        let mut opposite = f64::MIN;
         for e in in_window {
             let v = sign * e.value;
             if e.kind == at {
                 if candidate.is_none_or(|c| v < sign * c.value) {
                     candidate = Some(e);
                 }
-            } else if let Some(c) = candidate {
-                if v - sign * c.value > swing {
-                    out.push(*c);
-                    candidate = None;
-                }
+            } else if let Some(c) = candidate.filter(|c| v - sign * c.value > swing) {
+                out.push(*c);
+                candidate = None;
+                opposite = v;
+            } else {
+                opposite = opposite.max(v);
             }
+        }
+        if let Some(c) = candidate.filter(|c| opposite - sign * c.value > swing) {
+            out.push(*c);
         }
         out
     }
@@ -186,6 +193,9 @@ mod tests {
         let located = Located::new(&list, 1.0);
         assert_eq!(located.theta_cycles(Min, 0.0, 3.0), vec![0.0, 1.0, 2.0]);
         assert_eq!(located.theta_period(0.0, 3.0), Some(1.0));
+        // A window ending on a minimum keeps it: θ came down to it from a maximum.
+        assert_eq!(located.theta_cycles(Min, 0.0, 2.2), vec![0.0, 1.0, 2.0]);
+        assert_eq!(located.theta_cycles(Min, 0.9, 2.2), vec![1.0, 2.0]);
         assert_eq!(located.theta_cycles(Max, 0.0, 3.0), vec![0.5, 1.5]);
     }
 

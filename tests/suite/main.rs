@@ -4,6 +4,7 @@
 mod cli_eval;
 mod cli_model;
 mod cli_run;
+mod extrema;
 mod imports;
 mod outputs;
 mod pruned_scene;

@@ -30,7 +30,7 @@ pub const INTERIOR: usize = 2;
 /// Where the end slopes are read: this fraction of the step inside each end.
 pub const EDGE: f64 = 1e-4;
 /// Brent's refinement stops when the bracket is this fraction of its starting width.
-pub const X_TOL: f64 = 1e-9;
+pub const X_TOL: f64 = 1e-7;
 
 /// A quantity whose extrema are located.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

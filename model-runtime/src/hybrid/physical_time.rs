@@ -152,19 +152,30 @@ impl<const N: usize, const M: usize> InPhysicalTime<'_, N, M> {
         if target >= c1 {
             return self.tau.1;
         }
+        // The clock is nearly linear over a step: secant steps from the chord converge in a
+        // few evaluations; the bracketing finder takes over if they stall.
+        let (mut lo, mut hi) = ((self.tau.0, c0 - target), (self.tau.1, c1 - target));
+        for _ in 0..4 {
+            let tau = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
+            if !(tau > lo.0 && tau < hi.0) {
+                break;
+            }
+            let f = self.dense.component_at(tau, N) - target;
+            if f.abs() <= 4.0 * f64::EPSILON * t.abs() {
+                return tau;
+            }
+            if f < 0.0 {
+                lo = (tau, f);
+            } else {
+                hi = (tau, f);
+            }
+        }
         let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
             Ok(self.dense.component_at(tau, N) - target)
         };
-        find_crossing(
-            self.tau.0,
-            c0 - target,
-            self.tau.1,
-            c1 - target,
-            -1.0,
-            clock,
-        )
-        .unwrap_or_else(|never| match never {})
-        .t
+        find_crossing(lo.0, lo.1, hi.0, hi.1, -1.0, clock)
+            .unwrap_or_else(|never| match never {})
+            .t
     }
 }
 
