@@ -1,7 +1,12 @@
 //! Extrema located on the dense output (module `equations::hybrid::extrema`) at the paper's
-//! tolerance against a run ten times... a hundred times tighter: in the first and the last
-//! simulated second of the paper's scene, the same θ turning points and force peaks, at the
-//! same times and heights to what the tolerance gives (docs/physics.md §13 has the numbers).
+//! tolerance (rtol 1e-8, atol 1e-10) against a run a hundred times tighter (1e-10, 1e-12): in
+//! the first and the last simulated second of the paper's scene, the same θ turning points and
+//! force peaks, at the same times and heights to what the tolerance gives (docs/physics.md §13).
+//!
+//! Measured: in the first second the times agree to 1.7e-9 s and the values to 1.2e-8
+//! (relative; N's peaks the largest), i.e. the tolerance's 1e-8; after 100 s and 7483 mode
+//! decisions the accumulated phase error is 2.4e-5 s and the values agree to 9.2e-6. The bounds
+//! below are those, rounded up to the next power of ten (first second) or to 1e-4 / 5e-5.
 
 use equations::{
     simulate, DiskConfig, DiskObserver, DiskParams, Extremum, ExtremumKind, GeneratedModels,
@@ -89,7 +94,8 @@ fn differences(a: &[(f64, f64)], b: &[(f64, f64)]) -> (f64, f64) {
 fn located_extrema_agree_between_rtol_1e8_and_1e10() {
     let paper = located(1e-8, 1e-10);
     let tight = located(1e-10, 1e-12);
-    for (t0, t1, what) in [(0.0, 1.0, "first second"), (99.0, 100.0, "last second")] {
+    // (window, largest time difference (s), largest relative value difference)
+    for (t0, t1, dt_max, dv_max) in [(0.0, 1.0, 1e-8, 1e-7), (99.0, 100.0, 1e-4, 5e-5)] {
         let min = differences(
             &turns(&paper, ExtremumKind::Min, t0, t1),
             &turns(&tight, ExtremumKind::Min, t0, t1),
@@ -99,7 +105,11 @@ fn located_extrema_agree_between_rtol_1e8_and_1e10() {
             &turns(&tight, ExtremumKind::Max, t0, t1),
         );
         let force = differences(&peaks(&paper, t0, t1), &peaks(&tight, t0, t1));
-        println!("{what}: theta minima {min:?}, maxima {max:?}, N peaks {force:?}");
+        for (what, (dt, dv)) in [("θ minima", min), ("θ maxima", max), ("N peaks", force)] {
+            assert!(
+                dt <= dt_max && dv <= dv_max,
+                "[{t0}, {t1}] s, {what}: times differ by {dt:e} s, values by {dv:e}"
+            );
+        }
     }
-    panic!("measure");
 }
