@@ -154,7 +154,7 @@ impl Scanner {
     ) {
         let Some(dense) = step.dense else { return };
         let (t0, t1) = (step.t0, step.t1);
-        if phase == Phase::Bridge || !(t1 > t0) {
+        if phase == Phase::Bridge || t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
             return;
         }
         let mode = phase.mode();
