@@ -171,10 +171,12 @@ impl Summary {
             .filter(|v| v.is_finite())
             .collect();
         let last_window = t_stop - 1.0;
-        let phases = (t_stop - t_start >= 1.0)
-            .then(|| rolling_phases(data, t_start, t_stop, last_window))
-            .unwrap_or_default();
         let has_last = t_stop - t_start >= 1.0;
+        let phases = if has_last {
+            rolling_phases(data, t_start, t_stop, last_window)
+        } else {
+            Vec::new()
+        };
         let count =
             |min: f64| has_last.then(|| phases.iter().filter(|(a, b)| b - a >= min).count() as f64);
         let rolling_fraction = has_last.then(|| {
