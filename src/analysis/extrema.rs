@@ -196,7 +196,8 @@ mod tests {
         // A window ending on a minimum keeps it: θ came down to it from a maximum.
         assert_eq!(located.theta_cycles(Min, 0.0, 2.2), vec![0.0, 1.0, 2.0]);
         assert_eq!(located.theta_cycles(Min, 0.9, 2.2), vec![1.0, 2.0]);
-        assert_eq!(located.theta_cycles(Max, 0.0, 3.0), vec![0.5, 1.5]);
+        // The maxima: the last one too, reached from a full swing.
+        assert_eq!(located.theta_cycles(Max, 0.0, 3.0), vec![0.5, 1.5, 2.5]);
     }
 
     #[test]
