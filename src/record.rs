@@ -6,7 +6,7 @@
 
 use crate::run::model::ModelChoice;
 use crate::sample::Sample;
-use equations::Mode;
+use equations::{Extremum, Mode};
 
 /// The quantity whose crossing caused a mode decision.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,6 +119,9 @@ pub struct RunData {
     pub last_second: Vec<Sample>,
     /// Mode decisions in order.
     pub events: Vec<EventRow>,
+    /// Extrema of θ, N and the slip speed located on the dense output (module
+    /// `equations::hybrid::extrema`), in the order found.
+    pub extrema: Vec<Extremum>,
     /// Why it ended (`None` while running).
     pub stop: Option<StopRecord>,
     /// Integrator work.

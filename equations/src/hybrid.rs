@@ -56,12 +56,14 @@
 //! ```
 
 pub mod embedded;
+pub mod extrema;
 pub mod models;
 pub mod onset;
 mod run;
 mod system;
 
 pub use embedded::{EmbedError, Embedded, Embedding, Variant};
+pub use extrema::{Extremum, ExtremumKind, Watched};
 pub use models::{
     DiskModels, GeneratedModels, PruneError, Pruned, PrunedModels, ReferenceModels, SlidingModel,
     PROBE_SLIP_SPEED, PRUNED_STATES,
@@ -217,6 +219,13 @@ pub trait DiskObserver {
     fn on_step(&mut self, _sample: &DiskSample) {}
     /// A mode decision.
     fn on_transition(&mut self, _record: &TransitionRecord) {}
+    /// Whether [`DiskObserver::on_extremum`] should be called: the run then scans every step's
+    /// dense output (module [`extrema`]: a few model evaluations per step). Default: no.
+    fn wants_extrema(&self) -> bool {
+        false
+    }
+    /// A located extremum of θ, N or the slip speed, in time order within each quantity.
+    fn on_extremum(&mut self, _extremum: &Extremum) {}
     /// Asked after every step and every mode decision: [`ControlFlow::Break`] ends the run
     /// there with [`StopReason::Requested`] and the outcome of the work done so far.
     fn proceed(&mut self) -> ControlFlow<()> {

@@ -1,7 +1,9 @@
 //! The numbers of a run that the paper also gives, side by side.
 //!
-//! Each field is computed from the recorded samples alone (not from solver internals), so the
-//! same code summarises a synthetic run in the tests and the real one.
+//! The heights, periods and amplitudes come from the extrema the run located on the
+//! integrator's dense output ([`super::extrema`]), so they do not depend on the sampling rate;
+//! a run without located extrema (a synthetic run in the tests) falls back to its samples.
+//! docs/summary-keys.md defines every key, its unit, its source and its accuracy.
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -9,14 +11,19 @@ use std::f64::consts::PI;
 use equations::DiskParams;
 use serde::Serialize;
 
+use super::extrema::Located;
 use super::oscillation::{mean_period, Series};
 use crate::quantity::Quantity;
 use crate::record::{RunData, SampleCounts, Timings, TriggerKind};
 use crate::sample::Sample;
 use equations::Mode;
+use equations::{ExtremumKind, Watched};
 
 /// Time after which the paper reports the settled amplitudes (s).
 pub const SETTLED_AFTER: f64 = 50.0;
+
+/// The shortest rolling phase counted as long (s).
+pub const LONG_PHASE_S: f64 = 1e-3;
 
 /// The summary of a run (`summary.json`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -61,8 +68,14 @@ pub struct Summary {
     pub nu_sliding: Option<f64>,
     /// Largest ν.
     pub nu_max: Option<f64>,
-    /// Rolling phases starting per second, in the last simulated second.
+    /// Rolling phases per second in the last simulated second: every phase that is rolling
+    /// at some time of that second (a disk that rolls throughout has one).
     pub rolling_phases_per_s_last: Option<f64>,
+    /// As `rolling_phases_per_s_last`, counting only phases that last at least
+    /// [`LONG_PHASE_S`] (the paper's "about 24 per second").
+    pub rolling_phases_long_per_s_last: Option<f64>,
+    /// Fraction of the last simulated second spent rolling.
+    pub rolling_fraction_last: Option<f64>,
     /// Smallest N/(m g).
     pub n_over_mg_min: Option<f64>,
     /// Largest N/(m g).
@@ -127,11 +140,27 @@ impl Summary {
             .unwrap_or(0.0);
         let mg = p.m * p.g;
         let all = || s.iter().chain(&data.first_second).chain(&data.last_second);
-        let first = theta_period(&data.first_second, s, t_start, t_start + 1.0);
+        let located = Located::new(&data.extrema, mg);
+        let exact = !located.is_empty();
+        let period = |t0: f64, t1: f64, fine: &[Sample]| {
+            if exact {
+                located.theta_period(t0, t1)
+            } else {
+                theta_period(fine, s, t0, t1)
+            }
+        };
+        let first = period(t_start, t_start + 1.0, &data.first_second);
         let last = if t_stop - 1.0 >= t_start {
-            theta_period(&data.last_second, s, t_stop - 1.0, t_stop)
+            period(t_stop - 1.0, t_stop, &data.last_second)
         } else {
             None
+        };
+        let largest = |q: Watched, t0: f64, sampled: Option<f64>| {
+            if exact {
+                located.extreme(q, ExtremumKind::Max, t0, t_stop)
+            } else {
+                sampled
+            }
         };
         let settled = || s.iter().filter(|x| x.t >= SETTLED_AFTER);
         let has_settled = t_stop >= SETTLED_AFTER;
@@ -142,11 +171,20 @@ impl Summary {
             .filter(|v| v.is_finite())
             .collect();
         let last_window = t_stop - 1.0;
-        let rolling_last = (t_stop - t_start >= 1.0).then(|| {
-            data.events
+        let has_last = t_stop - t_start >= 1.0;
+        let phases = if has_last {
+            rolling_phases(data, t_start, t_stop, last_window)
+        } else {
+            Vec::new()
+        };
+        let count =
+            |min: f64| has_last.then(|| phases.iter().filter(|(a, b)| b - a >= min).count() as f64);
+        let rolling_fraction = has_last.then(|| {
+            phases
                 .iter()
-                .filter(|e| e.to == Mode::Rolling && e.t > last_window && e.t <= t_stop)
-                .count() as f64
+                .map(|(a, b)| b.min(t_stop) - a.max(last_window))
+                .sum::<f64>()
+                / (t_stop - last_window)
         });
         let mut not_computed = BTreeMap::new();
         // Keys that need a state the models may leave frozen: (key, the quantity it is of).
@@ -202,24 +240,44 @@ impl Summary {
             theta_omega_first: first.map(|p| 2.0 * PI / p),
             theta_omega_last: last.map(|p| 2.0 * PI / p),
             theta_max_after_50s: has_settled
-                .then(|| fold(settled().map(|x| x.state.theta), f64::max))
+                .then(|| {
+                    let sampled = fold(settled().map(|x| x.state.theta), f64::max);
+                    largest(Watched::Theta, SETTLED_AFTER, sampled)
+                })
                 .flatten(),
             slip_speed_max_after_50s: has_settled
-                .then(|| fold(settled().map(|x| x.slip.v_c), f64::max))
+                .then(|| {
+                    let sampled = fold(settled().map(|x| x.slip.v_c), f64::max);
+                    largest(Watched::SlipSpeed, SETTLED_AFTER, sampled)
+                })
                 .flatten(),
             nu_sliding: (!sliding.is_empty())
                 .then(|| sliding.iter().sum::<f64>() / sliding.len() as f64),
             nu_max: fold(all().map(|x| x.forces.nu), f64::max),
-            rolling_phases_per_s_last: rolling_last,
-            n_over_mg_min: fold(all().map(|x| x.forces.normal / mg), f64::min),
-            n_over_mg_max: fold(all().map(|x| x.forces.normal / mg), f64::max),
-            n_over_mg_max_last_s: fold(
-                data.last_second
-                    .iter()
-                    .chain(s.iter())
-                    .filter(|x| x.t >= last_window)
-                    .map(|x| x.forces.normal / mg),
-                f64::max,
+            rolling_phases_per_s_last: count(0.0),
+            rolling_phases_long_per_s_last: count(LONG_PHASE_S),
+            rolling_fraction_last: rolling_fraction,
+            n_over_mg_min: if exact {
+                located.extreme(Watched::NormalForce, ExtremumKind::Min, t_start, t_stop)
+            } else {
+                fold(all().map(|x| x.forces.normal / mg), f64::min)
+            },
+            n_over_mg_max: largest(
+                Watched::NormalForce,
+                t_start,
+                fold(all().map(|x| x.forces.normal / mg), f64::max),
+            ),
+            n_over_mg_max_last_s: largest(
+                Watched::NormalForce,
+                last_window,
+                fold(
+                    data.last_second
+                        .iter()
+                        .chain(s.iter())
+                        .filter(|x| x.t >= last_window)
+                        .map(|x| x.forces.normal / mg),
+                    f64::max,
+                ),
             ),
             energy_drift_rel: rolling_energy_drift(s).filter(|_| computes("energy_drift_rel")),
             constraint_drift_max: data
@@ -303,7 +361,17 @@ impl Summary {
             row(
                 "rolling_phases_per_s_last",
                 num(self.rolling_phases_per_s_last),
+                None,
+            ),
+            row(
+                "rolling_phases_long_per_s_last",
+                num(self.rolling_phases_long_per_s_last),
                 Some("~24"),
+            ),
+            row(
+                "rolling_fraction_last",
+                num(self.rolling_fraction_last),
+                None,
             ),
             row("n_over_mg_min", num(self.n_over_mg_min), Some("> 0")),
             row("n_over_mg_max", num(self.n_over_mg_max), None),
@@ -337,6 +405,29 @@ fn start_mode(data: &RunData) -> Option<Mode> {
         Some(e) if Some(e.t) == t0 => Some(e.to),
         _ => data.samples.first().map(|s| s.mode),
     }
+}
+
+/// The rolling phases, `(start, end)`, of a run over `[t_start, t_stop]` that are rolling at
+/// some time after `from`: from the start mode and the mode decisions (a sliding restart is
+/// no boundary). A phase keeps its whole extent, also where it began before `from`.
+fn rolling_phases(data: &RunData, t_start: f64, t_stop: f64, from: f64) -> Vec<(f64, f64)> {
+    let mut phases = Vec::new();
+    let mut rolling_since = (start_mode(data) == Some(Mode::Rolling)).then_some(t_start);
+    for e in &data.events {
+        match (rolling_since, e.to) {
+            (None, Mode::Rolling) => rolling_since = Some(e.t),
+            (Some(a), Mode::Sliding) => {
+                phases.push((a, e.t));
+                rolling_since = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(a) = rolling_since {
+        phases.push((a, t_stop));
+    }
+    phases.retain(|&(_, b)| b > from);
+    phases
 }
 
 /// Largest `|E − E_phase_start| / |E_phase_start|` over the rolling phases of `samples`.

@@ -112,6 +112,8 @@ impl SyntheticRun {
             last_second: self.fine((self.t_end - 1.0).max(0.0), self.t_end, p),
             samples,
             events,
+            // No dense output: the summary and the figures read the samples.
+            extrema: Vec::new(),
             stop: Some(StopRecord {
                 t: self.t_end,
                 mode: Mode::Rolling,

@@ -2,7 +2,11 @@
 //!
 //! Each figure is built as a [`Chart`] from the recorded samples: two time windows (the first
 //! and the last simulated second, sampled finely) and the whole run (per-oscillation
-//! envelopes, so 100 s of a 150 s⁻¹ oscillation stay readable). Every time axis spans the
+//! envelopes, so 100 s of a 150 s⁻¹ oscillation stay readable). Heights and envelopes come
+//! from the extrema the run located on the dense output ([`Located`]), not from samples, so
+//! they do not change with the sampling rate; curves are drawn through the samples, and the
+//! force peaks are marked at their located heights. A run without located extrema (a
+//! synthetic one) draws its envelopes from the samples. Every time axis spans the
 //! time its figure covers, and a figure that has nothing to show on a scene (no nutation, no
 //! sliding, a run shorter than a second) says why in the picture.
 
@@ -13,10 +17,12 @@ use equations::DiskParams;
 use super::axes::time_range_label;
 use super::chart::{colors, render, Chart};
 use super::line::Line;
+use crate::analysis::extrema::Located;
 use crate::analysis::oscillation::{cycle_extremes, upward_crossings, CycleExtremes, Series};
 use crate::output::atomic::WriteError;
 use crate::record::RunData;
 use crate::sample::Sample;
+use equations::{ExtremumKind, Watched};
 
 /// The file stems of the figures, in the order [`paper_charts`] builds them: the files a run
 /// writes (and owns: a rerun clears them first).
@@ -108,9 +114,67 @@ fn per_cycle(samples: &[Sample], f: impl Fn(&Sample) -> f64) -> Vec<CycleExtreme
     cycle_extremes(&t, &values, &bounds)
 }
 
+/// Per-oscillation extremes of `q` from the located extrema, cycles bounded by θ's minima
+/// (`bounds_at` = min) or maxima;
+/// `None` when the run located none (the caller then reads the samples).
+fn located_cycles(
+    located: &Located,
+    q: Watched,
+    bounds_at: ExtremumKind,
+    t0: f64,
+    t1: f64,
+) -> Option<Vec<CycleExtremes>> {
+    if located.is_empty() {
+        return None;
+    }
+    let bounds = located.theta_cycles(bounds_at, t0, t1);
+    let cycles = bounds
+        .windows(2)
+        .filter_map(|w| {
+            let pick = |kind| {
+                let it = located.of(q, kind, w[0], w[1]);
+                match kind {
+                    ExtremumKind::Max => it.max_by(|a, b| a.value.total_cmp(&b.value)),
+                    ExtremumKind::Min => it.min_by(|a, b| a.value.total_cmp(&b.value)),
+                }
+                .copied()
+            };
+            let (hi, lo) = (pick(ExtremumKind::Max)?, pick(ExtremumKind::Min));
+            let lo = lo.unwrap_or(hi);
+            Some(CycleExtremes {
+                t_max: hi.t,
+                max: hi.value,
+                t_min: lo.t,
+                min: lo.value,
+            })
+        })
+        .collect();
+    Some(cycles)
+}
+
+/// The located peaks of N/mg within a window: the largest per θ cycle (bounded by θ's maxima,
+/// so that each force peak at a minimum of θ is inside one), as dots.
+fn peak_marks(located: &Located, span: Option<std::ops::Range<f64>>) -> Option<Line> {
+    let span = span?;
+    let bounds: Vec<f64> = std::iter::once(span.start)
+        .chain(located.theta_cycles(ExtremumKind::Max, span.start, span.end))
+        .chain(std::iter::once(span.end))
+        .collect();
+    let peaks = located.per_cycle_max(Watched::NormalForce, &bounds);
+    (!peaks.is_empty()).then(|| {
+        Line::new(
+            "peak N/mg (located)",
+            peaks.iter().map(|e| (e.t, e.value)).collect(),
+            colors::BLACK,
+        )
+        .dots()
+    })
+}
+
 /// Every figure of the paper for `data`, as chart descriptions.
 pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     let mg = p.m * p.g;
+    let located = Located::new(&data.extrema, mg);
     let all = &data.samples;
     let t_start = all.first().map_or(0.0, |s| s.t);
     let t_end = all.last().map_or(0.0, |s| s.t);
@@ -157,14 +221,16 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             vec![Line::new("v_C", points(s, |x| x.slip.v_c), colors::BLUE)],
         )));
         // θ first, so that the force spikes are drawn over it.
+        let mut lines = vec![
+            Line::new("θ", points(s, |x| x.state.theta), colors::BLUE).right(),
+            Line::new("N/mg", points(s, |x| x.forces.normal / mg), colors::RED),
+        ];
+        lines.extend(peak_marks(&located, w.span()));
         let mut fig8 = window(chart(
             &format!("fig08{}_normal_force", w.panel),
             format!("Fig. 8{}: N/mg and θ, {}", w.panel, w.label),
             "N/mg (1)",
-            vec![
-                Line::new("θ", points(s, |x| x.state.theta), colors::BLUE).right(),
-                Line::new("N/mg", points(s, |x| x.forces.normal / mg), colors::RED),
-            ],
+            lines,
         ));
         fig8.y2_label = Some("θ (rad)".to_string());
         charts.push(fig8);
@@ -190,23 +256,32 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
         c
     };
 
-    let theta_cycles = per_cycle(all, |x| x.state.theta);
+    // θ's envelopes: its located turning points (ripples aside), or per sampled cycle.
+    let theta_envelopes = if located.is_empty() {
+        let cycles = per_cycle(all, |x| x.state.theta);
+        (
+            cycles.iter().map(|c| (c.t_max, c.max)).collect(),
+            cycles.iter().map(|c| (c.t_min, c.min)).collect(),
+        )
+    } else {
+        let turns = |kind| {
+            located
+                .theta_turns(kind, t_start, t_end)
+                .iter()
+                .map(|e| (e.t, e.value))
+                .collect::<Vec<_>>()
+        };
+        (turns(ExtremumKind::Max), turns(ExtremumKind::Min))
+    };
+    let (theta_max, theta_min) = theta_envelopes;
     charts.push(whole_run(
         chart(
             "fig02_theta_envelope",
             format!("Fig. 2: envelopes of θ per oscillation, {whole}"),
             "θ (rad)",
             vec![
-                Line::new(
-                    "max θ",
-                    theta_cycles.iter().map(|c| (c.t_max, c.max)).collect(),
-                    colors::RED,
-                ),
-                Line::new(
-                    "min θ",
-                    theta_cycles.iter().map(|c| (c.t_min, c.min)).collect(),
-                    colors::BLUE,
-                ),
+                Line::new("max θ", theta_max, colors::RED),
+                Line::new("min θ", theta_min, colors::BLUE),
             ],
         ),
         "θ completes no oscillation: no envelope to draw",
@@ -228,7 +303,14 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     fig4.log_y = true;
     charts.push(fig4);
 
-    let slip_cycles = per_cycle(all, |x| x.slip.v_c);
+    let slip_cycles = located_cycles(
+        &located,
+        Watched::SlipSpeed,
+        ExtremumKind::Min,
+        t_start,
+        t_end,
+    )
+    .unwrap_or_else(|| per_cycle(all, |x| x.slip.v_c));
     let mut fig7 = whole_run(
         chart(
             "fig07_slip_speed_envelope",
@@ -253,6 +335,25 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     fig7.log_y = true;
     charts.push(fig7);
 
+    // The envelope at the located peaks, each at its own θ.
+    let located_envelope = located_cycles(
+        &located,
+        Watched::NormalForce,
+        ExtremumKind::Max,
+        t_start + 1.0,
+        t_end,
+    )
+    .map(|cycles| {
+        cycles
+            .iter()
+            .filter_map(|c| {
+                located
+                    .of(Watched::NormalForce, ExtremumKind::Max, c.t_max, c.t_max)
+                    .next()
+                    .map(|e| (e.theta, e.value))
+            })
+            .collect::<Vec<_>>()
+    });
     let normal_cycles = per_cycle(&after_1s, |x| x.forces.normal / mg);
     let theta_at = |t: f64| {
         let i = after_1s
@@ -277,10 +378,12 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
                 .cloud(),
                 Line::new(
                     "envelope: largest N/mg per oscillation",
-                    normal_cycles
-                        .iter()
-                        .map(|c| (theta_at(c.t_max), c.max))
-                        .collect(),
+                    located_envelope.unwrap_or_else(|| {
+                        normal_cycles
+                            .iter()
+                            .map(|c| (theta_at(c.t_max), c.max))
+                            .collect()
+                    }),
                     colors::RED,
                 )
                 .dots(),
@@ -298,7 +401,10 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     charts.push(fig9);
 
     let [_, last] = windows(data);
-    let period = {
+    let located_period = last
+        .span()
+        .and_then(|span| located.theta_period(span.start, span.end));
+    let period = located_period.or_else(|| {
         let t: Vec<f64> = last.samples.iter().map(|s| s.t).collect();
         let v: Vec<f64> = last.samples.iter().map(|s| s.state.omega_y).collect();
         let (t0, t1) = (
@@ -306,7 +412,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             t.last().copied().unwrap_or(0.0),
         );
         crate::analysis::oscillation::mean_period(Series { t: &t, v: &v }, t0, t1)
-    };
+    });
     let (every, rate) = period.map_or(
         ("no full oscillation".to_string(), "N/mg".to_string()),
         |p| {
@@ -319,15 +425,17 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
             )
         },
     );
+    let mut lines = vec![Line::new(
+        rate,
+        points(last.samples, |x| x.forces.normal / mg),
+        colors::RED,
+    )];
+    lines.extend(peak_marks(&located, last.span()));
     let mut fig10 = chart(
         "fig10_normal_force_last_second",
         format!("Fig. 10: N/mg in the last second, {every}"),
         "N/mg (1)",
-        vec![Line::new(
-            rate,
-            points(last.samples, |x| x.forces.normal / mg),
-            colors::RED,
-        )],
+        lines,
     );
     fig10.x_range = last.span();
     charts.push(fig10);

@@ -98,6 +98,13 @@ impl Collector {
         self.data.events.push(e);
     }
 
+    /// Takes located extrema, if the plan keeps them ([`SamplePlan::keeps_extrema`]).
+    pub fn extrema(&mut self, batch: Vec<equations::Extremum>) {
+        if self.plan.keeps_extrema() {
+            self.data.extrema.extend(batch);
+        }
+    }
+
     /// Whether it writes `trajectory.csv` as the samples arrive.
     pub fn writes_file(&self) -> bool {
         self.file.is_some()

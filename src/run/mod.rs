@@ -22,6 +22,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::RecvTimeoutError;
 use std::time::{Duration, Instant};
 
+use crate::analysis::extrema::Located;
 use crate::analysis::summary::Summary;
 use crate::eval::Backend;
 use crate::figures::paper::write_paper_figures;
@@ -262,6 +263,10 @@ impl simulation::Outlet for &mut Inline<'_> {
                 self.collector.event(e);
                 Ok(())
             }
+            Message::Extrema(batch) => {
+                self.collector.extrema(batch);
+                Ok(())
+            }
             Message::Done(_) => Ok(()),
         };
         match written {
@@ -293,6 +298,7 @@ fn collect(
                 }
             }
             Ok(Message::Event(e)) => collector.event(e),
+            Ok(Message::Extrema(batch)) => collector.extrema(batch),
             Ok(Message::Done(done)) => match *done {
                 Ok(o) => {
                     let stop = o.stop.clone();
@@ -374,6 +380,10 @@ pub fn write_outputs(
     });
     let path = dir.join("events.csv");
     write_atomic(&path, |w| write_events(w, &data.events, &stop))?;
+    files.push(path);
+    let path = dir.join("extrema.csv");
+    let located = Located::new(&data.extrema, scene.params.m * scene.params.g);
+    write_atomic(&path, |w| located.write_csv(w))?;
     files.push(path);
     timings.outputs_s = lap(&mut clock);
     let mut summary = Summary::of(&scene.name, data, &scene.params);

@@ -2,7 +2,7 @@
 //!
 //! A rerun into the same directory must not leave files of an earlier run beside the new ones
 //! (old figures after `--no-figures`, say). The run removes exactly the names it writes —
-//! `trajectory.csv`, `events.csv`, `summary.json`, the paper figures' PNG and SVG files — and
+//! `trajectory.csv`, `events.csv`, `extrema.csv`, `summary.json`, the paper figures' PNG and SVG files — and
 //! partial files an interrupted writer of those names left behind; anything else in the
 //! directory is not the run's and stays.
 
@@ -17,10 +17,15 @@ const PARTIAL_PREFIX: &str = ".partial-";
 
 /// The file names a run may write into its output directory.
 pub fn owned_names() -> Vec<String> {
-    let mut names: Vec<String> = ["trajectory.csv", "events.csv", "summary.json"]
-        .iter()
-        .map(|n| n.to_string())
-        .collect();
+    let mut names: Vec<String> = [
+        "trajectory.csv",
+        "events.csv",
+        "extrema.csv",
+        "summary.json",
+    ]
+    .iter()
+    .map(|n| n.to_string())
+    .collect();
     for stem in FIGURE_STEMS {
         names.push(format!("{stem}.png"));
         names.push(format!("{stem}.svg"));

@@ -104,6 +104,12 @@ impl SamplePlan {
         }
     }
 
+    /// Whether located extrema are kept: in a full run all of them, in a replay of the last
+    /// second none (the first pass, which ran through the same motion, kept them).
+    pub fn keeps_extrema(&self) -> bool {
+        self.coarse
+    }
+
     /// Whether the sample at `t` is recorded at all.
     pub fn wants(&self, t: f64) -> bool {
         self.is_coarse(t) || self.window(t).is_some()

@@ -15,8 +15,8 @@ use std::thread::Scope;
 
 use equations::DIM;
 use equations::{
-    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, InitialState, Mode,
-    RunOutcome, StopReason, TransitionRecord, Trigger,
+    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum,
+    InitialState, Mode, RunOutcome, StopReason, TransitionRecord, Trigger,
 };
 use model_runtime::Model;
 
@@ -33,6 +33,8 @@ pub enum Message {
     Samples(Vec<Sample>),
     /// A mode decision.
     Event(EventRow),
+    /// Located extrema, in order.
+    Extrema(Vec<Extremum>),
     /// The run ended (boxed: an outcome holds a whole sample).
     Done(Box<Result<Outcome, String>>),
 }
@@ -168,6 +170,8 @@ struct ChannelObserver<'a, O> {
     open: bool,
     plan: SamplePlan,
     batch: Vec<Sample>,
+    /// Extrema not yet sent (they go with the next batch of samples).
+    extrema: Vec<Extremum>,
     /// Flush the batch once the simulation passes this time, so progress keeps moving even
     /// where samples are sparse.
     flush_at: f64,
@@ -189,6 +193,10 @@ impl<O: Outlet> ChannelObserver<'_, O> {
     }
 
     fn flush(&mut self) {
+        if !self.extrema.is_empty() {
+            let extrema = std::mem::take(&mut self.extrema);
+            self.send(Message::Extrema(extrema));
+        }
         if !self.batch.is_empty() {
             let batch = std::mem::replace(&mut self.batch, Vec::with_capacity(BATCH));
             self.send(Message::Samples(batch));
@@ -211,6 +219,14 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
             self.flush_at = s.t + self.flush_every;
             self.flush();
         }
+    }
+
+    fn wants_extrema(&self) -> bool {
+        true
+    }
+
+    fn on_extremum(&mut self, extremum: &Extremum) {
+        self.extrema.push(*extremum);
     }
 
     fn on_transition(&mut self, record: &TransitionRecord) {
@@ -274,6 +290,7 @@ pub fn simulate_into<O: Outlet>(
         open: true,
         plan,
         batch: Vec::with_capacity(BATCH),
+        extrema: Vec::new(),
         flush_at: flush_every,
         flush_every,
         frozen: choice.frozen.clone(),

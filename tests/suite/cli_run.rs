@@ -581,7 +581,7 @@ fn the_readmes_numbers_and_figure_are_todays() {
     let (_, events) = csv(&out.join("events.csv"));
     let initial_ratio: f64 = events[0][4].parse().unwrap();
 
-    let checks: [(&str, Vec<f64>); 11] = [
+    let checks: [(&str, Vec<f64>); 12] = [
         ("start mode", vec![initial_ratio]),
         ("stop reason, t_end", vec![t_end]),
         (
@@ -606,8 +606,15 @@ fn the_readmes_numbers_and_figure_are_todays() {
             vec![num("nu_sliding"), num("nu_max")],
         ),
         (
-            "rolling phases per second, last second",
-            vec![num("rolling_phases_per_s_last")],
+            "rolling phases per second, last second (all / ≥ 1 ms)",
+            vec![
+                num("rolling_phases_per_s_last"),
+                num("rolling_phases_long_per_s_last"),
+            ],
+        ),
+        (
+            "rolling time fraction, last second",
+            vec![num("rolling_fraction_last")],
         ),
         (
             "N/mg min / max (max in the last second)",
@@ -644,7 +651,13 @@ fn the_readmes_numbers_and_figure_are_todays() {
             num("constraint_drift_max")
         ));
     }
-    assert!((slip_max - num("slip_speed_max_after_50s")).abs() < 1e-15);
+    // The located maximum of the slip is at least the largest sample, and the samples (1 kHz)
+    // come within a part in a thousand of it.
+    let located = num("slip_speed_max_after_50s");
+    assert!(
+        located >= slip_max && located - slip_max <= 1e-3 * located,
+        "{located} {slip_max}"
+    );
     assert_eq!(s["start_mode"], "sliding");
     assert_eq!(s["stop_reason"], "end_time");
     assert!(

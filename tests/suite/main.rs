@@ -5,6 +5,7 @@ mod cli_eval;
 mod cli_model;
 mod cli_run;
 mod cli_switched;
+mod extrema;
 mod imports;
 mod outputs;
 mod pruned_scene;

@@ -1,6 +1,7 @@
 //! One simulation from start to stop: checking the inputs, deciding the initial mode, choosing
 //! the integrator, and turning the driver's raw phase states into disk samples for the caller.
 
+use super::extrema::Scanner;
 use super::models::DiskModels;
 use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
 use super::{
@@ -164,6 +165,7 @@ where
         user: observer,
         gate: &mut gate,
         failure: None,
+        scanner: Scanner::default(),
     };
     let ended = match config.time {
         TimeVariable::Physical => {
@@ -228,6 +230,7 @@ where
                 .map_err(|e| in_physical_time(e, at))
         }
     };
+    adaptor.end_segment();
     let failure = adaptor.failure.take();
     if let Ok(Ended {
         stop:
@@ -507,6 +510,18 @@ struct Adaptor<'a, R, S, O> {
     gate: &'a mut Gate,
     /// The first model failure while sampling (reported after the run).
     failure: Option<(f64, Phase, EvalError)>,
+    /// Locates extrema, when the user asks for them.
+    scanner: Scanner,
+}
+
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
+    /// Ends the scanned segment (a transition or the end of the run).
+    fn end_segment(&mut self) {
+        if self.user.wants_extrema() {
+            let user = &mut *self.user;
+            self.scanner.end_segment(&mut |e| user.on_extremum(&e));
+        }
+    }
 }
 
 impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::DiskGuard, DiskNote>
@@ -514,6 +529,10 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
 {
     fn wants_sample(&self, t: f64) -> bool {
         self.user.wants_sample(t)
+    }
+
+    fn wants_dense(&self) -> bool {
+        self.user.wants_extrema()
     }
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {
@@ -535,6 +554,11 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
     }
 
     fn on_step(&mut self, step: &StepView<'_, DIM, Phase>) {
+        if self.user.wants_extrema() {
+            let user = &mut *self.user;
+            self.scanner
+                .step(self.models, step.mode, step, &mut |e| user.on_extremum(&e));
+        }
         if !self.user.wants_steps() {
             return;
         }
@@ -552,6 +576,9 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
         &mut self,
         record: model_runtime::TransitionRecord<DIM, Phase, super::DiskGuard, DiskNote>,
     ) {
+        if !matches!(record.kind, model_runtime::TransitionKind::Pass) {
+            self.end_segment();
+        }
         let DiskNote { decision, bridge } = record.note;
         if bridge.is_some() {
             self.bridge = bridge;

@@ -17,6 +17,7 @@ mod hybrid_states;
 mod invariants;
 mod jacobian;
 mod linear_stability;
+mod located_extrema;
 mod misprint;
 mod normal_force;
 mod paper_scene;

@@ -1,11 +1,12 @@
 //! The observer side of regularised time: [`PhysicalTime`] turns what the driver reports in
 //! `τ` for a [`crate::Regularised`] system back into physical time for an observer of the inner
 //! system — samples on the physical grid (the roots of the clock on each step's dense output),
-//! steps and transitions with physical times and rates, the transition's note passed on.
+//! steps (with their dense output in physical time, when the observer asks for it) and
+//! transitions with physical times and rates, the transition's note passed on.
 //! Apart from the system so that each file holds one side of the transformation.
 
 use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
-use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::root::find_crossing;
 
 /// An observer of `H` (in physical time) fed by a run of [`crate::Regularised`] (in `τ`).
@@ -44,7 +45,7 @@ where
     G: Copy,
 {
     fn wants_dense(&self) -> bool {
-        self.rate.is_some()
+        self.rate.is_some() || self.inner.wants_dense()
     }
 
     fn on_step(&mut self, step: &StepView<'_, M, Md>) {
@@ -82,6 +83,15 @@ where
             });
         }
         let (y0, y1) = (head(step.y0), head(step.y1));
+        let physical = match step.dense {
+            Some(dense) if self.inner.wants_dense() => Some(InPhysicalTime::<N, M> {
+                dense,
+                tau: (step.t0, step.t1),
+                clock: (step.y0[N], step.y1[N]),
+                t_seg: self.t_seg,
+            }),
+            _ => None,
+        };
         self.inner.on_step(&StepView {
             mode: step.mode,
             t0,
@@ -89,7 +99,7 @@ where
             y0: &y0,
             y1: &y1,
             f0: &physical_rate(step.f0),
-            dense: None,
+            dense: physical.as_ref().map(|d| d as &dyn Interpolant<N>),
         });
     }
 
@@ -117,5 +127,66 @@ where
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {
         self.inner.proceed()
+    }
+}
+
+/// A step's dense output in `τ`, evaluated in physical time: each evaluation first finds the
+/// `τ` at which the clock reads `t` (the clock rises monotonically, `s > 0`), to a few ulps.
+struct InPhysicalTime<'a, const N: usize, const M: usize> {
+    dense: &'a dyn Interpolant<M>,
+    /// The step's ends in `τ`.
+    tau: (f64, f64),
+    /// The clock at those ends.
+    clock: (f64, f64),
+    /// Physical time at the segment's start (the clock's origin).
+    t_seg: f64,
+}
+
+impl<const N: usize, const M: usize> InPhysicalTime<'_, N, M> {
+    fn tau_at(&self, t: f64) -> f64 {
+        let target = t - self.t_seg;
+        let (c0, c1) = self.clock;
+        if target <= c0 {
+            return self.tau.0;
+        }
+        if target >= c1 {
+            return self.tau.1;
+        }
+        // The clock is nearly linear over a step: secant steps from the chord converge in a
+        // few evaluations; the bracketing finder takes over if they stall.
+        let (mut lo, mut hi) = ((self.tau.0, c0 - target), (self.tau.1, c1 - target));
+        for _ in 0..4 {
+            let tau = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
+            if !(tau > lo.0 && tau < hi.0) {
+                break;
+            }
+            let f = self.dense.component_at(tau, N) - target;
+            if f.abs() <= 4.0 * f64::EPSILON * t.abs() {
+                return tau;
+            }
+            if f < 0.0 {
+                lo = (tau, f);
+            } else {
+                hi = (tau, f);
+            }
+        }
+        let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
+            Ok(self.dense.component_at(tau, N) - target)
+        };
+        find_crossing(lo.0, lo.1, hi.0, hi.1, -1.0, clock)
+            .unwrap_or_else(|never| match never {})
+            .t
+    }
+}
+
+impl<const N: usize, const M: usize> Interpolant<N> for InPhysicalTime<'_, N, M> {
+    fn at(&self, t: f64, out: &mut [f64; N]) {
+        let mut z = [0.0; M];
+        self.dense.at(self.tau_at(t), &mut z);
+        *out = head(&z);
+    }
+
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        self.dense.component_at(self.tau_at(t), i)
     }
 }

@@ -487,6 +487,39 @@ mod tests {
     }
 
     #[test]
+    fn steps_carry_their_dense_output_in_physical_time() {
+        /// Checks the interpolant of every step against `y = sqrt(1 - t)` in physical time.
+        struct Dense(usize, f64);
+        impl Observer<1, (), &'static str> for Dense {
+            fn wants_dense(&self) -> bool {
+                true
+            }
+            fn on_step(&mut self, step: &crate::observer::StepView<'_, 1, ()>) {
+                let dense = step.dense.expect("asked for");
+                for k in 0..=4 {
+                    let t = step.t0 + (step.t1 - step.t0) * k as f64 / 4.0;
+                    let err = (dense.component_at(t, 0) - (1.0 - t).sqrt()).abs();
+                    self.1 = self.1.max(err);
+                }
+                self.0 += 1;
+            }
+        }
+        let mut sys = Root;
+        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
+        let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
+        let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+        let mut seen = Dense(0, 0.0);
+        let mut observer = PhysicalTime::<_, 1, 2>::new(&mut seen, 0.0, None);
+        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
+        solver
+            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut observer)
+            .unwrap();
+        assert!(seen.0 > 2, "{} steps", seen.0);
+        // The interpolant's error at rtol 1e-10, and the clock's root to a few ulps.
+        assert!(seen.1 < 1e-9, "largest error {:e}", seen.1);
+    }
+
+    #[test]
     fn declined_samples_cost_nothing_and_are_not_delivered() {
         struct Even(Vec<f64>);
         impl Observer<1, (), &'static str> for Even {

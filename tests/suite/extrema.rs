@@ -1,0 +1,117 @@
+//! The summary's heights, periods and amplitudes come from extrema located on the dense
+//! output, so they do not depend on the sampling rate: the main job at 1 kHz and at 20 kHz
+//! gives the same values (to 1e-6 relative; in fact to the last bit, since the steps do not
+//! depend on the samples). `extrema.csv` lists them.
+
+use std::sync::atomic::AtomicBool;
+
+use eulerdisk::{load_scene, run_scene, Backend, Override, ProgressStyle, Provenance, RunOptions};
+
+/// The paper's scene at `rate` samples per second, without trajectory or figures.
+fn main_job_at(rate: f64) -> (tempfile::TempDir, eulerdisk::RunReport) {
+    let overrides = [Override::new("run", "sample_rate", rate)];
+    let scene = load_scene("tangent-toy", &overrides).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        out_dir: dir.path().to_path_buf(),
+        progress: ProgressStyle::Quiet,
+        backend: Backend::Generated,
+        figures: false,
+        trajectory: false,
+        provenance: Provenance::new(&scene, "tangent-toy", &overrides),
+    };
+    let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
+    (dir, report)
+}
+
+#[test]
+fn located_numbers_do_not_depend_on_the_sampling_rate() {
+    let (_a, coarse) = main_job_at(1000.0);
+    let (dir, fine) = main_job_at(20_000.0);
+    let (c, f) = (&coarse.summary, &fine.summary);
+    assert_eq!(c.t_end, 100.0);
+    for (key, a, b) in [
+        ("n_over_mg_max", c.n_over_mg_max, f.n_over_mg_max),
+        (
+            "n_over_mg_max_last_s",
+            c.n_over_mg_max_last_s,
+            f.n_over_mg_max_last_s,
+        ),
+        ("n_over_mg_min", c.n_over_mg_min, f.n_over_mg_min),
+        (
+            "theta_max_after_50s",
+            c.theta_max_after_50s,
+            f.theta_max_after_50s,
+        ),
+        (
+            "theta_period_first_s",
+            c.theta_period_first_s,
+            f.theta_period_first_s,
+        ),
+        (
+            "theta_period_last_s",
+            c.theta_period_last_s,
+            f.theta_period_last_s,
+        ),
+        (
+            "slip_speed_max_after_50s",
+            c.slip_speed_max_after_50s,
+            f.slip_speed_max_after_50s,
+        ),
+    ] {
+        let (a, b) = (a.unwrap(), b.unwrap());
+        assert!(
+            (a - b).abs() <= 1e-6 * b.abs(),
+            "{key}: {a} at 1 kHz, {b} at 20 kHz"
+        );
+    }
+    // The located peaks are at least as high as any sample (the 20 kHz samples of the last
+    // second miss most of each peak's top).
+    let text = std::fs::read_to_string(dir.path().join("extrema.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("t_s,quantity,kind,value"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert!(rows
+        .iter()
+        .all(|r| r.len() == 4 && (r[2] == "max" || r[2] == "min")));
+    let peak = rows
+        .iter()
+        .filter(|r| r[1] == "N_over_mg" && r[2] == "max")
+        .map(|r| r[3].parse::<f64>().unwrap())
+        .fold(f64::MIN, f64::max);
+    assert_eq!(peak, f.n_over_mg_max.unwrap());
+    let times: Vec<f64> = rows.iter().map(|r| r[0].parse().unwrap()).collect();
+    assert!(times.windows(2).all(|w| w[0] <= w[1]), "time order");
+    // θ turns ~150 times a second at the end: every one of them is listed.
+    let last_second_minima = rows
+        .iter()
+        .filter(|r| r[1] == "theta_rad" && r[2] == "min")
+        .filter(|r| r[0].parse::<f64>().unwrap() >= 99.0)
+        .count();
+    assert!(
+        (23..=25).contains(&last_second_minima),
+        "{last_second_minima}"
+    );
+}
+
+#[test]
+fn a_disk_that_rolls_throughout_has_one_rolling_phase() {
+    // Steady rolling on a circle never slides: one phase, all of the last second rolling.
+    let scene = load_scene("steady-circle", &[]).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        out_dir: dir.path().to_path_buf(),
+        progress: ProgressStyle::Quiet,
+        backend: Backend::Generated,
+        figures: false,
+        trajectory: false,
+        provenance: Provenance::new(&scene, "steady-circle", &[]),
+    };
+    let s = run_scene(&scene, &opts, &AtomicBool::new(false))
+        .unwrap()
+        .summary;
+    assert_eq!(s.transitions, 0);
+    assert_eq!(s.rolling_phases_per_s_last, Some(1.0));
+    assert_eq!(s.rolling_phases_long_per_s_last, Some(1.0));
+    assert_eq!(s.rolling_fraction_last, Some(1.0));
+}
