@@ -125,7 +125,8 @@ mod tests {
     #[test]
     fn the_owned_names_are_what_a_run_writes() {
         let names = owned_names();
-        assert_eq!(names.len(), 3 + 2 * FIGURE_STEMS.len());
+        assert_eq!(names.len(), 4 + 2 * FIGURE_STEMS.len());
         assert!(names.contains(&"fig01a_theta.png".to_string()));
+        assert!(names.contains(&"extrema.csv".to_string()));
     }
 }
