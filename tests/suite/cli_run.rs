@@ -316,7 +316,13 @@ fn the_summary_records_how_it_was_produced_and_a_rerun_leaves_no_stale_files() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(
         names_in(&out),
-        ["events.csv", "notes.txt", "summary.json", "trajectory.csv"],
+        [
+            "events.csv",
+            "extrema.csv",
+            "notes.txt",
+            "summary.json",
+            "trajectory.csv"
+        ],
         "the first run's figures are gone, the user's file stays"
     );
     let summary = read_summary(&out);
