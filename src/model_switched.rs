@@ -18,8 +18,8 @@ use model_algebra::Inputs;
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
     run_switched, AccumulationAction, Direction, Dop853, Dopri5, EvalError, EventAction, EventDecl,
-    EventRecord, Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Model, Rk4,
-    Rodas4, SwitchedModel, SwitchedRun, Termination, Tolerance,
+    Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Model, Rk4, Rodas4,
+    SwitchedModel, SwitchedRun, Termination, Tolerance,
 };
 
 /// The runtime's mode graph of a compiled switched model.
@@ -239,12 +239,12 @@ pub fn solve_switched(
     }
     let mut events = Vec::with_capacity(run.events.len());
     let mut notes = Vec::new();
-    for event in &run.events {
+    for (k, event) in run.events.iter().enumerate() {
         let accumulated = matches!(event.fired, Fired::Accumulated | Fired::AccumulatedStop);
         let (name, y, mode) = if accumulated {
             let name = format!("{} accumulates", event.event);
             let continued = match event.fired {
-                Fired::Accumulated => format!("the run goes on in `{}`", mode_after(&run, event)),
+                Fired::Accumulated => format!("the run goes on in `{}`", mode_after(&run, k)),
                 _ => format!(
                     "the run stops there (`when {} accumulates -> MODE {{ .. }}` says where it goes on)",
                     event.event
@@ -254,7 +254,7 @@ pub fn solve_switched(
                 "the firings of `{}` accumulate at t = {}: {continued}",
                 event.event, event.t
             ));
-            (name, &event.y_after, mode_after(&run, event))
+            (name, &event.y_after, mode_after(&run, k))
         } else {
             (event.event.clone(), &event.y, event.mode.as_str())
         };
@@ -285,14 +285,11 @@ pub fn solve_switched(
     })
 }
 
-/// The mode the run continued in after `event` (its own, for an event that ended the run).
-fn mode_after<'a>(run: &'a SwitchedRun<MAX_STATES>, event: &'a EventRecord<MAX_STATES>) -> &'a str {
-    let later = run
-        .events
-        .iter()
-        .skip_while(|e| !std::ptr::eq(*e, event))
-        .nth(1);
-    match later {
+/// The mode the run continued in after its `k`-th event (its own, for an event that ended
+/// the run).
+fn mode_after(run: &SwitchedRun<MAX_STATES>, k: usize) -> &str {
+    let event = &run.events[k];
+    match run.events.get(k + 1) {
         Some(next) => next.mode.as_str(),
         None if event.fired == Fired::Accumulated => run.mode.as_str(),
         None => event.mode.as_str(),

@@ -12,7 +12,7 @@ const HEAVY_TOP: &str = concat!(
     "/model-macros/examples/heavy_top.dsl"
 );
 
-fn model(args: &[&str]) -> Output {
+pub(crate) fn model(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
         .arg("model")
         .args(args)
@@ -28,14 +28,14 @@ fn ok(args: &[&str]) -> String {
 }
 
 /// A DSL file in a fresh temporary directory.
-fn file(text: &str) -> (tempfile::TempDir, PathBuf) {
+pub(crate) fn file(text: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("model.dsl");
     std::fs::write(&path, text).unwrap();
     (dir, path)
 }
 
-fn arg(path: &Path) -> &str {
+pub(crate) fn arg(path: &Path) -> &str {
     path.to_str().unwrap()
 }
 

@@ -3,34 +3,14 @@
 //! closed-form time, an accumulation said on the terminal, a chatter that no rule resolves
 //! named with the work done, and mistakes in the new constructs located.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use crate::cli_model::{arg, file, model};
+use std::path::Path;
 
 fn example(name: &str) -> String {
     format!(
         "{}/model-macros/examples/{name}.dsl",
         env!("CARGO_MANIFEST_DIR")
     )
-}
-
-fn model(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
-        .arg("model")
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-/// A DSL file in a fresh temporary directory.
-fn file(text: &str) -> (tempfile::TempDir, PathBuf) {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("model.dsl");
-    std::fs::write(&path, text).unwrap();
-    (dir, path)
-}
-
-fn arg(path: &Path) -> &str {
-    path.to_str().unwrap()
 }
 
 /// Runs `model solve` on `file` into a temporary folder: (trajectory rows, events, stderr).
