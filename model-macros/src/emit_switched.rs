@@ -64,14 +64,14 @@ pub fn emit_switched(
                 Action::Stop => quote! { ::model_runtime::EventAction::Stop },
                 Action::Jump(jump) => {
                     let to = option_index(jump.to);
-                    let reset = !jump.states.is_empty();
+                    let reset = assigns(jump);
                     quote! { ::model_runtime::EventAction::Reset { to: #to, reset: #reset } }
                 }
             };
             let accumulation = match &event.accumulation {
                 Some(jump) => {
                     let to = option_index(jump.to);
-                    let reset = !jump.states.is_empty();
+                    let reset = assigns(jump);
                     quote! {
                         ::core::option::Option::Some(::model_runtime::AccumulationAction { to: #to, reset: #reset })
                     }
@@ -264,9 +264,21 @@ fn option_index(index: Option<usize>) -> TokenStream {
     }
 }
 
+/// Whether a jump assigns states: written resets, or a Rust function's.
+fn assigns(jump: &Jump) -> bool {
+    !jump.states.is_empty() || jump.by.is_some()
+}
+
 /// One arm of `reset`: the program of the new values into a local array, then each into its
-/// state.
+/// state; or a call of the Rust function that computes the new state (`by FUNCTION`), which
+/// the model's module finds in the module around it.
 fn reset_arm(mode: usize, event: usize, accumulation: bool, jump: &Jump) -> TokenStream {
+    if let Some(function) = &jump.by {
+        let function = format_ident!("{}", function);
+        return quote! {
+            (#mode, #event, #accumulation) => super::#function(self, t, y, dy, new)?,
+        };
+    }
     let n = jump.states.len();
     let body = statements(&jump.program);
     let targets = jump

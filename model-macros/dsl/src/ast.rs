@@ -205,7 +205,7 @@ pub struct Mode {
     pub accumulations: Vec<Accumulates>,
 }
 
-/// `when NAME: GUARD [-> TARGET] [{ RESETS }]`: an event, located where the guard's relation
+/// `when NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION]`: an event, located where the guard's relation
 /// starts to hold.
 #[derive(Clone, Debug)]
 pub struct When {
@@ -220,6 +220,8 @@ pub struct When {
     pub target: Option<Target>,
     /// `{ state = EXPR; .. }`; `None` when no braces were written.
     pub resets: Option<Vec<Named<Expr>>>,
+    /// `by FUNCTION`: the new state is computed by a Rust function instead of written resets.
+    pub by: Option<Named<()>>,
 }
 
 /// `when NAME accumulates -> TARGET [{ RESETS }]`: what an accumulation of an event's resets
@@ -232,6 +234,8 @@ pub struct Accumulates {
     pub target: Target,
     /// The states set there.
     pub resets: Vec<Named<Expr>>,
+    /// `by FUNCTION`: the new state is computed by a Rust function instead.
+    pub by: Option<Named<()>>,
 }
 
 /// The target of a transition.

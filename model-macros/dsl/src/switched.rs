@@ -58,6 +58,9 @@ pub struct JumpPlan {
     pub to: Option<usize>,
     /// `(state index, output index)` per reset, in the order written.
     pub resets: Vec<(usize, usize)>,
+    /// The Rust function that computes the new state instead (`by FUNCTION`; then `resets` is
+    /// empty).
+    pub by: Option<String>,
 }
 
 /// One event of a mode as planned.
@@ -108,6 +111,17 @@ impl ModelAst {
     /// Whether the model switches: it has modes or events.
     pub fn is_switched(&self) -> bool {
         !self.modes.is_empty() || !self.events.is_empty() || !self.accumulations.is_empty()
+    }
+
+    /// Every `by FUNCTION` of the model's events and accumulations, in the order written: the
+    /// Rust functions a run calls, which only a model compiled by `model!` can call.
+    pub fn rust_calls(&self) -> Vec<&Named<()>> {
+        let events = (self.modes.iter().flat_map(|m| &m.events)).chain(&self.events);
+        let accumulations =
+            (self.modes.iter().flat_map(|m| &m.accumulations)).chain(&self.accumulations);
+        (events.filter_map(|w| w.by.as_ref()))
+            .chain(accumulations.filter_map(|a| a.by.as_ref()))
+            .collect()
     }
 }
 
@@ -186,6 +200,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         // Checks and plans a jump: its target and its resets, each a new output.
         let jump = |target: Option<&Target>,
                     resets: &[Named<Expr>],
+                    by: Option<&Named<()>>,
                     event: &str,
                     kind: &str,
                     outputs: &mut Vec<Named<Expr>>,
@@ -234,6 +249,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
             Some(JumpPlan {
                 to,
                 resets: planned,
+                by: by.map(|f| f.name.clone()),
             })
         };
         // The guards first, together, then each jump's resets, together: the compiler then
@@ -263,8 +279,9 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 );
             }
             let guard = &when.guard;
-            let action = match (&when.target, &when.resets) {
-                (Some(Target::Stop(id)), Some(_)) => {
+            let sets_state = when.resets.is_some() || when.by.is_some();
+            let action = match (&when.target, sets_state) {
+                (Some(Target::Stop(id)), true) => {
                     errors.at(
                         range(*id),
                         format!(
@@ -274,13 +291,14 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                     );
                     Action::Stop
                 }
-                (Some(Target::Stop(_)), None) => Action::Stop,
-                (None, None) => Action::Record,
-                (target, resets) => {
-                    let resets = resets.as_deref().unwrap_or(&[]);
+                (Some(Target::Stop(_)), false) => Action::Stop,
+                (None, false) => Action::Record,
+                (target, _) => {
+                    let resets = when.resets.as_deref().unwrap_or(&[]);
                     match jump(
                         target.as_ref(),
                         resets,
+                        when.by.as_ref(),
                         &when.name.name,
                         "reset",
                         &mut outputs,
@@ -348,6 +366,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
             let plan = jump(
                 Some(&acc.target),
                 &acc.resets,
+                acc.by.as_ref(),
                 &acc.event.name,
                 "accumulation",
                 &mut outputs,

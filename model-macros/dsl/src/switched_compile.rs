@@ -60,6 +60,9 @@ pub struct Jump {
     pub texts: Vec<String>,
     /// The same in LaTeX.
     pub latex: Vec<String>,
+    /// The Rust function that computes the new state instead (`by FUNCTION`): the compiled
+    /// model calls it; a model that has one can run only compiled.
+    pub by: Option<String>,
 }
 
 impl CompiledSwitched {
@@ -126,6 +129,7 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
                     program: all.select_outputs(range),
                     texts: outputs.clone().map(|o| texts[o].clone()).collect(),
                     latex: outputs.map(|o| latex[o].clone()).collect(),
+                    by: plan.by.clone(),
                 }
             };
             events.push(CompiledEvent {

@@ -94,6 +94,12 @@ fn action_latex(model: &CompiledSwitched, event: &CompiledEvent, states: &[Strin
         let mut parts: Vec<String> = (jump.states.iter().zip(&jump.latex))
             .map(|(&s, v)| format!("{}^{{+}} = {v}", latex_name(&states[s])))
             .collect();
+        if let Some(function) = &jump.by {
+            parts.push(format!(
+                "y^{{+}} = \\texttt{{{}}}(t, y, \\dot y)",
+                function.replace('_', "\\_")
+            ));
+        }
         if let Some(to) = jump.to {
             parts.push(format!(
                 "\\to \\text{{{}}}",
@@ -125,6 +131,9 @@ fn jump_text(model: &CompiledSwitched, from: &str, jump: &Jump, states: &[String
     let mut parts: Vec<String> = (jump.states.iter().zip(&jump.texts))
         .map(|(&s, v)| format!("`{} := {v}`", states[s]))
         .collect();
+    if let Some(function) = &jump.by {
+        parts.push(format!("the state `by {function}` (Rust)"));
+    }
     parts.push(match jump.to {
         Some(to) => format!("go to `{}`", model.modes[to].model.name),
         None => format!("restart `{from}`"),

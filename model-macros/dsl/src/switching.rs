@@ -7,7 +7,9 @@
 //! just before the event) and the mode the run continues in (`-> sliding`), or `-> stop`. An
 //! event with neither is only recorded. `when impact accumulates -> resting { .. }` says what an
 //! accumulation of an event's resets (a Zeno point, such as a ball's ever shorter bounces)
-//! turns into. The grammar is described in the macro crate's `DSL.md`, section "Switching".
+//! turns into. A new state that no expression gives (the direction a slip starts in is the
+//! solution of a search) is computed `by` a named Rust function: `-> sliding by slip_onset`.
+//! The grammar is described in the macro crate's `DSL.md`, section "Switching".
 
 use crate::ast::{Accumulates, Mode, Target, When};
 use crate::expr::parse_relation;
@@ -116,8 +118,8 @@ pub(crate) fn parse_mode(
     Ok(mode)
 }
 
-/// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS }] [;]` or
-/// `NAME accumulates -> TARGET [{ RESETS }] [;]`.
+/// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION] [;]` or
+/// `NAME accumulates -> TARGET [{ RESETS } | by FUNCTION] [;]`.
 pub(crate) fn parse_when(
     input: ParseStream,
     attrs: Vec<syn::Attribute>,
@@ -142,12 +144,13 @@ pub(crate) fn parse_when(
         }
         let target = parse_target(input, spans)?
             .ok_or_else(|| input.error("expected `-> MODE` or `-> stop`"))?;
-        let resets = parse_resets(input, spans)?.unwrap_or_default();
+        let (resets, by) = parse_state_map(input, spans)?;
         end_of_event(input)?;
         events.accumulations.push(Accumulates {
             event: name,
             target,
-            resets,
+            resets: resets.unwrap_or_default(),
+            by,
         });
         return Ok(());
     }
@@ -160,7 +163,7 @@ pub(crate) fn parse_when(
     input.parse::<Token![:]>()?;
     let guard = parse_relation(input, spans)?;
     let target = parse_target(input, spans)?;
-    let resets = parse_resets(input, spans)?;
+    let (resets, by) = parse_state_map(input, spans)?;
     end_of_event(input)?;
     events.events.push(When {
         attrs,
@@ -168,6 +171,7 @@ pub(crate) fn parse_when(
         guard,
         target,
         resets,
+        by,
     });
     Ok(())
 }
@@ -185,6 +189,42 @@ fn parse_target(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Tar
     } else {
         Target::Mode(name)
     }))
+}
+
+/// An event's new state as written: its resets `{ .. }` (`None` without braces), or the Rust
+/// function that computes it.
+type StateMap = (Option<Vec<Named<crate::ast::Expr>>>, Option<Named<()>>);
+
+/// The new state, if the event sets one: written resets `{ .. }`, or `by FUNCTION`, a Rust
+/// function that computes it (not both).
+fn parse_state_map(input: ParseStream, spans: &mut Spans) -> syn::Result<StateMap> {
+    let by = parse_by(input, spans)?;
+    if by.is_some() && input.peek(syn::token::Brace) {
+        return Err(input.error(
+            "an event computes its new state `by` a Rust function or writes its resets \
+             `{ .. }`, not both: assign these states in the function",
+        ));
+    }
+    let resets = parse_resets(input, spans)?;
+    if resets.is_some() && input.peek(syn::Ident) && input.fork().parse::<syn::Ident>()? == "by" {
+        return Err(input.error(
+            "an event writes its resets `{ .. }` or computes its new state `by` a Rust \
+             function, not both: assign these states in the function",
+        ));
+    }
+    Ok((resets, by))
+}
+
+/// `by FUNCTION`, if written: the name of the Rust function that computes the new state.
+fn parse_by(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Named<()>>> {
+    if !(input.peek(syn::Ident) && input.fork().parse::<syn::Ident>()? == "by") {
+        return Ok(None);
+    }
+    input.parse::<syn::Ident>()?;
+    let function = parse_name(input, spans).map_err(|_| {
+        input.error("expected the name of a Rust function after `by`, e.g. `by slip_onset`")
+    })?;
+    Ok(Some(function))
 }
 
 /// `{ state = EXPR; .. }`, if written.

@@ -225,6 +225,10 @@ fn syntax_of_events_is_checked_where_written() {
         ("mod m { states { x } mode state { equations { der(x) = 1; } } }", "cannot be called `state`"),
         ("mod m { states { x } mode a { equations { der(x) = 1; } } mode a { equations { der(x) = 2; } } }", "declared twice"),
         ("mod m { states { x } mode a { params { k } equations { der(x) = 1; } } }", "belong to the model"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 by f { x = 1; } }", "not both"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 { x = 1; } by f; }", "not both"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 by; }", "name of a Rust function after `by`"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 -> stop by f; }", "stops the run"),
     ];
     for (text, expected) in cases {
         let found = messages(&errors(text));
@@ -242,4 +246,60 @@ fn an_error_in_a_shared_row_is_reported_once() {
     let found = messages(&errors(text));
     assert_eq!(found.len(), 1, "{found:#?}");
     assert!(found[0].starts_with("unknown name `vv`"), "{found:#?}");
+}
+
+#[test]
+fn a_model_that_calls_rust_is_refused_from_text_at_each_call() {
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
+        when hit: x < 0 by bounce;
+        when hit accumulates -> m by rest; }";
+    let found = errors(text);
+    assert_eq!(found.len(), 2, "{:#?}", messages(&found));
+    for (error, name) in found.iter().zip(["bounce", "rest"]) {
+        assert!(
+            error
+                .message
+                .starts_with(&format!("`{name}` is a Rust function")),
+            "{}",
+            error.message
+        );
+        assert!(
+            error.message.contains("runs only compiled"),
+            "{}",
+            error.message
+        );
+        assert_eq!(underlined(error, name.len()), name);
+    }
+    assert_eq!((found[0].line, found[1].line), (2, 3));
+}
+
+#[test]
+fn a_jump_by_a_rust_function_is_planned_with_its_name_and_no_written_resets() {
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
+        mode a { when hit: x < 0 -> b by onset; }
+        mode b { when lift: x > 1 -> a { v = 0; } } }";
+    let ast = Source::new("m.dsl", text).parse().unwrap();
+    let plan = model_dsl::validate_switched(&ast).unwrap();
+    let compiled = model_dsl::compile_switched(&plan).unwrap();
+    let Action::Jump(jump) = &compiled.modes[0].events[0].action else {
+        panic!("{:?}", compiled.modes[0].events[0].action)
+    };
+    assert_eq!((jump.to, jump.by.as_deref()), (Some(1), Some("onset")));
+    assert!(jump.states.is_empty() && jump.texts.is_empty());
+    let Action::Jump(back) = &compiled.modes[1].events[0].action else {
+        panic!("{:?}", compiled.modes[1].events[0].action)
+    };
+    assert_eq!((back.to, back.by.as_deref()), (Some(0), None));
+    let table = model_dsl::switching_markdown(&compiled);
+    assert!(
+        table.contains(
+            "| `hit` | `x` crosses 0 downwards | the state `by onset` (Rust), go to `b` |"
+        ),
+        "{table}"
+    );
+    let latex = model_dsl::switching_latex(&compiled);
+    assert!(
+        latex.contains("y^{+} = \\texttt{onset}(t, y, \\dot y),\\ \\to \\text{b}"),
+        "{latex}"
+    );
 }
