@@ -4,7 +4,9 @@
 //!
 //! The modes share the states, parameters and outputs, so the parent re-exports the first
 //! mode's names for them (`State`, `Params`, `state::h`, ...) and adds the mode graph: what
-//! each event does, as `model_runtime::ModeGraph` tables that `model_runtime::Switched` follows.
+//! each event does, as `model_runtime::ModeGraph` tables that `model_runtime::Switched` follows,
+//! and what each mode's guards read (`guard_inputs`, from the guards' compiled program), so
+//! that screening interpolates only those components.
 
 use crate::emit::{emit, generated_allows};
 use crate::emit_program::{constant, statements};
@@ -109,6 +111,13 @@ pub fn emit_switched(
                 #body
             }
         }
+    });
+    // What each mode's guards read, from the guards' program: screening then interpolates
+    // only those components of the dense output.
+    let input_arms = compiled.modes.iter().enumerate().map(|(k, mode)| {
+        let reads = mode.guards.reads();
+        let (states, ders) = (reads.states, reads.ders);
+        quote! { #k => ::model_runtime::GuardInputs::of(&[#(#states),*], &[#(#ders),*]), }
     });
     let mut reset_arms = Vec::new();
     for (k, mode) in compiled.modes.iter().enumerate() {
@@ -226,6 +235,12 @@ pub fn emit_switched(
                         _ => return ::core::result::Result::Err(unknown_mode()),
                     }
                     ::core::result::Result::Ok(())
+                }
+                fn guard_inputs(&self, mode: usize) -> ::model_runtime::GuardInputs<N_STATES> {
+                    match mode {
+                        #(#input_arms)*
+                        _ => ::model_runtime::GuardInputs::ALL,
+                    }
                 }
                 fn reset(
                     &self,

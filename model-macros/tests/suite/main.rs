@@ -6,6 +6,7 @@ mod cart_pendulum;
 mod cartesian_pendulum;
 mod common;
 mod dense_chain;
+mod guard_inputs;
 mod rotating_hoop;
 mod rust_reset;
 mod solve;
