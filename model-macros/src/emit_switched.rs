@@ -119,6 +119,27 @@ pub fn emit_switched(
         let (states, ders) = (reads.states, reads.ders);
         quote! { #k => ::model_runtime::GuardInputs::of(&[#(#states),*], &[#(#ders),*]), }
     });
+    // Each mode's clock in regularised time (1 where none is declared). It reads only states
+    // and parameters (checked by the compiler); a pivot it cannot divide by makes it NaN, which
+    // the integrator reports as a derivative that is not finite.
+    let clock_arms = compiled.modes.iter().enumerate().filter_map(|(k, mode)| {
+        let body = statements(&mode.time_scale.as_ref()?.program);
+        Some(quote! {
+            #k => {
+                let t = 0.0f64;
+                let dy = &[0.0f64; N_STATES];
+                let clock = || -> ::core::result::Result<f64, ::model_runtime::EvalError> {
+                    let mut values = [0.0f64; 1];
+                    {
+                        let out = &mut values;
+                        #body
+                    }
+                    ::core::result::Result::Ok(values[0])
+                };
+                clock().unwrap_or(f64::NAN)
+            }
+        })
+    });
     let mut reset_arms = Vec::new();
     for (k, mode) in compiled.modes.iter().enumerate() {
         for (e, event) in mode.events.iter().enumerate() {
@@ -240,6 +261,13 @@ pub fn emit_switched(
                     match mode {
                         #(#input_arms)*
                         _ => ::model_runtime::GuardInputs::ALL,
+                    }
+                }
+                fn time_scale(&self, mode: usize, y: &[f64; N_STATES]) -> f64 {
+                    let p = &self.params;
+                    match mode {
+                        #(#clock_arms)*
+                        _ => 1.0,
                     }
                 }
                 fn reset(

@@ -72,6 +72,7 @@ impl Program {
             match operand {
                 Operand::State(i) => reads.states.push(i),
                 Operand::Der(i) => reads.ders.push(i),
+                Operand::Time => reads.time = true,
                 _ => {}
             }
         }
@@ -90,6 +91,8 @@ pub struct Reads {
     pub states: Vec<usize>,
     /// The indices of the derivatives read.
     pub ders: Vec<usize>,
+    /// Whether the time is read.
+    pub time: bool,
 }
 
 /// The operands a statement reads.
@@ -201,8 +204,14 @@ mod tests {
             ],
         };
         let reads = program.select_outputs(0..1).reads();
-        assert_eq!((reads.states, reads.ders), (vec![3], vec![2]));
+        assert_eq!(
+            (reads.states, reads.ders, reads.time),
+            (vec![3], vec![2], false)
+        );
         let reads = program.reads();
-        assert_eq!((reads.states, reads.ders), (vec![0, 3], vec![2]));
+        assert_eq!(
+            (reads.states, reads.ders, reads.time),
+            (vec![0, 3], vec![2], true)
+        );
     }
 }

@@ -203,6 +203,8 @@ pub struct Mode {
     pub events: Vec<When>,
     /// Accumulation rules of this mode's events.
     pub accumulations: Vec<Accumulates>,
+    /// `time_scale = EXPR;`: this mode's clock in regularised time, instead of the model's.
+    pub time_scale: Option<Named<Expr>>,
 }
 
 /// `when NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION]`: an event, located where the guard's relation
@@ -280,6 +282,9 @@ pub struct ModelAst {
     pub events: Vec<When>,
     /// Accumulation rules of the shared events (or of the model's events without modes).
     pub accumulations: Vec<Accumulates>,
+    /// `time_scale = EXPR;` outside every mode: the clock, in regularised time, of every mode
+    /// that declares none (`dt = time_scale dτ`).
+    pub time_scale: Option<Named<Expr>>,
     /// Doc comments written on parameters, states and outputs, by name (they document the
     /// emitted index constants).
     pub docs: BTreeMap<String, Vec<syn::Attribute>>,
@@ -306,6 +311,7 @@ impl ModelAst {
             modes: Vec::new(),
             events: Vec::new(),
             accumulations: Vec::new(),
+            time_scale: None,
             docs: BTreeMap::new(),
             spans: Spans::default(),
         }

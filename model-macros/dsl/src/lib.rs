@@ -58,7 +58,9 @@ pub use statements::is_rust_keyword;
 pub use switched::{
     validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
 };
-pub use switched_compile::{compile_switched, CompiledEvent, CompiledMode, CompiledSwitched, Jump};
+pub use switched_compile::{
+    compile_switched, Clock, CompiledEvent, CompiledMode, CompiledSwitched, Jump,
+};
 pub use switched_show::{switching_latex, switching_markdown};
 pub use text::{Located, LocatedErrors, Source, TextModel};
 pub use unchecked::spec_unchecked;

@@ -94,6 +94,9 @@ pub struct ModePlan {
     pub user_outputs: usize,
     /// Its events: its own first, then the shared ones.
     pub events: Vec<EventPlan>,
+    /// The output of the mode's model holding its time scale (its own, or the model's), if
+    /// either is declared.
+    pub time_scale: Option<(NodeId, usize)>,
 }
 
 /// A switched model ready for the compiler.
@@ -110,7 +113,10 @@ pub struct SwitchedPlan {
 impl ModelAst {
     /// Whether the model switches: it has modes or events.
     pub fn is_switched(&self) -> bool {
-        !self.modes.is_empty() || !self.events.is_empty() || !self.accumulations.is_empty()
+        !self.modes.is_empty()
+            || !self.events.is_empty()
+            || !self.accumulations.is_empty()
+            || self.time_scale.is_some()
     }
 
     /// Every `by FUNCTION` of the model's events and accumulations, in the order written: the
@@ -135,6 +141,8 @@ struct ModeView<'a> {
     /// Own events, then shared ones (flag).
     events: Vec<(&'a When, bool)>,
     accumulations: Vec<&'a Accumulates>,
+    /// The mode's own time scale, or the model's.
+    time_scale: Option<&'a Named<Expr>>,
 }
 
 /// Checks a switched model and builds each mode's model; `Err` carries every problem.
@@ -267,6 +275,15 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 ),
             });
         }
+        // The clock next, read by the integrator at every evaluation in regularised time.
+        let time_scale = view.time_scale.map(|clock| {
+            outputs.push(Named {
+                name: "time_scale:".to_string(),
+                id: clock.id,
+                value: clock.value.clone(),
+            });
+            (clock.id, outputs.len() - 1)
+        });
         for (k, &(when, shared)) in view.events.iter().enumerate() {
             let guard_output = user_outputs + k;
             if names.insert(when.name.name.clone(), when.name.id).is_some() {
@@ -385,19 +402,21 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         model.modes = Vec::new();
         model.events = Vec::new();
         model.accumulations = Vec::new();
-        plans_ast.push((view, model, user_outputs, events));
+        model.time_scale = None;
+        plans_ast.push((view, model, user_outputs, events, time_scale));
     }
 
     // Each mode's model through the smooth validator; a problem found in every mode is the
     // shared rows' and is reported once.
     let mut found: Vec<(String, String, syn::Error, Vec<String>)> = Vec::new();
     let mut modes = Vec::new();
-    for (view, model, user_outputs, events) in plans_ast {
+    for (view, model, user_outputs, events, time_scale) in plans_ast {
         match validate_one(&model) {
             Ok(validated) => modes.push(ModePlan {
                 model: validated,
                 user_outputs,
                 events,
+                time_scale,
             }),
             Err(error) => {
                 for error in error {
@@ -455,6 +474,7 @@ fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
             equations: ast.equations.clone(),
             events: ast.events.iter().map(|w| (w, false)).collect(),
             accumulations: ast.accumulations.iter().collect(),
+            time_scale: ast.time_scale.as_ref(),
         }];
     }
     ast.modes
@@ -477,6 +497,7 @@ fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
                     .collect(),
                 events,
                 accumulations,
+                time_scale: mode.time_scale.as_ref().or(ast.time_scale.as_ref()),
             }
         })
         .collect()

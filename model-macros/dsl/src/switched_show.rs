@@ -28,6 +28,13 @@ pub fn switching_markdown(model: &CompiledSwitched) -> String {
     }
     for mode in &model.modes {
         let _ = writeln!(md, "\n## Mode `{}`\n", mode.model.name);
+        if let Some(clock) = &mode.time_scale {
+            let _ = writeln!(
+                md,
+                "Time scale (regularised time, `dt = s dτ`): `s = {}`.\n",
+                clock.text
+            );
+        }
         if mode.events.is_empty() {
             md.push_str("No event: the run stays in this mode.\n");
             continue;

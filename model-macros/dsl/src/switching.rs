@@ -48,6 +48,7 @@ pub(crate) fn parse_mode(
         equations: Vec::new(),
         events: Vec::new(),
         accumulations: Vec::new(),
+        time_scale: None,
     };
     let mut equations_seen = false;
     while !content.is_empty() {
@@ -66,7 +67,7 @@ pub(crate) fn parse_mode(
             Ok(keyword) => keyword,
             Err(_) => {
                 errors.push(content.error(format!(
-                    "expected `let`, `equations {{ .. }}` or `when` in mode `{}`",
+                    "expected `let`, `equations {{ .. }}`, `when` or `time_scale` in mode `{}`",
                     mode.name
                 )));
                 skip_all(&content);
@@ -102,11 +103,16 @@ pub(crate) fn parse_mode(
                     parse_when(input, item_attrs, spans, &mut events)
                 });
             }
+            "time_scale" => {
+                recover_statement(&content, errors, |input| {
+                    parse_time_scale(input, &keyword, spans, &mut mode.time_scale)
+                });
+            }
             other => {
                 errors.push(syn::Error::new(
                     keyword.span(),
                     format!(
-                        "unknown section `{other}` in mode `{}`: expected `let`, `equations` or `when` \
+                        "unknown section `{other}` in mode `{}`: expected `let`, `equations`, `when` or `time_scale` \
                          (parameters, states, outputs and options belong to the model)",
                         mode.name
                     ),
@@ -116,6 +122,37 @@ pub(crate) fn parse_mode(
         }
     }
     Ok(mode)
+}
+
+/// After the keyword `time_scale` (of a mode, or of the model): `= EXPR;`, the clock of
+/// regularised time (`dt = EXPR dτ`), into `slot` (an error if it is already set).
+pub(crate) fn parse_time_scale(
+    input: ParseStream,
+    keyword: &syn::Ident,
+    spans: &mut Spans,
+    slot: &mut Option<Named<crate::ast::Expr>>,
+) -> syn::Result<()> {
+    if slot.is_some() {
+        return Err(syn::Error::new(
+            keyword.span(),
+            "`time_scale` is written twice here: a mode has one clock (the model's `time_scale` \
+             is for the modes that declare none)",
+        ));
+    }
+    if !input.peek(Token![=]) {
+        return Err(input.error(
+            "expected `=` and an expression after `time_scale`, e.g. `time_scale = theta / (theta + 0.01);`",
+        ));
+    }
+    input.parse::<Token![=]>()?;
+    let value = crate::expr::parse_expr(input, spans)?;
+    input.parse::<Token![;]>()?;
+    *slot = Some(Named {
+        name: "time_scale".to_string(),
+        id: spans.push(SpanRange::single(keyword.span())),
+        value,
+    });
+    Ok(())
 }
 
 /// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION] [;]` or

@@ -10,5 +10,6 @@ mod guard_inputs;
 mod rotating_hoop;
 mod rust_reset;
 mod solve;
+mod time_scale;
 mod tiny_pivot;
 mod ui;

@@ -229,6 +229,9 @@ fn syntax_of_events_is_checked_where_written() {
         ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 { x = 1; } by f; }", "not both"),
         ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 by; }", "name of a Rust function after `by`"),
         ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 -> stop by f; }", "stops the run"),
+        ("mod m { states { x } equations { der(x) = 1; } time_scale = 1; time_scale = 2; }", "`time_scale` is written twice"),
+        ("mod m { states { x } equations { der(x) = 1; } time_scale 1; }", "expected `=` and an expression after `time_scale`"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } time_scale = x; time_scale = 1; } }", "written twice"),
     ];
     for (text, expected) in cases {
         let found = messages(&errors(text));
@@ -302,4 +305,36 @@ fn a_jump_by_a_rust_function_is_planned_with_its_name_and_no_written_resets() {
         latex.contains("y^{+} = \\texttt{onset}(t, y, \\dot y),\\ \\to \\text{b}"),
         "{latex}"
     );
+}
+
+#[test]
+fn a_time_scale_reads_states_and_parameters_only_and_a_mode_s_own_wins() {
+    let text = "mod m { params { c = 0.1 } states { x, v } equations { der(x) = v; der(v) = -x; }
+        time_scale = x^2 / (x^2 + c);
+        mode a { when hit: x < 0 -> b; }
+        mode b { time_scale = 1; } }";
+    let model = compile(text);
+    let clocks: Vec<&str> = (model.modes.iter())
+        .map(|m| m.time_scale.as_ref().unwrap().text.as_str())
+        .collect();
+    assert_eq!(clocks, ["x^2/(x^2 + c)", "1"]);
+    let a = &model.modes[0].time_scale.as_ref().unwrap().program;
+    assert_eq!(
+        eval(a, &[0.3, 5.0], &[f64::NAN, f64::NAN], &[0.1], 1),
+        [0.09 / 0.19]
+    );
+    // Without a declaration there is no clock (the runtime's default is 1).
+    assert!(compile(BALL).modes.iter().all(|m| m.time_scale.is_none()));
+
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -x; }
+        mode a { time_scale = abs(der(v)); when hit: x < 0 -> b; }
+        mode b { time_scale = 1 + t; } }";
+    let found = errors(text);
+    assert_eq!(found.len(), 2, "{:#?}", messages(&found));
+    for error in &found {
+        assert!(error
+            .message
+            .contains("a time scale reads only states and parameters"));
+        assert_eq!(underlined(error, 10), "time_scale");
+    }
 }
