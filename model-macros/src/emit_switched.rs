@@ -64,6 +64,9 @@ pub fn emit_switched(
             let action = match &event.action {
                 Action::Record => quote! { ::model_runtime::EventAction::Record },
                 Action::Stop => quote! { ::model_runtime::EventAction::Stop },
+                Action::Jump(jump) if jump.choice.is_some() => {
+                    quote! { ::model_runtime::EventAction::Decide }
+                }
                 Action::Jump(jump) => {
                     let to = option_index(jump.to);
                     let reset = assigns(jump);
@@ -141,10 +144,14 @@ pub fn emit_switched(
         })
     });
     let mut reset_arms = Vec::new();
+    let mut decide_arms = Vec::new();
     for (k, mode) in compiled.modes.iter().enumerate() {
         for (e, event) in mode.events.iter().enumerate() {
             if let Action::Jump(jump) = &event.action {
-                reset_arms.push(reset_arm(k, e, false, jump));
+                match decide_arm(k, e, &format!("{}.{}", mode.model.name, event.name), jump) {
+                    Some(arm) => decide_arms.push(arm),
+                    None => reset_arms.push(reset_arm(k, e, false, jump)),
+                }
             }
             if let Some(jump) = &event.accumulation {
                 reset_arms.push(reset_arm(k, e, true, jump));
@@ -263,6 +270,21 @@ pub fn emit_switched(
                         _ => ::model_runtime::GuardInputs::ALL,
                     }
                 }
+                fn decide(
+                    &self,
+                    mode: usize,
+                    event: usize,
+                    t: f64,
+                    y: &[f64; N_STATES],
+                    dy: &[f64; N_STATES],
+                    new: &mut [f64; N_STATES],
+                ) -> ::core::result::Result<::core::option::Option<usize>, ::model_runtime::EvalError> {
+                    let next: ::core::option::Option<usize> = match (mode, event) {
+                        #(#decide_arms)*
+                        _ => ::core::option::Option::None,
+                    };
+                    ::core::result::Result::Ok(next)
+                }
                 fn time_scale(&self, mode: usize, y: &[f64; N_STATES]) -> f64 {
                     let p = &self.params;
                     match mode {
@@ -305,6 +327,29 @@ fn option_index(index: Option<usize>) -> TokenStream {
         Some(k) => quote! { ::core::option::Option::Some(#k) },
         None => quote! { ::core::option::Option::None },
     }
+}
+
+/// One arm of `decide`, for a jump whose Rust function also chooses the next mode: the call,
+/// and the check that the mode it names is one the event lists (or a stop it allows).
+fn decide_arm(mode: usize, event: usize, name: &str, jump: &Jump) -> Option<TokenStream> {
+    let choice = jump.choice.as_ref()?;
+    let function = format_ident!("{}", jump.by.as_deref()?);
+    let modes = &choice.modes;
+    let stop = choice.stop;
+    Some(quote! {
+        (#mode, #event) => match super::#function(self, t, y, dy, new)? {
+            ::core::option::Option::Some(next) if [#(#modes),*].contains(&next) => {
+                ::core::option::Option::Some(next)
+            }
+            ::core::option::Option::None if #stop => ::core::option::Option::None,
+            other => {
+                return ::core::result::Result::Err(::model_runtime::EvalError::Undecided {
+                    event: ::std::string::String::from(#name),
+                    mode: other,
+                })
+            }
+        },
+    })
 }
 
 /// Whether a jump assigns states: written resets, or a Rust function's.

@@ -247,6 +247,15 @@ pub enum Target {
     Mode(Named<()>),
     /// `-> stop`: end the run, with the event's name as the reason.
     Stop(NodeId),
+    /// `-> a | b | stop`: one of these, decided by the event's Rust function (`by FUNCTION`).
+    Choice {
+        /// The modes, in the order written.
+        modes: Vec<Named<()>>,
+        /// Whether `stop` is among them.
+        stop: bool,
+        /// The first name's node.
+        id: NodeId,
+    },
 }
 
 /// A whole `model!` invocation as written.

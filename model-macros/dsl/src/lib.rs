@@ -56,7 +56,7 @@ pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
 pub use statements::is_rust_keyword;
 pub use switched::{
-    validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
+    validate_switched, Action, Choice, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
 };
 pub use switched_compile::{
     compile_switched, Clock, CompiledEvent, CompiledMode, CompiledSwitched, Jump,

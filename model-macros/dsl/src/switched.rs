@@ -61,6 +61,18 @@ pub struct JumpPlan {
     /// The Rust function that computes the new state instead (`by FUNCTION`; then `resets` is
     /// empty).
     pub by: Option<String>,
+    /// When the function also decides where the run goes (`-> a | b | stop by FUNCTION`):
+    /// the modes it may name (`to` is then `None`).
+    pub choice: Option<Choice>,
+}
+
+/// The modes a decided event may continue in, and whether it may stop the run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Choice {
+    /// The mode indices, in the order written.
+    pub modes: Vec<usize>,
+    /// Whether the function may stop the run.
+    pub stop: bool,
 }
 
 /// One event of a mode as planned.
@@ -214,17 +226,38 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                     outputs: &mut Vec<Named<Expr>>,
                     errors: &mut Errors|
          -> Option<JumpPlan> {
+            let index = |name: &Named<()>, errors: &mut Errors| {
+                let found = mode_index.get(name.name.as_str()).copied();
+                if found.is_none() {
+                    errors.at(
+                        range(name.id),
+                        format!("unknown mode `{}`: {}", name.name, mode_list()),
+                    );
+                }
+                found
+            };
+            let mut choice = None;
             let to = match target {
-                Some(Target::Mode(name)) => match mode_index.get(name.name.as_str()) {
-                    Some(&k) => Some(k),
-                    None => {
+                Some(Target::Mode(name)) => Some(index(name, errors)?),
+                Some(Target::Choice { modes, stop, id }) => {
+                    if by.is_none() {
                         errors.at(
-                            range(name.id),
-                            format!("unknown mode `{}`: {}", name.name, mode_list()),
+                            range(*id),
+                            format!(
+                                "event `{event}` goes on in one of several modes: a Rust function \
+                                 decides which (`by FUNCTION`), and none is named"
+                            ),
                         );
                         return None;
                     }
-                },
+                    let indices: Vec<Option<usize>> =
+                        modes.iter().map(|m| index(m, errors)).collect();
+                    choice = Some(Choice {
+                        modes: indices.into_iter().collect::<Option<Vec<usize>>>()?,
+                        stop: *stop,
+                    });
+                    None
+                }
                 _ => None,
             };
             let mut planned = Vec::new();
@@ -258,6 +291,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 to,
                 resets: planned,
                 by: by.map(|f| f.name.clone()),
+                choice,
             })
         };
         // The guards first, together, then each jump's resets, together: the compiler then
@@ -370,6 +404,13 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 errors.at(
                     range(acc.event.id),
                     format!("the accumulation of `{}` is declared twice", acc.event.name),
+                );
+                continue;
+            }
+            if let Target::Choice { id, .. } = acc.target {
+                errors.at(
+                    range(id),
+                    "an accumulation goes on in one mode: a choice belongs to an event",
                 );
                 continue;
             }

@@ -3,7 +3,7 @@
 
 use crate::compile::compile;
 use crate::span::Errors;
-use crate::switched::{Action, Crossing, JumpPlan, SwitchedPlan};
+use crate::switched::{Action, Choice, Crossing, JumpPlan, SwitchedPlan};
 use model_algebra::{CompiledModel, Program};
 
 /// A switched model after the compiler.
@@ -74,6 +74,8 @@ pub struct Jump {
     /// The Rust function that computes the new state instead (`by FUNCTION`): the compiled
     /// model calls it; a model that has one can run only compiled.
     pub by: Option<String>,
+    /// The modes the function chooses among, when it also decides where the run goes.
+    pub choice: Option<Choice>,
 }
 
 impl CompiledSwitched {
@@ -141,6 +143,7 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
                     texts: outputs.clone().map(|o| texts[o].clone()).collect(),
                     latex: outputs.map(|o| latex[o].clone()).collect(),
                     by: plan.by.clone(),
+                    choice: plan.choice.clone(),
                 }
             };
             events.push(CompiledEvent {

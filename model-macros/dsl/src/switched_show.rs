@@ -113,6 +113,20 @@ fn action_latex(model: &CompiledSwitched, event: &CompiledEvent, states: &[Strin
                 model.modes[to].model.name.replace('_', "\\_")
             ));
         }
+        if let Some(choice) = &jump.choice {
+            let mut next: Vec<String> = (choice.modes.iter())
+                .map(|&k| {
+                    format!(
+                        "\\text{{{}}}",
+                        model.modes[k].model.name.replace('_', "\\_")
+                    )
+                })
+                .collect();
+            if choice.stop {
+                next.push("\\text{stop}".to_string());
+            }
+            parts.push(format!("\\to {}", next.join(" \\mid ")));
+        }
         parts.join(",\\ ")
     };
     let mut text = match &event.action {
@@ -140,6 +154,16 @@ fn jump_text(model: &CompiledSwitched, from: &str, jump: &Jump, states: &[String
         .collect();
     if let Some(function) = &jump.by {
         parts.push(format!("the state `by {function}` (Rust)"));
+    }
+    if let Some(choice) = &jump.choice {
+        let mut next: Vec<String> = (choice.modes.iter())
+            .map(|&k| format!("`{}`", model.modes[k].model.name))
+            .collect();
+        if choice.stop {
+            next.push("stop".to_string());
+        }
+        parts.push(format!("go to one of {}, as it decides", next.join(", ")));
+        return parts.join(", ");
     }
     parts.push(match jump.to {
         Some(to) => format!("go to `{}`", model.modes[to].model.name),

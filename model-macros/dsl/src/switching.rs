@@ -213,7 +213,7 @@ pub(crate) fn parse_when(
     Ok(())
 }
 
-/// `-> NAME` or `-> stop`, if written.
+/// `-> NAME`, `-> stop` or a choice `-> a | b | stop`, if written.
 fn parse_target(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Target>> {
     if !input.peek(Token![->]) {
         return Ok(None);
@@ -221,6 +221,24 @@ fn parse_target(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Tar
     input.parse::<Token![->]>()?;
     let name = parse_name(input, spans)
         .map_err(|_| input.error("expected a mode's name or `stop` after `->`"))?;
+    if input.peek(Token![|]) {
+        let id = name.id;
+        let mut names = vec![name];
+        while input.peek(Token![|]) {
+            input.parse::<Token![|]>()?;
+            names.push(
+                parse_name(input, spans)
+                    .map_err(|_| input.error("expected a mode's name or `stop` after `|`"))?,
+            );
+        }
+        let stop = names.iter().any(|n| n.name == "stop");
+        names.retain(|n| n.name != "stop");
+        return Ok(Some(Target::Choice {
+            modes: names,
+            stop,
+            id,
+        }));
+    }
     Ok(Some(if name.name == "stop" {
         Target::Stop(name.id)
     } else {

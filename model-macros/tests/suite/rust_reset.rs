@@ -1,6 +1,8 @@
 //! `by FUNCTION`: an event whose new state a Rust function computes. The same ball twice, its
 //! impact written in the DSL and computed in Rust, must bounce at the same instants to the bit;
-//! a function's error ends the run naming the event's transition.
+//! a function's error ends the run naming the event's transition. A function may also decide
+//! where the run goes (`-> a | b | stop by FUNCTION`): the ball that comes to rest once its
+//! impacts are slow, at the closed-form instant.
 
 use model_runtime::{
     run_switched, Dop853, EvalError, Fired, HybridError, HybridOptions, Tolerance,
@@ -46,6 +48,70 @@ model_macros::model! {
         equations { der(h) = v; der(v) = -g; }
         when impact: h < 0 by bounce_below_4;
     }
+}
+
+model_macros::model! {
+    /// A ball that stays on the floor once it lands slower than `v_min`, and cracks (the run
+    /// stops) when it lands faster than `v_crack`.
+    mod landing {
+        params { g = 9.81, e = 0.8, v_min = 2.0, v_crack = 100.0 }
+        states { h = 1.0, v = 0.0 }
+        mode flying {
+            equations { der(h) = v; der(v) = -g; }
+            when impact: h < 0 -> flying | resting | stop by land;
+        }
+        mode resting {
+            equations { der(h) = 0; der(v) = 0; }
+        }
+    }
+}
+
+model_macros::model! {
+    /// A ball whose landing names a mode the event does not list.
+    mod confused {
+        params { g = 9.81 }
+        states { h = 1.0, v = 0.0 }
+        mode flying {
+            equations { der(h) = v; der(v) = -g; }
+            when impact: h < 0 -> flying | stop by land_anywhere;
+        }
+        mode resting {
+            equations { der(h) = 0; der(v) = 0; }
+        }
+    }
+}
+
+/// Where `landing` goes: cracks, rests or bounces, by its impact speed.
+fn land(
+    model: &landing::Model,
+    _t: f64,
+    y: &[f64; landing::N_STATES],
+    _dy: &[f64; landing::N_STATES],
+    new: &mut [f64; landing::N_STATES],
+) -> Result<Option<usize>, EvalError> {
+    use landing::param;
+    let p = &model.params;
+    let speed = y[landing::state::v].abs();
+    if speed > p[param::v_crack] {
+        return Ok(None);
+    }
+    if speed < p[param::v_min] {
+        *new = [0.0, 0.0];
+        return Ok(Some(landing::mode::resting));
+    }
+    new[landing::state::v] = -p[param::e] * y[landing::state::v];
+    Ok(Some(landing::mode::flying))
+}
+
+/// Names `resting`, which `confused`'s impact does not list.
+fn land_anywhere(
+    _model: &confused::Model,
+    _t: f64,
+    _y: &[f64; confused::N_STATES],
+    _dy: &[f64; confused::N_STATES],
+    _new: &mut [f64; confused::N_STATES],
+) -> Result<Option<usize>, EvalError> {
+    Ok(Some(confused::mode::resting))
 }
 
 /// The impact of `computed`: `v⁺ = −e v⁻`, the written law's operations.
@@ -156,5 +222,71 @@ fn the_table_of_modes_names_the_rust_function() {
         computed::SWITCHING_MARKDOWN.contains("the state `by bounce` (Rust), restart `flying`"),
         "{}",
         computed::SWITCHING_MARKDOWN
+    );
+}
+
+fn landing_run(params: landing::Params) -> model_runtime::SwitchedRun<2> {
+    run_switched(
+        landing::Model::from_params(params),
+        Dop853::new(),
+        tolerance(),
+        HybridOptions::default(),
+        (0.0, landing::INITIAL),
+        10.0,
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_rust_function_decides_where_the_run_goes() {
+    let (g, e) = (9.81f64, 0.8f64);
+    // Impact speeds v1 e^k: 4.43, 3.54, 2.84, 2.27, then 1.81 < 2: resting at the fifth.
+    let run = landing_run(landing::Params::default());
+    let impacts = run.times("impact", Fired::Reset);
+    assert_eq!(impacts.len(), 5, "{impacts:?}");
+    let v1 = (2.0 * g).sqrt();
+    let mut want = (2.0 / g).sqrt();
+    for (k, t) in impacts.iter().enumerate() {
+        assert!((t - want).abs() < 1e-9, "impact {k}: {t} vs {want}");
+        want += 2.0 * e.powi(k as i32 + 1) * v1 / g;
+    }
+    assert_eq!(
+        (run.mode.as_str(), run.y, run.stopped_by),
+        ("resting", [0.0, 0.0], None)
+    );
+
+    // Faster than it can take: the first impact stops the run, with the event as the reason.
+    let fragile = landing::Params {
+        v_crack: 4.0,
+        ..landing::Params::default()
+    };
+    let run = landing_run(fragile);
+    assert_eq!(run.stopped_by.as_deref(), Some("impact"));
+    assert!((run.t - (2.0 / g).sqrt()).abs() < 1e-9, "{}", run.t);
+    assert!(landing::SWITCHING_MARKDOWN.contains(
+        "the state `by land` (Rust), go to one of `flying`, `resting`, stop, as it decides"
+    ));
+}
+
+#[test]
+fn a_decision_for_a_mode_the_event_does_not_list_fails_the_run() {
+    let failure = run_switched(
+        confused::Model::default(),
+        Dop853::new(),
+        tolerance(),
+        HybridOptions::default(),
+        (0.0, confused::INITIAL),
+        10.0,
+    )
+    .expect_err("resting is not listed");
+    let HybridError::Transition { source, .. } = &failure.error else {
+        panic!("{failure}")
+    };
+    assert_eq!(
+        *source,
+        EvalError::Undecided {
+            event: "flying.impact".to_string(),
+            mode: Some(confused::mode::resting),
+        }
     );
 }

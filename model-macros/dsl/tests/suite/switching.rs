@@ -230,6 +230,10 @@ fn syntax_of_events_is_checked_where_written() {
         ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 by; }", "name of a Rust function after `by`"),
         ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 -> stop by f; }", "stops the run"),
         ("mod m { states { x } equations { der(x) = 1; } time_scale = 1; time_scale = 2; }", "`time_scale` is written twice"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 -> a | stop; } }", "a Rust function decides which"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 -> a | b by f; } }", "unknown mode `b`"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 by f; when hit accumulates -> a | stop; } }", "an accumulation goes on in one mode"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 -> a | ; } }", "after `|`"),
         ("mod m { states { x } equations { der(x) = 1; } time_scale 1; }", "expected `=` and an expression after `time_scale`"),
         ("mod m { states { x } mode a { equations { der(x) = 1; } time_scale = x; time_scale = 1; } }", "written twice"),
     ];
@@ -300,6 +304,7 @@ fn a_jump_by_a_rust_function_is_planned_with_its_name_and_no_written_resets() {
         ),
         "{table}"
     );
+    assert_eq!(jump.choice, None);
     let latex = model_dsl::switching_latex(&compiled);
     assert!(
         latex.contains("y^{+} = \\texttt{onset}(t, y, \\dot y),\\ \\to \\text{b}"),
@@ -337,4 +342,30 @@ fn a_time_scale_reads_states_and_parameters_only_and_a_mode_s_own_wins() {
             .contains("a time scale reads only states and parameters"));
         assert_eq!(underlined(error, 10), "time_scale");
     }
+}
+
+#[test]
+fn a_choice_of_modes_is_planned_for_its_rust_function() {
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
+        mode a { when hit: x < 0 -> b | a | stop by land; }
+        mode b { } }";
+    let ast = Source::new("m.dsl", text).parse().unwrap();
+    let model = model_dsl::compile_switched(&model_dsl::validate_switched(&ast).unwrap()).unwrap();
+    let Action::Jump(jump) = &model.modes[0].events[0].action else {
+        panic!("{:?}", model.modes[0].events[0].action)
+    };
+    assert_eq!(jump.to, None);
+    assert_eq!(jump.by.as_deref(), Some("land"));
+    assert_eq!(
+        jump.choice,
+        Some(model_dsl::Choice {
+            modes: vec![1, 0],
+            stop: true
+        })
+    );
+    let latex = model_dsl::switching_latex(&model);
+    assert!(
+        latex.contains("\\to \\text{b} \\mid \\text{a} \\mid \\text{stop}"),
+        "{latex}"
+    );
 }
