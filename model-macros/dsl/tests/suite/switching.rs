@@ -282,8 +282,8 @@ fn a_model_that_calls_rust_is_refused_from_text_at_each_call() {
 
 #[test]
 fn a_jump_by_a_rust_function_is_planned_with_its_name_and_no_written_resets() {
-    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
-        mode a { when hit: x < 0 -> b by onset; }
+    let text = "mod m { params { c = 0 } states { x, v } equations { der(x) = v; der(v) = -1; }
+        mode a { when hit: x < c -> b by onset; }
         mode b { when lift: x > 1 -> a { v = 0; } } }";
     let ast = Source::new("m.dsl", text).parse().unwrap();
     let plan = model_dsl::validate_switched(&ast).unwrap();
@@ -300,7 +300,7 @@ fn a_jump_by_a_rust_function_is_planned_with_its_name_and_no_written_resets() {
     let table = model_dsl::switching_markdown(&compiled);
     assert!(
         table.contains(
-            "| `hit` | `x` crosses 0 downwards | the state `by onset` (Rust), go to `b` |"
+            "| `hit` | `x - c` crosses 0 downwards | the state `by onset` (Rust), go to `b` |"
         ),
         "{table}"
     );
@@ -347,12 +347,17 @@ fn a_time_scale_reads_states_and_parameters_only_and_a_mode_s_own_wins() {
 #[test]
 fn a_choice_of_modes_is_planned_for_its_rust_function() {
     let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
-        mode a { when hit: x < 0 -> b | a | stop by land; }
+        mode a { when hit: x < v by land; when miss: x > v -> b | a | stop by land; }
         mode b { } }";
     let ast = Source::new("m.dsl", text).parse().unwrap();
     let model = model_dsl::compile_switched(&model_dsl::validate_switched(&ast).unwrap()).unwrap();
-    let Action::Jump(jump) = &model.modes[0].events[0].action else {
+    let Action::Jump(restart) = &model.modes[0].events[0].action else {
         panic!("{:?}", model.modes[0].events[0].action)
+    };
+    assert_eq!((restart.to, restart.by.as_deref()), (None, Some("land")));
+    assert_eq!(restart.choice, None);
+    let Action::Jump(jump) = &model.modes[0].events[1].action else {
+        panic!("{:?}", model.modes[0].events[1].action)
     };
     assert_eq!(jump.to, None);
     assert_eq!(jump.by.as_deref(), Some("land"));
