@@ -261,6 +261,11 @@ fn to_command_error(
             quantity: format!("reset of {event}"),
             value: *value,
         },
+        EvalError::Undecided { event, mode: next } => EvalCommandError::NonFinite {
+            mode,
+            quantity: format!("decision of {event}"),
+            value: next.map_or(f64::NAN, |k| k as f64),
+        },
     }
 }
 

@@ -4,7 +4,9 @@
 //!
 //! The modes share the states, parameters and outputs, so the parent re-exports the first
 //! mode's names for them (`State`, `Params`, `state::h`, ...) and adds the mode graph: what
-//! each event does, as `model_runtime::ModeGraph` tables that `model_runtime::Switched` follows.
+//! each event does, as `model_runtime::ModeGraph` tables that `model_runtime::Switched` follows,
+//! and what each mode's guards read (`guard_inputs`, from the guards' compiled program), so
+//! that screening interpolates only those components.
 
 use crate::emit::{emit, generated_allows};
 use crate::emit_program::{constant, statements};
@@ -62,16 +64,19 @@ pub fn emit_switched(
             let action = match &event.action {
                 Action::Record => quote! { ::model_runtime::EventAction::Record },
                 Action::Stop => quote! { ::model_runtime::EventAction::Stop },
+                Action::Jump(jump) if jump.choice.is_some() => {
+                    quote! { ::model_runtime::EventAction::Decide }
+                }
                 Action::Jump(jump) => {
                     let to = option_index(jump.to);
-                    let reset = !jump.states.is_empty();
+                    let reset = assigns(jump);
                     quote! { ::model_runtime::EventAction::Reset { to: #to, reset: #reset } }
                 }
             };
             let accumulation = match &event.accumulation {
                 Some(jump) => {
                     let to = option_index(jump.to);
-                    let reset = !jump.states.is_empty();
+                    let reset = assigns(jump);
                     quote! {
                         ::core::option::Option::Some(::model_runtime::AccumulationAction { to: #to, reset: #reset })
                     }
@@ -110,11 +115,43 @@ pub fn emit_switched(
             }
         }
     });
+    // What each mode's guards read, from the guards' program: screening then interpolates
+    // only those components of the dense output.
+    let input_arms = compiled.modes.iter().enumerate().map(|(k, mode)| {
+        let reads = mode.guards.reads();
+        let (states, ders) = (reads.states, reads.ders);
+        quote! { #k => ::model_runtime::GuardInputs::of(&[#(#states),*], &[#(#ders),*]), }
+    });
+    // Each mode's clock in regularised time (1 where none is declared). It reads only states
+    // and parameters (checked by the compiler); a pivot it cannot divide by makes it NaN, which
+    // the integrator reports as a derivative that is not finite.
+    let clock_arms = compiled.modes.iter().enumerate().filter_map(|(k, mode)| {
+        let body = statements(&mode.time_scale.as_ref()?.program);
+        Some(quote! {
+            #k => {
+                let t = 0.0f64;
+                let dy = &[0.0f64; N_STATES];
+                let clock = || -> ::core::result::Result<f64, ::model_runtime::EvalError> {
+                    let mut values = [0.0f64; 1];
+                    {
+                        let out = &mut values;
+                        #body
+                    }
+                    ::core::result::Result::Ok(values[0])
+                };
+                clock().unwrap_or(f64::NAN)
+            }
+        })
+    });
     let mut reset_arms = Vec::new();
+    let mut decide_arms = Vec::new();
     for (k, mode) in compiled.modes.iter().enumerate() {
         for (e, event) in mode.events.iter().enumerate() {
             if let Action::Jump(jump) = &event.action {
-                reset_arms.push(reset_arm(k, e, false, jump));
+                match decide_arm(k, e, &format!("{}.{}", mode.model.name, event.name), jump) {
+                    Some(arm) => decide_arms.push(arm),
+                    None => reset_arms.push(reset_arm(k, e, false, jump)),
+                }
             }
             if let Some(jump) = &event.accumulation {
                 reset_arms.push(reset_arm(k, e, true, jump));
@@ -227,6 +264,34 @@ pub fn emit_switched(
                     }
                     ::core::result::Result::Ok(())
                 }
+                fn guard_inputs(&self, mode: usize) -> ::model_runtime::GuardInputs<N_STATES> {
+                    match mode {
+                        #(#input_arms)*
+                        _ => ::model_runtime::GuardInputs::ALL,
+                    }
+                }
+                fn decide(
+                    &self,
+                    mode: usize,
+                    event: usize,
+                    t: f64,
+                    y: &[f64; N_STATES],
+                    dy: &[f64; N_STATES],
+                    new: &mut [f64; N_STATES],
+                ) -> ::core::result::Result<::core::option::Option<usize>, ::model_runtime::EvalError> {
+                    let next: ::core::option::Option<usize> = match (mode, event) {
+                        #(#decide_arms)*
+                        _ => ::core::option::Option::None,
+                    };
+                    ::core::result::Result::Ok(next)
+                }
+                fn time_scale(&self, mode: usize, y: &[f64; N_STATES]) -> f64 {
+                    let p = &self.params;
+                    match mode {
+                        #(#clock_arms)*
+                        _ => 1.0,
+                    }
+                }
                 fn reset(
                     &self,
                     mode: usize,
@@ -264,9 +329,44 @@ fn option_index(index: Option<usize>) -> TokenStream {
     }
 }
 
+/// One arm of `decide`, for a jump whose Rust function also chooses the next mode: the call,
+/// and the check that the mode it names is one the event lists (or a stop it allows).
+fn decide_arm(mode: usize, event: usize, name: &str, jump: &Jump) -> Option<TokenStream> {
+    let choice = jump.choice.as_ref()?;
+    let function = format_ident!("{}", jump.by.as_deref()?);
+    let modes = &choice.modes;
+    let stop = choice.stop;
+    Some(quote! {
+        (#mode, #event) => match super::#function(self, t, y, dy, new)? {
+            ::core::option::Option::Some(next) if [#(#modes),*].contains(&next) => {
+                ::core::option::Option::Some(next)
+            }
+            ::core::option::Option::None if #stop => ::core::option::Option::None,
+            other => {
+                return ::core::result::Result::Err(::model_runtime::EvalError::Undecided {
+                    event: ::std::string::String::from(#name),
+                    mode: other,
+                })
+            }
+        },
+    })
+}
+
+/// Whether a jump assigns states: written resets, or a Rust function's.
+fn assigns(jump: &Jump) -> bool {
+    !jump.states.is_empty() || jump.by.is_some()
+}
+
 /// One arm of `reset`: the program of the new values into a local array, then each into its
-/// state.
+/// state; or a call of the Rust function that computes the new state (`by FUNCTION`), which
+/// the model's module finds in the module around it.
 fn reset_arm(mode: usize, event: usize, accumulation: bool, jump: &Jump) -> TokenStream {
+    if let Some(function) = &jump.by {
+        let function = format_ident!("{}", function);
+        return quote! {
+            (#mode, #event, #accumulation) => super::#function(self, t, y, dy, new)?,
+        };
+    }
     let n = jump.states.len();
     let body = statements(&jump.program);
     let targets = jump

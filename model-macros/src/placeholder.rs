@@ -86,6 +86,7 @@ pub fn switched_placeholder(ast: &ModelAst) -> TokenStream {
                     model,
                     guards: Program::default(),
                     events: Vec::new(),
+                    time_scale: None,
                 }
             })
             .collect(),

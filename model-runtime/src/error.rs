@@ -42,6 +42,15 @@ pub enum EvalError {
         /// Its value.
         value: f64,
     },
+    /// An event that decides where the run goes ([`crate::EventAction::Decide`]) named no mode
+    /// it may continue in.
+    Undecided {
+        /// The event, as `mode.event`.
+        event: String,
+        /// The mode index the decision named (`None`: it named none, or the model does not
+        /// decide this event).
+        mode: Option<usize>,
+    },
 }
 
 impl fmt::Display for EvalError {
@@ -67,6 +76,17 @@ impl fmt::Display for EvalError {
             } => write!(
                 f,
                 "the reset of event `{event}` assigns state component {component} = {value}"
+            ),
+            EvalError::Undecided {
+                event,
+                mode: Some(mode),
+            } => write!(
+                f,
+                "event `{event}` decided to go on in mode {mode}, which it does not list"
+            ),
+            EvalError::Undecided { event, mode: None } => write!(
+                f,
+                "event `{event}` decided nothing: it names no mode to go on in, and may not stop"
             ),
         }
     }

@@ -17,6 +17,10 @@
 //!   ([`Transition::Continue`]: the event's own guard does not fire again on leaving its
 //!   surface); into another mode, a [`Transition::Switch`].
 //! * [`EventAction::Stop`]: the run ends with [`SwitchedStop::Event`].
+//! * [`EventAction::Decide`]: the model's [`SwitchedModel::decide`] assigns the states and
+//!   names the next mode (a restart if it is the same; restarts are watched for accumulation
+//!   like a reset's, and an accumulation stops the run), or stops the run like a terminal event.
+//!   A mode index outside the graph fails the run with [`EvalError::Undecided`].
 //!
 //! A reset that assigns a state that is not finite fails the run with
 //! [`EvalError::ResetNotFinite`] naming the event (inside [`crate::HybridError::Transition`]).
@@ -104,6 +108,26 @@ pub trait SwitchedModel<const N: usize> {
         out: &mut [f64; N],
     ) -> Result<(), EvalError>;
 
+    /// The state after event `event` of `mode`, an [`EventAction::Decide`], fired at
+    /// `(t, y, dy)`, into `out` (a copy of `y` on entry, as for [`SwitchedModel::reset`]), and
+    /// the index of the mode the run continues in, or `None` to stop it. The default decides
+    /// nothing ([`EvalError::Undecided`]): a model with such events implements it.
+    #[allow(clippy::too_many_arguments)] // The event's coordinates and its state, as written.
+    fn decide(
+        &self,
+        mode: usize,
+        event: usize,
+        _t: f64,
+        _y: &[f64; N],
+        _dy: &[f64; N],
+        _out: &mut [f64; N],
+    ) -> Result<Option<usize>, EvalError> {
+        Err(EvalError::Undecided {
+            event: format!("{event} of mode {mode}"),
+            mode: None,
+        })
+    }
+
     /// The components the guards of `mode` read (default: all); see
     /// [`HybridSystem::guard_inputs`].
     fn guard_inputs(&self, _mode: usize) -> GuardInputs<N> {
@@ -163,6 +187,17 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
         out: &mut [f64; N],
     ) -> Result<(), EvalError> {
         (**self).reset(mode, event, accumulation, t, y, dy, out)
+    }
+    fn decide(
+        &self,
+        mode: usize,
+        event: usize,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        out: &mut [f64; N],
+    ) -> Result<Option<usize>, EvalError> {
+        (**self).decide(mode, event, t, y, dy, out)
     }
     fn guard_inputs(&self, mode: usize) -> GuardInputs<N> {
         (**self).guard_inputs(mode)
@@ -303,6 +338,20 @@ impl<M> Switched<M> {
             let (m, e) = (event.mode.index(), event.event);
             (self.model).reset(m, e, accumulation, hit.t, &hit.y, &hit.dy, &mut out)?;
         }
+        self.finite(event, accumulation, out)
+    }
+
+    /// `out`, the state after `event`, or the error that names the event and the component
+    /// that is not finite.
+    fn finite<const N: usize>(
+        &self,
+        event: EventId,
+        accumulation: bool,
+        out: [f64; N],
+    ) -> Result<[f64; N], EvalError>
+    where
+        M: SwitchedModel<N>,
+    {
         match out.iter().position(|v| !v.is_finite()) {
             None => Ok(out),
             Some(component) => Err(EvalError::ResetNotFinite {
@@ -312,6 +361,51 @@ impl<M> Switched<M> {
                 value: out[component],
             }),
         }
+    }
+}
+
+impl<M> Switched<M> {
+    /// The transition of an [`EventAction::Decide`] event: the model's state and choice, a
+    /// restart fed to the accumulation watch like a reset's (an accumulation stops the run:
+    /// a decided event has no accumulation action).
+    fn decided<const N: usize>(
+        &mut self,
+        mode: ModeId,
+        hit: &EventHit<N, EventId>,
+    ) -> Result<Transition<N, ModeId, SwitchedStop, SwitchedNote>, EvalError>
+    where
+        M: SwitchedModel<N>,
+    {
+        let id = hit.guard;
+        let mut out = hit.y;
+        let (m, e) = (mode.index(), id.event);
+        let next = (self.model).decide(m, e, hit.t, &hit.y, &hit.dy, &mut out)?;
+        let Some(next) = next else {
+            self.forget();
+            return Ok(Transition::Stop(SwitchedStop::Event {
+                mode,
+                event: e,
+                t: hit.t,
+            }));
+        };
+        let graph = self.model.graph();
+        let Some(to) = graph.id(next) else {
+            return Err(EvalError::Undecided {
+                event: graph.event_name(id),
+                mode: Some(next),
+            });
+        };
+        let y = self.finite(id, false, out)?;
+        if to != mode {
+            self.forget();
+        } else if let Some(accumulation) = self.restarted(id, hit.t) {
+            return Ok(Transition::Stop(SwitchedStop::Accumulation {
+                mode,
+                event: e,
+                t_inf: accumulation.t_inf,
+            }));
+        }
+        Ok(continue_in(mode, to, y, SwitchedNote::Reset(id)))
     }
 }
 
@@ -389,6 +483,7 @@ impl<const N: usize, M: SwitchedModel<N>> HybridSystem<N> for Switched<M> {
                 return Ok(Transition::Stop(SwitchedStop::Event { mode, event, t }));
             }
             EventAction::Reset { to, reset } => (graph.target(mode, to), reset),
+            EventAction::Decide => return self.decided(mode, hit),
         };
         let accumulated = if to == mode {
             self.restarted(id, hit.t)

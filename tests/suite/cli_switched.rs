@@ -199,3 +199,45 @@ fn a_mistake_in_a_switched_file_is_located_and_exits_2() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("declares its events in the file"));
 }
+
+#[test]
+fn a_file_that_calls_rust_is_refused_under_the_function_s_name() {
+    let (_dir, path) = file(
+        "mod m { states { h, v } equations { der(h) = v; der(v) = -1; }
+            when hit: h < 0 -> m | stop by land; }",
+    );
+    for args in [
+        vec!["solve", arg(&path), "--t-end", "1"],
+        vec!["show", arg(&path)],
+    ] {
+        let command = args[0];
+        let out = model(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command}: {stderr}");
+        assert!(
+            stderr.contains("model.dsl:2:44: `land` is a Rust function (`by land`)"),
+            "{command}: {stderr}"
+        );
+        assert!(stderr.contains("runs only compiled"), "{stderr}");
+    }
+}
+
+#[test]
+fn show_prints_a_declared_time_scale_under_its_mode() {
+    let (_dir, path) = file(
+        "mod m { params { c = 0.1 } states { h, v } equations { der(h) = v; der(v) = -1; }
+            time_scale = h^2 / (h^2 + c);
+            when hit: h < 0 { v = -v; } }",
+    );
+    let out = model(&["show", arg(&path)]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("Time scale (regularised time, `dt = s dτ`): `s = h^2/(h^2 + c)`."),
+        "{stdout}"
+    );
+}

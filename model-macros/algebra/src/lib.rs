@@ -81,6 +81,7 @@ pub use options::{CompileOptions, PIVOT_TOLERANCE};
 pub use program::{
     CompiledModel, Explanation, Node, Operand, Ops, Program, Stmt, SumCheck, Target,
 };
+pub use program_part::Reads;
 pub use spec::{
     Ast, BinOp, CmpOp, Condition, Diagnostic, EquationSpec, Func, ModelSpec, Named, NodeId,
     VariantSpec,

@@ -63,6 +63,36 @@ impl Program {
             .flat_map(operands)
             .all(|operand| !matches!(operand, Operand::State(_) | Operand::Der(_) | Operand::Time))
     }
+
+    /// The states and the derivatives the program reads, each in increasing index order and
+    /// without repeats: what a caller must supply for its values (the rest may be anything).
+    pub fn reads(&self) -> Reads {
+        let mut reads = Reads::default();
+        for operand in self.stmts.iter().flat_map(operands) {
+            match operand {
+                Operand::State(i) => reads.states.push(i),
+                Operand::Der(i) => reads.ders.push(i),
+                Operand::Time => reads.time = true,
+                _ => {}
+            }
+        }
+        for list in [&mut reads.states, &mut reads.ders] {
+            list.sort_unstable();
+            list.dedup();
+        }
+        reads
+    }
+}
+
+/// What a program reads of the state and its derivative ([`Program::reads`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Reads {
+    /// The indices of the states read.
+    pub states: Vec<usize>,
+    /// The indices of the derivatives read.
+    pub ders: Vec<usize>,
+    /// Whether the time is read.
+    pub time: bool,
 }
 
 /// The operands a statement reads.
@@ -141,12 +171,47 @@ mod tests {
         let first = program.select_outputs(0..1);
         assert_eq!(first.stmts.len(), 3);
         assert!(!first.reads_only_parameters());
+        let reads = first.reads();
+        assert_eq!((reads.states, reads.ders), (vec![0, 1], vec![]));
         let third = program.select_outputs(2..3);
         assert_eq!(third.stmts, vec![store(0, Operand::Const(3.0))]);
         assert!(third.reads_only_parameters());
         assert_eq!(
             program.select_outputs(0..3).stmts.len(),
             program.stmts.len()
+        );
+    }
+
+    #[test]
+    fn reads_lists_each_state_and_derivative_once_in_order() {
+        // out0 = dy2 * y3 + y3, out1 = t * y0 (only out0 selected)
+        let program = Program {
+            stmts: vec![
+                Stmt::Let {
+                    tmp: 0,
+                    node: Node::Mul(Operand::Der(2), Operand::State(3)),
+                },
+                Stmt::Let {
+                    tmp: 1,
+                    node: Node::Add(Operand::Tmp(0), Operand::State(3)),
+                },
+                Stmt::Let {
+                    tmp: 2,
+                    node: Node::Mul(Operand::Time, Operand::State(0)),
+                },
+                store(0, Operand::Tmp(1)),
+                store(1, Operand::Tmp(2)),
+            ],
+        };
+        let reads = program.select_outputs(0..1).reads();
+        assert_eq!(
+            (reads.states, reads.ders, reads.time),
+            (vec![3], vec![2], false)
+        );
+        let reads = program.reads();
+        assert_eq!(
+            (reads.states, reads.ders, reads.time),
+            (vec![0, 3], vec![2], true)
         );
     }
 }

@@ -203,9 +203,11 @@ pub struct Mode {
     pub events: Vec<When>,
     /// Accumulation rules of this mode's events.
     pub accumulations: Vec<Accumulates>,
+    /// `time_scale = EXPR;`: this mode's clock in regularised time, instead of the model's.
+    pub time_scale: Option<Named<Expr>>,
 }
 
-/// `when NAME: GUARD [-> TARGET] [{ RESETS }]`: an event, located where the guard's relation
+/// `when NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION]`: an event, located where the guard's relation
 /// starts to hold.
 #[derive(Clone, Debug)]
 pub struct When {
@@ -220,6 +222,8 @@ pub struct When {
     pub target: Option<Target>,
     /// `{ state = EXPR; .. }`; `None` when no braces were written.
     pub resets: Option<Vec<Named<Expr>>>,
+    /// `by FUNCTION`: the new state is computed by a Rust function instead of written resets.
+    pub by: Option<Named<()>>,
 }
 
 /// `when NAME accumulates -> TARGET [{ RESETS }]`: what an accumulation of an event's resets
@@ -232,6 +236,8 @@ pub struct Accumulates {
     pub target: Target,
     /// The states set there.
     pub resets: Vec<Named<Expr>>,
+    /// `by FUNCTION`: the new state is computed by a Rust function instead.
+    pub by: Option<Named<()>>,
 }
 
 /// The target of a transition.
@@ -241,6 +247,15 @@ pub enum Target {
     Mode(Named<()>),
     /// `-> stop`: end the run, with the event's name as the reason.
     Stop(NodeId),
+    /// `-> a | b | stop`: one of these, decided by the event's Rust function (`by FUNCTION`).
+    Choice {
+        /// The modes, in the order written.
+        modes: Vec<Named<()>>,
+        /// Whether `stop` is among them.
+        stop: bool,
+        /// The first name's node.
+        id: NodeId,
+    },
 }
 
 /// A whole `model!` invocation as written.
@@ -276,6 +291,9 @@ pub struct ModelAst {
     pub events: Vec<When>,
     /// Accumulation rules of the shared events (or of the model's events without modes).
     pub accumulations: Vec<Accumulates>,
+    /// `time_scale = EXPR;` outside every mode: the clock, in regularised time, of every mode
+    /// that declares none (`dt = time_scale dτ`).
+    pub time_scale: Option<Named<Expr>>,
     /// Doc comments written on parameters, states and outputs, by name (they document the
     /// emitted index constants).
     pub docs: BTreeMap<String, Vec<syn::Attribute>>,
@@ -302,6 +320,7 @@ impl ModelAst {
             modes: Vec::new(),
             events: Vec::new(),
             accumulations: Vec::new(),
+            time_scale: None,
             docs: BTreeMap::new(),
             spans: Spans::default(),
         }

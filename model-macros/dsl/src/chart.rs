@@ -85,6 +85,7 @@ impl Chart {
             modes: Vec::new(),
             events: Vec::new(),
             accumulations: Vec::new(),
+            time_scale: None,
             docs: model.docs.clone(),
             spans: model.spans.clone(),
         }

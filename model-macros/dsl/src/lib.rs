@@ -56,9 +56,11 @@ pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
 pub use statements::is_rust_keyword;
 pub use switched::{
-    validate_switched, Action, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
+    validate_switched, Action, Choice, Crossing, EventPlan, JumpPlan, ModePlan, SwitchedPlan,
 };
-pub use switched_compile::{compile_switched, CompiledEvent, CompiledMode, CompiledSwitched, Jump};
+pub use switched_compile::{
+    compile_switched, Clock, CompiledEvent, CompiledMode, CompiledSwitched, Jump,
+};
 pub use switched_show::{switching_latex, switching_markdown};
 pub use text::{Located, LocatedErrors, Source, TextModel};
 pub use unchecked::spec_unchecked;

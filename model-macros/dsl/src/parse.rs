@@ -11,7 +11,7 @@ use crate::statements::{
     braced, check_docs_only, no_docs_here, once, parse_binding, parse_documented_name,
     parse_equation, parse_list, parse_name, recover_section, recover_statement, with_value,
 };
-use crate::switching::{parse_mode, parse_when, Events};
+use crate::switching::{parse_mode, parse_time_scale, parse_when, Events};
 use proc_macro2::TokenStream;
 use syn::parse::{ParseStream, Parser};
 use syn::Token;
@@ -226,6 +226,12 @@ fn parse_item(
             let mode = parse_mode(input, attrs, &mut model.spans, errors)?;
             model.modes.push(mode);
         }
+        "time_scale" => {
+            no_docs_here(&attrs, "`time_scale`", errors);
+            recover_statement(input, errors, |input| {
+                parse_time_scale(input, &keyword, &mut model.spans, &mut model.time_scale)
+            });
+        }
         "when" => {
             let mut events = Events {
                 events: &mut model.events,
@@ -239,7 +245,7 @@ fn parse_item(
             return Err(syn::Error::new(
                 keyword.span(),
                 format!(
-                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart` or `options`"
+                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `mode`, `when`, `time_scale`, `variant`, `chart` or `options`"
                 ),
             ))
         }

@@ -58,6 +58,21 @@ pub struct JumpPlan {
     pub to: Option<usize>,
     /// `(state index, output index)` per reset, in the order written.
     pub resets: Vec<(usize, usize)>,
+    /// The Rust function that computes the new state instead (`by FUNCTION`; then `resets` is
+    /// empty).
+    pub by: Option<String>,
+    /// When the function also decides where the run goes (`-> a | b | stop by FUNCTION`):
+    /// the modes it may name (`to` is then `None`).
+    pub choice: Option<Choice>,
+}
+
+/// The modes a decided event may continue in, and whether it may stop the run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Choice {
+    /// The mode indices, in the order written.
+    pub modes: Vec<usize>,
+    /// Whether the function may stop the run.
+    pub stop: bool,
 }
 
 /// One event of a mode as planned.
@@ -91,6 +106,9 @@ pub struct ModePlan {
     pub user_outputs: usize,
     /// Its events: its own first, then the shared ones.
     pub events: Vec<EventPlan>,
+    /// The output of the mode's model holding its time scale (its own, or the model's), if
+    /// either is declared.
+    pub time_scale: Option<(NodeId, usize)>,
 }
 
 /// A switched model ready for the compiler.
@@ -107,7 +125,21 @@ pub struct SwitchedPlan {
 impl ModelAst {
     /// Whether the model switches: it has modes or events.
     pub fn is_switched(&self) -> bool {
-        !self.modes.is_empty() || !self.events.is_empty() || !self.accumulations.is_empty()
+        !self.modes.is_empty()
+            || !self.events.is_empty()
+            || !self.accumulations.is_empty()
+            || self.time_scale.is_some()
+    }
+
+    /// Every `by FUNCTION` of the model's events and accumulations, in the order written: the
+    /// Rust functions a run calls, which only a model compiled by `model!` can call.
+    pub fn rust_calls(&self) -> Vec<&Named<()>> {
+        let events = (self.modes.iter().flat_map(|m| &m.events)).chain(&self.events);
+        let accumulations =
+            (self.modes.iter().flat_map(|m| &m.accumulations)).chain(&self.accumulations);
+        (events.filter_map(|w| w.by.as_ref()))
+            .chain(accumulations.filter_map(|a| a.by.as_ref()))
+            .collect()
     }
 }
 
@@ -121,6 +153,8 @@ struct ModeView<'a> {
     /// Own events, then shared ones (flag).
     events: Vec<(&'a When, bool)>,
     accumulations: Vec<&'a Accumulates>,
+    /// The mode's own time scale, or the model's.
+    time_scale: Option<&'a Named<Expr>>,
 }
 
 /// Checks a switched model and builds each mode's model; `Err` carries every problem.
@@ -186,22 +220,44 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         // Checks and plans a jump: its target and its resets, each a new output.
         let jump = |target: Option<&Target>,
                     resets: &[Named<Expr>],
+                    by: Option<&Named<()>>,
                     event: &str,
                     kind: &str,
                     outputs: &mut Vec<Named<Expr>>,
                     errors: &mut Errors|
          -> Option<JumpPlan> {
+            let index = |name: &Named<()>, errors: &mut Errors| {
+                let found = mode_index.get(name.name.as_str()).copied();
+                if found.is_none() {
+                    errors.at(
+                        range(name.id),
+                        format!("unknown mode `{}`: {}", name.name, mode_list()),
+                    );
+                }
+                found
+            };
+            let mut choice = None;
             let to = match target {
-                Some(Target::Mode(name)) => match mode_index.get(name.name.as_str()) {
-                    Some(&k) => Some(k),
-                    None => {
+                Some(Target::Mode(name)) => Some(index(name, errors)?),
+                Some(Target::Choice { modes, stop, id }) => {
+                    if by.is_none() {
                         errors.at(
-                            range(name.id),
-                            format!("unknown mode `{}`: {}", name.name, mode_list()),
+                            range(*id),
+                            format!(
+                                "event `{event}` goes on in one of several modes: a Rust function \
+                                 decides which (`by FUNCTION`), and none is named"
+                            ),
                         );
                         return None;
                     }
-                },
+                    let indices: Vec<Option<usize>> =
+                        modes.iter().map(|m| index(m, errors)).collect();
+                    choice = Some(Choice {
+                        modes: indices.into_iter().collect::<Option<Vec<usize>>>()?,
+                        stop: *stop,
+                    });
+                    None
+                }
                 _ => None,
             };
             let mut planned = Vec::new();
@@ -234,6 +290,8 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
             Some(JumpPlan {
                 to,
                 resets: planned,
+                by: by.map(|f| f.name.clone()),
+                choice,
             })
         };
         // The guards first, together, then each jump's resets, together: the compiler then
@@ -251,6 +309,15 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 ),
             });
         }
+        // The clock next, read by the integrator at every evaluation in regularised time.
+        let time_scale = view.time_scale.map(|clock| {
+            outputs.push(Named {
+                name: "time_scale:".to_string(),
+                id: clock.id,
+                value: clock.value.clone(),
+            });
+            (clock.id, outputs.len() - 1)
+        });
         for (k, &(when, shared)) in view.events.iter().enumerate() {
             let guard_output = user_outputs + k;
             if names.insert(when.name.name.clone(), when.name.id).is_some() {
@@ -263,8 +330,9 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 );
             }
             let guard = &when.guard;
-            let action = match (&when.target, &when.resets) {
-                (Some(Target::Stop(id)), Some(_)) => {
+            let sets_state = when.resets.is_some() || when.by.is_some();
+            let action = match (&when.target, sets_state) {
+                (Some(Target::Stop(id)), true) => {
                     errors.at(
                         range(*id),
                         format!(
@@ -274,13 +342,14 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                     );
                     Action::Stop
                 }
-                (Some(Target::Stop(_)), None) => Action::Stop,
-                (None, None) => Action::Record,
-                (target, resets) => {
-                    let resets = resets.as_deref().unwrap_or(&[]);
+                (Some(Target::Stop(_)), false) => Action::Stop,
+                (None, false) => Action::Record,
+                (target, _) => {
+                    let resets = when.resets.as_deref().unwrap_or(&[]);
                     match jump(
                         target.as_ref(),
                         resets,
+                        when.by.as_ref(),
                         &when.name.name,
                         "reset",
                         &mut outputs,
@@ -338,6 +407,13 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 );
                 continue;
             }
+            if let Target::Choice { id, .. } = acc.target {
+                errors.at(
+                    range(id),
+                    "an accumulation goes on in one mode: a choice belongs to an event",
+                );
+                continue;
+            }
             if let Target::Stop(id) = acc.target {
                 errors.at(
                     range(id),
@@ -348,6 +424,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
             let plan = jump(
                 Some(&acc.target),
                 &acc.resets,
+                acc.by.as_ref(),
                 &acc.event.name,
                 "accumulation",
                 &mut outputs,
@@ -366,19 +443,21 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         model.modes = Vec::new();
         model.events = Vec::new();
         model.accumulations = Vec::new();
-        plans_ast.push((view, model, user_outputs, events));
+        model.time_scale = None;
+        plans_ast.push((view, model, user_outputs, events, time_scale));
     }
 
     // Each mode's model through the smooth validator; a problem found in every mode is the
     // shared rows' and is reported once.
     let mut found: Vec<(String, String, syn::Error, Vec<String>)> = Vec::new();
     let mut modes = Vec::new();
-    for (view, model, user_outputs, events) in plans_ast {
+    for (view, model, user_outputs, events, time_scale) in plans_ast {
         match validate_one(&model) {
             Ok(validated) => modes.push(ModePlan {
                 model: validated,
                 user_outputs,
                 events,
+                time_scale,
             }),
             Err(error) => {
                 for error in error {
@@ -436,6 +515,7 @@ fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
             equations: ast.equations.clone(),
             events: ast.events.iter().map(|w| (w, false)).collect(),
             accumulations: ast.accumulations.iter().collect(),
+            time_scale: ast.time_scale.as_ref(),
         }];
     }
     ast.modes
@@ -458,6 +538,7 @@ fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
                     .collect(),
                 events,
                 accumulations,
+                time_scale: mode.time_scale.as_ref().or(ast.time_scale.as_ref()),
             }
         })
         .collect()

@@ -3,7 +3,7 @@
 
 use crate::compile::compile;
 use crate::span::Errors;
-use crate::switched::{Action, Crossing, JumpPlan, SwitchedPlan};
+use crate::switched::{Action, Choice, Crossing, JumpPlan, SwitchedPlan};
 use model_algebra::{CompiledModel, Program};
 
 /// A switched model after the compiler.
@@ -26,6 +26,17 @@ pub struct CompiledMode {
     pub guards: Program,
     /// The mode's events, in priority order.
     pub events: Vec<CompiledEvent>,
+    /// The mode's time scale, if one is declared.
+    pub time_scale: Option<Clock>,
+}
+
+/// A mode's clock in regularised time: `dt = s dτ`.
+#[derive(Clone, Debug)]
+pub struct Clock {
+    /// `out[0]` = `s` (reads `y` and `p` only).
+    pub program: Program,
+    /// `s` as the compiler simplified it, in the DSL's syntax.
+    pub text: String,
 }
 
 /// One event compiled.
@@ -60,6 +71,11 @@ pub struct Jump {
     pub texts: Vec<String>,
     /// The same in LaTeX.
     pub latex: Vec<String>,
+    /// The Rust function that computes the new state instead (`by FUNCTION`): the compiled
+    /// model calls it; a model that has one can run only compiled.
+    pub by: Option<String>,
+    /// The modes the function chooses among, when it also decides where the run goes.
+    pub choice: Option<Choice>,
 }
 
 impl CompiledSwitched {
@@ -126,6 +142,8 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
                     program: all.select_outputs(range),
                     texts: outputs.clone().map(|o| texts[o].clone()).collect(),
                     latex: outputs.map(|o| latex[o].clone()).collect(),
+                    by: plan.by.clone(),
+                    choice: plan.choice.clone(),
                 }
             };
             events.push(CompiledEvent {
@@ -142,6 +160,22 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
                 shared: event.shared,
             });
         }
+        let time_scale = mode.time_scale.map(|(id, output)| {
+            let program = all.select_outputs(output..output + 1);
+            let reads = program.reads();
+            if reads.time || !reads.ders.is_empty() {
+                errors.at(
+                    spans.range(id),
+                    "a time scale reads only states and parameters: the integrator evaluates it \
+                     before it knows the derivatives, and in regularised time `t` is a state of \
+                     the clock, not an input",
+                );
+            }
+            Clock {
+                program,
+                text: texts[output].clone(),
+            }
+        });
         model.outputs.truncate(n_user);
         model.outputs_program = all.select_outputs(0..n_user);
         model.explanation.outputs.truncate(n_user);
@@ -149,6 +183,7 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
             model,
             guards,
             events,
+            time_scale,
         });
     }
     errors.finish()?;

@@ -28,6 +28,13 @@ pub fn switching_markdown(model: &CompiledSwitched) -> String {
     }
     for mode in &model.modes {
         let _ = writeln!(md, "\n## Mode `{}`\n", mode.model.name);
+        if let Some(clock) = &mode.time_scale {
+            let _ = writeln!(
+                md,
+                "Time scale (regularised time, `dt = s dτ`): `s = {}`.\n",
+                clock.text
+            );
+        }
         if mode.events.is_empty() {
             md.push_str("No event: the run stays in this mode.\n");
             continue;
@@ -94,11 +101,31 @@ fn action_latex(model: &CompiledSwitched, event: &CompiledEvent, states: &[Strin
         let mut parts: Vec<String> = (jump.states.iter().zip(&jump.latex))
             .map(|(&s, v)| format!("{}^{{+}} = {v}", latex_name(&states[s])))
             .collect();
+        if let Some(function) = &jump.by {
+            parts.push(format!(
+                "y^{{+}} = \\texttt{{{}}}(t, y, \\dot y)",
+                function.replace('_', "\\_")
+            ));
+        }
         if let Some(to) = jump.to {
             parts.push(format!(
                 "\\to \\text{{{}}}",
                 model.modes[to].model.name.replace('_', "\\_")
             ));
+        }
+        if let Some(choice) = &jump.choice {
+            let mut next: Vec<String> = (choice.modes.iter())
+                .map(|&k| {
+                    format!(
+                        "\\text{{{}}}",
+                        model.modes[k].model.name.replace('_', "\\_")
+                    )
+                })
+                .collect();
+            if choice.stop {
+                next.push("\\text{stop}".to_string());
+            }
+            parts.push(format!("\\to {}", next.join(" \\mid ")));
         }
         parts.join(",\\ ")
     };
@@ -125,6 +152,19 @@ fn jump_text(model: &CompiledSwitched, from: &str, jump: &Jump, states: &[String
     let mut parts: Vec<String> = (jump.states.iter().zip(&jump.texts))
         .map(|(&s, v)| format!("`{} := {v}`", states[s]))
         .collect();
+    if let Some(function) = &jump.by {
+        parts.push(format!("the state `by {function}` (Rust)"));
+    }
+    if let Some(choice) = &jump.choice {
+        let mut next: Vec<String> = (choice.modes.iter())
+            .map(|&k| format!("`{}`", model.modes[k].model.name))
+            .collect();
+        if choice.stop {
+            next.push("stop".to_string());
+        }
+        parts.push(format!("go to one of {}, as it decides", next.join(", ")));
+        return parts.join(", ");
+    }
     parts.push(match jump.to {
         Some(to) => format!("go to `{}`", model.modes[to].model.name),
         None => format!("restart `{from}`"),

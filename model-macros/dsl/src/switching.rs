@@ -7,7 +7,9 @@
 //! just before the event) and the mode the run continues in (`-> sliding`), or `-> stop`. An
 //! event with neither is only recorded. `when impact accumulates -> resting { .. }` says what an
 //! accumulation of an event's resets (a Zeno point, such as a ball's ever shorter bounces)
-//! turns into. The grammar is described in the macro crate's `DSL.md`, section "Switching".
+//! turns into. A new state that no expression gives (the direction a slip starts in is the
+//! solution of a search) is computed `by` a named Rust function: `-> sliding by slip_onset`.
+//! The grammar is described in the macro crate's `DSL.md`, section "Switching".
 
 use crate::ast::{Accumulates, Mode, Target, When};
 use crate::expr::parse_relation;
@@ -46,6 +48,7 @@ pub(crate) fn parse_mode(
         equations: Vec::new(),
         events: Vec::new(),
         accumulations: Vec::new(),
+        time_scale: None,
     };
     let mut equations_seen = false;
     while !content.is_empty() {
@@ -64,7 +67,7 @@ pub(crate) fn parse_mode(
             Ok(keyword) => keyword,
             Err(_) => {
                 errors.push(content.error(format!(
-                    "expected `let`, `equations {{ .. }}` or `when` in mode `{}`",
+                    "expected `let`, `equations {{ .. }}`, `when` or `time_scale` in mode `{}`",
                     mode.name
                 )));
                 skip_all(&content);
@@ -100,11 +103,16 @@ pub(crate) fn parse_mode(
                     parse_when(input, item_attrs, spans, &mut events)
                 });
             }
+            "time_scale" => {
+                recover_statement(&content, errors, |input| {
+                    parse_time_scale(input, &keyword, spans, &mut mode.time_scale)
+                });
+            }
             other => {
                 errors.push(syn::Error::new(
                     keyword.span(),
                     format!(
-                        "unknown section `{other}` in mode `{}`: expected `let`, `equations` or `when` \
+                        "unknown section `{other}` in mode `{}`: expected `let`, `equations`, `when` or `time_scale` \
                          (parameters, states, outputs and options belong to the model)",
                         mode.name
                     ),
@@ -116,8 +124,39 @@ pub(crate) fn parse_mode(
     Ok(mode)
 }
 
-/// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS }] [;]` or
-/// `NAME accumulates -> TARGET [{ RESETS }] [;]`.
+/// After the keyword `time_scale` (of a mode, or of the model): `= EXPR;`, the clock of
+/// regularised time (`dt = EXPR dτ`), into `slot` (an error if it is already set).
+pub(crate) fn parse_time_scale(
+    input: ParseStream,
+    keyword: &syn::Ident,
+    spans: &mut Spans,
+    slot: &mut Option<Named<crate::ast::Expr>>,
+) -> syn::Result<()> {
+    if slot.is_some() {
+        return Err(syn::Error::new(
+            keyword.span(),
+            "`time_scale` is written twice here: a mode has one clock (the model's `time_scale` \
+             is for the modes that declare none)",
+        ));
+    }
+    if !input.peek(Token![=]) {
+        return Err(input.error(
+            "expected `=` and an expression after `time_scale`, e.g. `time_scale = theta / (theta + 0.01);`",
+        ));
+    }
+    input.parse::<Token![=]>()?;
+    let value = crate::expr::parse_expr(input, spans)?;
+    input.parse::<Token![;]>()?;
+    *slot = Some(Named {
+        name: "time_scale".to_string(),
+        id: spans.push(SpanRange::single(keyword.span())),
+        value,
+    });
+    Ok(())
+}
+
+/// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION] [;]` or
+/// `NAME accumulates -> TARGET [{ RESETS } | by FUNCTION] [;]`.
 pub(crate) fn parse_when(
     input: ParseStream,
     attrs: Vec<syn::Attribute>,
@@ -142,12 +181,13 @@ pub(crate) fn parse_when(
         }
         let target = parse_target(input, spans)?
             .ok_or_else(|| input.error("expected `-> MODE` or `-> stop`"))?;
-        let resets = parse_resets(input, spans)?.unwrap_or_default();
+        let (resets, by) = parse_state_map(input, spans)?;
         end_of_event(input)?;
         events.accumulations.push(Accumulates {
             event: name,
             target,
-            resets,
+            resets: resets.unwrap_or_default(),
+            by,
         });
         return Ok(());
     }
@@ -160,7 +200,7 @@ pub(crate) fn parse_when(
     input.parse::<Token![:]>()?;
     let guard = parse_relation(input, spans)?;
     let target = parse_target(input, spans)?;
-    let resets = parse_resets(input, spans)?;
+    let (resets, by) = parse_state_map(input, spans)?;
     end_of_event(input)?;
     events.events.push(When {
         attrs,
@@ -168,11 +208,12 @@ pub(crate) fn parse_when(
         guard,
         target,
         resets,
+        by,
     });
     Ok(())
 }
 
-/// `-> NAME` or `-> stop`, if written.
+/// `-> NAME`, `-> stop` or a choice `-> a | b | stop`, if written.
 fn parse_target(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Target>> {
     if !input.peek(Token![->]) {
         return Ok(None);
@@ -180,11 +221,65 @@ fn parse_target(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Tar
     input.parse::<Token![->]>()?;
     let name = parse_name(input, spans)
         .map_err(|_| input.error("expected a mode's name or `stop` after `->`"))?;
+    if input.peek(Token![|]) {
+        let id = name.id;
+        let mut names = vec![name];
+        while input.peek(Token![|]) {
+            input.parse::<Token![|]>()?;
+            names.push(
+                parse_name(input, spans)
+                    .map_err(|_| input.error("expected a mode's name or `stop` after `|`"))?,
+            );
+        }
+        let stop = names.iter().any(|n| n.name == "stop");
+        names.retain(|n| n.name != "stop");
+        return Ok(Some(Target::Choice {
+            modes: names,
+            stop,
+            id,
+        }));
+    }
     Ok(Some(if name.name == "stop" {
         Target::Stop(name.id)
     } else {
         Target::Mode(name)
     }))
+}
+
+/// An event's new state as written: its resets `{ .. }` (`None` without braces), or the Rust
+/// function that computes it.
+type StateMap = (Option<Vec<Named<crate::ast::Expr>>>, Option<Named<()>>);
+
+/// The new state, if the event sets one: written resets `{ .. }`, or `by FUNCTION`, a Rust
+/// function that computes it (not both).
+fn parse_state_map(input: ParseStream, spans: &mut Spans) -> syn::Result<StateMap> {
+    let by = parse_by(input, spans)?;
+    if by.is_some() && input.peek(syn::token::Brace) {
+        return Err(input.error(
+            "an event computes its new state `by` a Rust function or writes its resets \
+             `{ .. }`, not both: assign these states in the function",
+        ));
+    }
+    let resets = parse_resets(input, spans)?;
+    if resets.is_some() && input.peek(syn::Ident) && input.fork().parse::<syn::Ident>()? == "by" {
+        return Err(input.error(
+            "an event writes its resets `{ .. }` or computes its new state `by` a Rust \
+             function, not both: assign these states in the function",
+        ));
+    }
+    Ok((resets, by))
+}
+
+/// `by FUNCTION`, if written: the name of the Rust function that computes the new state.
+fn parse_by(input: ParseStream, spans: &mut Spans) -> syn::Result<Option<Named<()>>> {
+    if !(input.peek(syn::Ident) && input.fork().parse::<syn::Ident>()? == "by") {
+        return Ok(None);
+    }
+    input.parse::<syn::Ident>()?;
+    let function = parse_name(input, spans).map_err(|_| {
+        input.error("expected the name of a Rust function after `by`, e.g. `by slip_onset`")
+    })?;
+    Ok(Some(function))
 }
 
 /// `{ state = EXPR; .. }`, if written.

@@ -8,6 +8,7 @@
 
 use crate::compile::compile_all;
 use crate::parse::parse_model_recovering;
+use crate::span::Errors;
 use crate::switched::validate_switched;
 use crate::switched_compile::{compile_switched, CompiledSwitched};
 use crate::validate::validate;
@@ -145,10 +146,29 @@ impl Source {
     }
 
     /// Parses, validates and compiles a switched model (one with `mode` or `when`), as `model!`
-    /// does; every error, located.
+    /// does; every error, located. A model whose events compute their new state `by` a Rust
+    /// function is rejected at each such name: only `model!` can call Rust, so read from text
+    /// it can be neither shown with its resets nor run.
     pub fn compile_switched(&self) -> Result<CompiledSwitched, LocatedErrors> {
         let ast = self.parse()?;
-        let plan = validate_switched(&ast).map_err(|errors| self.locate_all(errors))?;
+        let mut errors = Errors::default();
+        for function in ast.rust_calls() {
+            errors.at(
+                ast.spans.range(function.id),
+                format!(
+                    "`{0}` is a Rust function (`by {0}`): a model that calls one runs only \
+                     compiled, inside `model!`, where `{0}` is in scope; a model read from a \
+                     file cannot call Rust",
+                    function.name
+                ),
+            );
+        }
+        let plan = validate_switched(&ast);
+        if let Err(found) = &plan {
+            errors.push(found.clone());
+        }
+        errors.finish().map_err(|errors| self.locate_all(errors))?;
+        let plan = plan.map_err(|errors| self.locate_all(errors))?;
         compile_switched(&plan).map_err(|errors| self.locate_all(errors))
     }
 

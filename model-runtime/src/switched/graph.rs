@@ -43,6 +43,11 @@ pub enum EventAction {
     },
     /// End the run; the event's name is the reason.
     Stop,
+    /// The model decides ([`crate::SwitchedModel::decide`]): it assigns states and names the
+    /// mode the run continues in (a restart when it names the event's own), or stops the run
+    /// with the event's name as the reason. For a transition that depends on the state in a
+    /// way no single target says: a slip that stops may stick or slide on.
+    Decide,
 }
 
 /// What an accumulation of an event's resets turns into: a switch to mode `to` (the same mode

@@ -46,6 +46,8 @@ struct SwitchedBall {
     graph: ModeGraph,
     /// A reset that assigns NaN, to test the error.
     broken: bool,
+    /// The mode a decided impact names (with the reset `v = -e v`); `None`: none.
+    decides: Option<usize>,
 }
 
 impl SwitchedBall {
@@ -73,6 +75,7 @@ impl SwitchedBall {
         SwitchedBall {
             graph: graph.unwrap(),
             broken: false,
+            decides: None,
         }
     }
 }
@@ -115,6 +118,18 @@ impl SwitchedModel<2> for SwitchedBall {
             out[1] = if self.broken { f64::NAN } else { -E * y[1] };
         }
         Ok(())
+    }
+    fn decide(
+        &self,
+        mode: usize,
+        event: usize,
+        t: f64,
+        y: &[f64; 2],
+        dy: &[f64; 2],
+        out: &mut [f64; 2],
+    ) -> Result<Option<usize>, EvalError> {
+        self.reset(mode, event, false, t, y, dy, out)?;
+        Ok(self.decides)
     }
 }
 
@@ -379,4 +394,63 @@ fn a_mode_graph_names_what_is_wrong_with_it() {
         (graph.id(0), graph.id(1), graph.mode_name(a)),
         (Some(a), None, "a")
     );
+}
+
+/// The ball whose impact is decided by the model, naming `decides`.
+fn decided(decides: Option<usize>) -> SwitchedBall {
+    let mut ball = SwitchedBall::new(Tables {
+        impact: EventAction::Decide,
+        on_accumulation: None,
+        ..RESTS
+    });
+    ball.decides = decides;
+    ball
+}
+
+#[test]
+fn a_decided_restart_is_a_reset_and_its_accumulation_stops_the_run() {
+    let (reset, reset_log) = drop(SwitchedBall::new(Tables {
+        on_accumulation: None,
+        ..RESTS
+    }));
+    let (decided, decided_log) = drop(decided(Some(0)));
+    let (reset, decided) = (reset.unwrap(), decided.unwrap());
+    // The same run: the decision restarts `flying` with the reset's state, bit for bit.
+    assert_eq!(decided.stop, reset.stop);
+    assert_eq!((decided.t, decided.y), (reset.t, reset.y));
+    assert_eq!(check_impacts(&decided_log), check_impacts(&reset_log));
+    assert!(matches!(
+        decided.stop,
+        StopReason::User(SwitchedStop::Accumulation { .. })
+    ));
+}
+
+#[test]
+fn a_decision_may_switch_stop_or_fail_naming_the_event() {
+    // To `resting`: still from the first impact on (the decided state is the reset's).
+    let (out, log) = drop(decided(Some(1)));
+    let out = out.unwrap();
+    assert_eq!(log.records.len(), 1);
+    assert_eq!(log.records[0].kind, TransitionKind::Switch { to: out.mode });
+    assert!((log.records[0].hit.t - flights().t1).abs() < 1e-9);
+    // `None`: the run stops there, with the event as its reason.
+    let (out, _) = drop(decided(None));
+    let StopReason::User(SwitchedStop::Event { event, t, .. }) = out.unwrap().stop else {
+        panic!("not stopped by the event");
+    };
+    assert_eq!(event, 0);
+    assert!((t - flights().t1).abs() < 1e-9);
+    // A mode the graph does not have.
+    let (out, _) = drop(decided(Some(7)));
+    let Err(HybridError::Transition { source, .. }) = out else {
+        panic!("{out:?}");
+    };
+    assert_eq!(
+        source,
+        EvalError::Undecided {
+            event: "flying.impact".to_string(),
+            mode: Some(7)
+        }
+    );
+    assert!(source.to_string().contains("mode 7"), "{source}");
 }

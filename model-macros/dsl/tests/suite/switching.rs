@@ -225,6 +225,17 @@ fn syntax_of_events_is_checked_where_written() {
         ("mod m { states { x } mode state { equations { der(x) = 1; } } }", "cannot be called `state`"),
         ("mod m { states { x } mode a { equations { der(x) = 1; } } mode a { equations { der(x) = 2; } } }", "declared twice"),
         ("mod m { states { x } mode a { params { k } equations { der(x) = 1; } } }", "belong to the model"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 by f { x = 1; } }", "not both"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 { x = 1; } by f; }", "not both"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 by; }", "name of a Rust function after `by`"),
+        ("mod m { states { x } equations { der(x) = 1; } when hit: x < 0 -> stop by f; }", "stops the run"),
+        ("mod m { states { x } equations { der(x) = 1; } time_scale = 1; time_scale = 2; }", "`time_scale` is written twice"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 -> a | stop; } }", "a Rust function decides which"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 -> a | b by f; } }", "unknown mode `b`"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 by f; when hit accumulates -> a | stop; } }", "an accumulation goes on in one mode"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } when hit: x < 0 -> a | ; } }", "after `|`"),
+        ("mod m { states { x } equations { der(x) = 1; } time_scale 1; }", "expected `=` and an expression after `time_scale`"),
+        ("mod m { states { x } mode a { equations { der(x) = 1; } time_scale = x; time_scale = 1; } }", "written twice"),
     ];
     for (text, expected) in cases {
         let found = messages(&errors(text));
@@ -242,4 +253,124 @@ fn an_error_in_a_shared_row_is_reported_once() {
     let found = messages(&errors(text));
     assert_eq!(found.len(), 1, "{found:#?}");
     assert!(found[0].starts_with("unknown name `vv`"), "{found:#?}");
+}
+
+#[test]
+fn a_model_that_calls_rust_is_refused_from_text_at_each_call() {
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
+        when hit: x < 0 by bounce;
+        when hit accumulates -> m by rest; }";
+    let found = errors(text);
+    assert_eq!(found.len(), 2, "{:#?}", messages(&found));
+    for (error, name) in found.iter().zip(["bounce", "rest"]) {
+        assert!(
+            error
+                .message
+                .starts_with(&format!("`{name}` is a Rust function")),
+            "{}",
+            error.message
+        );
+        assert!(
+            error.message.contains("runs only compiled"),
+            "{}",
+            error.message
+        );
+        assert_eq!(underlined(error, name.len()), name);
+    }
+    assert_eq!((found[0].line, found[1].line), (2, 3));
+}
+
+#[test]
+fn a_jump_by_a_rust_function_is_planned_with_its_name_and_no_written_resets() {
+    let text = "mod m { params { c = 0 } states { x, v } equations { der(x) = v; der(v) = -1; }
+        mode a { when hit: x < c -> b by onset; }
+        mode b { when lift: x > 1 -> a { v = 0; } } }";
+    let ast = Source::new("m.dsl", text).parse().unwrap();
+    let plan = model_dsl::validate_switched(&ast).unwrap();
+    let compiled = model_dsl::compile_switched(&plan).unwrap();
+    let Action::Jump(jump) = &compiled.modes[0].events[0].action else {
+        panic!("{:?}", compiled.modes[0].events[0].action)
+    };
+    assert_eq!((jump.to, jump.by.as_deref()), (Some(1), Some("onset")));
+    assert!(jump.states.is_empty() && jump.texts.is_empty());
+    let Action::Jump(back) = &compiled.modes[1].events[0].action else {
+        panic!("{:?}", compiled.modes[1].events[0].action)
+    };
+    assert_eq!((back.to, back.by.as_deref()), (Some(0), None));
+    let table = model_dsl::switching_markdown(&compiled);
+    assert!(
+        table.contains(
+            "| `hit` | `x - c` crosses 0 downwards | the state `by onset` (Rust), go to `b` |"
+        ),
+        "{table}"
+    );
+    assert_eq!(jump.choice, None);
+    let latex = model_dsl::switching_latex(&compiled);
+    assert!(
+        latex.contains("y^{+} = \\texttt{onset}(t, y, \\dot y),\\ \\to \\text{b}"),
+        "{latex}"
+    );
+}
+
+#[test]
+fn a_time_scale_reads_states_and_parameters_only_and_a_mode_s_own_wins() {
+    let text = "mod m { params { c = 0.1 } states { x, v } equations { der(x) = v; der(v) = -x; }
+        time_scale = x^2 / (x^2 + c);
+        mode a { when hit: x < 0 -> b; }
+        mode b { time_scale = 1; } }";
+    let model = compile(text);
+    let clocks: Vec<&str> = (model.modes.iter())
+        .map(|m| m.time_scale.as_ref().unwrap().text.as_str())
+        .collect();
+    assert_eq!(clocks, ["x^2/(x^2 + c)", "1"]);
+    let a = &model.modes[0].time_scale.as_ref().unwrap().program;
+    assert_eq!(
+        eval(a, &[0.3, 5.0], &[f64::NAN, f64::NAN], &[0.1], 1),
+        [0.09 / 0.19]
+    );
+    // Without a declaration there is no clock (the runtime's default is 1).
+    assert!(compile(BALL).modes.iter().all(|m| m.time_scale.is_none()));
+
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -x; }
+        mode a { time_scale = abs(der(v)); when hit: x < 0 -> b; }
+        mode b { time_scale = 1 + t; } }";
+    let found = errors(text);
+    assert_eq!(found.len(), 2, "{:#?}", messages(&found));
+    for error in &found {
+        assert!(error
+            .message
+            .contains("a time scale reads only states and parameters"));
+        assert_eq!(underlined(error, 10), "time_scale");
+    }
+}
+
+#[test]
+fn a_choice_of_modes_is_planned_for_its_rust_function() {
+    let text = "mod m { states { x, v } equations { der(x) = v; der(v) = -1; }
+        mode a { when hit: x < v by land; when miss: x > v -> b | a | stop by land; }
+        mode b { } }";
+    let ast = Source::new("m.dsl", text).parse().unwrap();
+    let model = model_dsl::compile_switched(&model_dsl::validate_switched(&ast).unwrap()).unwrap();
+    let Action::Jump(restart) = &model.modes[0].events[0].action else {
+        panic!("{:?}", model.modes[0].events[0].action)
+    };
+    assert_eq!((restart.to, restart.by.as_deref()), (None, Some("land")));
+    assert_eq!(restart.choice, None);
+    let Action::Jump(jump) = &model.modes[0].events[1].action else {
+        panic!("{:?}", model.modes[0].events[1].action)
+    };
+    assert_eq!(jump.to, None);
+    assert_eq!(jump.by.as_deref(), Some("land"));
+    assert_eq!(
+        jump.choice,
+        Some(model_dsl::Choice {
+            modes: vec![1, 0],
+            stop: true
+        })
+    );
+    let latex = model_dsl::switching_latex(&model);
+    assert!(
+        latex.contains("\\to \\text{b} \\mid \\text{a} \\mid \\text{stop}"),
+        "{latex}"
+    );
 }
