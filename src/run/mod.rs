@@ -123,11 +123,6 @@ pub fn run_scene(
     owned::clear_owned(&opts.out_dir)?;
     let started = Instant::now();
     let choice = model::choose(scene, opts.backend, opts.figures);
-    let plan = SamplePlan::new(
-        0.0,
-        scene.file.settings.run.t_end,
-        scene.file.settings.run.sample_rate,
-    );
     let file = opts
         .trajectory
         .then(|| {
@@ -139,8 +134,90 @@ pub fn run_scene(
         })
         .transpose()?;
     let mut progress = Progress::new(opts.progress, scene.file.settings.run.t_end);
-    let recorded = record(scene, &choice, plan.clone(), interrupt, &mut progress, file);
+    let simulated = simulate(scene, choice, interrupt, &mut progress, file, started);
     progress.finish();
+    let Simulated {
+        run: SceneRun { data, ending },
+        file,
+        timings,
+    } = simulated?;
+    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started)?;
+    Ok(RunReport {
+        summary,
+        ending,
+        files,
+    })
+}
+
+/// How a run that ended with `stop` ended, for the exit code.
+fn ending_of(stop: &StopRecord) -> Ending {
+    match stop.reason.as_str() {
+        "interrupted" => Ending::Interrupted,
+        "error" | "mode_not_allowed" => Ending::Failed,
+        _ => Ending::Completed,
+    }
+}
+
+/// What one pass of the simulation left: the data (with its stop record), the simulation's
+/// outcome if it ended by itself, and the trajectory file, complete but not committed.
+pub struct Recorded {
+    /// Samples, events and the stop.
+    pub data: RunData,
+    /// The simulation's outcome (`None` when it failed).
+    pub outcome: Option<Outcome>,
+    /// `trajectory.csv`, if it was written.
+    pub file: Option<TrajectoryFile>,
+}
+
+/// The scene's sampling: from 0 to its end time at its rate.
+fn scene_plan(scene: &Scene) -> SamplePlan {
+    let run = &scene.file.settings.run;
+    SamplePlan::new(0.0, run.t_end, run.sample_rate)
+}
+
+/// A scene's run in memory: its data (samples, events, stop, work) and how it ended.
+#[derive(Debug)]
+pub struct SceneRun {
+    /// Samples, both fine windows, events, extrema, the stop and the work done.
+    pub data: RunData,
+    /// How it ended.
+    pub ending: Ending,
+}
+
+/// Runs `scene` once in memory, as a front end other than the command line wants it: the
+/// models `backend` chooses for the scene's quantities, the scene's sampling, no file, no
+/// progress, no figures. [`run_scene`] is the same run with the files of `eulerdisk run`.
+/// Once `interrupt` is set, the simulation stops at its next step.
+pub fn simulate_scene(
+    scene: &Scene,
+    backend: Backend,
+    interrupt: &AtomicBool,
+) -> Result<SceneRun, WriteError> {
+    let choice = model::choose(scene, backend, false);
+    let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
+    let started = Instant::now();
+    simulate(scene, choice, interrupt, &mut quiet, None, started).map(|simulated| simulated.run)
+}
+
+/// A run simulated, with the trajectory file (complete, not committed) and the time spent.
+struct Simulated {
+    run: SceneRun,
+    file: Option<TrajectoryFile>,
+    timings: Timings,
+}
+
+/// The simulation of `scene` with the models of `choice`, the last second of an early stop
+/// sampled, and the work and drift filled in.
+fn simulate(
+    scene: &Scene,
+    choice: ModelChoice,
+    interrupt: &AtomicBool,
+    progress: &mut Progress,
+    file: Option<TrajectoryFile>,
+    started: Instant,
+) -> Result<Simulated, WriteError> {
+    let plan = scene_plan(scene);
+    let recorded = record(scene, &choice, plan.clone(), interrupt, progress, file);
     let Recorded {
         mut data,
         outcome,
@@ -172,32 +249,11 @@ pub fn run_scene(
         .map(|o| o.constraint_drift_max)
         .filter(|_| choice.computes(Quantity::ResidualZ));
     data.model = choice;
-    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started)?;
-    Ok(RunReport {
-        summary,
-        ending,
-        files,
+    Ok(Simulated {
+        run: SceneRun { data, ending },
+        file,
+        timings,
     })
-}
-
-/// How a run that ended with `stop` ended, for the exit code.
-fn ending_of(stop: &StopRecord) -> Ending {
-    match stop.reason.as_str() {
-        "interrupted" => Ending::Interrupted,
-        "error" | "mode_not_allowed" => Ending::Failed,
-        _ => Ending::Completed,
-    }
-}
-
-/// What one pass of the simulation left: the data (with its stop record), the simulation's
-/// outcome if it ended by itself, and the trajectory file, complete but not committed.
-pub struct Recorded {
-    /// Samples, events and the stop.
-    pub data: RunData,
-    /// The simulation's outcome (`None` when it failed).
-    pub outcome: Option<Outcome>,
-    /// `trajectory.csv`, if it was written.
-    pub file: Option<TrajectoryFile>,
 }
 
 /// Runs the simulation of `scene` once, keeping what `plan` asks for and writing the
