@@ -29,7 +29,7 @@ use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_atomic, write_bytes_atomic, WriteError};
 use crate::output::tables::write_events;
 use crate::quantity::Quantity;
-use crate::record::{RunData, StopRecord, Timings, Work};
+use crate::record::{RunData, StopRecord, Timings};
 use crate::scene::Scene;
 use collect::{Collector, TrajectoryFile};
 use equations::Mode;
@@ -37,7 +37,7 @@ use model::ModelChoice;
 use plan::SamplePlan;
 use progress::Progress;
 use provenance::{is_papers_scene, Provenance};
-use simulation::{Message, Outcome};
+use simulation::{Failure, Message, Outcome};
 
 /// How a run reports while it runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -238,11 +238,7 @@ fn simulate(
         data.last_second = again.data.last_second;
         timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
     }
-    data.work = Work {
-        steps: outcome.as_ref().map(|o| o.steps),
-        rhs_evals: outcome.as_ref().map(|o| o.rhs_evals),
-        wall_s: timings.simulation_s,
-    };
+    data.work.wall_s = timings.simulation_s;
     // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
     data.constraint_drift_max = outcome
         .as_ref()
@@ -287,17 +283,19 @@ pub fn record(
         if let Some(e) = inline.error {
             return Err(e);
         }
-        match result {
-            Ok(o) => {
-                let stop = o.stop.clone();
-                (Some(o), stop)
-            }
-            Err(message) => (None, abandoned(&collector, "error", message)),
-        }
+        Ended::of(result, &collector)
     };
-    let (outcome, stop) = ended;
+    let Ended {
+        outcome,
+        stop,
+        steps,
+        rhs_evals,
+    } = ended;
     let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
     data.stop = Some(stop);
+    // A failed run reports the work it did too.
+    data.work.steps = steps;
+    data.work.rhs_evals = rhs_evals;
     Ok(Recorded {
         data,
         outcome,
@@ -342,7 +340,7 @@ fn collect(
     rx: &std::sync::mpsc::Receiver<Message>,
     collector: &mut Collector,
     progress: &mut Progress,
-) -> Result<(Option<Outcome>, StopRecord), WriteError> {
+) -> Result<Ended, WriteError> {
     Ok(loop {
         match rx.recv_timeout(Duration::from_millis(100)) {
             Ok(Message::Samples(batch)) => {
@@ -355,20 +353,48 @@ fn collect(
             }
             Ok(Message::Event(e)) => collector.event(e),
             Ok(Message::Extrema(batch)) => collector.extrema(batch),
-            Ok(Message::Done(done)) => match *done {
-                Ok(o) => {
-                    let stop = o.stop.clone();
-                    break (Some(o), stop);
-                }
-                Err(message) => break (None, abandoned(collector, "error", message)),
-            },
+            Ok(Message::Done(done)) => break Ended::of(*done, collector),
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => {
                 let why = "the simulation thread died".to_string();
-                break (None, abandoned(collector, "error", why));
+                break Ended {
+                    outcome: None,
+                    stop: abandoned(collector, "error", why),
+                    steps: None,
+                    rhs_evals: None,
+                };
             }
         }
     })
+}
+
+/// How the simulation ended: its outcome (`None` when it failed), the stop record, and the
+/// work it reported (`None` when it reported none: its thread died).
+struct Ended {
+    outcome: Option<Outcome>,
+    stop: StopRecord,
+    steps: Option<u64>,
+    rhs_evals: Option<u64>,
+}
+
+impl Ended {
+    /// The simulation's result, a failure stopped where `collector` last heard of the run.
+    fn of(result: Result<Outcome, Failure>, collector: &Collector) -> Ended {
+        match result {
+            Ok(o) => Ended {
+                stop: o.stop.clone(),
+                steps: Some(o.steps),
+                rhs_evals: Some(o.rhs_evals),
+                outcome: Some(o),
+            },
+            Err(failure) => Ended {
+                outcome: None,
+                stop: abandoned(collector, "error", failure.message),
+                steps: Some(failure.steps),
+                rhs_evals: Some(failure.rhs_evals),
+            },
+        }
+    }
 }
 
 fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {

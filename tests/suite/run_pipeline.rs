@@ -92,6 +92,35 @@ fn a_scene_simulated_in_memory_is_the_run_written_to_files() {
     assert_eq!(data.work.rhs_evals, report.summary.rhs_evals);
 }
 
+/// A run that fails (here: out of its step budget) reports the work it did until then, in
+/// memory and in `summary.json`, where the steps used to be `null`.
+#[test]
+fn a_failed_run_reports_its_steps_and_evaluations() {
+    let overrides = [Override::new("run", "t_end", 5.0)];
+    let mut scene = load_scene("tangent-toy", &overrides).unwrap();
+    scene.config.max_steps = 300;
+    let dir = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        out_dir: dir.path().to_path_buf(),
+        progress: ProgressStyle::Quiet,
+        backend: Backend::Generated,
+        figures: false,
+        trajectory: false,
+        provenance: Provenance::new(&scene, "tangent-toy", &overrides),
+    };
+    let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
+    assert_eq!(report.ending, Ending::Failed);
+    let s = &report.summary;
+    assert_eq!(s.stop_reason, "error", "{}", s.stop_detail);
+    let steps = s.steps.unwrap();
+    assert!(steps > 0 && steps <= 300, "{steps}");
+    assert!(s.rhs_evals.unwrap() > steps, "{:?}", s.rhs_evals);
+    assert!(!s.not_computed.contains_key("steps"));
+    let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(json["steps"].as_u64(), Some(steps));
+}
+
 /// The paper's reading of the slip sign lifts the disk off the floor at t ≈ 18.16 s: the
 /// run stops long before its end time, so its last second was not sampled finely the first
 /// time; a replay samples it, and the trajectory still ends at the stop.
