@@ -64,7 +64,8 @@ pub fn initial_state(model: ModelRef<'_>, given: &[Named]) -> Result<Vec<f64>, V
     resolve(model.states(), initial, given)
 }
 
-/// Numbers under names, in the model's order (serialised as a JSON object in that order).
+/// Numbers under names, in the model's order (serialised as a JSON object in that order):
+/// what `model eval` and the disk's `eulerdisk eval` print.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NamedValues(pub Vec<(String, f64)>);
 
