@@ -9,8 +9,8 @@ use std::collections::BTreeMap;
 
 use equations::{models, reference};
 use equations::{DiskParams, ParamError};
+use model_interpreted::NamedValues;
 use model_runtime::{EvalError, WithOutputs};
-use serde::ser::{Serialize, SerializeMap, Serializer};
 
 use crate::named_numbers::{parse_named_numbers, NamedNumbersError};
 use equations::Mode;
@@ -74,20 +74,6 @@ impl EvalCommandError {
             EvalCommandError::Singular { key, .. } => Some(key),
             EvalCommandError::NonFinite { quantity, .. } => Some(quantity),
         }
-    }
-}
-
-/// Names and values in a fixed order, serialised as a JSON object in that order.
-#[derive(Clone, Debug, PartialEq)]
-pub struct NamedValues(pub Vec<(&'static str, f64)>);
-
-impl Serialize for NamedValues {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(Some(self.0.len()))?;
-        for (k, v) in &self.0 {
-            map.serialize_entry(k, v)?;
-        }
-        map.end()
     }
 }
 
@@ -214,9 +200,14 @@ fn run<M: WithOutputs<N, K>, const K: usize>(
     Ok(Evaluation {
         mode,
         model: info.name,
-        derivatives: NamedValues(derivatives),
-        outputs: NamedValues(outputs),
+        derivatives: named(&derivatives),
+        outputs: named(&outputs),
     })
+}
+
+/// The model's names with their values, owned.
+fn named(values: &[(&str, f64)]) -> NamedValues {
+    NamedValues(values.iter().map(|&(n, v)| (n.to_string(), v)).collect())
 }
 
 /// Names the state key behind a model error: the state named in the pivot (`sin(theta)` ->

@@ -18,7 +18,8 @@
 //!   [`Scene`] (its file, [`SceneFile`], with the command line's own tables [`CliTables`] and
 //!   [`OutputTable`]), [`Override`], [`SceneError`].
 //! * **Running a scene**: [`run_scene`] with [`RunOptions`] gives a [`RunReport`] ([`Ending`],
-//!   [`RunError`]); the model it runs, [`choose`] ([`ModelChoice`], [`RunModel`]); the run's
+//!   [`RunError`]) and the files of `eulerdisk run`; the same run in memory, for another front
+//!   end, [`simulate_scene`] ([`SceneRun`]); the model it runs, [`choose`] ([`ModelChoice`], [`RunModel`]); the run's
 //!   origin, [`Provenance`]; one simulation and what it keeps, [`record_run`] ([`SamplePlan`],
 //!   [`Progress`], [`ProgressStyle`], [`Recorded`]).
 //! * **What a run gives**: [`RunData`], [`Summary`], [`Quantity`]; the paper's figures,
@@ -34,7 +35,8 @@
 //!   [`SoundError`], [`wav_name`]); the pieces, [`record_force`] ([`ForceTrace`],
 //!   [`TimeSpan`]), [`major_peaks`] ([`PeakRule`]), [`analyse`], [`render`]
 //!   ([`RenderOptions`], [`HEADROOM`]), [`spectrogram`] ([`StftSettings`]).
-//! * **Model commands**: [`model_command`].
+//! * **Model commands**: [`model_command`]; a model file's loading and solving are the library
+//!   `model_interpreted`'s, this crate keeps the flags, the CSV files and the sentences.
 //! * **Evaluation**: [`evaluate`], [`parse_params`], [`parse_state`], [`Backend`],
 //!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
 //! * **Reading the outputs**: [`EVENTS_HEADER`], [`split_fields`].
@@ -60,10 +62,9 @@ mod cli;
 mod eval;
 mod figures;
 mod model_command;
+mod model_csv;
 mod model_file;
 mod model_show;
-mod model_solve;
-mod model_switched;
 mod named_numbers;
 mod output;
 mod quantity;
@@ -93,8 +94,8 @@ pub use run::plan::SamplePlan;
 pub use run::progress::Progress;
 pub use run::provenance::Provenance;
 pub use run::{
-    record as record_run, run_scene, Ending, ProgressStyle, Recorded, RunError, RunOptions,
-    RunReport,
+    record as record_run, run_scene, simulate_scene, Ending, ProgressStyle, Recorded, RunError,
+    RunOptions, RunReport, SceneRun,
 };
 
 // What a run gives: its data, its summary, its quantities and the paper's figures.

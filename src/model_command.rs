@@ -8,16 +8,14 @@
 
 use crate::args::{print_json, print_out, EXIT_FAILED, EXIT_INPUT};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
-use crate::model_file::{
-    evaluate, initial_state, load, load_any, params, select, state, Loaded, ModelFileError,
-};
+use crate::model_csv::{write_csv, write_events_csv};
+use crate::model_file::{event_spec, named, value_error, Arguments, ModelFileError};
 use crate::model_show::{Format, ModelName};
-use crate::model_solve::{solve, EventSpec, FileTrajectory, SolveSettings};
-use crate::model_switched::solve_switched;
 use clap::ValueEnum;
-use model_algebra::CompiledModel;
-use model_dsl::TextModel;
-use model_runtime::Termination;
+use model_interpreted::{
+    evaluate, initial_state, params, solve, ModelFile, ModelRef, PointValues, Solution,
+    SolveRequest,
+};
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
@@ -64,115 +62,73 @@ fn show(model: &str, format: Format) -> ExitCode {
     }
 }
 
-/// The selected model of the file, with its parameters and state.
-struct Point {
-    models: Vec<TextModel>,
-    params: Vec<f64>,
-    state: Vec<f64>,
-}
-
-impl Point {
-    fn read(args: &ModelPointArgs) -> Result<Self, ModelFileError> {
-        let models = load(&args.file)?;
-        let model = select(&models, args.chart.as_deref())?;
-        let params = params(model, &args.set)?;
-        let state = state(model, &args.state)?;
-        Ok(Point {
-            models,
-            params,
-            state,
-        })
-    }
-
-    fn model(&self, args: &ModelPointArgs) -> Result<&CompiledModel, ModelFileError> {
-        select(&self.models, args.chart.as_deref())
-    }
+/// `model eval`: the derivatives and outputs at the point the arguments give.
+fn point(args: &ModelEvalArgs) -> Result<PointValues, ModelFileError> {
+    let point = &args.point;
+    let file = ModelFile::read(&point.file)?;
+    let model = file.smooth(point.chart.as_deref())?;
+    let params = params(ModelRef::Smooth(model), &named("--set", &point.set)?)
+        .map_err(|e| value_error("--set", &point.set, e))?;
+    let state = initial_state(ModelRef::Smooth(model), &named("--state", &point.state)?)
+        .map_err(|e| value_error("--state", &point.state, e))?;
+    Ok(evaluate(model, args.t, &state, &params)?)
 }
 
 fn eval(args: &ModelEvalArgs) -> ExitCode {
-    let result = Point::read(&args.point).and_then(|point| {
-        let model = point.model(&args.point)?;
-        evaluate(model, args.t, &point.state, &point.params)
-    });
-    match result {
+    match point(args) {
         Ok(evaluation) => print_json(&evaluation),
         Err(err) => input_error(err),
     }
 }
 
-fn solve_file(args: &ModelSolveArgs) -> ExitCode {
-    let settings = |events| SolveSettings {
+/// The library's request from `model solve`'s arguments.
+fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
+    let point: &ModelPointArgs = &args.point;
+    Ok(SolveRequest {
         t0: args.t0,
         t_end: args.t_end,
         method: args.method.into(),
         rtol: args.rtol,
         atol: args.atol,
         dt: args.dt,
-        events,
+        params: named("--set", &point.set)?,
+        state: named("--state", &point.state)?,
+        events: (args.event.iter())
+            .map(|text| event_spec(text))
+            .collect::<Result<_, _>>()?,
+    })
+}
+
+/// `model solve`: the file's model solved as the arguments say.
+fn solved(args: &ModelSolveArgs) -> Result<Solution, ModelFileError> {
+    let file = ModelFile::read(&args.point.file)?;
+    let model = file.model(args.point.chart.as_deref())?;
+    let arguments = Arguments {
+        set: &args.point.set,
+        state: &args.point.state,
+        event: &args.event,
     };
-    let switched = match load_any(&args.point.file) {
-        Ok(Loaded::Switched(model)) => Some(model),
-        Ok(Loaded::Smooth(_)) => None,
-        Err(err) => return input_error(err),
-    };
-    let (name, solved) = if let Some(model) = switched {
-        let input = (|| {
-            if let Some(chart) = &args.point.chart {
-                return Err(ModelFileError::Eval(format!(
-                    "--chart {chart}: a switched model has no charts"
-                )));
-            }
-            if let Some(event) = args.event.first() {
-                return Err(ModelFileError::Eval(format!(
-                    "--event {event}: a switched model declares its events in the file (`when NAME: GUARD`)"
-                )));
-            }
-            let params = params(&model.modes[0].model, &args.point.set)?;
-            let state = initial_state(&model, &args.point.state)?;
-            Ok((params, state))
-        })();
-        let (params, state) = match input {
-            Ok(input) => input,
-            Err(err) => return input_error(err),
-        };
-        let solved = solve_switched(&model, &params, &state, &settings(Vec::new()));
-        (model.name.clone(), solved)
-    } else {
-        let point = match Point::read(&args.point) {
-            Ok(point) => point,
-            Err(err) => return input_error(err),
-        };
-        let model = match point.model(&args.point) {
-            Ok(model) => model,
-            Err(err) => return input_error(err),
-        };
-        let events = match (args.event.iter())
-            .map(|text| EventSpec::parse(text, model))
-            .collect::<Result<Vec<_>, _>>()
-        {
-            Ok(events) => events,
-            Err(err) => return input_error(err),
-        };
-        let solved = solve(model, &point.params, &point.state, &settings(events));
-        (model.name.clone(), solved)
-    };
-    let trajectory = match solved {
-        Ok(trajectory) => trajectory,
-        Err(err @ ModelFileError::Setting(_)) => return input_error(err),
+    solve(model, &request(args)?).map_err(|failure| arguments.solve_error(failure))
+}
+
+fn solve_file(args: &ModelSolveArgs) -> ExitCode {
+    let solution = match solved(args) {
+        Ok(solution) => solution,
+        Err(err) if err.is_input() => return input_error(err),
         Err(err) => {
             eprintln!("error: {err}");
             return ExitCode::from(EXIT_FAILED);
         }
     };
-    let mut written = write_to(&args.out, |out| trajectory.write_csv(out));
+    let mut written = write_to(&args.out, |out| write_csv(&solution, out));
     match &args.events {
         Some(path) if written.is_ok() => {
-            written = write_to(path, |out| trajectory.write_events_csv(out));
+            written = write_to(path, |out| write_events_csv(&solution, out));
         }
         Some(_) => {}
         None => {
-            for event in &trajectory.events {
-                eprintln!("event `{}` at t = {}", event.name, event.t());
+            for event in &solution.events {
+                eprintln!("event `{}` at t = {}", event.label(), event.t());
             }
         }
     }
@@ -180,10 +136,10 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         eprintln!("error: {err}");
         return ExitCode::from(EXIT_FAILED);
     }
-    for note in &trajectory.notes {
-        eprintln!("{note}");
+    for accumulation in &solution.accumulations {
+        eprintln!("{accumulation}");
     }
-    eprintln!("{}", summary(&name, &trajectory, args.t0));
+    eprintln!("{}", summary(&solution, args.t0));
     ExitCode::SUCCESS
 }
 
@@ -204,17 +160,15 @@ fn write_to(
 }
 
 /// One line on the run: rows, events, why and when it ended, the work done.
-fn summary(name: &str, trajectory: &FileTrajectory, t0: f64) -> String {
-    let stats = &trajectory.stats;
-    let stop = match &trajectory.stop {
-        Termination::EndTime => "reached the end time".to_string(),
-        Termination::Event { name } => format!("stopped by event `{name}`"),
-    };
+fn summary(solution: &Solution, t0: f64) -> String {
+    let stats = &solution.stats;
     format!(
-        "`{name}`: {} rows, {} events, {stop} at t = {}, {} steps ({} rejected), {} RHS evaluations",
-        trajectory.rows.len(),
-        trajectory.events.len(),
-        trajectory.rows.last().map_or(t0, |row| row[0]),
+        "`{}`: {} rows, {} events, {} at t = {}, {} steps ({} rejected), {} RHS evaluations",
+        solution.model,
+        solution.rows.len(),
+        solution.events.len(),
+        solution.stop,
+        solution.t_end().unwrap_or(t0),
         stats.steps,
         stats.rejected,
         stats.rhs_evals

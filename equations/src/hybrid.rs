@@ -317,3 +317,32 @@ pub enum SimError {
         source: OnsetError,
     },
 }
+
+/// A run that failed, and the work it did until then: a failure that reports no work would
+/// hide what the run cost (and how far it got).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{error}")]
+pub struct SimFailure {
+    /// What went wrong.
+    pub error: SimError,
+    /// Integrator work until the failure (zero when the run failed before its first step);
+    /// boxed, as the counters are large and a failure is rare.
+    pub stats: Box<Stats>,
+}
+
+impl From<SimError> for SimFailure {
+    /// A failure before any step: no work.
+    fn from(error: SimError) -> Self {
+        SimFailure {
+            error,
+            stats: Box::default(),
+        }
+    }
+}
+
+impl From<SimFailure> for SimError {
+    /// The error alone, for callers that do not count the work.
+    fn from(failure: SimFailure) -> Self {
+        failure.error
+    }
+}

@@ -51,8 +51,8 @@ pub use hybrid::{
     consistent_slip_direction, simulate, DiskGuard, DiskModels, DiskObserver, DiskRecorder,
     DiskSample, EmbedError, Embedded, Embedding, Extremum, ExtremumKind, GeneratedModels,
     OnsetError, PruneError, Pruned, PrunedModels, ReferenceModels, RunOutcome, SimError,
-    SlidingModel, SlipAcceleration, SlipOnset, StopReason, TransitionRecord, Trigger, Variant,
-    Watched, PROBE_SLIP_SPEED, PRUNED_STATES,
+    SimFailure, SlidingModel, SlipAcceleration, SlipOnset, StopReason, TransitionRecord, Trigger,
+    Variant, Watched, PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use issue::{Issue, Number, Rule};
 /// Where a step's interior is searched for guard crossings (re-exported from the runtime).

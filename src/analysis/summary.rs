@@ -45,8 +45,8 @@ pub struct Summary {
     pub t_end: f64,
     /// Mode decisions during the run (the initial one not counted).
     pub transitions: usize,
-    /// Accepted integrator steps (`null` when the simulation was abandoned, see
-    /// `not_computed`).
+    /// Accepted integrator steps, also of a run that failed (`null` when the simulation
+    /// reported none, see `not_computed`).
     pub steps: Option<u64>,
     /// Right-hand-side evaluations (`null` as for `steps`).
     pub rhs_evals: Option<u64>,
@@ -196,8 +196,8 @@ impl Summary {
                 not_computed.insert(key, reason);
             }
         }
-        // An abandoned simulation (interrupted, failed, stopped in a forbidden mode) does not
-        // hand back its counters: say so rather than write zeros.
+        // A simulation that reported no counters (its thread died): say so rather than write
+        // zeros. A failed run reports the work it did until it failed.
         let abandoned = |what: &str| {
             let how = data.stop.as_ref().map_or("unknown", |s| s.reason.as_str());
             format!("the simulation was abandoned at its stop ({how}) before it reported {what}")

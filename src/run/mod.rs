@@ -29,7 +29,7 @@ use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_atomic, write_bytes_atomic, WriteError};
 use crate::output::tables::write_events;
 use crate::quantity::Quantity;
-use crate::record::{RunData, StopRecord, Timings, Work};
+use crate::record::{RunData, StopRecord, Timings};
 use crate::scene::Scene;
 use collect::{Collector, TrajectoryFile};
 use equations::Mode;
@@ -37,7 +37,7 @@ use model::ModelChoice;
 use plan::SamplePlan;
 use progress::Progress;
 use provenance::{is_papers_scene, Provenance};
-use simulation::{Message, Outcome};
+use simulation::{Failure, Message, Outcome};
 
 /// How a run reports while it runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -123,11 +123,6 @@ pub fn run_scene(
     owned::clear_owned(&opts.out_dir)?;
     let started = Instant::now();
     let choice = model::choose(scene, opts.backend, opts.figures);
-    let plan = SamplePlan::new(
-        0.0,
-        scene.file.settings.run.t_end,
-        scene.file.settings.run.sample_rate,
-    );
     let file = opts
         .trajectory
         .then(|| {
@@ -139,39 +134,13 @@ pub fn run_scene(
         })
         .transpose()?;
     let mut progress = Progress::new(opts.progress, scene.file.settings.run.t_end);
-    let recorded = record(scene, &choice, plan.clone(), interrupt, &mut progress, file);
+    let simulated = simulate(scene, choice, interrupt, &mut progress, file, started);
     progress.finish();
-    let Recorded {
-        mut data,
-        outcome,
+    let Simulated {
+        run: SceneRun { data, ending },
         file,
-    } = recorded?;
-    let mut timings = Timings {
-        simulation_s: started.elapsed().as_secs_f64(),
-        ..Timings::default()
-    };
-    let stop = data.stop.clone().expect("a recorded run has a stop");
-    let ending = ending_of(&stop);
-    if ending != Ending::Interrupted && !plan.covers_last_second(stop.t) {
-        // The run stopped early: its last second was not known in advance. The simulation is
-        // deterministic, so a second pass sampling only that second records the same motion.
-        let replay = plan.last_second_before(stop.t);
-        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
-        let again = record(scene, &choice, replay, interrupt, &mut quiet, None)?;
-        data.last_second = again.data.last_second;
-        timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
-    }
-    data.work = Work {
-        steps: outcome.as_ref().map(|o| o.steps),
-        rhs_evals: outcome.as_ref().map(|o| o.rhs_evals),
-        wall_s: timings.simulation_s,
-    };
-    // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
-    data.constraint_drift_max = outcome
-        .as_ref()
-        .map(|o| o.constraint_drift_max)
-        .filter(|_| choice.computes(Quantity::ResidualZ));
-    data.model = choice;
+        timings,
+    } = simulated?;
     let (summary, files) = write_outputs(scene, &data, opts, file, timings, started)?;
     Ok(RunReport {
         summary,
@@ -198,6 +167,89 @@ pub struct Recorded {
     pub outcome: Option<Outcome>,
     /// `trajectory.csv`, if it was written.
     pub file: Option<TrajectoryFile>,
+}
+
+/// The scene's sampling: from 0 to its end time at its rate.
+fn scene_plan(scene: &Scene) -> SamplePlan {
+    let run = &scene.file.settings.run;
+    SamplePlan::new(0.0, run.t_end, run.sample_rate)
+}
+
+/// A scene's run in memory: its data (samples, events, stop, work) and how it ended.
+#[derive(Debug)]
+pub struct SceneRun {
+    /// Samples, both fine windows, events, extrema, the stop and the work done.
+    pub data: RunData,
+    /// How it ended.
+    pub ending: Ending,
+}
+
+/// Runs `scene` once in memory, as a front end other than the command line wants it: the
+/// models `backend` chooses for the scene's quantities, the scene's sampling, no file, no
+/// progress, no figures. [`run_scene`] is the same run with the files of `eulerdisk run`.
+/// Once `interrupt` is set, the simulation stops at its next step.
+pub fn simulate_scene(
+    scene: &Scene,
+    backend: Backend,
+    interrupt: &AtomicBool,
+) -> Result<SceneRun, WriteError> {
+    let choice = model::choose(scene, backend, false);
+    let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
+    let started = Instant::now();
+    simulate(scene, choice, interrupt, &mut quiet, None, started).map(|simulated| simulated.run)
+}
+
+/// A run simulated, with the trajectory file (complete, not committed) and the time spent.
+struct Simulated {
+    run: SceneRun,
+    file: Option<TrajectoryFile>,
+    timings: Timings,
+}
+
+/// The simulation of `scene` with the models of `choice`, the last second of an early stop
+/// sampled, and the work and drift filled in.
+fn simulate(
+    scene: &Scene,
+    choice: ModelChoice,
+    interrupt: &AtomicBool,
+    progress: &mut Progress,
+    file: Option<TrajectoryFile>,
+    started: Instant,
+) -> Result<Simulated, WriteError> {
+    let plan = scene_plan(scene);
+    let recorded = record(scene, &choice, plan.clone(), interrupt, progress, file);
+    let Recorded {
+        mut data,
+        outcome,
+        file,
+    } = recorded?;
+    let mut timings = Timings {
+        simulation_s: started.elapsed().as_secs_f64(),
+        ..Timings::default()
+    };
+    let stop = data.stop.clone().expect("a recorded run has a stop");
+    let ending = ending_of(&stop);
+    if ending != Ending::Interrupted && !plan.covers_last_second(stop.t) {
+        // The run stopped early: its last second was not known in advance. The simulation is
+        // deterministic, so a second pass sampling only that second records the same motion.
+        let replay = plan.last_second_before(stop.t);
+        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
+        let again = record(scene, &choice, replay, interrupt, &mut quiet, None)?;
+        data.last_second = again.data.last_second;
+        timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
+    }
+    data.work.wall_s = timings.simulation_s;
+    // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
+    data.constraint_drift_max = outcome
+        .as_ref()
+        .map(|o| o.constraint_drift_max)
+        .filter(|_| choice.computes(Quantity::ResidualZ));
+    data.model = choice;
+    Ok(Simulated {
+        run: SceneRun { data, ending },
+        file,
+        timings,
+    })
 }
 
 /// Runs the simulation of `scene` once, keeping what `plan` asks for and writing the
@@ -231,17 +283,19 @@ pub fn record(
         if let Some(e) = inline.error {
             return Err(e);
         }
-        match result {
-            Ok(o) => {
-                let stop = o.stop.clone();
-                (Some(o), stop)
-            }
-            Err(message) => (None, abandoned(&collector, "error", message)),
-        }
+        Ended::of(result, &collector)
     };
-    let (outcome, stop) = ended;
+    let Ended {
+        outcome,
+        stop,
+        steps,
+        rhs_evals,
+    } = ended;
     let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
     data.stop = Some(stop);
+    // A failed run reports the work it did too.
+    data.work.steps = steps;
+    data.work.rhs_evals = rhs_evals;
     Ok(Recorded {
         data,
         outcome,
@@ -286,7 +340,7 @@ fn collect(
     rx: &std::sync::mpsc::Receiver<Message>,
     collector: &mut Collector,
     progress: &mut Progress,
-) -> Result<(Option<Outcome>, StopRecord), WriteError> {
+) -> Result<Ended, WriteError> {
     Ok(loop {
         match rx.recv_timeout(Duration::from_millis(100)) {
             Ok(Message::Samples(batch)) => {
@@ -299,20 +353,48 @@ fn collect(
             }
             Ok(Message::Event(e)) => collector.event(e),
             Ok(Message::Extrema(batch)) => collector.extrema(batch),
-            Ok(Message::Done(done)) => match *done {
-                Ok(o) => {
-                    let stop = o.stop.clone();
-                    break (Some(o), stop);
-                }
-                Err(message) => break (None, abandoned(collector, "error", message)),
-            },
+            Ok(Message::Done(done)) => break Ended::of(*done, collector),
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => {
                 let why = "the simulation thread died".to_string();
-                break (None, abandoned(collector, "error", why));
+                break Ended {
+                    outcome: None,
+                    stop: abandoned(collector, "error", why),
+                    steps: None,
+                    rhs_evals: None,
+                };
             }
         }
     })
+}
+
+/// How the simulation ended: its outcome (`None` when it failed), the stop record, and the
+/// work it reported (`None` when it reported none: its thread died).
+struct Ended {
+    outcome: Option<Outcome>,
+    stop: StopRecord,
+    steps: Option<u64>,
+    rhs_evals: Option<u64>,
+}
+
+impl Ended {
+    /// The simulation's result, a failure stopped where `collector` last heard of the run.
+    fn of(result: Result<Outcome, Failure>, collector: &Collector) -> Ended {
+        match result {
+            Ok(o) => Ended {
+                stop: o.stop.clone(),
+                steps: Some(o.steps),
+                rhs_evals: Some(o.rhs_evals),
+                outcome: Some(o),
+            },
+            Err(failure) => Ended {
+                outcome: None,
+                stop: abandoned(collector, "error", failure.message),
+                steps: Some(failure.steps),
+                rhs_evals: Some(failure.rhs_evals),
+            },
+        }
+    }
 }
 
 fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {

@@ -36,7 +36,29 @@ pub enum Message {
     /// Located extrema, in order.
     Extrema(Vec<Extremum>),
     /// The run ended (boxed: an outcome holds a whole sample).
-    Done(Box<Result<Outcome, String>>),
+    Done(Box<Result<Outcome, Failure>>),
+}
+
+/// A simulation that failed: why, and the work it did until then.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Failure {
+    /// The error, in words.
+    pub message: String,
+    /// Accepted steps until the failure.
+    pub steps: u64,
+    /// Right-hand-side evaluations until the failure.
+    pub rhs_evals: u64,
+}
+
+impl Failure {
+    /// A failure before the simulation started (its models could not be built): no work.
+    fn before_start(message: String) -> Self {
+        Failure {
+            message,
+            steps: 0,
+            rhs_evals: 0,
+        }
+    }
 }
 
 /// The end of a run, in the CLI's terms.
@@ -252,12 +274,16 @@ struct Streamed<'a, 'b, O> {
 }
 
 impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
-    type Output = Result<Outcome, String>;
+    type Output = Result<Outcome, Failure>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
         simulate(models, self.config, self.initial, self.observer)
             .map(|o| convert_outcome(&o, self.config.allowed, models.params.mu_d))
-            .map_err(|e| e.to_string())
+            .map_err(|failure| Failure {
+                message: failure.to_string(),
+                steps: failure.stats.steps,
+                rhs_evals: failure.stats.rhs_evals,
+            })
     }
 }
 
@@ -279,7 +305,7 @@ pub fn simulate_into<O: Outlet>(
     plan: SamplePlan,
     stop: &AtomicBool,
     outlet: O,
-) -> Result<Outcome, String> {
+) -> Result<Outcome, Failure> {
     let config = DiskConfig {
         sample_rate: Some(plan.fine_rate()),
         ..scene.config
@@ -304,7 +330,7 @@ pub fn simulate_into<O: Outlet>(
         observer: &mut observer,
     };
     let result = with_models(choice.model, scene.params, scene.config.chart(), task)
-        .unwrap_or_else(|e| Err(e.to_string()));
+        .unwrap_or_else(|e| Err(Failure::before_start(e.to_string())));
     observer.flush();
     result.map(|mut o| {
         if observer.interrupted && matches!(o.stop.reason.as_str(), "interrupted") {

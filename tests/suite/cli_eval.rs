@@ -109,7 +109,7 @@ fn printed_numbers_round_trip_to_the_same_bits() {
                 } else {
                     "outputs"
                 };
-                let got = printed[section][*name].as_f64().unwrap();
+                let got = printed[section][name.as_str()].as_f64().unwrap();
                 assert_eq!(got.to_bits(), value.to_bits(), "{mode} {backend:?} {name}");
             }
         }

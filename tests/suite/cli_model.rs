@@ -466,7 +466,7 @@ fn unusable_solve_settings_are_input_errors() {
     let (_many_dir, many_path) = file(&many);
     for (file, args, needle) in [
         (&path, &["--t-end", "-1"][..], "time span [0, -1]"),
-        (&path, &["--t-end", "1", "--dt", "-0.1"], "--dt -0.1"),
+        (&path, &["--t-end", "1", "--dt", "-0.1"], "dt = -0.1"),
         (&path, &["--t-end", "1", "--rtol", "-1"], "-1"),
         (&many_path, &["--t-end", "1"], "has 33 states"),
     ] {

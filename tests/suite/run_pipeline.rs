@@ -6,7 +6,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use eulerdisk::{
-    load_scene, run_scene, Backend, Ending, Override, ProgressStyle, Provenance, RunOptions,
+    load_scene, run_scene, simulate_scene, Backend, Ending, Override, ProgressStyle, Provenance,
+    RunOptions,
 };
 
 fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::RunReport) {
@@ -64,6 +65,60 @@ fn generated_and_reference_runs_agree() {
     if let (Some(pg), Some(pr)) = (pg, pr) {
         assert!((pg - pr).abs() < 1e-6, "{pg} {pr}");
     }
+}
+
+/// The run in memory (another front end's entry point) is the run `eulerdisk run` writes:
+/// the same samples, transitions, steps and stop.
+#[test]
+fn a_scene_simulated_in_memory_is_the_run_written_to_files() {
+    let overrides = [Override::new("run", "t_end", 0.3)];
+    let scene = load_scene("tangent-toy", &overrides).unwrap();
+    let run = simulate_scene(&scene, Backend::Generated, &AtomicBool::new(false)).unwrap();
+    let (dir, report) = short_run(0.3, Backend::Generated);
+    let data = &run.data;
+    let csv = std::fs::read_to_string(dir.path().join("trajectory.csv")).unwrap();
+    assert_eq!(data.samples.len(), csv.lines().count() - 1);
+    assert_eq!(data.samples.last().map(|s| s.t), Some(0.3));
+    assert_eq!(data.work.steps, report.summary.steps);
+    let stop = data
+        .stop
+        .as_ref()
+        .map(|stop| (stop.reason.as_str(), stop.t));
+    assert_eq!(
+        stop,
+        Some((report.summary.stop_reason.as_str(), report.summary.t_end))
+    );
+    assert_eq!(run.ending, report.ending);
+    assert_eq!(data.work.rhs_evals, report.summary.rhs_evals);
+}
+
+/// A run that fails (here: out of its step budget) reports the work it did until then, in
+/// memory and in `summary.json`, where the steps used to be `null`.
+#[test]
+fn a_failed_run_reports_its_steps_and_evaluations() {
+    let overrides = [Override::new("run", "t_end", 5.0)];
+    let mut scene = load_scene("tangent-toy", &overrides).unwrap();
+    scene.config.max_steps = 300;
+    let dir = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        out_dir: dir.path().to_path_buf(),
+        progress: ProgressStyle::Quiet,
+        backend: Backend::Generated,
+        figures: false,
+        trajectory: false,
+        provenance: Provenance::new(&scene, "tangent-toy", &overrides),
+    };
+    let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
+    assert_eq!(report.ending, Ending::Failed);
+    let s = &report.summary;
+    assert_eq!(s.stop_reason, "error", "{}", s.stop_detail);
+    let steps = s.steps.unwrap();
+    assert!(steps > 0 && steps <= 300, "{steps}");
+    assert!(s.rhs_evals.unwrap() > steps, "{:?}", s.rhs_evals);
+    assert!(!s.not_computed.contains_key("steps"));
+    let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(json["steps"].as_u64(), Some(steps));
 }
 
 /// The paper's reading of the slip sign lifts the disk off the floor at t ≈ 18.16 s: the

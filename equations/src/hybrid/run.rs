@@ -5,7 +5,8 @@ use super::extrema::Scanner;
 use super::models::DiskModels;
 use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
 use super::{
-    DiskObserver, DiskSample, RunOutcome, SimError, StopReason, TransitionRecord, Trigger,
+    DiskObserver, DiskSample, RunOutcome, SimError, SimFailure, StopReason, TransitionRecord,
+    Trigger,
 };
 use crate::config::{AllowedModes, DiskConfig};
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
@@ -22,7 +23,8 @@ use model_runtime::{
 /// mode decisions to `observer`.
 ///
 /// The settings and the start are checked first ([`DiskConfig::issues`],
-/// [`InitialState::issues`]): every broken rule comes back in [`SimError::Invalid`]. A sliding
+/// [`InitialState::issues`]): every broken rule comes back in [`SimError::Invalid`]; a failure
+/// comes back with the work done until then ([`SimFailure`]). A sliding
 /// start whose slip exceeds the stick threshold starts sliding with that slip; otherwise the
 /// state is put on the rolling constraints and starts rolling if static friction can hold it,
 /// or sliding from zero slip in the consistent direction if it cannot (reported as a
@@ -34,7 +36,7 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     config: &DiskConfig,
     initial: &InitialState,
     observer: &mut O,
-) -> Result<RunOutcome, SimError> {
+) -> Result<RunOutcome, SimFailure> {
     validate(models, config, initial)?;
     match config.integrator {
         Integrator::Dopri5 => run_with(
@@ -95,7 +97,7 @@ fn run_with<St, Sc, R, S, O>(
     config: &DiskConfig,
     initial: &InitialState,
     observer: &mut O,
-) -> Result<RunOutcome, SimError>
+) -> Result<RunOutcome, SimFailure>
 where
     St: Stepper<DIM>,
     Sc: Stepper<CLOCKED>,
@@ -167,10 +169,10 @@ where
         failure: None,
         scanner: Scanner::default(),
     };
-    let ended = match config.time {
+    let (ended, work) = match config.time {
         TimeVariable::Physical => {
             let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input_error)?;
-            solver
+            let result = solver
                 .run(
                     &mut system,
                     phase,
@@ -185,7 +187,8 @@ where
                     phase: out.mode,
                     stop: out.stop,
                     stats: out.stats,
-                })
+                });
+            (result, solver.stats())
         }
         TimeVariable::Regularised => {
             let mut clocked =
@@ -207,7 +210,7 @@ where
             let z0 = Regularised::<DiskSystem<R, S>, DIM, CLOCKED>::start(&y0);
             let result = solver.run(&mut clocked, phase, initial.t, &z0, f64::MAX, &mut physical);
             let at = clocked.latest_time();
-            result
+            let result = result
                 .map(|out| Ended {
                     t: match out.stop {
                         model_runtime::StopReason::User(Clocked::EndTime) => config.t_end,
@@ -227,8 +230,14 @@ where
                     },
                     stats: out.stats,
                 })
-                .map_err(|e| in_physical_time(e, at))
+                .map_err(|e| in_physical_time(e, at));
+            (result, solver.stats())
         }
+    };
+    // Every failure from here on has the work done with it.
+    let failed = |error: SimError| SimFailure {
+        error,
+        stats: Box::new(work),
     };
     adaptor.end_segment();
     let failure = adaptor.failure.take();
@@ -252,26 +261,28 @@ where
         }
     }
     let bridge = adaptor.bridge;
-    let out = ended.map_err(|e| match e {
-        HybridError::Solve { mode, error } => SimError::Solve {
-            mode: mode.mode(),
-            error,
-        },
-        HybridError::Transition { mode, t, source } => SimError::Transition {
-            mode: mode.mode(),
-            t,
-            source,
-        },
-        HybridError::Chattering { t, transitions, .. } => {
-            SimError::DriverChattering { t, transitions }
-        }
+    let out = ended.map_err(|e| {
+        failed(match e {
+            HybridError::Solve { mode, error } => SimError::Solve {
+                mode: mode.mode(),
+                error,
+            },
+            HybridError::Transition { mode, t, source } => SimError::Transition {
+                mode: mode.mode(),
+                t,
+                source,
+            },
+            HybridError::Chattering { t, transitions, .. } => {
+                SimError::DriverChattering { t, transitions }
+            }
+        })
     })?;
     if let Some((t, phase, source)) = failure {
-        return Err(SimError::Transition {
+        return Err(failed(SimError::Transition {
             mode: phase.mode(),
             t,
             source,
-        });
+        }));
     }
     let stop = match out.stop {
         model_runtime::StopReason::EndTime => StopReason::EndTime,
@@ -281,15 +292,15 @@ where
         },
         model_runtime::StopReason::User(Halted { halt, .. }) => match halt {
             Halt::Stop(reason) => reason,
-            Halt::Onset { t, source } => return Err(SimError::Onset { t, source }),
+            Halt::Onset { t, source } => return Err(failed(SimError::Onset { t, source })),
         },
     };
     let last = sample_at(models, bridge, out.t, out.phase, &out.y).map_err(|source| {
-        SimError::Transition {
+        failed(SimError::Transition {
             mode: out.phase.mode(),
             t: out.t,
             source,
-        }
+        })
     })?;
     Ok(RunOutcome {
         stop,

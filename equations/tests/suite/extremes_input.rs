@@ -71,7 +71,7 @@ proptest! {
         let base = DiskConfig { max_steps: 20_000, sample_rate: Some(100.0), ..dop853(1e-8, 0.05) };
         let config = with_field(base, field, value);
         let mut watch = Watch::streaming();
-        match simulate(&models(p), &config, &InitialState::paper(&p), &mut watch) {
+        match simulate(&models(p), &config, &InitialState::paper(&p), &mut watch).map_err(SimError::from) {
             Ok(_) => prop_assert!(watch.first_non_finite.is_none(), "{field} = {value}"),
             // A huge end time is named through the sample count it would need, a huge atol
             // through the stick threshold that must stay above it; nothing else is named.
@@ -102,7 +102,7 @@ proptest! {
         initial.state.y[component] = value;
         let config = DiskConfig { max_steps: 20_000, ..dop853(1e-8, 0.01) };
         let mut watch = Watch::streaming();
-        match simulate(&models(p), &config, &initial, &mut watch) {
+        match simulate(&models(p), &config, &initial, &mut watch).map_err(SimError::from) {
             Ok(_) => prop_assert!(watch.first_non_finite.is_none(), "y[{component}] = {value}"),
             Err(e @ SimError::Invalid { .. }) => prop_assert_eq!(
                 keys(&e),
@@ -125,7 +125,7 @@ fn an_absurd_sample_rate_is_rejected_by_name() {
         ..dop853(1e-8, 0.05)
     };
     let result = simulate(&models(p), &config, &InitialState::paper(&p), &mut ());
-    let error = result.unwrap_err();
+    let error = result.unwrap_err().error;
     assert_eq!(keys(&error), ["run.sample_rate"], "{error}");
     assert!(
         error.to_string().contains("more than the sample limit 1e9"),

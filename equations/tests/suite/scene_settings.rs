@@ -168,7 +168,7 @@ fn simulate_applies_the_same_rules_as_a_scene() {
         rtol: 1e-20,
         ..scene.config
     };
-    let from_code = match simulate(&models, &bad, &scene.initial, &mut ()) {
+    let from_code = match simulate(&models, &bad, &scene.initial, &mut ()).map_err(|f| f.error) {
         Err(equations::SimError::Invalid { issues }) => issues,
         other => panic!("{other:?}"),
     };

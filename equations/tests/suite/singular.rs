@@ -234,7 +234,9 @@ fn a_hybrid_run_at_the_painleve_root_reports_the_pivot_and_the_time() {
         ..DiskConfig::paper()
     };
     let models = GeneratedModels::generated(p, SlipChart::Cartesian).unwrap();
-    let error = simulate(&models, &config, &initial, &mut ()).unwrap_err();
+    let error = simulate(&models, &config, &initial, &mut ())
+        .unwrap_err()
+        .error;
     let (t, source) = match &error {
         SimError::Transition { t, source, .. } => (*t, source.clone()),
         SimError::Solve {

@@ -15,6 +15,7 @@ use crate::error::{at, EvalError, InputError, SolveError};
 use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
 use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, Stepper};
 use crate::tolerance::Tolerance;
 use std::fmt::Debug;
@@ -45,6 +46,12 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             integrator: Integrator::new(stepper, tol, options.step)?,
             options,
         })
+    }
+
+    /// The work of the latest [`HybridSolver::run`]: also of one that failed, which reports
+    /// its work through this (its error says only what went wrong).
+    pub fn stats(&self) -> Stats {
+        *self.integrator.stats()
     }
 
     /// Integrates `sys` from `(t0, y0)` in `mode` until `t_end` or until the transition map

@@ -1,37 +1,33 @@
-//! `eulerdisk model solve FILE.dsl` for a switched model (one with `mode` and `when`): the
-//! modes' programs run by the compiler's interpreter, the events located and applied by the
-//! runtime's switched driver, exactly as for the model `model!` compiles from the same text.
+//! A switched model (one with `mode` and `when`) solved by the runtime's switched driver, the
+//! modes' programs run by the interpreter, exactly as for the model `model!` compiles from the
+//! same text.
 //!
-//! Each mode is embedded in [`MAX_STATES`] components as `model solve` embeds a smooth model
-//! (see `model_solve`), with the same tolerance scaling, so the error norm and every step-size
-//! decision are those of the model's own states. The events and what they do come from the
-//! file: the trajectory's rows are `t`, the states and the outputs of the mode in force; each
-//! located event is a row of the events table under its name (an impact, a stick, a stop), and
-//! an accumulation of an event's resets under `NAME accumulates`, at the extrapolated
-//! accumulation point, with the state its rule sets.
+//! Each mode is embedded in [`MAX_STATES`] components as a smooth model is (see
+//! `interpreted`), with the same tolerance scaling. The trajectory's rows are `t`, the states
+//! and the outputs of the mode in force; each located event is an event of the solution under
+//! its name (an impact, a stick, a stop), and an accumulation of an event's resets an
+//! [`EventKind::Accumulation`] at the extrapolated accumulation point, with the state its rule
+//! sets.
 
-use crate::model_file::ModelFileError;
-use crate::model_solve::{
-    row, sample_times, FileEvent, FileTrajectory, Interpreted, SolveSettings, MAX_STATES,
-};
-use model_algebra::Inputs;
+use crate::error::{RunFailure, SolveFailure};
+use crate::interpreted::{check_size, pad, row, tolerance, Interpreted, Padded, MAX_STATES};
+use crate::request::{Resolved, SolveRequest};
+use crate::smooth::columns;
+use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
+use model_algebra::{CompiledModel, Inputs};
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
     run_switched, AccumulationAction, Direction, Dop853, Dopri5, EvalError, EventAction, EventDecl,
     Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Model, Rk4, Rodas4,
-    SwitchedModel, SwitchedRun, Termination, Tolerance,
+    SwitchedFailure, SwitchedModel, SwitchedRun,
 };
 
 /// The runtime's mode graph of a compiled switched model.
-pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, ModelFileError> {
-    let modes = model
-        .modes
-        .iter()
+pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, SolveFailure> {
+    let modes = (model.modes.iter())
         .map(|mode| ModeDecl {
             name: mode.model.name.clone(),
-            events: mode
-                .events
-                .iter()
+            events: (mode.events.iter())
                 .map(|event| EventDecl {
                     name: event.name.clone(),
                     direction: match event.crossing {
@@ -55,7 +51,7 @@ pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, ModelFileError>
                 .collect(),
         })
         .collect();
-    ModeGraph::new(modes).map_err(|error| ModelFileError::Eval(error.to_string()))
+    ModeGraph::new(modes).map_err(|error| SolveFailure::Graph(error.to_string()))
 }
 
 /// A switched model run by the interpreter, in [`MAX_STATES`] components.
@@ -67,7 +63,7 @@ struct InterpretedSwitched<'a> {
 }
 
 impl<'a> InterpretedSwitched<'a> {
-    fn new(model: &'a CompiledSwitched, params: &'a [f64]) -> Result<Self, ModelFileError> {
+    fn new(model: &'a CompiledSwitched, params: &'a [f64]) -> Result<Self, SolveFailure> {
         Ok(InterpretedSwitched {
             model,
             params,
@@ -78,12 +74,8 @@ impl<'a> InterpretedSwitched<'a> {
         })
     }
 
-    fn n(&self) -> usize {
-        self.model.states().len()
-    }
-
     fn inputs<'b>(&'b self, t: f64, y: &'b [f64], dy: &'b [f64]) -> Inputs<'b> {
-        let n = self.n();
+        let n = self.model.states().len();
         Inputs {
             t,
             states: &y[..n],
@@ -98,13 +90,7 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         &self.graph
     }
 
-    fn rhs(
-        &self,
-        mode: usize,
-        t: f64,
-        y: &[f64; MAX_STATES],
-        dy: &mut [f64; MAX_STATES],
-    ) -> Result<(), EvalError> {
+    fn rhs(&self, mode: usize, t: f64, y: &Padded, dy: &mut Padded) -> Result<(), EvalError> {
         self.modes[mode].rhs(t, y, dy)
     }
 
@@ -112,8 +98,8 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         &self,
         mode: usize,
         t: f64,
-        y: &[f64; MAX_STATES],
-        jac: &mut [[f64; MAX_STATES]; MAX_STATES],
+        y: &Padded,
+        jac: &mut [Padded; MAX_STATES],
     ) -> Result<(), EvalError> {
         self.modes[mode].jacobian(t, y, jac)
     }
@@ -122,8 +108,8 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         &self,
         mode: usize,
         t: f64,
-        y: &[f64; MAX_STATES],
-        dy: &[f64; MAX_STATES],
+        y: &Padded,
+        dy: &Padded,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         let guards = &self.model.modes[mode].guards;
@@ -139,9 +125,9 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         event: usize,
         accumulation: bool,
         t: f64,
-        y: &[f64; MAX_STATES],
-        dy: &[f64; MAX_STATES],
-        out: &mut [f64; MAX_STATES],
+        y: &Padded,
+        dy: &Padded,
+        out: &mut Padded,
     ) -> Result<(), EvalError> {
         let event = &self.model.modes[mode].events[event];
         let jump = match (&event.action, &event.accumulation, accumulation) {
@@ -158,41 +144,26 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
     }
 }
 
-/// Integrates a switched model from `y0` in its first mode; `settings.events` must be empty
-/// (a switched model declares its events in the file). The trajectory's rows are those of the
-/// mode in force; the events are every event the run met, an accumulation under `NAME
-/// accumulates` at its extrapolated point, and a terminal event last.
-pub fn solve_switched(
+/// Integrates a switched model from its first mode. The rows are those of the mode in force;
+/// the events are every event the run met, an accumulation at its extrapolated point, and a
+/// terminal event last.
+pub(crate) fn solve_switched(
     model: &CompiledSwitched,
-    params: &[f64],
-    y0: &[f64],
-    settings: &SolveSettings,
-) -> Result<FileTrajectory, ModelFileError> {
+    resolved: Resolved,
+    request: &SolveRequest,
+) -> Result<Solution, SolveFailure> {
     let n = model.states().len();
-    if n > MAX_STATES {
-        return Err(ModelFileError::Eval(format!(
-            "`{}` has {n} states; `model solve` integrates at most {MAX_STATES} (compile the model with `model!` instead)",
-            model.name
-        )));
-    }
-    if let Some(dt) = settings.dt {
-        sample_times(settings.t0, settings.t_end, dt)?;
-    }
+    check_size(&model.name, n)?;
+    let params = &resolved.params;
     let interpreted = InterpretedSwitched::new(model, params)?;
-    let mut start = [0.0; MAX_STATES];
-    start[..n].copy_from_slice(y0);
-    let scale = (n as f64 / MAX_STATES as f64).sqrt();
-    let tolerance = Tolerance::per_component(
-        [settings.rtol * scale; MAX_STATES],
-        [settings.atol * scale; MAX_STATES],
-    );
+    let tolerance = tolerance(n, request.rtol, request.atol);
     let options = HybridOptions {
-        sample_rate: settings.dt.map(|dt| 1.0 / dt),
+        sample_rate: request.dt.map(|dt| 1.0 / dt),
         ..HybridOptions::default()
     };
-    let start = (settings.t0, start);
-    let t_end = settings.t_end;
-    let run = match settings.method {
+    let start = (request.t0, pad(&resolved.y0));
+    let t_end = request.t_end;
+    let run = match request.method {
         Method::Dopri5 => run_switched(
             &interpreted,
             Dopri5::new(),
@@ -221,67 +192,62 @@ pub fn solve_switched(
             run_switched(&interpreted, Rk4::new(h), tolerance, options, start, t_end)
         }
     }
-    .map_err(|failure| {
-        ModelFileError::Eval(format!(
-            "{} (after {} steps and {} events)",
-            describe_error(&failure.error),
-            failure.steps,
-            failure.events.len()
-        ))
-    })?;
+    .map_err(run_failure)?;
     let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
+    let at = |mode: &str, t: f64, y: &Padded| row(mode_model(mode), params, t, &y[..n]);
     let mut rows = Vec::with_capacity(run.samples.len() + 1);
     for (t, mode, y) in &run.samples {
-        rows.push(row(mode_model(mode), params, *t, &y[..n])?);
+        rows.push(at(mode, *t, y)?);
     }
     if rows.last().is_none_or(|r| r[0] < run.t) {
-        rows.push(row(mode_model(&run.mode), params, run.t, &run.y[..n])?);
+        rows.push(at(&run.mode, run.t, &run.y)?);
     }
     let mut events = Vec::with_capacity(run.events.len());
-    let mut notes = Vec::new();
+    let mut accumulations = Vec::new();
     for (k, event) in run.events.iter().enumerate() {
-        let accumulated = matches!(event.fired, Fired::Accumulated | Fired::AccumulatedStop);
-        let (name, y, mode) = if accumulated {
-            let name = format!("{} accumulates", event.event);
-            let continued = match event.fired {
-                Fired::Accumulated => format!("the run goes on in `{}`", mode_after(&run, k)),
-                _ => format!(
-                    "the run stops there (`when {} accumulates -> MODE {{ .. }}` says where it goes on)",
-                    event.event
-                ),
-            };
-            notes.push(format!(
-                "the firings of `{}` accumulate at t = {}: {continued}",
-                event.event, event.t
-            ));
-            (name, &event.y_after, mode_after(&run, k))
-        } else {
-            (event.event.clone(), &event.y, event.mode.as_str())
+        let solved = match event.fired {
+            Fired::Accumulated | Fired::AccumulatedStop => {
+                let continued_in =
+                    (event.fired == Fired::Accumulated).then(|| mode_after(&run, k).to_string());
+                accumulations.push(AccumulationPoint {
+                    event: event.event.clone(),
+                    t: event.t,
+                    continued_in,
+                });
+                SolvedEvent {
+                    name: event.event.clone(),
+                    kind: EventKind::Accumulation,
+                    row: at(mode_after(&run, k), event.t, &event.y_after)?,
+                }
+            }
+            _ => SolvedEvent {
+                name: event.event.clone(),
+                kind: EventKind::Crossing,
+                row: at(&event.mode, event.t, &event.y)?,
+            },
         };
-        events.push(FileEvent {
-            name,
-            row: row(mode_model(mode), params, event.t, &y[..n])?,
-        });
+        events.push(solved);
     }
     let stop = match &run.stopped_by {
-        None => Termination::EndTime,
-        Some(name) => Termination::Event {
-            name: match run.events.last().map(|e| e.fired) {
-                Some(Fired::AccumulatedStop) => format!("{name} accumulates"),
-                _ => name.clone(),
+        None => Stop::EndTime,
+        Some(name) => Stop::Event {
+            name: name.clone(),
+            kind: match run.events.last().map(|e| e.fired) {
+                Some(Fired::AccumulatedStop) => EventKind::Accumulation,
+                _ => EventKind::Crossing,
             },
         },
     };
-    let mut header = vec!["t".to_string()];
-    header.extend(model.states().iter().cloned());
-    header.extend(model.modes[0].model.outputs.iter().cloned());
-    Ok(FileTrajectory {
-        header,
+    let first: &CompiledModel = &model.modes[0].model;
+    Ok(Solution {
+        model: model.name.clone(),
+        columns: columns(model.states().iter().chain(&first.outputs)),
+        states: n,
         rows,
         events,
         stop,
         stats: run.stats,
-        notes,
+        accumulations,
     })
 }
 
@@ -296,9 +262,10 @@ fn mode_after(run: &SwitchedRun<MAX_STATES>, k: usize) -> &str {
     }
 }
 
-/// A failed run in the model's words: modes by name, and what resolves a chatter.
-fn describe_error(error: &HybridError<String>) -> String {
-    match error {
+/// A failed run in the model's words (modes by name, what resolves a chatter), with the work
+/// done until then.
+fn run_failure(failure: SwitchedFailure<MAX_STATES>) -> SolveFailure {
+    let message = match &failure.error {
         HybridError::Chattering {
             t,
             transitions,
@@ -313,5 +280,10 @@ fn describe_error(error: &HybridError<String>) -> String {
             )
         }
         other => other.to_string(),
-    }
+    };
+    SolveFailure::Run(RunFailure {
+        message,
+        steps: Some(failure.steps),
+        events: failure.events.len(),
+    })
 }

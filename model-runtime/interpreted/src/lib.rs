@@ -1,0 +1,96 @@
+//! Models given as text, compiled at run time and solved by the runtime: the one library
+//! entry point every front end calls.
+//!
+//! # The boundary
+//!
+//! `model!` compiles a model into Rust at build time; this crate takes the same text at run
+//! time. The front end (`model-dsl`) reads it, the equation compiler (`model-algebra`) derives
+//! its programs, and the compiler's interpreter runs them inside the runtime's integrators and
+//! switched driver (`model-runtime`), so a model file behaves as the model `model!` would emit
+//! from it, step for step. Everything a front end needs that is not presentation lives here:
+//! loading ([`ModelFile`]), values by name ([`SolveRequest::params`], [`evaluate`]), events,
+//! the solve itself ([`solve`]) and its typed result ([`Solution`]) or typed failure
+//! ([`SolveFailure`]). A front end keeps only its own concerns: `eulerdisk model solve` parses
+//! flags, writes CSV files and prints sentences; a Python package converts keyword arguments
+//! and builds arrays. Neither matches on message text: the errors are enums whose variants say
+//! which input was wrong and where in the list it was given.
+//!
+//! # The API
+//!
+//! * **Loading**: [`ModelFile::read`], [`ModelFile::from_text`] give a [`ModelFile`] (smooth,
+//!   with its charts, or switched); [`ModelFile::model`] chooses a [`ModelRef`]
+//!   ([`LoadError`]).
+//! * **Solving**: [`solve`] with a [`SolveRequest`] ([`EventRequest`], [`Named`] values) gives
+//!   a [`Solution`] ([`SolvedEvent`], [`EventKind`], [`Stop`], [`AccumulationPoint`]) or a
+//!   [`SolveFailure`] ([`RequestError`], [`UnknownEvent`], [`RunFailure`], [`ValueError`]).
+//! * **One point**: [`evaluate`] gives the derivatives and outputs by name, [`PointValues`]
+//!   ([`NamedValues`], [`PointError`]); the values in the model's order, [`params`],
+//!   [`initial_state`], [`resolve`].
+//! * **For a switched model**: its runtime [`mode_graph`].
+//!
+//! An interpreted model is embedded in [`MAX_STATES`] components (the runtime's models have
+//! compile-time sizes), with its tolerance scaled so that every step-size decision is that of
+//! its own states; a model with more states is a [`RequestError::TooManyStates`].
+//!
+//! ```
+//! use model_interpreted::{solve, EventKind, EventRequest, ModelFile, SolveRequest, Stop};
+//! use model_runtime::Direction;
+//!
+//! let file = ModelFile::from_text(
+//!     "oscillator.dsl",
+//!     "mod oscillator {
+//!         params { w = 3 }
+//!         states { x, v }
+//!         equations { der(x) = v; der(v) = -w^2 * x; }
+//!         outputs { energy = v^2 / 2 + w^2 * x^2 / 2; }
+//!     }",
+//! )
+//! .unwrap();
+//! let mut request = SolveRequest::new(2.0);
+//! request.state = vec![("x".to_string(), 1.0)];
+//! request.events = vec![EventRequest {
+//!     name: "x".to_string(),
+//!     direction: Direction::Down,
+//!     stop: true,
+//! }];
+//! let solution = solve(file.model(None).unwrap(), &request).unwrap();
+//! // x = cos(3 t) first crosses zero downwards at t = pi / 6.
+//! let first = &solution.events[0];
+//! assert_eq!(first.kind, EventKind::Crossing);
+//! assert!((first.t() - std::f64::consts::PI / 6.0).abs() < 1e-8);
+//! assert!(matches!(&solution.stop, Stop::Event { name, .. } if name == "x"));
+//! let energy = solution.column("energy").unwrap();
+//! assert!(energy.iter().all(|e| (e - 4.5).abs() < 1e-6));
+//! ```
+#![warn(missing_docs)]
+
+mod error;
+mod interpreted;
+mod load;
+mod request;
+mod smooth;
+mod solution;
+mod switched;
+mod values;
+
+pub use error::{
+    LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
+};
+pub use interpreted::MAX_STATES;
+pub use load::{ModelFile, ModelRef};
+pub use request::{EventRequest, SolveRequest, Watched};
+pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
+pub use switched::mode_graph;
+pub use values::{evaluate, initial_state, params, resolve, Named, NamedValues, PointValues};
+
+/// Solves `model` as `request` says: the values and events resolved by name, the integration
+/// by the runtime with the model's programs run by the interpreter, the outputs evaluated at
+/// every recorded point. An unusable request is a [`SolveFailure::Request`] found before any
+/// integration; a failed run says why in the model's terms.
+pub fn solve(model: ModelRef<'_>, request: &SolveRequest) -> Result<Solution, SolveFailure> {
+    let resolved = request::Resolved::new(model, request)?;
+    match model {
+        ModelRef::Smooth(model) => smooth::solve_smooth(model, resolved, request),
+        ModelRef::Switched(model) => switched::solve_switched(model, resolved, request),
+    }
+}

@@ -1,0 +1,151 @@
+//! Text to models: a model file (or text) read by the same front end and compiled by the same
+//! equation compiler as `model!`, into a smooth model with its charts or a switched model.
+//! Every mistake in the text is a located error ([`LoadError::Dsl`]), never a panic.
+
+use crate::error::LoadError;
+use model_algebra::CompiledModel;
+use model_dsl::{CompiledSwitched, Source, TextModel};
+use std::path::Path;
+
+/// A model file as compiled: a smooth model (with its charts) or a switched one.
+#[derive(Clone, Debug)]
+pub enum ModelFile {
+    /// The model, then each of its charts.
+    Smooth(Vec<TextModel>),
+    /// A model with modes and events.
+    Switched(CompiledSwitched),
+}
+
+/// One model of a file, ready to evaluate or solve: a smooth model (the file's model or one
+/// of its charts) or a switched one.
+#[derive(Clone, Copy, Debug)]
+pub enum ModelRef<'a> {
+    /// A model without modes.
+    Smooth(&'a CompiledModel),
+    /// A model with modes and events.
+    Switched(&'a CompiledSwitched),
+}
+
+impl ModelFile {
+    /// Reads and compiles the file at `path`.
+    pub fn read(path: &Path) -> Result<Self, LoadError> {
+        let source = Source::read(path).map_err(|source| LoadError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::compile(&source)
+    }
+
+    /// Compiles `text`; `name` is the source's name in the errors' locations (a file name).
+    pub fn from_text(name: &str, text: &str) -> Result<Self, LoadError> {
+        Self::compile(&Source::new(name, text))
+    }
+
+    fn compile(source: &Source) -> Result<Self, LoadError> {
+        let ast = source.parse().map_err(LoadError::Dsl)?;
+        if ast.is_switched() {
+            let model = source.compile_switched().map_err(LoadError::Dsl)?;
+            return Ok(ModelFile::Switched(model));
+        }
+        source
+            .compile()
+            .map(ModelFile::Smooth)
+            .map_err(LoadError::Dsl)
+    }
+
+    /// The model's name (the `mod` of the file).
+    pub fn name(&self) -> &str {
+        match self {
+            ModelFile::Smooth(models) => models.first().map_or("", |m| &m.compiled.name),
+            ModelFile::Switched(model) => &model.name,
+        }
+    }
+
+    /// The model called `chart` (`None`: the file's model itself); a switched model has no
+    /// charts.
+    pub fn model(&self, chart: Option<&str>) -> Result<ModelRef<'_>, LoadError> {
+        match (self, chart) {
+            (ModelFile::Smooth(models), chart) => select(models, chart).map(ModelRef::Smooth),
+            (ModelFile::Switched(model), None) => Ok(ModelRef::Switched(model)),
+            (ModelFile::Switched(_), Some(chart)) => Err(LoadError::ChartOfSwitched {
+                chart: chart.to_string(),
+            }),
+        }
+    }
+
+    /// The smooth model called `chart` (`None`: the file's model); a switched model is an
+    /// error naming it.
+    pub fn smooth(&self, chart: Option<&str>) -> Result<&CompiledModel, LoadError> {
+        match self.model(chart) {
+            Ok(ModelRef::Smooth(model)) => Ok(model),
+            Ok(ModelRef::Switched(model)) => Err(LoadError::Switched {
+                model: model.name.clone(),
+            }),
+            Err(LoadError::ChartOfSwitched { .. }) => Err(LoadError::Switched {
+                model: self.name().to_string(),
+            }),
+            Err(err) => Err(err),
+        }
+    }
+}
+
+/// The model called `chart` among `models` (`None`: the model itself, the first).
+fn select<'a>(
+    models: &'a [TextModel],
+    chart: Option<&str>,
+) -> Result<&'a CompiledModel, LoadError> {
+    let found = match chart {
+        None => models.first(),
+        Some(name) => models.iter().find(|m| m.compiled.name == name),
+    };
+    found.map(|m| &m.compiled).ok_or_else(|| {
+        let names: Vec<&str> = models.iter().map(|m| m.compiled.name.as_str()).collect();
+        LoadError::NoSuchChart {
+            name: chart.unwrap_or_default().to_string(),
+            available: quoted(&names),
+        }
+    })
+}
+
+/// `` `a`, `b` `` (or `none`).
+pub(crate) fn quoted<S: AsRef<str>>(names: &[S]) -> String {
+    if names.is_empty() {
+        return "none".to_string();
+    }
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{}`", n.as_ref())).collect();
+    quoted.join(", ")
+}
+
+impl ModelRef<'_> {
+    /// The model's name.
+    pub fn name(&self) -> &str {
+        match self {
+            ModelRef::Smooth(model) => &model.name,
+            ModelRef::Switched(model) => &model.name,
+        }
+    }
+
+    /// The state names, in order.
+    pub fn states(&self) -> &[String] {
+        match self {
+            ModelRef::Smooth(model) => &model.states,
+            ModelRef::Switched(model) => model.states(),
+        }
+    }
+
+    /// The output names, in order (a switched model's modes share them).
+    pub fn outputs(&self) -> &[String] {
+        match self {
+            ModelRef::Smooth(model) => &model.outputs,
+            ModelRef::Switched(model) => &model.modes[0].model.outputs,
+        }
+    }
+
+    /// The parameters with their defaults from the file, in order (`None`: no default).
+    pub fn params(&self) -> &[(String, Option<f64>)] {
+        match self {
+            ModelRef::Smooth(model) => &model.params,
+            ModelRef::Switched(model) => &model.modes[0].model.params,
+        }
+    }
+}

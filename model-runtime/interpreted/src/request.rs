@@ -1,0 +1,157 @@
+//! What a front end asks of [`crate::solve`]: the time span, the method and tolerances, the
+//! sampling, the values by name and the events, all plain data, so that a command line and a
+//! Python package fill the same struct; and its resolution against one model, which finds
+//! every input error before anything is integrated.
+
+use crate::error::{RequestError, UnknownEvent};
+use crate::load::{quoted, ModelRef};
+use crate::values::{initial_state, params, Named};
+use model_runtime::{Direction, Method};
+
+/// How to solve a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolveRequest {
+    /// Start time.
+    pub t0: f64,
+    /// End time.
+    pub t_end: f64,
+    /// The integration method.
+    pub method: Method,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// Record every `dt` from `t0` (and at `t_end`); `None`: at every accepted step.
+    pub dt: Option<f64>,
+    /// Parameter values by name; the others keep the file's defaults.
+    pub params: Vec<Named>,
+    /// Initial state values by name; the others start at the file's value, or zero.
+    pub state: Vec<Named>,
+    /// The events to locate, in the order given (the first wins a tie); only for a smooth
+    /// model (a switched model declares its events in the file).
+    pub events: Vec<EventRequest>,
+}
+
+impl SolveRequest {
+    /// From 0 to `t_end` with DOP853 at `rtol = 1e-8`, `atol = 1e-10`, recording every step,
+    /// the file's parameters and initial state, and no events.
+    pub fn new(t_end: f64) -> Self {
+        SolveRequest {
+            t0: 0.0,
+            t_end,
+            method: Method::Dop853,
+            rtol: 1e-8,
+            atol: 1e-10,
+            dt: None,
+            params: Vec::new(),
+            state: Vec::new(),
+            events: Vec::new(),
+        }
+    }
+}
+
+/// An event: where a state or an output of the model crosses zero.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRequest {
+    /// The state's or output's name (the event's name).
+    pub name: String,
+    /// Which crossings fire.
+    pub direction: Direction,
+    /// Whether the run ends at the first one.
+    pub stop: bool,
+}
+
+/// What an event watches: one of the model's states or outputs, by index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Watched {
+    /// The state at this index.
+    State(usize),
+    /// The output at this index.
+    Output(usize),
+}
+
+/// An event resolved against the model.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ResolvedEvent {
+    pub(crate) request: EventRequest,
+    pub(crate) watched: Watched,
+}
+
+/// A request resolved against one model: the values in the model's order, the events by
+/// index, the sampling times.
+#[derive(Clone, Debug)]
+pub(crate) struct Resolved {
+    pub(crate) params: Vec<f64>,
+    pub(crate) y0: Vec<f64>,
+    pub(crate) events: Vec<ResolvedEvent>,
+    pub(crate) times: Option<Vec<f64>>,
+}
+
+impl Resolved {
+    /// Resolves `request` for `model`; every problem is a [`RequestError`].
+    pub(crate) fn new(model: ModelRef<'_>, request: &SolveRequest) -> Result<Self, RequestError> {
+        let params = params(model, &request.params).map_err(RequestError::Params)?;
+        let y0 = initial_state(model, &request.state).map_err(RequestError::State)?;
+        let events = match model {
+            ModelRef::Switched(_) => match request.events.first() {
+                Some(event) => {
+                    return Err(RequestError::EventsOfSwitched {
+                        name: event.name.clone(),
+                    })
+                }
+                None => Vec::new(),
+            },
+            ModelRef::Smooth(_) => (request.events.iter().enumerate())
+                .map(|(index, event)| resolve_event(model, index, event))
+                .collect::<Result<_, _>>()?,
+        };
+        let times = (request.dt)
+            .map(|dt| sample_times(request.t0, request.t_end, dt))
+            .transpose()?;
+        Ok(Resolved {
+            params,
+            y0,
+            events,
+            times,
+        })
+    }
+}
+
+/// The event `request` of `model`, by what it watches.
+fn resolve_event(
+    model: ModelRef<'_>,
+    index: usize,
+    request: &EventRequest,
+) -> Result<ResolvedEvent, RequestError> {
+    let position = |names: &[String]| names.iter().position(|n| *n == request.name);
+    let watched = (position(model.states()).map(Watched::State))
+        .or_else(|| position(model.outputs()).map(Watched::Output))
+        .ok_or_else(|| {
+            RequestError::UnknownEvent(UnknownEvent {
+                index,
+                name: request.name.clone(),
+                states: quoted(model.states()),
+                outputs: quoted(model.outputs()),
+            })
+        })?;
+    Ok(ResolvedEvent {
+        request: request.clone(),
+        watched,
+    })
+}
+
+/// `t0, t0 + dt, ...` up to and including `t_end`.
+fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, RequestError> {
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(RequestError::SampleStep { dt });
+    }
+    let count = ((t_end - t0) / dt).floor();
+    if !(0.0..1e8).contains(&count) {
+        return Err(RequestError::SampleCount { dt, t0, t_end });
+    }
+    let mut times: Vec<f64> = (0..=count as u64).map(|k| t0 + k as f64 * dt).collect();
+    if times.last().is_some_and(|&t| t < t_end) {
+        times.push(t_end);
+    }
+    Ok(times)
+}

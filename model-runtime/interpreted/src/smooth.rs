@@ -1,0 +1,135 @@
+//! A smooth model solved by the runtime's `Problem` API, its programs run by the interpreter.
+//!
+//! Events are zero crossings of one of the model's states or outputs. A threshold other than
+//! zero is an output of the file (`hit = theta - 0.1`), so a front end needs no expression
+//! language of its own; an output needs the derivatives, which the runtime hands every event
+//! function, and is evaluated by the interpreter there.
+
+use crate::error::{RequestError, RunFailure, SolveFailure};
+use crate::interpreted::{check_size, pad, row, tolerance, Interpreted, MAX_STATES};
+use crate::request::{Resolved, ResolvedEvent, SolveRequest, Watched};
+use crate::solution::{EventKind, Solution, SolvedEvent, Stop};
+use model_algebra::CompiledModel;
+use model_runtime::{Event, Output, Problem, SolveError, Termination};
+use std::sync::Arc;
+
+/// The model and its parameters, owned, for the event functions (which must be `'static`).
+struct Shared {
+    model: CompiledModel,
+    params: Vec<f64>,
+}
+
+impl ResolvedEvent {
+    /// The runtime's event: the state read from `y`, or the output evaluated at `(t, y, dy)`
+    /// by the interpreter (NaN where it cannot be, which the runtime reports naming the
+    /// event).
+    fn event(&self, shared: &Arc<Shared>) -> Event<MAX_STATES> {
+        let name = &self.request.name;
+        let event = match self.watched {
+            Watched::State(k) => Event::new(name, move |_t, y, _dy| y[k]),
+            Watched::Output(j) => {
+                let shared = Arc::clone(shared);
+                Event::new(name, move |t, y, dy| {
+                    let n = shared.model.states.len();
+                    (shared
+                        .model
+                        .outputs_at(t, &y[..n], &dy[..n], &shared.params))
+                    .map_or(f64::NAN, |outputs| outputs[j])
+                })
+            }
+        };
+        let event = event.direction(self.request.direction);
+        if self.request.stop {
+            event.terminal()
+        } else {
+            event
+        }
+    }
+}
+
+/// Integrates `model` as `request` says; the outputs are evaluated at every recorded point.
+pub(crate) fn solve_smooth(
+    model: &CompiledModel,
+    resolved: Resolved,
+    request: &SolveRequest,
+) -> Result<Solution, SolveFailure> {
+    let n = model.states.len();
+    check_size(&model.name, n)?;
+    let params = &resolved.params;
+    let interpreted = Interpreted::new(model, params);
+    let output = match resolved.times {
+        Some(times) => Output::Times(times),
+        None => Output::Steps,
+    };
+    let mut problem = Problem::new(&interpreted, pad(&resolved.y0), (request.t0, request.t_end))
+        .method(request.method)
+        .tolerance(tolerance(n, request.rtol, request.atol))
+        .output(output);
+    if !resolved.events.is_empty() {
+        let shared = Arc::new(Shared {
+            model: model.clone(),
+            params: params.clone(),
+        });
+        for event in &resolved.events {
+            problem = problem.event(event.event(&shared));
+        }
+    }
+    let solved = problem.solve::<0>().map_err(|failure| match failure {
+        // Unusable settings (a time span, a tolerance) are the caller's input, not a failed run.
+        model_runtime::SolveFailure::Solve {
+            error: SolveError::InvalidInput(_),
+            ..
+        }
+        | model_runtime::SolveFailure::OutputTime { .. } => {
+            SolveFailure::Request(RequestError::Settings(failure.to_string()))
+        }
+        failure => SolveFailure::Run(RunFailure {
+            message: failure.to_string(),
+            steps: None,
+            events: 0,
+        }),
+    })?;
+    let mut rows = Vec::with_capacity(solved.t.len() + 1);
+    for (&t, y) in solved.t.iter().zip(&solved.y) {
+        rows.push(row(model, params, t, &y[..n])?);
+    }
+    let events = (solved.events.iter())
+        .map(|event| {
+            Ok(SolvedEvent {
+                name: event.name.clone(),
+                kind: EventKind::Crossing,
+                row: row(model, params, event.t, &event.y[..n])?,
+            })
+        })
+        .collect::<Result<Vec<_>, SolveFailure>>()?;
+    let stop = match solved.stop {
+        Termination::EndTime => Stop::EndTime,
+        Termination::Event { name } => Stop::Event {
+            name,
+            kind: EventKind::Crossing,
+        },
+    };
+    if let (Stop::Event { .. }, Some(last)) = (&stop, events.last()) {
+        // The run ended at the event: its state closes the trajectory.
+        if rows.last().is_none_or(|row| row[0] < last.t()) {
+            rows.push(last.row.clone());
+        }
+    }
+    Ok(Solution {
+        model: model.name.clone(),
+        columns: columns(model.states.iter().chain(&model.outputs)),
+        states: n,
+        rows,
+        events,
+        stop,
+        stats: solved.stats,
+        accumulations: Vec::new(),
+    })
+}
+
+/// `t`, then `names`.
+pub(crate) fn columns<'a>(names: impl Iterator<Item = &'a String>) -> Vec<String> {
+    std::iter::once("t".to_string())
+        .chain(names.cloned())
+        .collect()
+}
