@@ -34,7 +34,12 @@
 //!   [`SoundError`], [`wav_name`]); the pieces, [`record_force`] ([`ForceTrace`],
 //!   [`TimeSpan`]), [`major_peaks`] ([`PeakRule`]), [`analyse`], [`render`]
 //!   ([`RenderOptions`], [`HEADROOM`]), [`spectrogram`] ([`StftSettings`]).
-//! * **Model commands**: [`model_command`].
+//! * **Model commands**: [`model_command`]; the same piece by piece, for other front ends:
+//!   [`load_model`], [`load_model_source`] ([`Loaded`], [`ModelFileError`]), [`select_chart`],
+//!   [`model_params`], [`model_state`], [`model_initial_state`], [`evaluate_model`]
+//!   ([`FileEvaluation`]), [`solve_model`] and [`solve_switched`] ([`SolveSettings`],
+//!   [`EventSpec`], [`FileTrajectory`], [`FileEvent`], [`MAX_STATES`]), [`show_switched`]
+//!   ([`ModelFormat`]).
 //! * **Evaluation**: [`evaluate`], [`parse_params`], [`parse_state`], [`Backend`],
 //!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
 //! * **Reading the outputs**: [`EVENTS_HEADER`], [`split_fields`].
@@ -130,6 +135,19 @@ pub use sound::{analyse, sound_scene, wav_name, SoundError, SoundOptions, SoundR
 
 // Model commands: `eulerdisk model ...`.
 pub use model_command::run as model_command;
+
+// Models from files, piece by piece (what `model show|eval|solve` does, for other front ends
+// such as the Python package).
+pub use model_file::{
+    evaluate as evaluate_model, initial_state as model_initial_state, load_any as load_model,
+    load_source as load_model_source, params as model_params, select as select_chart,
+    show_switched, state as model_state, FileEvaluation, Loaded, ModelFileError,
+};
+pub use model_show::Format as ModelFormat;
+pub use model_solve::{
+    solve as solve_model, EventSpec, FileEvent, FileTrajectory, SolveSettings, MAX_STATES,
+};
+pub use model_switched::solve_switched;
 
 // Evaluation: the right-hand side at one state, and the parsers of its arguments.
 pub use eval::{evaluate, parse_params, parse_state, Backend, EvalCommandError};

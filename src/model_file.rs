@@ -86,6 +86,11 @@ pub fn load_any(path: &Path) -> Result<Loaded, ModelFileError> {
         path: path.to_path_buf(),
         source,
     })?;
+    load_source(&source)
+}
+
+/// Compiles a model given as text (its name is the one shown in messages), of either kind.
+pub fn load_source(source: &Source) -> Result<Loaded, ModelFileError> {
     let ast = source.parse().map_err(ModelFileError::Dsl)?;
     if ast.is_switched() {
         let model = source.compile_switched().map_err(ModelFileError::Dsl)?;
