@@ -24,7 +24,7 @@ import os
 import re
 import sys
 import tempfile
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -119,7 +119,14 @@ def _progress(progress: bool | None) -> bool:
     """Whether to show progress: as asked, or by default on a terminal or in a notebook."""
     if progress is not None:
         return progress
-    return sys.stderr.isatty() or "ipykernel" in sys.modules
+    return sys.stderr.isatty() or _in_notebook()
+
+
+def _in_notebook() -> bool:
+    """Whether this runs in a Jupyter kernel (whose cells show what goes to standard error)."""
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None
+    return shell is not None and hasattr(shell, "kernel")
 
 
 def _columns(raw: Mapping[str, bytes]) -> dict[str, Array]:
@@ -177,7 +184,7 @@ class Table(Mapping[str, "npt.NDArray[Any]"]):
     def __getitem__(self, name: str) -> npt.NDArray[Any]:
         return self._columns[name]
 
-    def __iter__(self):  # noqa: ANN204 - the Mapping protocol's iterator
+    def __iter__(self) -> Iterator[str]:
         return iter(self._columns)
 
     def __len__(self) -> int:
