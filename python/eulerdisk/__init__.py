@@ -513,6 +513,8 @@ class Model:
         Raises:
             ModelInputError: an unknown name or method, a bad event, an unusable setting.
             SolveError: the integration failed; the message says where and why.
+            KeyboardInterrupt: Ctrl-C, raised once the integration has ended (a model file's
+                solve has no cancellation yet; the GIL is released meanwhile).
         """
         raw = self._native.solve(
             chart,

@@ -33,9 +33,6 @@ def run(
 ) -> dict[str, Any]:
     """Runs a scene as ``eulerdisk run`` does; the columns as bytes of ``f64``."""
 
-def check_scene(scene: str, toml: str | None, sets: list[str]) -> str:
-    """A scene's settings after defaults and overrides (JSON), or SceneError."""
-
 def default_scene() -> str:
     """The scene ``eulerdisk run`` runs when none is given."""
 

@@ -217,20 +217,6 @@ fn run<'py>(
     Ok(out)
 }
 
-/// Loads a scene and returns its settings after defaults and overrides (JSON), or raises
-/// `SceneError`.
-#[pyfunction]
-#[pyo3(signature = (scene, toml, sets))]
-fn check_scene(
-    py: Python<'_>,
-    scene: String,
-    toml: Option<String>,
-    sets: Vec<String>,
-) -> PyResult<String> {
-    let loaded = load(py, scene, toml, &sets)?;
-    Ok(loaded.provenance.settings.to_string())
-}
-
 /// The name of the scene `eulerdisk run` runs when none is given.
 #[pyfunction]
 fn default_scene() -> &'static str {
@@ -417,7 +403,6 @@ impl NativeModel {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(run, m)?)?;
-    m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(default_scene, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_class::<NativeModel>()?;
