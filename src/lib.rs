@@ -36,7 +36,10 @@
 //!   [`TimeSpan`]), [`major_peaks`] ([`PeakRule`]), [`analyse`], [`render`]
 //!   ([`RenderOptions`], [`HEADROOM`]), [`spectrogram`] ([`StftSettings`]).
 //! * **Model commands**: [`model_command`]; a model file's loading and solving are the library
-//!   `model_interpreted`'s, this crate keeps the flags, the CSV files and the sentences.
+//!   `model_interpreted`'s, this crate keeps the flags, the CSV files and the sentences; for
+//!   other front ends, the arguments read as the flags are ([`model_named`],
+//!   [`model_event_spec`], [`ModelArguments`], [`ModelFileError`]) and [`show_switched`]
+//!   ([`ModelFormat`]).
 //! * **Evaluation**: [`evaluate`], [`parse_params`], [`parse_state`], [`Backend`],
 //!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
 //! * **Reading the outputs**: [`EVENTS_HEADER`], [`split_fields`].
@@ -131,6 +134,14 @@ pub use sound::{analyse, sound_scene, wav_name, SoundError, SoundOptions, SoundR
 
 // Model commands: `eulerdisk model ...`.
 pub use model_command::run as model_command;
+
+// Models from files, for other front ends (the Python package): the command line's way of
+// reading `NAME=VALUE` and event arguments and of saying the library's errors with them.
+pub use model_file::{
+    event_spec as model_event_spec, named as model_named, show_switched,
+    Arguments as ModelArguments, ModelFileError,
+};
+pub use model_show::Format as ModelFormat;
 
 // Evaluation: the right-hand side at one state, and the parsers of its arguments.
 pub use eval::{evaluate, parse_params, parse_state, Backend, EvalCommandError};

@@ -89,6 +89,9 @@ pub struct RunReport {
     pub ending: Ending,
     /// The files written.
     pub files: Vec<PathBuf>,
+    /// What the run recorded (samples, events, extrema, stop), for a caller that keeps it in
+    /// memory rather than reading the files back.
+    pub data: RunData,
 }
 
 /// Why a run produced nothing.
@@ -146,6 +149,7 @@ pub fn run_scene(
         summary,
         ending,
         files,
+        data,
     })
 }
 

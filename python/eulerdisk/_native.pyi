@@ -1,0 +1,104 @@
+"""Type stubs of the compiled half of the package (``eulerdisk._native``)."""
+
+from typing import Any
+
+class SceneError(ValueError):
+    """A scene that cannot be run; ``key`` is the scene key it is about, or None."""
+
+    key: str | None
+
+class DslError(ValueError):
+    """A model file with errors, each located as ``file:line:col`` with a caret."""
+
+class ModelInputError(ValueError):
+    """An unusable argument of ``Model.eval`` or ``Model.solve``."""
+
+class SolveError(RuntimeError):
+    """A model that could not be evaluated or integrated."""
+
+class SweepError(ValueError):
+    """A sweep that cannot be run."""
+
+class RunError(RuntimeError):
+    """A run whose outputs could not be written."""
+
+def run(
+    scene: str,
+    toml: str | None,
+    sets: list[str],
+    out_dir: str,
+    progress: bool,
+    trajectory_file: bool,
+    figures: bool,
+) -> dict[str, Any]:
+    """Runs a scene as ``eulerdisk run`` does; the columns as bytes of ``f64``."""
+
+def default_scene() -> str:
+    """The scene ``eulerdisk run`` runs when none is given."""
+
+def sweep(
+    sweep: str,
+    toml: str | None,
+    folder: str | None,
+    sets: list[str],
+    out: str,
+    jobs: int,
+    progress: bool,
+) -> dict[str, Any]:
+    """Runs a sweep into ``out``; the path of its table and the counts of its runs."""
+
+class NativeModel:
+    """A compiled model file."""
+
+    @staticmethod
+    def from_file(path: str) -> NativeModel:
+        """Compiles the model file at ``path``."""
+
+    @staticmethod
+    def from_text(name: str, text: str) -> NativeModel:
+        """Compiles a model given as text."""
+
+    @property
+    def name(self) -> str:
+        """The model's name."""
+
+    @property
+    def states(self) -> list[str]:
+        """The states."""
+
+    @property
+    def params(self) -> list[tuple[str, float | None]]:
+        """The parameters and their defaults."""
+
+    @property
+    def outputs(self) -> list[str]:
+        """The outputs."""
+
+    @property
+    def charts(self) -> list[str]:
+        """The charts' names."""
+
+    @property
+    def modes(self) -> list[str]:
+        """The modes' names."""
+
+    def show(self, latex: bool) -> str:
+        """The solved equations."""
+
+    def eval(self, chart: str | None, t: float, state: list[str], sets: list[str]) -> str:
+        """Derivatives and outputs at one point, as JSON."""
+
+    def solve(
+        self,
+        chart: str | None,
+        state: list[str],
+        sets: list[str],
+        events: list[str],
+        t0: float,
+        t_end: float,
+        dt: float | None,
+        method: str,
+        rtol: float,
+        atol: float,
+    ) -> dict[str, Any]:
+        """Integrates the model."""

@@ -1,0 +1,55 @@
+"""`eulerdisk.sweep`: the command line's sweep table, DataFrame-ready, resumable."""
+
+import numpy as np
+import pytest
+
+import eulerdisk
+
+SWEEP = {
+    "name": "two-frictions",
+    "scene": "tangent-toy",
+    "keep": "none",
+    "keys": ["transitions", "theta_period_first_s"],
+    "set": {"run.t_end": 0.5},
+    "axis": [{"key": "friction.mu_d", "values": [0.1, 0.15]}],
+}
+
+
+def test_a_sweep_gives_one_row_per_point_matching_single_runs(tmp_path):
+    done = eulerdisk.sweep(SWEEP, jobs=2, out=tmp_path, progress=False)
+    table = done.table
+    assert done.points == 2 and done.ran == 2 and done.failed == 0 and done.skipped == 0
+    assert table.rows == 2
+    assert list(table["friction.mu_d"]) == [0.1, 0.15]
+    assert list(table["status"]) == ["completed", "completed"]
+    for mu_d, transitions in zip(table["friction.mu_d"], table["transitions"], strict=True):
+        alone = eulerdisk.run(
+            "tangent-toy", t_end=0.5, set={"friction.mu_d": float(mu_d)}, progress=False
+        )
+        assert transitions == alone.summary["transitions"]
+    frame = done.to_pandas()
+    assert {"run", "friction.mu_d", "transitions", "cpu_s"} <= set(frame.columns)
+    assert (tmp_path / "sweep.csv").is_file()
+
+
+def test_a_sweep_into_the_same_folder_resumes(tmp_path):
+    eulerdisk.sweep(SWEEP, out=tmp_path, progress=False)
+    again = eulerdisk.sweep(SWEEP, out=tmp_path, progress=False)
+    assert again.ran == 0 and again.skipped == 2
+    assert again.table.rows == 2
+
+
+def test_a_sweep_without_a_folder_leaves_none():
+    done = eulerdisk.sweep(SWEEP, progress=False, set={"run.t_end": 0.2})
+    assert done.out is None
+    assert np.all(done.table["transitions"] >= 0)
+
+
+def test_sweep_errors_are_the_command_lines():
+    with pytest.raises(eulerdisk.SweepError, match="no-such-sweep"):
+        eulerdisk.sweep("no-such-sweep", progress=False)
+    bad = {**SWEEP, "axis": [{"key": "friction.nothing", "values": [1.0]}]}
+    with pytest.raises(eulerdisk.SweepError, match=r"friction\.nothing"):
+        eulerdisk.sweep(bad, progress=False)
+    with pytest.raises(eulerdisk.SweepError, match="jobs"):
+        eulerdisk.sweep(SWEEP, jobs=0)
