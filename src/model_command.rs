@@ -1,13 +1,15 @@
 //! `eulerdisk model ...`: the dispatch of the model subcommands, with their exit codes.
 //!
-//! `show` takes a disk model's name or a DSL file; `eval` and `solve` take a file. A mistake
+//! `show` and `eval` take a disk model's name or a DSL file; `solve` takes a file. A mistake
 //! in the file, an unknown name in `--state`/`--set`, a malformed `--event` or a state where
 //! the model is singular is an input error (exit 2), and so is an unusable setting of `solve`
 //! (an empty time span, a sampling step or tolerance that is not positive, too many states);
-//! a failed integration or an unwritable output is a failure (exit 1).
+//! a failed integration or an unwritable output is a failure (exit 1), and a run that a
+//! `:stop` event ended before `--t-end` exits with 3, as a scene stopped by its physics does.
 
-use crate::args::{print_json, print_out, EXIT_FAILED, EXIT_INPUT};
+use crate::args::{backend, print_json, print_out, EXIT_FAILED, EXIT_INPUT, EXIT_STOPPED};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
+use crate::eval::{evaluate_model, parse_model_state, parse_params};
 use crate::model_file::{
     evaluate, initial_state, load, load_any, params, select, state, Loaded, ModelFileError,
 };
@@ -73,7 +75,7 @@ struct Point {
 
 impl Point {
     fn read(args: &ModelPointArgs) -> Result<Self, ModelFileError> {
-        let models = load(&args.file)?;
+        let models = load(Path::new(&args.model))?;
         let model = select(&models, args.chart.as_deref())?;
         let params = params(model, &args.set)?;
         let state = state(model, &args.state)?;
@@ -90,6 +92,15 @@ impl Point {
 }
 
 fn eval(args: &ModelEvalArgs) -> ExitCode {
+    if let Ok(name) = ModelName::from_str(&args.point.model, true) {
+        return eval_disk(name, args);
+    }
+    if args.reference {
+        return input_error(format_args!(
+            "--reference: `{}` is not a model of the disk (rolling, sliding); a file has no hand-written reference",
+            args.point.model
+        ));
+    }
     let result = Point::read(&args.point).and_then(|point| {
         let model = point.model(&args.point)?;
         evaluate(model, args.t, &point.state, &point.params)
@@ -100,17 +111,47 @@ fn eval(args: &ModelEvalArgs) -> ExitCode {
     }
 }
 
+/// `model eval rolling|sliding|sliding-cartesian`: the compiled disk model (or with
+/// `--reference` the hand-written one) at the state, the parameters the paper's unless set.
+fn eval_disk(name: ModelName, args: &ModelEvalArgs) -> ExitCode {
+    if let Some(chart) = &args.point.chart {
+        return input_error(format_args!(
+            "--chart {chart}: the disk's charts are models of their own here (`sliding-cartesian`)"
+        ));
+    }
+    let point = &args.point;
+    let result = parse_params("--set", &point.set).and_then(|params| {
+        let y = parse_model_state(name, &point.state)?;
+        evaluate_model(backend(args.reference), name, &params, args.t, &y)
+    });
+    match result {
+        Ok(evaluation) => print_json(&evaluation),
+        Err(err) => input_error(err),
+    }
+}
+
 fn solve_file(args: &ModelSolveArgs) -> ExitCode {
+    if args.method.is_some() {
+        eprintln!("note: `--method` is deprecated: write `--integrator`");
+    }
+    if ModelName::from_str(&args.point.model, true).is_ok()
+        && !Path::new(&args.point.model).exists()
+    {
+        return input_error(format_args!(
+            "`model solve` takes a DSL file; to simulate the disk's `{}` model, run a scene (`eulerdisk run`, `[modes] allowed`)",
+            args.point.model
+        ));
+    }
     let settings = |events| SolveSettings {
         t0: args.t0,
         t_end: args.t_end,
-        method: args.method.into(),
+        method: args.integrator().into(),
         rtol: args.rtol,
         atol: args.atol,
         dt: args.dt,
         events,
     };
-    let switched = match load_any(&args.point.file) {
+    let switched = match load_any(Path::new(&args.point.model)) {
         Ok(Loaded::Switched(model)) => Some(model),
         Ok(Loaded::Smooth(_)) => None,
         Err(err) => return input_error(err),
@@ -184,7 +225,10 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         eprintln!("{note}");
     }
     eprintln!("{}", summary(&name, &trajectory, args.t0));
-    ExitCode::SUCCESS
+    match trajectory.stop {
+        Termination::EndTime => ExitCode::SUCCESS,
+        Termination::Event { .. } => ExitCode::from(EXIT_STOPPED),
+    }
 }
 
 /// Writes with `write` to the file `path` (`-`: standard output); an error names the path.
