@@ -64,6 +64,14 @@ fn untimed_table(dir: &Path) -> Vec<Vec<String>> {
     let text = fs::read_to_string(dir.join(TABLE_FILE)).unwrap();
     let mut lines = text.lines();
     let header = split_fields(lines.next().unwrap());
+    let mut names = header.clone();
+    names.sort();
+    names.dedup();
+    assert_eq!(
+        names.len(),
+        header.len(),
+        "a column named twice: {header:?}"
+    );
     let timing: Vec<usize> = header
         .iter()
         .enumerate()
@@ -393,6 +401,17 @@ values = [1.0, 100.0, 0.05]
         table.contains("r000001,\"[\"\"rolling\"\", \"\"sliding\"\"]\",100,timeout,timeout"),
         "{table}"
     );
+    // Without `keys`, every summary key is a column, but `stop_detail` only once: the row's.
+    let header = split_fields(table.lines().next().unwrap());
+    let detail: Vec<usize> = (0..header.len())
+        .filter(|&i| header[i] == "stop_detail")
+        .collect();
+    assert_eq!(detail.len(), 1, "{header:?}");
+    let timed_out = split_fields(table.lines().nth(2).unwrap());
+    assert!(
+        timed_out[detail[0]].contains("timeout_s = 0.4"),
+        "{timed_out:?}"
+    );
 }
 
 /// A sweep file with `axis` tables replaced; the key and the word its error must name.
@@ -579,4 +598,62 @@ fn shard_auto_takes_its_share_from_the_job_array() {
         .collect();
     assert_eq!(names, ["r000001.json", "r000007.json"]);
     assert!(!shard_dir.join(".scratch").exists());
+}
+
+/// `docs/check-slurm-sweep.sh` on a machine whose Slurm controller is up refuses before it
+/// touches anything: no package installed, no daemon started or stopped, no configuration
+/// written (stand-ins for the Slurm commands record any call).
+#[cfg(unix)]
+#[test]
+fn the_slurm_check_leaves_a_running_cluster_alone() {
+    use std::os::unix::fs::PermissionsExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let calls = tmp.path().join("calls");
+    let stand_in = |name: &str, body: &str| {
+        let path = tmp.path().join(name);
+        fs::write(
+            &path,
+            format!(
+                "#!/bin/sh\necho {name} \"$@\" >> '{}'\n{body}\n",
+                calls.display()
+            ),
+        )
+        .unwrap();
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o755)).unwrap();
+    };
+    stand_in(
+        "scontrol",
+        "[ \"$1\" = ping ] && echo 'Slurmctld(primary) at node is UP'",
+    );
+    for name in [
+        "apt-get",
+        "slurmctld",
+        "slurmd",
+        "munged",
+        "sbatch",
+        "runuser",
+    ] {
+        stand_in(name, "");
+    }
+    let path = format!(
+        "{}:{}",
+        tmp.path().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/check-slurm-sweep.sh");
+    let out = Command::new("bash")
+        .arg(&script)
+        .arg(BIN)
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("Slurm controller is up"), "{err}");
+    let called = fs::read_to_string(&calls).unwrap();
+    assert_eq!(
+        called.trim(),
+        "scontrol ping",
+        "only asked, nothing done: {called}"
+    );
 }
