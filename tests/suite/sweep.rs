@@ -412,6 +412,8 @@ values = [1.0, 100.0, 0.05]
         timed_out[detail[0]].contains("timeout_s = 0.4"),
         "{timed_out:?}"
     );
+    // The folder's lock is held while the sweep runs, and gone after it.
+    assert!(!out.join("sweep.lock").exists());
 }
 
 /// A sweep file with `axis` tables replaced; the key and the word its error must name.
