@@ -659,3 +659,40 @@ fn the_slurm_check_leaves_a_running_cluster_alone() {
         "only asked, nothing done: {called}"
     );
 }
+
+/// `sweep merge` brings each kept run's folder (`runs/<id>/`) along with its row.
+#[test]
+fn merge_brings_the_kept_run_folders() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = r#"
+scene = "tangent-toy-pruned"
+keep = "summary"
+[set]
+run.t_end = 0.05
+[[axis]]
+key = "friction.mu_d"
+values = [0.1, 0.115, 0.13]
+"#;
+    let plan = plan(&sweep_file(tmp.path(), text), &[]).unwrap();
+    let out = tmp.path().join("out");
+    for index in 0..2 {
+        go(&plan, &out, 1, Some(Shard { index, count: 2 }));
+    }
+    let merged = tmp.path().join("merged");
+    let (_, rows, report) = merge(std::slice::from_ref(&out), &merged).unwrap();
+    assert!(report.complete() && rows.len() == 3, "{report:?}");
+    for row in &rows {
+        let shard = Shard {
+            index: row.point % 2,
+            count: 2,
+        };
+        let kept = sweep_dir(&out, Some(shard)).join("runs").join(row.id());
+        let copied = merged.join("runs").join(row.id());
+        assert_eq!(
+            fs::read(copied.join("summary.json")).unwrap(),
+            fs::read(kept.join("summary.json")).unwrap(),
+            "{}",
+            row.id()
+        );
+    }
+}
