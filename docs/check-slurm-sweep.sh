@@ -9,6 +9,11 @@
 # Defaults: target/release/eulerdisk, the built-in `paper-friction` sweep with
 # `--set run.t_end=3` (12 short runs), 4 shards. Needs root (it installs packages and
 # starts daemons) and a Debian-like system; it does not run in CI. Exit 0: equal tables.
+#
+# Safe on a machine that has Slurm: it refuses to run beside a Slurm controller that is up
+# (exit 2, touching nothing); an existing /etc/slurm/slurm.conf is backed up and put back on
+# exit, and the daemons it started (slurmctld, slurmd, munged) are stopped on exit, whatever
+# the outcome.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 bin=$(realpath "${1:-target/release/eulerdisk}")
@@ -18,8 +23,39 @@ shift $(( $# < 3 ? $# : 3 ))
 [[ ${1:-} == -- ]] && shift
 flags=("$@")
 [[ ${#flags[@]} -eq 0 ]] && flags=(--set run.t_end=3)
+if command -v scontrol >/dev/null && scontrol ping 2>/dev/null | grep -q UP; then
+    echo "a Slurm controller is up on this machine: this check starts a one-node cluster of its" >&2
+    echo "own and would disturb it; run it where no Slurm is running" >&2
+    exit 2
+fi
 [[ -x $bin ]] || { echo "no binary at $bin: cargo build --release" >&2; exit 2; }
 [[ $(id -u) -eq 0 ]] || { echo "run as root" >&2; exit 2; }
+
+# What this script changes, undone on exit whatever the outcome: the daemons it started are
+# stopped (by their pid files), and /etc/slurm/slurm.conf is put back as it was.
+conf=/etc/slurm/slurm.conf
+backup=""
+wrote_conf=no
+started_munged=no
+started_slurm=no
+cleanup() {
+    if [[ $started_slurm == yes ]]; then
+        scontrol shutdown >/dev/null 2>&1 || true   # stops slurmctld and its slurmd
+        sleep 2
+        for pidfile in /run/slurmctld-check.pid /run/slurmd-check.pid; do
+            [[ -s $pidfile ]] && kill "$(cat "$pidfile")" 2>/dev/null || true
+        done
+    fi
+    if [[ $started_munged == yes && -s /run/munge/munged.pid ]]; then
+        kill "$(cat /run/munge/munged.pid)" 2>/dev/null || true
+    fi
+    if [[ $wrote_conf == yes && -n $backup ]]; then
+        mv -f "$backup" "$conf"
+    elif [[ $wrote_conf == yes ]]; then
+        rm -f "$conf"
+    fi
+}
+trap cleanup EXIT
 
 if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
     apt-get update -qq
@@ -32,13 +68,22 @@ if [[ ! -s /etc/munge/munge.key ]]; then
 fi
 chown munge:munge /etc/munge/munge.key && chmod 400 /etc/munge/munge.key
 mkdir -p /run/munge /var/log/munge /var/lib/munge && chown munge:munge /run/munge /var/log/munge /var/lib/munge
-pgrep -x munged >/dev/null || runuser -u munge -- /usr/sbin/munged
+if ! pgrep -x munged >/dev/null; then
+    runuser -u munge -- /usr/sbin/munged
+    started_munged=yes
+fi
 munge -n | unmunge >/dev/null
 
 # A one-node cluster: this machine, all its CPUs, no cgroups, no accounting.
 host=$(hostname -s)
 mkdir -p /etc/slurm /var/spool/slurmctld /var/spool/slurmd /var/log/slurm
-cat > /etc/slurm/slurm.conf <<CONF
+if [[ -e $conf ]]; then
+    backup=$conf.before-eulerdisk-check.$$
+    cp -p "$conf" "$backup"
+    echo "backed up $conf to $backup (put back on exit)"
+fi
+wrote_conf=yes
+cat > "$conf" <<CONF
 ClusterName=check
 SlurmctldHost=$host
 SlurmUser=root
@@ -47,6 +92,8 @@ StateSaveLocation=/var/spool/slurmctld
 SlurmdSpoolDir=/var/spool/slurmd
 SlurmctldLogFile=/var/log/slurm/slurmctld.log
 SlurmdLogFile=/var/log/slurm/slurmd.log
+SlurmctldPidFile=/run/slurmctld-check.pid
+SlurmdPidFile=/run/slurmd-check.pid
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 JobAcctGatherType=jobacct_gather/none
@@ -59,10 +106,7 @@ MaxArraySize=1001
 NodeName=$host CPUs=$(nproc) State=UNKNOWN
 PartitionName=check Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
-# A cluster left by an earlier check is stopped the way Slurm stops itself.
-if scontrol ping 2>/dev/null | grep -q UP; then
-    scontrol shutdown && sleep 2
-fi
+started_slurm=yes
 slurmctld -c
 slurmd
 for _ in $(seq 60); do

@@ -1,5 +1,17 @@
 //! What every subcommand's arguments share: the exit codes, the arguments of a run, the
-//! progress style, the Ctrl-C handler, the choice of models.
+//! integrators, the progress style, the Ctrl-C handler, the choice of models.
+//!
+//! One vocabulary for every subcommand: `--state NAME=VALUE` and `--set KEY=VALUE`
+//! (repeatable), `--integrator`, `--rtol`, `--atol`, `--t-end`, `-o/--out`, `-q/--quiet`,
+//! `-s` for `--set`, `-j/--jobs`. The exit codes:
+//!
+//! | code | meaning |
+//! |---|---|
+//! | 0 | ran to the end |
+//! | 1 | failed (a simulation error, an output that cannot be written, an incomplete merge) |
+//! | 2 | bad input (a scene, sweep or model file, a flag's value); nothing was run |
+//! | 3 | stopped early by the physics (contact lost, lying flat, a `:stop` event, ...) |
+//! | 130 | interrupted (Ctrl-C) |
 //!
 //! Kept apart from the parser (`cli.rs`), which names every subcommand's arguments, so that a
 //! subcommand's own argument module (`sound/args.rs`, `sweep/args.rs`) can use these without
@@ -10,7 +22,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 
 use crate::eval::Backend;
 use crate::run::ProgressStyle;
@@ -20,6 +32,10 @@ use crate::scene::{Override, SceneError, DEFAULT_SCENE};
 pub const EXIT_INPUT: u8 = 2;
 /// Exit code of a failed run (simulation error, output not writable, incomplete merge).
 pub const EXIT_FAILED: u8 = 1;
+/// Exit code of a run that stopped before its end time at a condition of the physics (contact
+/// lost, the disk lying flat, a mode that is not allowed, chattering, a `:stop` event): the
+/// files hold the run up to there.
+pub const EXIT_STOPPED: u8 = 3;
 /// Exit code of an interrupted run (128 + SIGINT, as shells report it).
 pub const EXIT_INTERRUPTED: u8 = 130;
 
@@ -52,6 +68,39 @@ pub fn print_json<T: serde::Serialize>(value: &T) -> std::process::ExitCode {
     }
 }
 
+/// An integrator, by the name scenes give it in `solver.integrator` (the command line offers
+/// the adaptive ones; fixed-step RK4 is for programs only).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorName {
+    /// Dormand–Prince 5(4).
+    Dopri5,
+    /// Dormand–Prince 8(5,3).
+    Dop853,
+    /// Rosenbrock 4(3), with the model's symbolic Jacobian (stiff models).
+    Rodas4,
+}
+
+impl IntegratorName {
+    /// The name as scenes write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorName::Dopri5 => "dopri5",
+            IntegratorName::Dop853 => "dop853",
+            IntegratorName::Rodas4 => "rodas4",
+        }
+    }
+}
+
+impl From<IntegratorName> for model_runtime::Method {
+    fn from(method: IntegratorName) -> Self {
+        match method {
+            IntegratorName::Dopri5 => model_runtime::Method::Dopri5,
+            IntegratorName::Dop853 => model_runtime::Method::Dop853,
+            IntegratorName::Rodas4 => model_runtime::Method::Rodas4,
+        }
+    }
+}
+
 /// `eulerdisk run`.
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {
@@ -67,18 +116,18 @@ pub struct RunArgs {
     /// Override `solver.atol`.
     #[arg(long, allow_negative_numbers = true)]
     pub atol: Option<f64>,
-    /// Override `solver.integrator` (dopri5, dop853, rodas4).
-    #[arg(long)]
-    pub integrator: Option<String>,
-    /// Output directory.
-    #[arg(long, default_value = "out")]
-    pub out: PathBuf,
+    /// Override `solver.integrator`.
+    #[arg(long, value_enum)]
+    pub integrator: Option<IntegratorName>,
+    /// Output directory (default: `out` for `run`, `out/sound` for `sound`).
+    #[arg(short, long)]
+    pub out: Option<PathBuf>,
     /// Print nothing but errors and why a run stopped early: no progress, no scene line, no
     /// summary table (summary.json is still written).
-    #[arg(long)]
+    #[arg(short, long)]
     pub quiet: bool,
     /// Override any scene key: `--set table.key=value` (repeatable).
-    #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
+    #[arg(short, long = "set", value_name = "TABLE.KEY=VALUE")]
     pub set: Vec<String>,
     /// Run the hand-written reference models instead of the generated ones.
     #[arg(long)]
@@ -89,6 +138,11 @@ pub struct RunArgs {
 }
 
 impl RunArgs {
+    /// The output directory: `--out`, else the command's own default.
+    pub fn out_dir(&self, default: &str) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| PathBuf::from(default))
+    }
+
     /// The scene overrides these arguments ask for, in order (`--set` last, so it wins).
     pub fn overrides(&self) -> Result<Vec<Override>, SceneError> {
         let mut out = Vec::new();
@@ -101,8 +155,8 @@ impl RunArgs {
         if let Some(v) = self.atol {
             out.push(Override::new("solver", "atol", v));
         }
-        if let Some(v) = &self.integrator {
-            out.push(Override::new("solver", "integrator", v.as_str()));
+        if let Some(v) = self.integrator {
+            out.push(Override::new("solver", "integrator", v.name()));
         }
         for spec in &self.set {
             out.push(Override::parse(spec)?);

@@ -1,13 +1,15 @@
 //! The command line: `eulerdisk [run [SCENE]] | eval | scenes | sound | sweep`.
 //!
 //! Flags map onto scene keys (`--rtol` is `--set solver.rtol=...`) so every value from the
-//! command line passes the same validation as the scene file.
+//! command line passes the same validation as the scene file. Every subcommand spells states,
+//! parameters, integrators and tolerances the same way (`args.rs` lists the vocabulary);
+//! defaults are written as a reader writes them (`1e-8`, not `0.00000001`).
 
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::args::RunArgs;
+use crate::args::{IntegratorName, RunArgs};
 use equations::Mode;
 
 /// Euler's disk rolling and sliding on a rough plane (Saje & Zupan's model).
@@ -51,11 +53,11 @@ pub enum ModelCommand {
         /// `model! { .. }`).
         model: String,
         /// Markdown (DSL syntax) or LaTeX.
-        #[arg(long, value_enum, default_value = "markdown")]
+        #[arg(short, long, value_enum, default_value = "markdown")]
         format: crate::model_show::Format,
     },
-    /// Evaluate a DSL file's model at one state, interpreted: derivatives and outputs by name,
-    /// as JSON.
+    /// Evaluate a model of the disk (`model eval rolling`), or a DSL file's model interpreted,
+    /// at one state: derivatives (`der(x)`) and outputs by name, as JSON.
     Eval(ModelEvalArgs),
     /// Integrate a DSL file's model, interpreted, and write `t`, the states and the outputs as
     /// CSV.
@@ -65,8 +67,9 @@ pub enum ModelCommand {
 /// The model, state and parameters of `model eval` and `model solve`.
 #[derive(Debug, Args)]
 pub struct ModelPointArgs {
-    /// The DSL file.
-    pub file: PathBuf,
+    /// A DSL file; for `model eval` also a model of the disk (`rolling`, `sliding`,
+    /// `sliding-cartesian`), as `model show` takes it.
+    pub model: String,
     /// One of the model's charts instead of the model itself.
     #[arg(long)]
     pub chart: Option<String>,
@@ -74,11 +77,16 @@ pub struct ModelPointArgs {
     #[arg(long = "state", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub state: Vec<String>,
     /// A parameter value, `NAME=VALUE` (repeatable; the others keep the file's defaults).
-    #[arg(long = "set", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    #[arg(
+        short,
+        long = "set",
+        value_name = "NAME=VALUE",
+        allow_hyphen_values = true
+    )]
     pub set: Vec<String>,
 }
 
-/// `eulerdisk model eval FILE`.
+/// `eulerdisk model eval NAME|FILE`.
 #[derive(Debug, Args)]
 pub struct ModelEvalArgs {
     /// The model and the point.
@@ -87,27 +95,9 @@ pub struct ModelEvalArgs {
     /// The time.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub t: f64,
-}
-
-/// An integration method of `model solve`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum MethodName {
-    /// Dormand–Prince 5(4).
-    Dopri5,
-    /// Dormand–Prince 8(5,3).
-    Dop853,
-    /// Rosenbrock 4(3), with the model's symbolic Jacobian (stiff models).
-    Rodas4,
-}
-
-impl From<MethodName> for model_runtime::Method {
-    fn from(method: MethodName) -> Self {
-        match method {
-            MethodName::Dopri5 => model_runtime::Method::Dopri5,
-            MethodName::Dop853 => model_runtime::Method::Dop853,
-            MethodName::Rodas4 => model_runtime::Method::Rodas4,
-        }
-    }
+    /// For a model of the disk: the hand-written reference instead of the generated model.
+    #[arg(long)]
+    pub reference: bool,
 }
 
 /// `eulerdisk model solve FILE`.
@@ -122,20 +112,23 @@ pub struct ModelSolveArgs {
     /// End time.
     #[arg(long, allow_negative_numbers = true)]
     pub t_end: f64,
-    /// The integration method.
+    /// The integrator.
     #[arg(long, value_enum, default_value = "dop853")]
-    pub method: MethodName,
+    pub integrator: IntegratorName,
+    /// Deprecated spelling of `--integrator`.
+    #[arg(long, value_enum, hide = true)]
+    pub method: Option<IntegratorName>,
     /// Relative tolerance.
-    #[arg(long, default_value_t = 1e-8, allow_negative_numbers = true)]
+    #[arg(long, default_value = "1e-8", allow_negative_numbers = true)]
     pub rtol: f64,
     /// Absolute tolerance.
-    #[arg(long, default_value_t = 1e-10, allow_negative_numbers = true)]
+    #[arg(long, default_value = "1e-10", allow_negative_numbers = true)]
     pub atol: f64,
     /// Record every DT (and at the end time) instead of at every step.
     #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// The CSV file (`-`: standard output).
-    #[arg(long, default_value = "-")]
+    #[arg(short, long, default_value = "-")]
     pub out: PathBuf,
     /// An event, `NAME[:up|:down][:stop]` (repeatable): located where the state or output
     /// NAME crosses zero (upwards, downwards, or both by default); `:stop` ends the run there.
@@ -147,6 +140,13 @@ pub struct ModelSolveArgs {
     /// standard output); without it, each event is said on standard error.
     #[arg(long, value_name = "PATH")]
     pub events: Option<PathBuf>,
+}
+
+impl ModelSolveArgs {
+    /// The integrator asked for: `--integrator`, or the deprecated `--method` when given.
+    pub fn integrator(&self) -> IntegratorName {
+        self.method.unwrap_or(self.integrator)
+    }
 }
 
 /// A mode on the command line.
@@ -176,10 +176,19 @@ pub struct EvalArgs {
     /// Use the hand-written reference instead of the generated models.
     #[arg(long)]
     pub reference: bool,
-    /// The state as a JSON object by the paper's names (missing entries are 0).
-    #[arg(long)]
-    pub state: Option<String>,
-    /// Parameters as a JSON object (m, a, g, mu_d, mu_st, mu_a, w_z; missing: the paper's).
-    #[arg(long)]
+    /// A state value by the paper's name, `NAME=VALUE` (repeatable; missing entries are 0).
+    #[arg(long = "state", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub state: Vec<String>,
+    /// A parameter, `NAME=VALUE` (repeatable; m, a, g, mu_d, mu_st, mu_a, w_z; the others
+    /// keep the paper's values).
+    #[arg(
+        short,
+        long = "set",
+        value_name = "NAME=VALUE",
+        allow_hyphen_values = true
+    )]
+    pub set: Vec<String>,
+    /// Deprecated: the parameters as a JSON object (write `--set NAME=VALUE`).
+    #[arg(long, hide = true)]
     pub params: Option<String>,
 }

@@ -1,18 +1,18 @@
-//! `eulerdisk eval`: one evaluation of a model at a state, printed as JSON.
+//! `eulerdisk eval` and `eulerdisk model eval rolling|sliding|sliding-cartesian`: one
+//! evaluation of a disk model at a state, printed as JSON.
 //!
 //! This is the shortest path from a state to the equations, for checking a model by hand or
-//! from another program: derivatives and outputs are keyed by the paper's names and printed
-//! so they parse back to the same bits. Which implementation answers (generated or the
+//! from another program: derivatives (`der(theta)`, as `model eval` of a DSL file names
+//! them) and outputs are keyed by the paper's names and printed so they parse back to the same bits. Which implementation answers (generated or the
 //! hand-written reference) is decided in [`evaluate`] only.
-
-use std::collections::BTreeMap;
 
 use equations::{models, reference};
 use equations::{DiskParams, ParamError};
 use model_interpreted::NamedValues;
-use model_runtime::{EvalError, WithOutputs};
+use model_runtime::{EvalError, Readable, WithOutputs};
 
-use crate::named_numbers::{parse_named_numbers, NamedNumbersError};
+use crate::model_show::ModelName;
+use crate::named_numbers::{parse_assignments, NamedNumbersError};
 use equations::Mode;
 
 /// Number of states of every disk model.
@@ -30,11 +30,11 @@ pub enum Backend {
 /// Why an evaluation failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EvalCommandError {
-    /// `--state` or `--params` is malformed.
+    /// `--state` or `--set` is malformed.
     #[error(transparent)]
     Input(#[from] NamedNumbersError),
     /// A parameter breaks a rule.
-    #[error("--params: key `{key}`: {source}")]
+    #[error("--set: key `{key}`: {source}")]
     Param {
         /// The parameter's name.
         key: &'static str,
@@ -42,7 +42,7 @@ pub enum EvalCommandError {
         source: ParamError,
     },
     /// The model is singular at the state.
-    #[error("--state: the {mode} equations are singular here (key `{key}` = {value}): {source}")]
+    #[error("--state: the {mode} equations are singular here (key `{key}` = {}): {source}", Readable(*value))]
     Singular {
         /// The mode evaluated.
         mode: Mode,
@@ -53,6 +53,11 @@ pub enum EvalCommandError {
         /// The model's error.
         source: EvalError,
     },
+    /// The hand-written reference has no model in Cartesian slip components.
+    #[error(
+        "--reference: the hand-written reference has no `sliding-cartesian` model (use `sliding`)"
+    )]
+    NoReference,
     /// A derivative or output is not finite at the state.
     #[error("--state: {mode}: `{quantity}` is not finite ({value}) at this state")]
     NonFinite {
@@ -73,6 +78,7 @@ impl EvalCommandError {
             EvalCommandError::Param { key, .. } => Some(key),
             EvalCommandError::Singular { key, .. } => Some(key),
             EvalCommandError::NonFinite { quantity, .. } => Some(quantity),
+            EvalCommandError::NoReference => None,
         }
     }
 }
@@ -84,35 +90,43 @@ pub struct Evaluation {
     pub mode: Mode,
     /// The model that answered (its name in the DSL or the reference).
     pub model: &'static str,
-    /// `d(name)/dt` for every state, keyed by the state's name.
+    /// `der(name)` for every state, keyed `der(name)` as `model eval` and the DSL write it.
     pub derivatives: NamedValues,
     /// Every output of the model, keyed by name.
     pub outputs: NamedValues,
 }
 
-/// The state names of a mode, in the models' index order.
-pub fn state_names(mode: Mode) -> &'static [&'static str; N] {
-    match mode {
-        Mode::Rolling => &models::rolling::STATE_NAMES,
-        Mode::Sliding => &models::sliding::STATE_NAMES,
+/// The state names of a disk model, in the models' index order.
+pub fn model_state_names(model: ModelName) -> &'static [&'static str; N] {
+    match model {
+        ModelName::Rolling => &models::rolling::STATE_NAMES,
+        ModelName::Sliding => &models::sliding::STATE_NAMES,
+        ModelName::SlidingCartesian => &models::sliding_cartesian::STATE_NAMES,
     }
 }
 
-/// Parses `--params` (missing entries take the paper's values) and validates the result.
-pub fn parse_params(text: Option<&str>) -> Result<DiskParams, EvalCommandError> {
+/// The model `eval --mode` evaluates for a mode.
+fn model_of(mode: Mode) -> ModelName {
+    match mode {
+        Mode::Rolling => ModelName::Rolling,
+        Mode::Sliding => ModelName::Sliding,
+    }
+}
+
+/// Parses the parameters (`NAME=VALUE` items; missing ones take the paper's values) and
+/// validates the result. `what` names the flag in errors (`--set`).
+pub fn parse_params(what: &str, items: &[String]) -> Result<DiskParams, EvalCommandError> {
     let mut p = DiskParams::paper();
-    if let Some(text) = text {
-        for (k, v) in parse_named_numbers("--params", text, &DiskParams::NAMES)? {
-            match k.as_str() {
-                "m" => p.m = v,
-                "a" => p.a = v,
-                "g" => p.g = v,
-                "mu_d" => p.mu_d = v,
-                "mu_st" => p.mu_st = v,
-                "mu_a" => p.mu_a = v,
-                "w_z" => p.w_z = v,
-                _ => unreachable!("parse_named_numbers admits only DiskParams::NAMES"),
-            }
+    for (k, v) in parse_assignments(what, items, &DiskParams::NAMES)? {
+        match k.as_str() {
+            "m" => p.m = v,
+            "a" => p.a = v,
+            "g" => p.g = v,
+            "mu_d" => p.mu_d = v,
+            "mu_st" => p.mu_st = v,
+            "mu_a" => p.mu_a = v,
+            "w_z" => p.w_z = v,
+            _ => unreachable!("parse_assignments admits only DiskParams::NAMES"),
         }
     }
     p.validate().map_err(param_error)?;
@@ -131,13 +145,16 @@ fn param_error(source: ParamError) -> EvalCommandError {
     EvalCommandError::Param { key, source }
 }
 
-/// Parses `--state` for `mode` (missing entries are 0) into the model's state array.
-pub fn parse_state(mode: Mode, text: Option<&str>) -> Result<[f64; N], EvalCommandError> {
-    let names = state_names(mode);
-    let given: BTreeMap<String, f64> = match text {
-        Some(text) => parse_named_numbers("--state", text, names)?,
-        None => BTreeMap::new(),
-    };
+/// Parses `--state` items (`NAME=VALUE`) for `mode` (missing entries are 0) into the model's
+/// state array.
+pub fn parse_state(mode: Mode, items: &[String]) -> Result<[f64; N], EvalCommandError> {
+    parse_model_state(model_of(mode), items)
+}
+
+/// [`parse_state`] for any disk model, the Cartesian slip chart included.
+pub fn parse_model_state(model: ModelName, items: &[String]) -> Result<[f64; N], EvalCommandError> {
+    let names = model_state_names(model);
+    let given = parse_assignments("--state", items, names)?;
     Ok(std::array::from_fn(|i| {
         given.get(names[i]).copied().unwrap_or(0.0)
     }))
@@ -151,63 +168,84 @@ pub fn evaluate(
     params: &DiskParams,
     y: &[f64; N],
 ) -> Result<Evaluation, EvalCommandError> {
+    evaluate_model(backend, model_of(mode), params, 0.0, y)
+}
+
+/// Evaluates a disk model (`model eval rolling`) at `(t, y)`. The hand-written reference has
+/// no Cartesian slip chart: asking for it is an input error.
+pub fn evaluate_model(
+    backend: Backend,
+    model: ModelName,
+    params: &DiskParams,
+    t: f64,
+    y: &[f64; N],
+) -> Result<Evaluation, EvalCommandError> {
     let p = *params;
-    match (backend, mode) {
-        (Backend::Generated, Mode::Rolling) => {
-            run(mode, &models::rolling::Model::new(p.to_array()), y)
+    let (rolling, sliding) = (Mode::Rolling, Mode::Sliding);
+    match (backend, model) {
+        (Backend::Generated, ModelName::Rolling) => {
+            run(rolling, &models::rolling::Model::new(p.to_array()), t, y)
         }
-        (Backend::Generated, Mode::Sliding) => {
-            run(mode, &models::sliding::Model::new(p.to_array()), y)
+        (Backend::Generated, ModelName::Sliding) => {
+            run(sliding, &models::sliding::Model::new(p.to_array()), t, y)
         }
-        (Backend::Reference, Mode::Rolling) => run(
-            mode,
+        (Backend::Generated, ModelName::SlidingCartesian) => run(
+            sliding,
+            &models::sliding_cartesian::Model::new(p.to_array()),
+            t,
+            y,
+        ),
+        (Backend::Reference, ModelName::Rolling) => run(
+            rolling,
             &reference::RollingReference::new(p).map_err(param_error)?,
+            t,
             y,
         ),
-        (Backend::Reference, Mode::Sliding) => run(
-            mode,
+        (Backend::Reference, ModelName::Sliding) => run(
+            sliding,
             &reference::SlidingPolarReference::new(p).map_err(param_error)?,
+            t,
             y,
         ),
+        (Backend::Reference, ModelName::SlidingCartesian) => Err(EvalCommandError::NoReference),
     }
 }
 
 fn run<M: WithOutputs<N, K>, const K: usize>(
     mode: Mode,
     model: &M,
+    t: f64,
     y: &[f64; N],
 ) -> Result<Evaluation, EvalCommandError> {
     let info = model.info();
     let fail = |e: EvalError| to_command_error(mode, info.state_names, y, e);
     let mut dy = [0.0; N];
-    model.rhs(0.0, y, &mut dy).map_err(fail)?;
+    model.rhs(t, y, &mut dy).map_err(fail)?;
     let mut out = [0.0; K];
-    model.outputs(0.0, y, &dy, &mut out).map_err(fail)?;
-    let derivatives: Vec<_> = info.state_names.iter().copied().zip(dy).collect();
-    let outputs: Vec<_> = info.output_names.iter().copied().zip(out).collect();
+    model.outputs(t, y, &dy, &mut out).map_err(fail)?;
+    let derivatives: Vec<_> = (info.state_names.iter().map(|n| format!("der({n})")))
+        .zip(dy)
+        .collect();
+    let outputs: Vec<_> = (info.output_names.iter().map(|n| n.to_string()))
+        .zip(out)
+        .collect();
     if let Some((name, value)) = derivatives
         .iter()
-        .map(|(n, v)| (format!("der({n})"), *v))
-        .chain(outputs.iter().map(|(n, v)| (n.to_string(), *v)))
+        .chain(&outputs)
         .find(|(_, v)| !v.is_finite())
     {
         return Err(EvalCommandError::NonFinite {
             mode,
-            quantity: name,
-            value,
+            quantity: name.clone(),
+            value: *value,
         });
     }
     Ok(Evaluation {
         mode,
         model: info.name,
-        derivatives: named(&derivatives),
-        outputs: named(&outputs),
+        derivatives: NamedValues(derivatives),
+        outputs: NamedValues(outputs),
     })
-}
-
-/// The model's names with their values, owned.
-fn named(values: &[(&str, f64)]) -> NamedValues {
-    NamedValues(values.iter().map(|&(n, v)| (n.to_string(), v)).collect())
 }
 
 /// Names the state key behind a model error: the state named in the pivot (`sin(theta)` ->
@@ -277,12 +315,13 @@ mod tests {
     #[test]
     fn generated_and_reference_agree_at_the_papers_start() {
         let theta0 = std::f64::consts::FRAC_PI_2 - 1.0;
-        let text = format!(
-            r#"{{"theta": {theta0}, "Omega_x": 1.0, "Z": {}}}"#,
-            0.03755 * theta0.sin()
-        );
-        let y = parse_state(Mode::Rolling, Some(&text)).unwrap();
-        let p = parse_params(None).unwrap();
+        let items = [
+            format!("theta={theta0}"),
+            "Omega_x=1".to_string(),
+            format!("Z={}", 0.03755 * theta0.sin()),
+        ];
+        let y = parse_state(Mode::Rolling, &items).unwrap();
+        let p = parse_params("--set", &[]).unwrap();
         let g = evaluate(Backend::Generated, Mode::Rolling, &p, &y).unwrap();
         let r = evaluate(Backend::Reference, Mode::Rolling, &p, &y).unwrap();
         for (a, b) in g.derivatives.0.iter().zip(&r.derivatives.0) {
@@ -296,14 +335,16 @@ mod tests {
 
     #[test]
     fn flat_disk_is_singular_and_names_theta() {
-        let p = parse_params(None).unwrap();
+        let p = parse_params("--set", &[]).unwrap();
         for backend in [Backend::Generated, Backend::Reference] {
             for mode in [Mode::Rolling, Mode::Sliding] {
-                let y = parse_state(
-                    mode,
-                    Some(r#"{"v_C": 0.1}"#).filter(|_| mode == Mode::Sliding),
-                )
-                .unwrap();
+                let slip = ["v_C=0.1".to_string()];
+                let items = if mode == Mode::Sliding {
+                    &slip[..]
+                } else {
+                    &[]
+                };
+                let y = parse_state(mode, items).unwrap();
                 let err = evaluate(backend, mode, &p, &y).unwrap_err();
                 assert_eq!(err.key(), Some("theta"), "{backend:?} {mode}: {err}");
             }

@@ -80,15 +80,15 @@ mod sweep;
 
 // The command line: the parsed arguments, the exit codes, the pieces every command shares.
 pub use args::{
-    backend, interrupt_on_ctrl_c, print_json, print_out, progress_style, RunArgs, EXIT_FAILED,
-    EXIT_INPUT, EXIT_INTERRUPTED,
+    backend, interrupt_on_ctrl_c, print_json, print_out, progress_style, IntegratorName, RunArgs,
+    EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED, EXIT_STOPPED,
 };
 pub use cli::{Cli, Command, EvalArgs};
 
 // Scenes: loading, parsing and overriding a scene file.
 pub use scene::{
     load as load_scene, parse as parse_scene, CliTables, OutputTable, Override, Scene, SceneError,
-    SceneFile, BUILTIN as BUILTIN_SCENES, DEFAULT_SCENE, MAX_LISTED_ISSUES,
+    SceneFile, BUILTIN as BUILTIN_SCENES, DEFAULT_SCENE, MAX_LISTED_ISSUES, REQUIRED_KEYS,
 };
 
 // Running a scene: options, report, the model chosen, one simulation and what it keeps.
@@ -144,8 +144,11 @@ pub use model_file::{
 pub use model_show::Format as ModelFormat;
 
 // Evaluation: the right-hand side at one state, and the parsers of its arguments.
-pub use eval::{evaluate, parse_params, parse_state, Backend, EvalCommandError};
-pub use named_numbers::parse_named_numbers;
+pub use eval::{
+    evaluate, evaluate_model, parse_model_state, parse_params, parse_state, Backend,
+    EvalCommandError,
+};
+pub use named_numbers::{is_json_object, parse_assignments, parse_named_numbers};
 
 // Reading the outputs: the events table's header and one CSV line's fields.
 pub use output::tables::{split_fields, EVENTS_HEADER};

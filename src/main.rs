@@ -3,18 +3,20 @@
 use std::process::ExitCode;
 
 use clap::Parser;
+use eulerdisk::is_json_object;
 use eulerdisk::{
     backend, evaluate, interrupt_on_ctrl_c, load_scene, parse_params, parse_scene, parse_state,
     print_json, print_out, progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance,
     RunArgs, RunOptions, BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    EXIT_STOPPED,
 };
+use model_runtime::Readable;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         None => run(RunArgs {
             scene: DEFAULT_SCENE.to_string(),
-            out: "out".into(),
             ..RunArgs::default()
         }),
         Some(Command::Run(args)) => run(args),
@@ -39,8 +41,16 @@ fn main() -> ExitCode {
 
 fn eval(args: &EvalArgs) -> ExitCode {
     let mode = args.mode.into();
-    let result = parse_params(args.params.as_deref()).and_then(|p| {
-        let y = parse_state(mode, args.state.as_deref())?;
+    if args.state.iter().any(|item| is_json_object(item)) {
+        eprintln!("note: `--state` as a JSON object is deprecated: write `--state NAME=VALUE` (repeatable)");
+    }
+    let mut set = args.set.clone();
+    if let Some(params) = &args.params {
+        eprintln!("note: `--params` is deprecated: write `--set NAME=VALUE` (repeatable)");
+        set.push(params.clone());
+    }
+    let result = parse_params("--set", &set).and_then(|p| {
+        let y = parse_state(mode, &args.state)?;
         evaluate(backend(args.reference), mode, &p, &y)
     });
     match result {
@@ -66,8 +76,9 @@ fn run(args: RunArgs) -> ExitCode {
     };
     let interrupt = interrupt_on_ctrl_c("writing what is complete");
     let progress = progress_style(args.quiet);
+    let out = args.out_dir("out");
     let opts = RunOptions {
-        out_dir: args.out.clone(),
+        out_dir: out.clone(),
         progress,
         backend: backend(args.reference),
         figures: !args.no_figures,
@@ -76,13 +87,13 @@ fn run(args: RunArgs) -> ExitCode {
     };
     if !args.quiet {
         eprintln!(
-            "scene `{}`: t_end {} s, {} rtol {:e} atol {:e}, output in {}",
+            "scene `{}`: t_end {} s, {} rtol {} atol {}, output in {}",
             scene.name,
-            scene.file.settings.run.t_end,
+            Readable(scene.file.settings.run.t_end),
             scene.config.integrator.name(),
-            scene.file.settings.solver.rtol,
-            scene.file.settings.solver.atol,
-            args.out.display()
+            Readable(scene.file.settings.solver.rtol),
+            Readable(scene.file.settings.solver.atol),
+            out.display()
         );
         let choice = eulerdisk::choose(&scene, opts.backend, opts.figures);
         eprintln!("model: {}: {}", choice.model.label(), choice.reason);
@@ -94,7 +105,7 @@ fn run(args: RunArgs) -> ExitCode {
                     "{}wrote {} files into {}\n",
                     report.summary.table(),
                     report.files.len(),
-                    args.out.display()
+                    out.display()
                 );
                 if let Err(code) = print_out(&said) {
                     return code;
@@ -102,26 +113,30 @@ fn run(args: RunArgs) -> ExitCode {
             }
             let s = &report.summary;
             match report.ending {
-                Ending::Completed => {
-                    if s.stop_reason != "end_time" {
-                        eprintln!(
-                            "stopped early at t = {} s of {} s ({}): {}",
-                            s.t_end, scene.file.settings.run.t_end, s.stop_reason, s.stop_detail
-                        );
-                    }
-                    ExitCode::SUCCESS
+                Ending::Completed if s.stop_reason != "end_time" => {
+                    eprintln!(
+                        "stopped early at t = {} s of {} s ({}): {}",
+                        Readable(s.t_end),
+                        Readable(scene.file.settings.run.t_end),
+                        s.stop_reason,
+                        s.stop_detail
+                    );
+                    ExitCode::from(EXIT_STOPPED)
                 }
+                Ending::Completed => ExitCode::SUCCESS,
                 Ending::Interrupted => {
                     eprintln!(
                         "interrupted at t = {} s: the files hold the run up to then",
-                        s.t_end
+                        Readable(s.t_end)
                     );
                     ExitCode::from(EXIT_INTERRUPTED)
                 }
                 Ending::Failed => {
                     eprintln!(
                         "the run failed at t = {} s ({}): {}\nthe files hold the run up to then",
-                        s.t_end, s.stop_reason, s.stop_detail
+                        Readable(s.t_end),
+                        s.stop_reason,
+                        s.stop_detail
                     );
                     ExitCode::from(EXIT_FAILED)
                 }

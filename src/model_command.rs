@@ -1,20 +1,22 @@
 //! `eulerdisk model ...`: the dispatch of the model subcommands, with their exit codes.
 //!
-//! `show` takes a disk model's name or a DSL file; `eval` and `solve` take a file. A mistake
+//! `show` and `eval` take a disk model's name or a DSL file; `solve` takes a file. A mistake
 //! in the file, an unknown name in `--state`/`--set`, a malformed `--event` or a state where
 //! the model is singular is an input error (exit 2), and so is an unusable setting of `solve`
 //! (an empty time span, a sampling step or tolerance that is not positive, too many states);
-//! a failed integration or an unwritable output is a failure (exit 1).
+//! a failed integration or an unwritable output is a failure (exit 1), and a run that a
+//! `:stop` event ended before `--t-end` exits with 3, as a scene stopped by its physics does.
 
-use crate::args::{print_json, print_out, EXIT_FAILED, EXIT_INPUT};
+use crate::args::{backend, print_json, print_out, EXIT_FAILED, EXIT_INPUT, EXIT_STOPPED};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
+use crate::eval::{evaluate_model, parse_model_state, parse_params};
 use crate::model_csv::{write_csv, write_events_csv};
 use crate::model_file::{event_spec, named, value_error, Arguments, ModelFileError};
 use crate::model_show::{Format, ModelName};
 use clap::ValueEnum;
 use model_interpreted::{
     evaluate, initial_state, params, solve, ModelFile, ModelRef, PointValues, Solution,
-    SolveRequest,
+    SolveRequest, Stop,
 };
 use std::io::Write;
 use std::path::Path;
@@ -65,7 +67,7 @@ fn show(model: &str, format: Format) -> ExitCode {
 /// `model eval`: the derivatives and outputs at the point the arguments give.
 fn point(args: &ModelEvalArgs) -> Result<PointValues, ModelFileError> {
     let point = &args.point;
-    let file = ModelFile::read(&point.file)?;
+    let file = ModelFile::read(Path::new(&point.model))?;
     let model = file.smooth(point.chart.as_deref())?;
     let params = params(ModelRef::Smooth(model), &named("--set", &point.set)?)
         .map_err(|e| value_error("--set", &point.set, e))?;
@@ -75,7 +77,35 @@ fn point(args: &ModelEvalArgs) -> Result<PointValues, ModelFileError> {
 }
 
 fn eval(args: &ModelEvalArgs) -> ExitCode {
+    if let Ok(name) = ModelName::from_str(&args.point.model, true) {
+        return eval_disk(name, args);
+    }
+    if args.reference {
+        return input_error(format_args!(
+            "--reference: `{}` is not a model of the disk (rolling, sliding); a file has no hand-written reference",
+            args.point.model
+        ));
+    }
     match point(args) {
+        Ok(evaluation) => print_json(&evaluation),
+        Err(err) => input_error(err),
+    }
+}
+
+/// `model eval rolling|sliding|sliding-cartesian`: the compiled disk model (or with
+/// `--reference` the hand-written one) at the state, the parameters the paper's unless set.
+fn eval_disk(name: ModelName, args: &ModelEvalArgs) -> ExitCode {
+    if let Some(chart) = &args.point.chart {
+        return input_error(format_args!(
+            "--chart {chart}: the disk's charts are models of their own here (`sliding-cartesian`)"
+        ));
+    }
+    let point = &args.point;
+    let result = parse_params("--set", &point.set).and_then(|params| {
+        let y = parse_model_state(name, &point.state)?;
+        evaluate_model(backend(args.reference), name, &params, args.t, &y)
+    });
+    match result {
         Ok(evaluation) => print_json(&evaluation),
         Err(err) => input_error(err),
     }
@@ -87,7 +117,7 @@ fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
     Ok(SolveRequest {
         t0: args.t0,
         t_end: args.t_end,
-        method: args.method.into(),
+        method: args.integrator().into(),
         rtol: args.rtol,
         atol: args.atol,
         dt: args.dt,
@@ -101,7 +131,7 @@ fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
 
 /// `model solve`: the file's model solved as the arguments say.
 fn solved(args: &ModelSolveArgs) -> Result<Solution, ModelFileError> {
-    let file = ModelFile::read(&args.point.file)?;
+    let file = ModelFile::read(Path::new(&args.point.model))?;
     let model = file.model(args.point.chart.as_deref())?;
     let arguments = Arguments {
         set: &args.point.set,
@@ -112,6 +142,17 @@ fn solved(args: &ModelSolveArgs) -> Result<Solution, ModelFileError> {
 }
 
 fn solve_file(args: &ModelSolveArgs) -> ExitCode {
+    if args.method.is_some() {
+        eprintln!("note: `--method` is deprecated: write `--integrator`");
+    }
+    if ModelName::from_str(&args.point.model, true).is_ok()
+        && !Path::new(&args.point.model).exists()
+    {
+        return input_error(format_args!(
+            "`model solve` takes a DSL file; to simulate the disk's `{}` model, run a scene (`eulerdisk run`, `[modes] allowed`)",
+            args.point.model
+        ));
+    }
     let solution = match solved(args) {
         Ok(solution) => solution,
         Err(err) if err.is_input() => return input_error(err),
@@ -140,7 +181,10 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         eprintln!("{accumulation}");
     }
     eprintln!("{}", summary(&solution, args.t0));
-    ExitCode::SUCCESS
+    match solution.stop {
+        Stop::EndTime => ExitCode::SUCCESS,
+        Stop::Event { .. } => ExitCode::from(EXIT_STOPPED),
+    }
 }
 
 /// Writes with `write` to the file `path` (`-`: standard output); an error names the path.

@@ -1,6 +1,10 @@
-//! A JSON object of named numbers, read so that every rejection names the key.
+//! Named numbers on the command line, read so that every rejection names the key.
 //!
-//! `eval --state '{"theta": 0.5}'` and `--params` take such objects. Parsing straight into
+//! Every subcommand takes states and parameters the same way, as repeated `NAME=VALUE` items
+//! (`--state theta=0.5 --set m=1`, [`parse_assignments`]). `eval` once took a JSON object
+//! (`--state '{"theta": 0.5}'`); an item that is such an object is still read, item by item
+//! under the same rules, so old scripts keep working ([`is_json_object`] lets the command
+//! say the spelling is deprecated). Parsing straight into
 //! `HashMap<String, f64>` would lose the key on a bad value (serde reports a column, not a
 //! name), silently keep the last of two duplicate keys, and turn `1e400` into a bare range
 //! error. Here each value is kept raw until its key is known, then parsed on its own.
@@ -50,6 +54,9 @@ pub enum NamedNumbersError {
         /// The value as written (shortened).
         found: String,
     },
+    /// An item is neither `NAME=VALUE` nor a JSON object.
+    #[error(transparent)]
+    NotAnAssignment(#[from] NotAnAssignment),
     /// A value is a number too large for `f64`.
     #[error("{what}: key `{key}` = {found} is not a finite number")]
     NotFinite {
@@ -62,11 +69,21 @@ pub enum NamedNumbersError {
     },
 }
 
+/// An item that is neither `NAME=VALUE` nor a JSON object.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{what} `{text}`: expected NAME=VALUE")]
+pub struct NotAnAssignment {
+    /// Which argument.
+    pub what: String,
+    /// The item as given.
+    pub text: String,
+}
+
 impl NamedNumbersError {
     /// The key this error is about, if it is about one.
     pub fn key(&self) -> Option<&str> {
         match self {
-            NamedNumbersError::NotAnObject { .. } => None,
+            NamedNumbersError::NotAnObject { .. } | NamedNumbersError::NotAnAssignment(_) => None,
             NamedNumbersError::Duplicate { key, .. }
             | NamedNumbersError::UnknownKey { key, .. }
             | NamedNumbersError::NotANumber { key, .. }
@@ -102,6 +119,71 @@ pub fn parse_named_numbers(
         out.insert(key, value);
     }
     Ok(out)
+}
+
+/// Whether a `--state`/`--set` item is written as a JSON object (the old spelling of `eval`).
+pub fn is_json_object(item: &str) -> bool {
+    item.trim_start().starts_with('{')
+}
+
+/// Parses repeated `NAME=VALUE` items (or JSON objects, the old spelling) whose names are
+/// among `allowed` and whose values are finite numbers; a name given twice, in one item or
+/// across items, is an error. `what` names the flag in error messages.
+pub fn parse_assignments(
+    what: &str,
+    items: &[String],
+    allowed: &[&str],
+) -> Result<BTreeMap<String, f64>, NamedNumbersError> {
+    let mut out = BTreeMap::new();
+    for item in items {
+        let entries: Vec<(String, f64)> = if is_json_object(item) {
+            parse_named_numbers(what, item, allowed)?
+                .into_iter()
+                .collect()
+        } else {
+            let (key, raw) = item.split_once('=').ok_or_else(|| NotAnAssignment {
+                what: what.to_string(),
+                text: item.clone(),
+            })?;
+            let key = key.trim().to_string();
+            if !allowed.contains(&key.as_str()) {
+                return Err(NamedNumbersError::UnknownKey {
+                    what: what.to_string(),
+                    key,
+                    expected: allowed.join(", "),
+                });
+            }
+            let value = parse_plain_number(what, &key, raw)?;
+            vec![(key, value)]
+        };
+        for (key, value) in entries {
+            if out.insert(key.clone(), value).is_some() {
+                return Err(NamedNumbersError::Duplicate {
+                    what: what.to_string(),
+                    key,
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// A number as Rust reads it (`.5`, `1e-3`, `-2`); NaN and infinities are not finite.
+fn parse_plain_number(what: &str, key: &str, raw: &str) -> Result<f64, NamedNumbersError> {
+    let raw = raw.trim();
+    match raw.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(NamedNumbersError::NotFinite {
+            what: what.to_string(),
+            key: key.to_string(),
+            found: shorten(raw),
+        }),
+        Err(_) => Err(NamedNumbersError::NotANumber {
+            what: what.to_string(),
+            key: key.to_string(),
+            found: shorten(raw),
+        }),
+    }
 }
 
 fn shorten(text: &str) -> String {
@@ -214,6 +296,37 @@ mod tests {
             let err = parse(text).unwrap_err();
             assert_eq!(err.key(), Some(key), "{text}: {err}");
             assert!(err.to_string().contains(key), "{err}");
+        }
+    }
+
+    fn assign(items: &[&str]) -> Result<BTreeMap<String, f64>, NamedNumbersError> {
+        let items: Vec<String> = items.iter().map(|s| s.to_string()).collect();
+        parse_assignments("--state", &items, NAMES)
+    }
+
+    #[test]
+    fn assignments_and_the_old_json_spelling_agree() {
+        let new = assign(&["theta=0.57079632679489656", "Omega_x = -1e-3"]).unwrap();
+        let old = assign(&[r#"{"theta": 0.57079632679489656, "Omega_x": -1e-3}"#]).unwrap();
+        assert_eq!(new, old);
+        assert_eq!(new["theta"], std::f64::consts::FRAC_PI_2 - 1.0);
+        assert!(assign(&[]).unwrap().is_empty());
+    }
+
+    #[test]
+    fn assignment_rejections_name_the_key() {
+        let cases = [
+            (&["theta=x"][..], Some("theta")),
+            (&["theta=1e400"][..], Some("theta")),
+            (&["theta=nan"][..], Some("theta")),
+            (&["thet=1"][..], Some("thet")),
+            (&["theta=1", r#"{"theta": 2}"#][..], Some("theta")),
+            (&["theta"][..], None),
+        ];
+        for (items, key) in cases {
+            let err = assign(items).unwrap_err();
+            assert_eq!(err.key(), key, "{items:?}: {err}");
+            assert!(err.to_string().contains("--state"), "{err}");
         }
     }
 

@@ -184,7 +184,13 @@ impl fmt::Display for Issue {
                 open,
             } => {
                 let (l, r) = if *open { ('(', ')') } else { ('[', ']') };
-                write!(f, "must lie in {l}{min:e}, {max:e}{r}, got {value:e}")
+                write!(
+                    f,
+                    "must lie in {l}{}, {}{r}, got {}",
+                    number(*min),
+                    number(*max),
+                    number(*value)
+                )
             }
             Rule::BelowOther {
                 value,

@@ -7,6 +7,7 @@
 //! A leaf of the crate: every other module reports through these types, and they depend on
 //! nothing else in it (a model's own failure, [`EvalError`], lives here for that reason).
 
+use crate::readable::Readable;
 use std::fmt;
 
 /// Why a model could not be evaluated at a state.
@@ -62,7 +63,8 @@ impl fmt::Display for EvalError {
                 value,
             } => write!(
                 f,
-                "model `{model}` is singular here: pivot `{pivot}` = {value:e}"
+                "model `{model}` is singular here: pivot `{pivot}` = {value}",
+                value = Readable(*value)
             ),
             EvalError::NonFinite {
                 model,
@@ -263,8 +265,11 @@ impl fmt::Display for SolveError {
                 error_norm,
             } => write!(
                 f,
-                "step size collapsed at t = {t}: h = {h:e} (minimum {h_min:e}), \
-                 largest error in component {component} (scaled error {error_norm:e})"
+                "step size collapsed at t = {t}: h = {h} (minimum {h_min}), \
+                 largest error in component {component} (scaled error {error_norm})",
+                h = Readable(*h),
+                h_min = Readable(*h_min),
+                error_norm = Readable(*error_norm)
             ),
             SolveError::Eval { t, source } => write!(f, "at t = {t}: {source}"),
             SolveError::MaxSteps { t, steps } => {
@@ -272,7 +277,8 @@ impl fmt::Display for SolveError {
             }
             SolveError::SingularIterationMatrix { t, h } => write!(
                 f,
-                "iteration matrix singular at t = {t} even with step size {h:e}"
+                "iteration matrix singular at t = {t} even with step size {h}",
+                h = Readable(*h)
             ),
             SolveError::GuardNotFinite { t, guard, value } => {
                 write!(f, "guard {guard} is not finite at t = {t}: {value}")
@@ -299,7 +305,9 @@ impl fmt::Display for InputError {
                 atol,
             } => write!(
                 f,
-                "tolerance of component {component} unusable (rtol = {rtol:e}, atol = {atol:e})"
+                "tolerance of component {component} unusable (rtol = {rtol}, atol = {atol})",
+                rtol = Readable(*rtol),
+                atol = Readable(*atol)
             ),
             InputError::ComponentGroup {
                 group,

@@ -34,6 +34,7 @@ use crate::control::StepOptions;
 use crate::error::{EvalError, SolveError};
 use crate::events::{EventHit, GuardInputs, GuardSpec, InteriorChecks};
 use crate::jacobian::finite_difference_jacobian;
+use crate::readable::Readable;
 use crate::stats::Stats;
 use std::fmt::{self, Debug};
 
@@ -321,8 +322,9 @@ impl<Md: Debug> fmt::Display for HybridError<Md> {
                 modes,
             } => write!(
                 f,
-                "chattering at t = {t}: {transitions} transitions within {window:e} \
-                 between modes {modes:?}"
+                "chattering at t = {t}: {transitions} transitions within {window} \
+                 between modes {modes:?}",
+                window = Readable(*window)
             ),
         }
     }

@@ -98,6 +98,7 @@ mod linalg;
 mod lu;
 mod model;
 mod observer;
+mod readable;
 mod rk4;
 mod rodas4;
 mod root;
@@ -130,6 +131,7 @@ pub use model::{Evaluation, Model, ModelInfo, OpCounts, WithOutputs};
 pub use observer::{
     Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
 };
+pub use readable::Readable;
 pub use rk4::Rk4;
 pub use rodas4::Rodas4;
 pub use root::{converged_width, find_crossing, Crossing};

@@ -6,6 +6,7 @@ use crate::error::{EvalError, InputError, SolveError};
 use crate::events::Crossed;
 use crate::hybrid::HybridError;
 use crate::model::{ModelInfo, WithOutputs};
+use crate::readable::Readable;
 use crate::stats::Stats;
 use std::fmt;
 use std::io::{self, Write};
@@ -227,13 +228,18 @@ impl fmt::Display for SolveFailure {
                         ..
                     } => write!(
                         f,
-                        "model `{model}`: step size collapsed at t = {t}: h = {h:e} (minimum \
-                         {h_min:e}), largest error in state `{state}` (scaled error {error_norm:e})"
+                        "model `{model}`: step size collapsed at t = {t}: h = {h} (minimum \
+                         {h_min}), largest error in state `{state}` (scaled error {error_norm})",
+                        h = Readable(*h),
+                        h_min = Readable(*h_min),
+                        error_norm = Readable(*error_norm)
                     ),
                     SolveError::InvalidInput(InputError::Tolerance { rtol, atol, .. }) => write!(
                         f,
                         "model `{model}`: tolerance of state `{state}` unusable \
-                         (rtol = {rtol:e}, atol = {atol:e})"
+                         (rtol = {rtol}, atol = {atol})",
+                        rtol = Readable(*rtol),
+                        atol = Readable(*atol)
                     ),
                     SolveError::InvalidInput(InputError::InitialState { value, .. }) => write!(
                         f,
@@ -262,8 +268,9 @@ impl fmt::Display for SolveFailure {
             }
             SolveFailure::Chattering { t, events, window } => write!(
                 f,
-                "{events} events within {window:e} at t = {t}: an event function that stays \
-                 at zero?"
+                "{events} events within {window} at t = {t}: an event function that stays \
+                 at zero?",
+                window = Readable(*window)
             ),
         }
     }

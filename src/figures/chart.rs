@@ -20,7 +20,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::{data_range, padded_range, tick_label, usable_span};
 use super::legend;
-use super::line::{Axis, Line, Stroke, FAMILY};
+use super::line::{marker_at, Axis, Line, Stroke, FAMILY};
 use crate::output::atomic::{produce_atomic, write_bytes_atomic, WriteError};
 
 /// The shipped font (DejaVu Sans, Bitstream Vera licence, see `assets/`).
@@ -275,6 +275,10 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> 
                             .into_iter()
                             .map(move |p| Circle::new(p, 3, color.filled())),
                     )?;
+                }
+                Stroke::Marked(marker) => {
+                    $ctx.$method(LineSeries::new(points.clone(), color.stroke_width(1)))?;
+                    $ctx.$method(points.into_iter().map(move |p| marker_at(marker, p, color)))?;
                 }
                 Stroke::Cloud => {
                     $ctx.$method(

@@ -9,7 +9,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::line::{Line, Stroke, FAMILY};
+use super::line::{marker_at, Line, Stroke, FAMILY};
 
 /// Height of the legend strip (pixels).
 pub const HEIGHT: u32 = 34;
@@ -59,6 +59,13 @@ fn draw_mark<DB: DrawingBackend>(
             color.mix(0.6).stroke_width(2),
         )),
         Stroke::Dots => area.draw(&Circle::new((x + MARK / 2, y), 4, color.filled())),
+        Stroke::Marked(marker) => {
+            area.draw(&PathElement::new(
+                vec![(x, y), (x + MARK, y)],
+                color.stroke_width(1),
+            ))?;
+            area.draw(&marker_at(marker, (x + MARK / 2, y), color))
+        }
         Stroke::Cloud => {
             for (dx, dy) in [(4, 3), (10, -4), (15, 2), (21, -2)] {
                 area.draw(&Circle::new((x + dx, y + dy), 2, color.filled()))?;

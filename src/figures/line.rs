@@ -1,7 +1,7 @@
 //! What a chart draws: lines, how each is stroked, which axis it uses, and the font family
 //! of its text. Shared by the chart and its legend, which both draw lines.
 
-use plotters::style::RGBColor;
+use plotters::prelude::*;
 
 /// The family name the charts ask for.
 pub const FAMILY: &str = "sans-serif";
@@ -16,6 +16,25 @@ pub enum Stroke {
     Cloud,
     /// Unconnected dots.
     Dots,
+    /// A continuous line with a marker at every point, so that lines lying on each other
+    /// stay apart (a sweep's series).
+    Marked(Marker),
+}
+
+/// The marker of a [`Stroke::Marked`] line; successive series take successive shapes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    /// A hollow circle.
+    Circle,
+    /// A filled triangle.
+    Triangle,
+    /// A cross.
+    Cross,
+}
+
+impl Marker {
+    /// The shapes in the order series take them.
+    pub const ALL: [Marker; 3] = [Marker::Circle, Marker::Triangle, Marker::Cross];
 }
 
 /// Which y axis a line uses.
@@ -54,6 +73,12 @@ impl Line {
         }
     }
 
+    /// The same line with `marker` at every point.
+    pub fn marked(mut self, marker: Marker) -> Line {
+        self.stroke = Stroke::Marked(marker);
+        self
+    }
+
     /// The same line drawn as dots.
     pub fn dots(mut self) -> Line {
         self.stroke = Stroke::Dots;
@@ -76,5 +101,22 @@ impl Line {
     pub fn right(mut self) -> Line {
         self.axis = Axis::Right;
         self
+    }
+}
+
+/// `marker` at `p` in `color`: the same shape on a chart (data coordinates) and in its
+/// legend (pixels).
+pub fn marker_at<C, DB: DrawingBackend>(
+    marker: Marker,
+    p: C,
+    color: RGBColor,
+) -> DynElement<'static, DB, C>
+where
+    C: Clone + 'static,
+{
+    match marker {
+        Marker::Circle => Circle::new(p, 6, color.stroke_width(2)).into_dyn(),
+        Marker::Triangle => TriangleMarker::new(p, 6, color.filled()).into_dyn(),
+        Marker::Cross => Cross::new(p, 5, color.stroke_width(2)).into_dyn(),
     }
 }

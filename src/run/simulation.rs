@@ -18,7 +18,7 @@ use equations::{
     simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum,
     InitialState, Mode, RunOutcome, StopReason, TransitionRecord, Trigger,
 };
-use model_runtime::Model;
+use model_runtime::{Model, Readable};
 
 use super::model::{with_models, ModelChoice, ModelsTask};
 use super::plan::SamplePlan;
@@ -133,20 +133,24 @@ pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, mu_d: f64) -> Outc
             (
                 "mode_not_allowed",
                 format!(
-                    "the disk entered {entered} at t = {t} s but modes.allowed = {:?}",
+                    "the disk entered {entered} at t = {} s but modes.allowed = {:?}",
+                    Readable(t),
                     allowed.modes().iter().map(|m| m.name()).collect::<Vec<_>>()
                 ),
             )
         }
-        StopReason::Requested { t } => ("interrupted", format!("stopped on request at t = {t} s")),
+        StopReason::Requested { t } => (
+            "interrupted",
+            format!("stopped on request at t = {} s", Readable(t)),
+        ),
         StopReason::EndTime => ("end_time", String::new()),
         StopReason::ContactLost { t, mode } => (
             "contact_lost",
-            format!("N fell through 0 at t = {t} s while {mode}"),
+            format!("N fell through 0 at t = {} s while {mode}", Readable(t)),
         ),
         StopReason::InclinationReachedFloor { t, theta } => (
             "inclination_reached_0",
-            format!("theta = {theta} rad at t = {t} s"),
+            format!("theta = {} rad at t = {} s", Readable(theta), Readable(t)),
         ),
         StopReason::Chattering {
             t,
@@ -154,7 +158,11 @@ pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, mu_d: f64) -> Outc
             window,
         } => (
             "chattering",
-            format!("{transitions} transitions within {window} s at t = {t} s"),
+            format!(
+                "{transitions} transitions within {} s at t = {} s",
+                Readable(window),
+                Readable(t)
+            ),
         ),
     };
     Outcome {

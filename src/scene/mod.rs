@@ -16,7 +16,7 @@ mod validate;
 
 use std::path::{Path, PathBuf};
 
-use equations::{Issue, SceneSettings};
+use equations::{Issue, Rule, SceneSettings};
 
 pub use schema::{CliTables, OutputTable, SceneFile};
 pub use validate::Scene;
@@ -285,13 +285,52 @@ pub fn parse(name: &str, text: &str, overrides: &[Override]) -> Result<Scene, Sc
         .collect();
     let cli: CliTables = serde_path_to_error::deserialize(toml::Value::Table(cli_tree))
         .map_err(|e| key_error(name, e))?;
+    let missing = missing_required(&tree);
     let settings: SceneSettings = serde_path_to_error::deserialize(toml::Value::Table(tree))
-        .map_err(|e| key_error(name, e))?;
+        .map_err(|e| match e.inner().message().starts_with("missing field") {
+            // The reader stops at the first missing key: name them all instead.
+            true if !missing.is_empty() => SceneError::Invalid {
+                name: name.to_string(),
+                issues: missing,
+            },
+            _ => key_error(name, e),
+        })?;
     let file = SceneFile { cli, settings };
     validate::validate(name, file).map_err(|issues| SceneError::Invalid {
         name: name.to_string(),
         issues,
     })
+}
+
+/// The keys every scene must give (all others have defaults). `initial.theta` is the one
+/// required key of `[initial]`; the tables of the others are required with them.
+pub const REQUIRED_KEYS: [&str; 7] = [
+    "disk.m",
+    "disk.a",
+    "disk.g",
+    "friction.mu_d",
+    "friction.mu_st",
+    "initial.theta",
+    "run.t_end",
+];
+
+/// Every required key the scene's tree lacks, each as a "missing" issue: all of them at once,
+/// where reading the tree stops at the first (`disk`, then `disk.g`, then `run`). Used when
+/// the reader finds a key missing, so an unknown or mistyped key keeps its own message. A
+/// table that is there but not a table is left to the reader, which names it.
+fn missing_required(tree: &toml::Table) -> Vec<Issue> {
+    REQUIRED_KEYS
+        .iter()
+        .filter(|path| {
+            let (table, key) = path.split_once('.').expect("REQUIRED_KEYS are `table.key`");
+            match tree.get(table) {
+                None => true,
+                Some(toml::Value::Table(t)) => !t.contains_key(key),
+                Some(_) => false,
+            }
+        })
+        .map(|path| Issue::new(*path, Rule::Missing))
+        .collect()
 }
 
 /// Turns a typed-deserialisation error into one naming the key: the path serde was at, plus

@@ -1,7 +1,9 @@
 //! The `sound` subcommand's arguments and its entry point.
 //!
 //! The scene flags are `run`'s own (flattened), so a scene is chosen, overridden and
-//! validated exactly as for `eulerdisk run`.
+//! validated exactly as for `eulerdisk run`. Only the output folder's default differs:
+//! `out/sound`, so that a short run's `sound_summary.json` never sits beside a full run's
+//! `summary.json` in `out/`.
 
 use std::process::ExitCode;
 
@@ -10,8 +12,12 @@ use clap::Args;
 use super::peaks::PeakRule;
 use super::render::{Compression, RenderOptions, Ring};
 use super::{sound_scene, SoundOptions};
-use crate::args::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT};
+use crate::args::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT, EXIT_STOPPED};
 use crate::scene;
+use model_runtime::Readable;
+
+/// Where `sound` writes unless `--out` says otherwise.
+pub const DEFAULT_OUT: &str = "out/sound";
 
 /// `eulerdisk sound`.
 #[derive(Debug, Args)]
@@ -83,6 +89,7 @@ impl SoundArgs {
 
 /// Runs `eulerdisk sound`: prints the summary, returns the exit code.
 pub fn command(args: &SoundArgs) -> ExitCode {
+    let out = args.run.out_dir(DEFAULT_OUT);
     let scene = match args
         .run
         .overrides()
@@ -98,29 +105,33 @@ pub fn command(args: &SoundArgs) -> ExitCode {
         eprintln!(
             "scene `{}`: simulating {} s for its sound, output in {}",
             scene.name,
-            scene.file.settings.run.t_end,
-            args.run.out.display()
+            Readable(scene.file.settings.run.t_end),
+            out.display()
         );
     }
-    match sound_scene(
-        &scene,
-        backend(args.run.reference),
-        &args.options(),
-        &args.run.out,
-    ) {
+    match sound_scene(&scene, backend(args.run.reference), &args.options(), &out) {
         Ok(report) => {
             if !args.run.quiet {
                 let said = format!(
                     "{}wrote {} files into {}\n",
                     report.summary.table(),
                     report.files.len(),
-                    args.run.out.display()
+                    out.display()
                 );
                 if let Err(code) = crate::args::print_out(&said) {
                     return code;
                 }
             }
-            ExitCode::SUCCESS
+            let s = &report.summary;
+            if s.stop_reason == "end_time" {
+                ExitCode::SUCCESS
+            } else {
+                eprintln!(
+                    "the run stopped early ({}): {}",
+                    s.stop_reason, s.stop_detail
+                );
+                ExitCode::from(EXIT_STOPPED)
+            }
         }
         Err(err) => {
             eprintln!("error: {err}");
@@ -152,7 +163,10 @@ mod tests {
         let w = Wrapper::try_parse_from(["sound"]).unwrap();
         assert_eq!(w.sound.options(), SoundOptions::default());
         assert_eq!(w.sound.run.scene, scene::DEFAULT_SCENE);
-        assert_eq!(w.sound.run.out, std::path::PathBuf::from("out"));
+        assert_eq!(
+            w.sound.run.out_dir(DEFAULT_OUT),
+            std::path::PathBuf::from("out/sound")
+        );
     }
 
     #[test]

@@ -27,23 +27,23 @@ pub struct SweepArgs {
     #[arg(required = true)]
     pub sweep: Option<String>,
     /// Output folder (a shard writes into `shard-I-of-N` inside it).
-    #[arg(long, default_value = "out/sweep")]
+    #[arg(short, long, default_value = "out/sweep")]
     pub out: PathBuf,
     /// Run only shard `i/n` of the points (0 ≤ i < n); `auto` takes it from a Slurm job array
     /// or, as `auto/n`, from a Kubernetes Indexed Job.
     #[arg(long, value_name = "i/n|auto|auto/n")]
     pub shard: Option<String>,
     /// Runs at once (default: the number of cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
     /// Override a scene key of every point before the axes: `--set table.key=value`.
-    #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
+    #[arg(short, long = "set", value_name = "TABLE.KEY=VALUE")]
     pub set: Vec<String>,
     /// Validate every point and list them; run nothing.
     #[arg(long)]
     pub dry_run: bool,
     /// No progress output.
-    #[arg(long)]
+    #[arg(short, long)]
     pub quiet: bool,
 }
 
@@ -63,7 +63,7 @@ pub struct MergeArgs {
     #[arg(required = true)]
     pub dirs: Vec<PathBuf>,
     /// The merged folder.
-    #[arg(long, default_value = "out/sweep")]
+    #[arg(short, long, default_value = "out/sweep")]
     pub out: PathBuf,
 }
 
@@ -141,13 +141,14 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
     );
     if !args.quiet {
         eprintln!(
-            "sweep `{}`: {} points{}, {jobs} workers, base scene `{}`, output in {}",
+            "sweep `{}`: {} points{}, {jobs} worker{}, base scene `{}`, output in {}",
             d.name,
             d.points.len(),
             shard.map_or(String::new(), |s| format!(
                 " (shard {}/{})",
                 s.index, s.count
             )),
+            if jobs == 1 { "" } else { "s" },
             d.scene_name,
             super::sweep_dir(&args.out, shard).display()
         );

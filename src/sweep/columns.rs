@@ -7,8 +7,9 @@ use crate::record::RunData;
 
 /// Prefix of the error columns (`err_transitions`).
 pub const ERROR_PREFIX: &str = "err_";
-/// Summary keys that have columns of their own in every table, so not repeated.
-pub const FIXED_COLUMNS: &[&str] = &["stop_reason", "wall_s"];
+/// Summary keys that have columns of their own in every table, so not repeated (the row's
+/// own `stop_detail` says why a timed-out run stopped, which its summary cannot).
+pub const FIXED_COLUMNS: &[&str] = &["stop_reason", "stop_detail", "wall_s", "cpu_s"];
 /// Columns that measure time: they differ between two runs of the same point.
 pub const TIMING_COLUMNS: &[&str] = &["wall_s", "cpu_s"];
 

@@ -5,6 +5,12 @@
 //! both are written to PNG and SVG by the same `render`. Cells are placed by index (equal
 //! widths whatever the spacing of the values) and labelled with their values, so a heat map
 //! over a logarithmic axis reads as well as over a linear one.
+//!
+//! A run that did not reach its end time (failed, timed out, or stopped early by the physics)
+//! is no value of the key: a "1 transition" of a run that died at 0.078 s would read as a
+//! result. Such runs are left out of the lines (the title counts them) and drawn as grey cells
+//! naming why in a heat map. Every line carries markers of its own shape, so that series with
+//! equal values stay visible on top of each other.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -15,11 +21,11 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::as_number;
 use super::expand::Definition;
-use super::row::{axis_field, reference, value, Row};
+use super::row::{axis_field, reference, value, Row, Status};
 use super::spec::Combine;
 use crate::figures::axes::tick_label;
 use crate::figures::chart::{colors, render, Chart, DrawResult, Figure};
-use crate::figures::line::{Line, FAMILY};
+use crate::figures::line::{Line, Marker, FAMILY};
 use crate::output::atomic::WriteError;
 
 /// The colours of successive lines.
@@ -88,6 +94,16 @@ pub fn write_figures(d: &Definition, rows: &[Row], dir: &Path) -> Result<Vec<Str
     Ok(stems)
 }
 
+/// Why `row` is no value of a key: `None` for a run that reached its end time, else the word
+/// drawn in its place (`failed`, `timeout`, or the stop reason of an early stop).
+fn failure(row: &Row) -> Option<String> {
+    match row.status {
+        Status::Completed if row.stop_reason == "end_time" => None,
+        Status::Completed => Some(row.stop_reason.clone()),
+        other => Some(other.as_str().to_string()),
+    }
+}
+
 /// `key` against axis `x_index`, one line per combination of the other axes.
 fn line_chart(
     d: &Definition,
@@ -99,7 +115,12 @@ fn line_chart(
     let x_axis = &d.axes[x_index];
     x_axis.numbers()?;
     let mut groups: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
+    let mut left_out = 0;
     for r in rows {
+        if failure(r).is_some() {
+            left_out += 1;
+            continue;
+        }
         let (Some(x), Some(y)) = (
             r.values.get(x_index).and_then(as_number),
             value(r, reference, key),
@@ -133,28 +154,26 @@ fn line_chart(
                 label
             };
             Line::new(label, points, PALETTE[i % PALETTE.len()])
+                .marked(Marker::ALL[i % Marker::ALL.len()])
         })
         .collect();
+    let not_drawn = match left_out {
+        0 => String::new(),
+        1 => " (1 run failed or stopped early: not drawn)".to_string(),
+        n => format!(" ({n} runs failed or stopped early: not drawn)"),
+    };
     Some(Chart {
         stem: format!("sweep_{}_vs_{}", slug(key), slug(&x_axis.key)),
-        title: format!("{}: {key} against {}", d.name, x_axis.key),
+        title: format!("{}: {key} against {}{not_drawn}", d.name, x_axis.key),
         x_label: x_axis.key.clone(),
         y_label: key.to_string(),
         y2_label: None,
         log_y,
         log_x,
-        lines: lines_as_dots_when_single(lines),
+        lines,
         x_range: None,
         empty_note: format!("no finished run has a value of {key}"),
     })
-}
-
-/// A line of one point is invisible: draw it as a dot.
-fn lines_as_dots_when_single(lines: Vec<Line>) -> Vec<Line> {
-    lines
-        .into_iter()
-        .map(|l| if l.points.len() < 2 { l.dots() } else { l })
-        .collect()
 }
 
 /// A heat map of `key` over two axes of a grid.
@@ -168,8 +187,11 @@ pub struct HeatMap {
     pub x: (String, Vec<String>),
     /// The y axis' key and value labels.
     pub y: (String, Vec<String>),
-    /// Cell values by (x index, y index); missing cells are failed or absent runs.
+    /// Cell values by (x index, y index) of the runs that reached their end time.
     pub cells: BTreeMap<(usize, usize), f64>,
+    /// The other runs' cells, with why (`failed`, `timeout`, `contact_lost`, ...); cells in
+    /// neither map are runs not done.
+    pub failures: BTreeMap<(usize, usize), String>,
 }
 
 /// The heat map of `key` over axes `x_index` × `y_index`, when the sweep is a grid whose
@@ -192,14 +214,22 @@ fn heat_map(
     }
     let (xa, ya) = (&d.axes[x_index], &d.axes[y_index]);
     let position = |values: &[toml::Value], v: &toml::Value| values.iter().position(|w| w == v);
-    let cells: BTreeMap<(usize, usize), f64> = rows
-        .iter()
-        .filter_map(|r| {
-            let i = position(&xa.values, r.values.get(x_index)?)?;
-            let j = position(&ya.values, r.values.get(y_index)?)?;
-            Some(((i, j), value(r, reference, key)?))
-        })
-        .collect();
+    let mut cells = BTreeMap::new();
+    let mut failures = BTreeMap::new();
+    for r in rows {
+        let at = |axis: &super::axes::AxisValues, k: usize| {
+            r.values.get(k).and_then(|v| position(&axis.values, v))
+        };
+        let place = at(xa, x_index).zip(at(ya, y_index));
+        let Some(place) = place else {
+            continue;
+        };
+        if let Some(why) = failure(r) {
+            failures.insert(place, why);
+        } else if let Some(v) = value(r, reference, key) {
+            cells.insert(place, v);
+        }
+    }
     let labels = |a: &super::axes::AxisValues| {
         a.values
             .iter()
@@ -212,6 +242,7 @@ fn heat_map(
         x: (xa.key.clone(), labels(xa)),
         y: (ya.key.clone(), labels(ya)),
         cells,
+        failures,
     })
 }
 
@@ -314,6 +345,13 @@ impl Figure for HeatMap {
                 }),
         )?;
         let centre = Pos::new(HPos::Center, VPos::Center);
+        chart.draw_series(self.failures.iter().map(|(&(i, j), why)| {
+            Text::new(
+                why.clone(),
+                (SegmentValue::CenterOf(i), SegmentValue::CenterOf(j)),
+                (FAMILY, 16).into_font().color(&BLACK).pos(centre),
+            )
+        }))?;
         chart.draw_series(self.cells.iter().map(|(&(i, j), v)| {
             let ink = if (v - lo) / span > 0.6 { BLACK } else { WHITE };
             Text::new(
@@ -323,5 +361,91 @@ impl Figure for HeatMap {
             )
         }))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figures::line::Stroke;
+    use crate::sweep::expand::plan;
+    use crate::sweep::spec::{parse, LoadedSweep};
+
+    /// mu_d x mu_st, 2 x 2, a grid: the built-in paper scene, nothing run.
+    fn definition() -> Definition {
+        let text = r#"
+scene = "tangent-toy-pruned"
+[[axis]]
+key = "friction.mu_d"
+values = [0.1, 0.11]
+[[axis]]
+key = "friction.mu_st"
+values = [0.2, 0.3]
+[figures]
+keys = ["transitions"]
+"#;
+        let loaded = LoadedSweep {
+            name: "t".into(),
+            folder: None,
+            file: parse("t", text).unwrap(),
+        };
+        plan(&loaded, &[]).unwrap().definition
+    }
+
+    /// Point `point` of `d` ending with `status` and `stop_reason`, `transitions` = `value`.
+    fn row(d: &Definition, point: usize, status: Status, stop_reason: &str, value: f64) -> Row {
+        let mut summary = serde_json::Map::new();
+        summary.insert("transitions".into(), value.into());
+        Row {
+            point,
+            values: d.points[point].clone(),
+            status,
+            stop_reason: stop_reason.into(),
+            stop_detail: String::new(),
+            summary,
+            wall_s: 0.0,
+            cpu_s: None,
+        }
+    }
+
+    #[test]
+    fn runs_that_did_not_reach_their_end_are_drawn_as_failures() {
+        let d = definition();
+        let rows = [
+            row(&d, 0, Status::Completed, "end_time", 10.0),
+            row(&d, 1, Status::Completed, "contact_lost", 1.0),
+            row(&d, 2, Status::Failed, "error", 1.0),
+            row(&d, 3, Status::Timeout, "timeout", 1.0),
+        ];
+        let map = heat_map(&d, &rows, None, "transitions", 0, 1).unwrap();
+        assert_eq!(map.cells.values().collect::<Vec<_>>(), [&10.0]);
+        let mut why: Vec<&str> = map.failures.values().map(String::as_str).collect();
+        why.sort_unstable();
+        assert_eq!(why, ["contact_lost", "failed", "timeout"]);
+        let chart = line_chart(&d, &rows, None, "transitions", 0).unwrap();
+        let drawn: Vec<(f64, f64)> = chart.lines.iter().flat_map(|l| l.points.clone()).collect();
+        assert_eq!(drawn, [(0.1, 10.0)]);
+        assert!(
+            chart.title.contains("3 runs failed or stopped early"),
+            "{}",
+            chart.title
+        );
+    }
+
+    #[test]
+    fn every_series_has_markers_of_its_own_shape() {
+        let d = definition();
+        let rows: Vec<Row> = (0..4)
+            .map(|i| row(&d, i, Status::Completed, "end_time", 5.0))
+            .collect();
+        let chart = line_chart(&d, &rows, None, "transitions", 0).unwrap();
+        let strokes: Vec<Stroke> = chart.lines.iter().map(|l| l.stroke).collect();
+        assert_eq!(
+            strokes,
+            [
+                Stroke::Marked(Marker::Circle),
+                Stroke::Marked(Marker::Triangle)
+            ]
+        );
     }
 }

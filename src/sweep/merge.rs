@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 
 use super::expand::{Definition, PointId};
 use super::row::Row;
-use super::store::{read_manifest, read_rows, Manifest, Store, StoreError, DEFINITION_FILE};
+use super::store::{
+    read_manifest, read_rows, Manifest, Store, StoreError, DEFINITION_FILE, RUNS_DIR,
+};
 
 /// A point found in more than one input.
 #[derive(Clone, Debug, PartialEq)]
@@ -62,6 +64,16 @@ pub enum MergeError {
     /// A figure cannot be written.
     #[error(transparent)]
     Figures(#[from] crate::output::atomic::WriteError),
+    /// A run's kept files (`runs/<id>/`) cannot be copied.
+    #[error("cannot copy {} to {}: {source}", from.display(), to.display())]
+    CopyRun {
+        /// The run's folder in an input.
+        from: PathBuf,
+        /// Its place in the output.
+        to: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
     /// Two inputs hold different sweeps.
     #[error("{} holds another sweep than {} (different axes, keys, settings or base scene)", other.display(), first.display())]
     Different {
@@ -135,6 +147,7 @@ pub fn merge(
         });
     };
     let mut rows = Vec::new();
+    let mut sources = Vec::new();
     let mut duplicates = Vec::new();
     for (point, copies) in found {
         if copies.len() > 1 {
@@ -145,7 +158,8 @@ pub fn merge(
                 agree: copies.iter().all(|(_, r)| r.untimed() == first),
             });
         }
-        if let Some((_, row)) = copies.into_iter().next() {
+        if let Some((dir, row)) = copies.into_iter().next() {
+            sources.push((dir, row.id()));
             rows.push(row);
         }
     }
@@ -158,6 +172,9 @@ pub fn merge(
     for row in &rows {
         store.write_row(row)?;
     }
+    for (dir, id) in &sources {
+        copy_run(&dir.join(RUNS_DIR).join(id), &out.join(RUNS_DIR).join(id))?;
+    }
     store.write_table(&definition, &rows)?;
     super::figures::write_figures(&definition, &rows, out)?;
     let report = MergeReport {
@@ -168,4 +185,45 @@ pub fn merge(
         duplicates,
     };
     Ok((definition, rows, report))
+}
+
+/// Copies a run's kept files (`runs/<id>/` of the input whose row is kept) into the merged
+/// folder: into a temporary name, renamed when whole, replacing an earlier copy. A run that
+/// kept nothing has no folder, and nothing is copied; a folder already in place (merging into
+/// the input itself) is left.
+fn copy_run(from: &Path, to: &Path) -> Result<(), MergeError> {
+    if !from.is_dir() || from == to {
+        return Ok(());
+    }
+    let partial = to.with_extension("partial");
+    let copied = (|| {
+        if partial.exists() {
+            fs::remove_dir_all(&partial)?;
+        }
+        copy_tree(from, &partial)?;
+        if to.exists() {
+            fs::remove_dir_all(to)?;
+        }
+        fs::rename(&partial, to)
+    })();
+    copied.map_err(|source| MergeError::CopyRun {
+        from: from.to_path_buf(),
+        to: to.to_path_buf(),
+        source,
+    })
+}
+
+/// Copies the folder `from` (files and folders in it) to `to`.
+fn copy_tree(from: &Path, to: &Path) -> std::io::Result<()> {
+    fs::create_dir_all(to)?;
+    for entry in fs::read_dir(from)? {
+        let entry = entry?;
+        let target = to.join(entry.file_name());
+        if entry.file_type()?.is_dir() {
+            copy_tree(&entry.path(), &target)?;
+        } else {
+            fs::copy(entry.path(), &target)?;
+        }
+    }
+    Ok(())
 }

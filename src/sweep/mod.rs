@@ -11,6 +11,7 @@
 //! - `execute`: the points without a row, on a rayon pool, with per-run timeouts and Ctrl-C;
 //! - `row`, `store`: one atomically written row file per finished run, the definition, and
 //!   the table rebuilt from the rows (so resuming is "run the points without a row");
+//! - `lock`: one sweep at a time in a folder;
 //! - `merge`: shards joined, missing and duplicated points listed;
 //! - `figures`: each requested key against an axis, and heat maps.
 //!
@@ -24,6 +25,7 @@ pub mod columns;
 pub mod execute;
 pub mod expand;
 mod figures;
+pub mod lock;
 pub mod merge;
 pub mod row;
 pub mod run_point;
@@ -47,6 +49,9 @@ pub enum SweepError {
     /// The folder cannot be used.
     #[error(transparent)]
     Store(#[from] StoreError),
+    /// Another sweep is running into the folder.
+    #[error(transparent)]
+    Lock(#[from] lock::LockError),
     /// A figure cannot be written.
     #[error(transparent)]
     Figures(#[from] crate::output::atomic::WriteError),
@@ -80,6 +85,7 @@ pub fn run_sweep(
     interrupt: &AtomicBool,
 ) -> Result<SweepReport, SweepError> {
     let dir = sweep_dir(out, opts.shard);
+    let _lock = lock::FolderLock::take(&dir)?;
     let store = Store::open(&dir, &Manifest::new(plan.definition.clone(), opts.shard))?;
     let exec = execute(plan, &store, opts, interrupt)?;
     // A shard holds part of the points: its figures would mislead; `merge` draws them.

@@ -3,7 +3,8 @@
 //! Point k belongs to shard `k mod n`: the shares differ by at most one point, and neighbours
 //! along the last axis (often alike in cost) land in different shards. `--shard auto` reads
 //! the share from the job engine: a Slurm job array (`SLURM_ARRAY_TASK_ID` counted from
-//! `SLURM_ARRAY_TASK_MIN`, `SLURM_ARRAY_TASK_COUNT`) or a Kubernetes Indexed Job
+//! `SLURM_ARRAY_TASK_MIN` in steps of `SLURM_ARRAY_TASK_STEP`, so that `--array=0-4:2` is
+//! shards 0, 1, 2 of 3; `SLURM_ARRAY_TASK_COUNT`) or a Kubernetes Indexed Job
 //! (`JOB_COMPLETION_INDEX`, with the count given as `--shard auto/N` since Kubernetes does not
 //! export it).
 
@@ -60,12 +61,25 @@ impl Shard {
                         ))
                     }
                 };
-                let index = id.checked_sub(min).ok_or_else(|| {
+                let step = env("SLURM_ARRAY_TASK_STEP")
+                    .map(|s| number("SLURM_ARRAY_TASK_STEP", &s))
+                    .transpose()?
+                    .unwrap_or(1)
+                    .max(1);
+                let offset = id.checked_sub(min).ok_or_else(|| {
                     bad(format!(
                         "SLURM_ARRAY_TASK_ID = {id} is below SLURM_ARRAY_TASK_MIN = {min}"
                     ))
                 })?;
-                Shard { index, count }
+                if offset % step != 0 {
+                    return Err(bad(format!(
+                        "SLURM_ARRAY_TASK_ID = {id} is not SLURM_ARRAY_TASK_MIN = {min} plus a multiple of SLURM_ARRAY_TASK_STEP = {step}: an array given as a list needs `--shard i/n`"
+                    )));
+                }
+                Shard {
+                    index: offset / step,
+                    count,
+                }
             } else if let Some(id) = env("JOB_COMPLETION_INDEX") {
                 let index = number("JOB_COMPLETION_INDEX", &id)?;
                 let count = count.ok_or_else(|| {
@@ -143,6 +157,20 @@ mod tests {
             Shard::parse("auto", env(&slurm)),
             Ok(Shard { index: 3, count: 4 })
         );
+        // `--array=0-4:2`: tasks 0, 2, 4 are shards 0, 1, 2 of 3.
+        for (id, index) in [("0", 0), ("2", 1), ("4", 2)] {
+            let stepped = [
+                ("SLURM_ARRAY_TASK_ID", id),
+                ("SLURM_ARRAY_TASK_MIN", "0"),
+                ("SLURM_ARRAY_TASK_MAX", "4"),
+                ("SLURM_ARRAY_TASK_STEP", "2"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ];
+            assert_eq!(
+                Shard::parse("auto", env(&stepped)),
+                Ok(Shard { index, count: 3 })
+            );
+        }
         let k8s = [("JOB_COMPLETION_INDEX", "0")];
         assert_eq!(
             Shard::parse("auto/3", env(&k8s)),
@@ -166,6 +194,15 @@ mod tests {
                 "auto",
                 &[("SLURM_ARRAY_TASK_ID", "a")][..],
                 "SLURM_ARRAY_TASK_ID",
+            ),
+            (
+                "auto",
+                &[
+                    ("SLURM_ARRAY_TASK_ID", "3"),
+                    ("SLURM_ARRAY_TASK_STEP", "2"),
+                    ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ][..],
+                "SLURM_ARRAY_TASK_STEP",
             ),
         ] {
             let e = Shard::parse(spec, env(vars)).unwrap_err();

@@ -266,11 +266,7 @@ fn solve_writes_a_trajectory_that_keeps_the_energy() {
 }
 
 /// A body dropped from a height: no outputs, `h` falls as `h0 - g t^2 / 2`.
-const DROP: &str = "mod drop {
-    params { g = 9.81 }
-    states { h, v }
-    equations { der(h) = v; der(v) = -g; }
-}";
+const DROP: &str = include_str!("../../model-macros/examples/drop.dsl");
 
 /// An oscillator `x = cos(w t)` from `x = 1`, with the threshold `x = 1/2` as an output.
 const OSCILLATOR: &str = "mod oscillator {
@@ -302,7 +298,10 @@ fn solve_events(text: &str, args: &[&str]) -> (String, String) {
     all.extend_from_slice(args);
     let out = model(&all);
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(out.status.success(), "{args:?}: {stderr}");
+    // A run a `:stop` event ended exits with 3 ("stopped early"), one to its end with 0.
+    let stopped = stderr.contains("stopped by event");
+    let expected = if stopped { 3 } else { 0 };
+    assert_eq!(out.status.code(), Some(expected), "{args:?}: {stderr}");
     (String::from_utf8(out.stdout).unwrap(), stderr)
 }
 
@@ -423,6 +422,29 @@ fn an_event_on_an_output_fires_only_in_its_direction() {
     let down = said_events(&stderr, "e");
     assert_eq!(down.len(), 5, "{stderr}");
     assert!((down[0] - pi / 3.0 / w).abs() < 1e-8, "{}", down[0]);
+}
+
+/// `--method` is the old spelling of `--integrator`: the same run, and a note that says so.
+#[test]
+fn the_old_method_flag_still_works_with_a_note() {
+    let run = |flag: &str| {
+        model(&[
+            "solve",
+            HEAVY_TOP,
+            "--state",
+            "theta=0.5",
+            "--t-end",
+            "0.5",
+            flag,
+            "dopri5",
+        ])
+    };
+    let (new, old) = (run("--integrator"), run("--method"));
+    assert!(new.status.success() && old.status.success(), "{old:?}");
+    assert_eq!(new.stdout, old.stdout);
+    let note = String::from_utf8_lossy(&old.stderr);
+    assert!(note.contains("`--method` is deprecated"), "{note}");
+    assert!(!String::from_utf8_lossy(&new.stderr).contains("deprecated"));
 }
 
 #[test]

@@ -3,6 +3,7 @@
 
 use eulerdisk::{
     load_scene, parse_scene, Override, Scene, SceneError, BUILTIN_SCENES, DEFAULT_SCENE,
+    REQUIRED_KEYS,
 };
 use proptest::prelude::*;
 
@@ -117,7 +118,7 @@ fn each_rule_names_its_key() {
     expect_key(
         with_override("initial.theta=0"),
         "initial.theta",
-        "(0e0, 3.14",
+        "(0, 3.14",
     );
     expect_key(
         with_override("initial.theta=3.2"),
@@ -246,7 +247,7 @@ fn shape_errors_name_the_key() {
     expect_key(
         parse_scene("t", &without_mass, &[]),
         "disk.m",
-        "missing field",
+        "is required",
     );
     let without_run = PAPER.replace("[run]", "[runs]");
     expect_key(parse_scene("t", &without_run, &[]), "runs", "unknown field");
@@ -402,4 +403,88 @@ fn a_long_list_of_issues_is_capped_and_counted() {
         text.ends_with(&format!("... and {} more issues", 999 - limit)),
         "{text}"
     );
+}
+
+/// A scene missing several required keys names all of them in one error, not one per try.
+#[test]
+fn every_missing_required_key_is_reported_at_once() {
+    let err = parse_scene("bare", "[initial]\npsi = 0.0\n[disk]\nm = 1.0\n", &[]).unwrap_err();
+    let SceneError::Invalid { issues, .. } = &err else {
+        panic!("{err}");
+    };
+    let keys: Vec<&str> = issues.iter().map(|i| i.key.as_str()).collect();
+    let expected: Vec<&str> = REQUIRED_KEYS
+        .iter()
+        .copied()
+        .filter(|k| *k != "disk.m")
+        .collect();
+    assert_eq!(keys, expected, "{err}");
+    assert!(err.to_string().contains("is required"), "{err}");
+}
+
+/// `REQUIRED_KEYS` is what the scene's types require: a scene of the required keys alone
+/// validates, dropping any one of them is an error naming exactly it, and every other key of
+/// a full scene may be dropped.
+#[test]
+fn the_required_keys_are_exactly_those_without_defaults() {
+    let full = parse_scene("tangent-toy", PAPER, &[]).unwrap();
+    let tree: toml::Table = toml::from_str(&toml::to_string(&full.file).unwrap()).unwrap();
+    let mut minimal = toml::Table::new();
+    for path in REQUIRED_KEYS {
+        let (table, key) = path.split_once('.').unwrap();
+        let value = tree[table][key].clone();
+        let entry = minimal
+            .entry(table)
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        entry.as_table_mut().unwrap().insert(key.to_string(), value);
+    }
+    let text = toml::to_string(&minimal).unwrap();
+    parse_scene("minimal", &text, &[]).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    for (table, keys) in &tree {
+        let Some(keys) = keys.as_table() else {
+            continue;
+        };
+        for key in keys.keys() {
+            let path = format!("{table}.{key}");
+            let mut without = tree.clone();
+            let rest = without[table].as_table_mut().unwrap();
+            rest.remove(key);
+            // A table left empty is not written (`[modes]` without `allowed` is refused).
+            if rest.is_empty() {
+                without.remove(table);
+            }
+            let text = toml::to_string(&without).unwrap();
+            let parsed = parse_scene("without", &text, &[]);
+            if REQUIRED_KEYS.contains(&path.as_str()) {
+                match parsed {
+                    Err(SceneError::Invalid { issues, .. }) => {
+                        let keys: Vec<&str> = issues.iter().map(|i| i.key.as_str()).collect();
+                        assert_eq!(keys, [path.as_str()]);
+                    }
+                    other => panic!("{path}: {other:?}"),
+                }
+            } else {
+                assert!(parsed.is_ok(), "{path} should have a default: {parsed:?}");
+            }
+        }
+    }
+}
+
+/// The README's key table marks exactly the required keys, as `` `key` (**required** ``.
+#[test]
+fn the_readme_marks_the_required_keys() {
+    let readme = include_str!("../../README.md");
+    let marked = readme.matches("(**required**").count();
+    assert_eq!(marked, REQUIRED_KEYS.len(), "one mark per required key");
+    for path in REQUIRED_KEYS {
+        let (table, key) = path.split_once('.').unwrap();
+        let row = readme
+            .lines()
+            .find(|l| l.starts_with(&format!("| `[{table}]` |")))
+            .unwrap_or_else(|| panic!("no row for [{table}]"));
+        assert!(
+            row.contains(&format!("`{key}` (**required**")),
+            "{path} is not marked: {row}"
+        );
+    }
 }

@@ -64,6 +64,14 @@ fn untimed_table(dir: &Path) -> Vec<Vec<String>> {
     let text = fs::read_to_string(dir.join(TABLE_FILE)).unwrap();
     let mut lines = text.lines();
     let header = split_fields(lines.next().unwrap());
+    let mut names = header.clone();
+    names.sort();
+    names.dedup();
+    assert_eq!(
+        names.len(),
+        header.len(),
+        "a column named twice: {header:?}"
+    );
     let timing: Vec<usize> = header
         .iter()
         .enumerate()
@@ -393,6 +401,19 @@ values = [1.0, 100.0, 0.05]
         table.contains("r000001,\"[\"\"rolling\"\", \"\"sliding\"\"]\",100,timeout,timeout"),
         "{table}"
     );
+    // Without `keys`, every summary key is a column, but `stop_detail` only once: the row's.
+    let header = split_fields(table.lines().next().unwrap());
+    let detail: Vec<usize> = (0..header.len())
+        .filter(|&i| header[i] == "stop_detail")
+        .collect();
+    assert_eq!(detail.len(), 1, "{header:?}");
+    let timed_out = split_fields(table.lines().nth(2).unwrap());
+    assert!(
+        timed_out[detail[0]].contains("timeout_s = 0.4"),
+        "{timed_out:?}"
+    );
+    // The folder's lock is held while the sweep runs, and gone after it.
+    assert!(!out.join("sweep.lock").exists());
 }
 
 /// A sweep file with `axis` tables replaced; the key and the word its error must name.
@@ -579,4 +600,99 @@ fn shard_auto_takes_its_share_from_the_job_array() {
         .collect();
     assert_eq!(names, ["r000001.json", "r000007.json"]);
     assert!(!shard_dir.join(".scratch").exists());
+}
+
+/// `docs/check-slurm-sweep.sh` on a machine whose Slurm controller is up refuses before it
+/// touches anything: no package installed, no daemon started or stopped, no configuration
+/// written (stand-ins for the Slurm commands record any call).
+#[cfg(unix)]
+#[test]
+fn the_slurm_check_leaves_a_running_cluster_alone() {
+    use std::os::unix::fs::PermissionsExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let calls = tmp.path().join("calls");
+    let stand_in = |name: &str, body: &str| {
+        let path = tmp.path().join(name);
+        fs::write(
+            &path,
+            format!(
+                "#!/bin/sh\necho {name} \"$@\" >> '{}'\n{body}\n",
+                calls.display()
+            ),
+        )
+        .unwrap();
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o755)).unwrap();
+    };
+    stand_in(
+        "scontrol",
+        "[ \"$1\" = ping ] && echo 'Slurmctld(primary) at node is UP'",
+    );
+    for name in [
+        "apt-get",
+        "slurmctld",
+        "slurmd",
+        "munged",
+        "sbatch",
+        "runuser",
+    ] {
+        stand_in(name, "");
+    }
+    let path = format!(
+        "{}:{}",
+        tmp.path().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/check-slurm-sweep.sh");
+    let out = Command::new("bash")
+        .arg(&script)
+        .arg(BIN)
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("Slurm controller is up"), "{err}");
+    let called = fs::read_to_string(&calls).unwrap();
+    assert_eq!(
+        called.trim(),
+        "scontrol ping",
+        "only asked, nothing done: {called}"
+    );
+}
+
+/// `sweep merge` brings each kept run's folder (`runs/<id>/`) along with its row.
+#[test]
+fn merge_brings_the_kept_run_folders() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = r#"
+scene = "tangent-toy-pruned"
+keep = "summary"
+[set]
+run.t_end = 0.05
+[[axis]]
+key = "friction.mu_d"
+values = [0.1, 0.115, 0.13]
+"#;
+    let plan = plan(&sweep_file(tmp.path(), text), &[]).unwrap();
+    let out = tmp.path().join("out");
+    for index in 0..2 {
+        go(&plan, &out, 1, Some(Shard { index, count: 2 }));
+    }
+    let merged = tmp.path().join("merged");
+    let (_, rows, report) = merge(std::slice::from_ref(&out), &merged).unwrap();
+    assert!(report.complete() && rows.len() == 3, "{report:?}");
+    for row in &rows {
+        let shard = Shard {
+            index: row.point % 2,
+            count: 2,
+        };
+        let kept = sweep_dir(&out, Some(shard)).join("runs").join(row.id());
+        let copied = merged.join("runs").join(row.id());
+        assert_eq!(
+            fs::read(copied.join("summary.json")).unwrap(),
+            fs::read(kept.join("summary.json")).unwrap(),
+            "{}",
+            row.id()
+        );
+    }
 }
