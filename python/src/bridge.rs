@@ -379,7 +379,7 @@ pub fn is_dsl_error(error: &ModelFileError) -> bool {
 
 /// Whether a model error is a failed evaluation or integration.
 pub fn is_failure(error: &ModelFileError) -> bool {
-    matches!(error, ModelFileError::Failed(_))
+    matches!(error, ModelFileError::Failed(_) | ModelFileError::Point(_))
 }
 
 /// Why a solve ended, in words: `end_time` or `event NAME`.

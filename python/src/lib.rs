@@ -385,7 +385,7 @@ impl NativeModel {
             columns.set_item(name, column(py, rows.len(), |i| rows[i][k])?)?;
         }
         let found: Vec<(String, Vec<f64>)> = (solved.events.iter())
-            .map(|e| (e.name.clone(), e.row.clone()))
+            .map(|e| (e.label(), e.row.clone()))
             .collect();
         let out = PyDict::new(py);
         out.set_item("header", &solved.columns)?;
