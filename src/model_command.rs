@@ -121,6 +121,7 @@ fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
         rtol: args.rtol,
         atol: args.atol,
         dt: args.dt,
+        times: None,
         params: named("--set", &point.set)?,
         state: named("--state", &point.state)?,
         events: (args.event.iter())

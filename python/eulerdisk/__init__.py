@@ -376,6 +376,15 @@ class Solution:
         return Table({"t": self.t, **self.y}).to_pandas()
 
 
+
+def _sampling(t_eval: float | Iterable[float] | None) -> tuple[float | None, list[float] | None]:
+    """``t_eval`` as the native call takes it: a sampling step, or sampling times."""
+    if t_eval is None:
+        return None, None
+    if isinstance(t_eval, (int, float)):
+        return float(t_eval), None
+    return None, [float(t) for t in np.asarray(t_eval, dtype=float).ravel()]
+
 class Model:
     """A model file of the DSL, compiled by the equation compiler and run by its interpreter.
 
@@ -486,7 +495,7 @@ class Model:
         state: Mapping[str, float] | None = None,
         params: Mapping[str, float] | None = None,
         t0: float = 0.0,
-        t_eval: float | None = None,
+        t_eval: float | Iterable[float] | None = None,
         events: Iterable[str] = (),
         method: str = "dop853",
         rtol: float = 1e-8,
@@ -501,8 +510,10 @@ class Model:
                 model).
             params: parameters by name (others: the file's defaults).
             t0: the start time.
-            t_eval: record every ``t_eval`` from ``t0`` (and at ``t_end``); by default every
-                accepted step.
+            t_eval: a number: record every ``t_eval`` from ``t0`` (and at ``t_end``); a
+                sequence (or NumPy array) of increasing times inside ``[t0, t_end]``: record at
+                exactly those (a smooth model only), as ``solve_ivp``'s ``t_eval``; by default
+                every accepted step.
             events: zero crossings to locate, as ``NAME[:up|:down][:stop]`` of a state or an
                 output (a switched model declares its own in the file).
             method: ``dop853`` (default), ``dopri5`` or ``rodas4`` (stiff models).
@@ -523,7 +534,7 @@ class Model:
             list(events),
             float(t0),
             float(t_end),
-            None if t_eval is None else float(t_eval),
+            *_sampling(t_eval),
             method,
             float(rtol),
             float(atol),

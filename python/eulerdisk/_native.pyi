@@ -97,6 +97,7 @@ class NativeModel:
         t0: float,
         t_end: float,
         dt: float | None,
+        times: list[float] | None,
         method: str,
         rtol: float,
         atol: float,

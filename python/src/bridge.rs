@@ -307,6 +307,7 @@ impl FileModel {
             rtol: request.rtol,
             atol: request.atol,
             dt: request.dt,
+            times: request.times.clone(),
             params: model_named("--set", request.sets)?,
             state: model_named("--state", request.state)?,
             events,
@@ -348,8 +349,10 @@ pub struct SolveRequest<'a> {
     pub t0: f64,
     /// End time.
     pub t_end: f64,
-    /// Sampling step (`None`: every accepted step).
+    /// Sampling step (`None`: every accepted step, or `times`).
     pub dt: Option<f64>,
+    /// Sampling times (`None`: every accepted step, or every `dt`).
+    pub times: Option<Vec<f64>>,
     /// The integrator.
     pub method: Method,
     /// Relative tolerance.

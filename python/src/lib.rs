@@ -344,7 +344,7 @@ impl NativeModel {
 
     /// Integrates the model; returns the header, the columns, the events, the stop, the
     /// work counters and the notes.
-    #[pyo3(signature = (chart, state, sets, events, t0, t_end, dt, method, rtol, atol))]
+    #[pyo3(signature = (chart, state, sets, events, t0, t_end, dt, times, method, rtol, atol))]
     #[allow(clippy::too_many_arguments)]
     fn solve<'py>(
         &self,
@@ -356,6 +356,7 @@ impl NativeModel {
         t0: f64,
         t_end: f64,
         dt: Option<f64>,
+        times: Option<Vec<f64>>,
         method: &str,
         rtol: f64,
         atol: f64,
@@ -373,6 +374,7 @@ impl NativeModel {
             t0,
             t_end,
             dt,
+            times,
             method,
             rtol,
             atol,

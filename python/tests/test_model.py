@@ -55,6 +55,21 @@ def test_solve_follows_the_closed_form_and_locates_events():
     assert list(frame.columns) == ["t", "x", "v", "energy"]
 
 
+
+def test_t_eval_times_are_recorded_exactly_as_given():
+    m = eulerdisk.Model.from_str(OSCILLATOR)
+    times = np.sort(np.random.default_rng(7).uniform(0.0, 3.0, 57))
+    s = m.solve(3.0, state={"x": 1.0}, t_eval=times, rtol=1e-10, atol=1e-12)
+    np.testing.assert_array_equal(s.t, times)
+    np.testing.assert_allclose(s["x"], np.cos(2 * times), atol=1e-8)
+    for bad, words in [
+        ([0.5, 0.2], "does not come after"),
+        ([0.5, 4.0], "outside the run's span"),
+        ([math.nan], "not finite"),
+    ]:
+        with pytest.raises(eulerdisk.ModelInputError, match=words):
+            m.solve(3.0, state={"x": 1.0}, t_eval=bad)
+
 def test_a_terminal_event_ends_the_solve_there():
     m = eulerdisk.Model.from_str(OSCILLATOR)
     s = m.solve(3.0, state={"x": 1.0}, events=["x:down:stop"], method="dopri5")

@@ -449,10 +449,7 @@ fn the_required_keys_are_exactly_those_without_defaults() {
             let mut without = tree.clone();
             let rest = without[table].as_table_mut().unwrap();
             rest.remove(key);
-            // A table left empty is not written (`[modes]` without `allowed` is refused).
-            if rest.is_empty() {
-                without.remove(table);
-            }
+            // A table left empty stays, written as an empty table: its keys' defaults apply.
             let text = toml::to_string(&without).unwrap();
             let parsed = parse_scene("without", &text, &[]);
             if REQUIRED_KEYS.contains(&path.as_str()) {
@@ -487,4 +484,21 @@ fn the_readme_marks_the_required_keys() {
             "{path} is not marked: {row}"
         );
     }
+}
+
+#[test]
+fn a_modes_table_without_allowed_allows_both() {
+    let without_modes = PAPER
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("allowed"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        without_modes.contains("[modes]"),
+        "the paper's scene names its modes"
+    );
+    let scene = parse_scene("t", &without_modes, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let full = parse_scene("t", PAPER, &[]).unwrap();
+    assert_eq!(scene.modes.allowed.len(), 2);
+    assert_eq!(scene, full);
 }

@@ -85,14 +85,21 @@ pub struct AirTable {
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ModesTable {
-    /// Allowed modes, `rolling` and/or `sliding` (default: both).
+    /// Allowed modes, `rolling` and/or `sliding` (default: both, also in a `[modes]` table
+    /// that does not name them).
+    #[serde(default = "all_modes")]
     pub allowed: Vec<Mode>,
+}
+
+/// Both modes: what `modes.allowed` is when not given.
+fn all_modes() -> Vec<Mode> {
+    AllowedModes::ALL.modes()
 }
 
 impl Default for ModesTable {
     fn default() -> Self {
         ModesTable {
-            allowed: AllowedModes::ALL.modes(),
+            allowed: all_modes(),
         }
     }
 }

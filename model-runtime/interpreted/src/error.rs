@@ -117,6 +117,29 @@ pub enum RequestError {
         /// The first event given.
         name: String,
     },
+    /// Both a sampling step and sampling times were given.
+    #[error("give a sampling step or sampling times, not both")]
+    StepAndTimes,
+    /// A sampling time is not finite, outside `[t0, t_end]`, or not after the one before.
+    #[error("sampling time #{index} (t = {t}) {problem} (the run goes from {t0} to {t_end})")]
+    Time {
+        /// Its position in the list given.
+        index: usize,
+        /// The time.
+        t: f64,
+        /// What is wrong with it.
+        problem: &'static str,
+        /// The run's start.
+        t0: f64,
+        /// The run's end.
+        t_end: f64,
+    },
+    /// A switched model records at a rate or at every step, not at given times.
+    #[error("`{model}` is a switched model: it records every step or at a sampling step, not at given times")]
+    TimesOfSwitched {
+        /// The model.
+        model: String,
+    },
     /// The sampling step is not positive and finite.
     #[error("dt = {dt}: the sampling step must be positive and finite")]
     SampleStep {

@@ -21,8 +21,12 @@ pub struct SolveRequest {
     pub rtol: f64,
     /// Absolute tolerance.
     pub atol: f64,
-    /// Record every `dt` from `t0` (and at `t_end`); `None`: at every accepted step.
+    /// Record every `dt` from `t0` (and at `t_end`); `None`: at every accepted step (or at
+    /// `times`).
     pub dt: Option<f64>,
+    /// Record at exactly these times (increasing, within `[t0, t_end]`; a smooth model only);
+    /// `None`: every `dt`, or every accepted step. Exclusive with `dt`.
+    pub times: Option<Vec<f64>>,
     /// Parameter values by name; the others keep the file's defaults.
     pub params: Vec<Named>,
     /// Initial state values by name; the others start at the file's value, or zero.
@@ -43,6 +47,7 @@ impl SolveRequest {
             rtol: 1e-8,
             atol: 1e-10,
             dt: None,
+            times: None,
             params: Vec::new(),
             state: Vec::new(),
             events: Vec::new(),
@@ -105,9 +110,12 @@ impl Resolved {
                 .map(|(index, event)| resolve_event(model, index, event))
                 .collect::<Result<_, _>>()?,
         };
-        let times = (request.dt)
-            .map(|dt| sample_times(request.t0, request.t_end, dt))
-            .transpose()?;
+        let times = match (request.dt, &request.times) {
+            (Some(_), Some(_)) => return Err(RequestError::StepAndTimes),
+            (Some(dt), None) => Some(sample_times(request.t0, request.t_end, dt)?),
+            (None, Some(times)) => Some(checked_times(model, request, times)?),
+            (None, None) => None,
+        };
         Ok(Resolved {
             params,
             y0,
@@ -138,6 +146,49 @@ fn resolve_event(
         request: request.clone(),
         watched,
     })
+}
+
+/// The times a request asks to record at, checked: finite, increasing, inside the run's span,
+/// and for a smooth model (a switched model records at a rate or at every step).
+fn checked_times(
+    model: ModelRef<'_>,
+    request: &SolveRequest,
+    times: &[f64],
+) -> Result<Vec<f64>, RequestError> {
+    if let ModelRef::Switched(model) = model {
+        return Err(RequestError::TimesOfSwitched {
+            model: model.name.clone(),
+        });
+    }
+    let (t0, t_end) = (request.t0.min(request.t_end), request.t0.max(request.t_end));
+    for (index, &t) in times.iter().enumerate() {
+        let problem = if !t.is_finite() {
+            Some("is not finite")
+        } else if t < t0 || t > t_end {
+            Some("is outside the run's span")
+        } else if index > 0 && t <= times[index - 1] {
+            Some("does not come after the one before")
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
+            return Err(RequestError::Time {
+                index,
+                t,
+                problem,
+                t0: request.t0,
+                t_end: request.t_end,
+            });
+        }
+    }
+    if times.len() > 100_000_000 {
+        return Err(RequestError::SampleCount {
+            dt: f64::NAN,
+            t0: request.t0,
+            t_end: request.t_end,
+        });
+    }
+    Ok(times.to_vec())
 }
 
 /// `t0, t0 + dt, ...` up to and including `t_end`.

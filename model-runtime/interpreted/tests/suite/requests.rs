@@ -104,6 +104,32 @@ fn settings_are_input_errors() {
         request_error(OSCILLATOR, with_dt(1e-12)),
         RequestError::SampleCount { .. }
     ));
+    let with_times = |times: &[f64]| SolveRequest {
+        times: Some(times.to_vec()),
+        ..SolveRequest::new(1.0)
+    };
+    let time_error = |times: &[f64]| match request_error(OSCILLATOR, with_times(times)) {
+        RequestError::Time { index, problem, .. } => (index, problem),
+        other => panic!("{other}"),
+    };
+    assert_eq!(time_error(&[0.1, 0.3, 0.2]).0, 2);
+    assert!(time_error(&[0.1, 0.1]).1.contains("after"));
+    assert!(time_error(&[0.5, 1.5]).1.contains("outside"));
+    assert!(time_error(&[f64::NAN]).1.contains("finite"));
+    let both = SolveRequest {
+        dt: Some(0.1),
+        ..with_times(&[0.5])
+    };
+    assert!(matches!(
+        request_error(OSCILLATOR, both),
+        RequestError::StepAndTimes
+    ));
+    let switched =
+        "mod s { states { h = 1 } equations { der(h) = -1; } when hit: h < 0 { h = 1; } }";
+    assert!(matches!(
+        request_error(switched, with_times(&[0.5])),
+        RequestError::TimesOfSwitched { .. }
+    ));
     let backwards = request_error(OSCILLATOR, SolveRequest::new(-1.0));
     assert!(matches!(&backwards, RequestError::Settings(text) if text.contains("[0, -1]")));
     let states: Vec<String> = (0..=MAX_STATES).map(|i| format!("x{i}")).collect();
