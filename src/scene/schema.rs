@@ -45,14 +45,21 @@ pub struct SceneFile {
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct OutputTable {
-    /// Quantity names (see `eulerdisk quantities`); default all.
+    /// Quantity names (see `eulerdisk quantities`); default all (also in an `[output]` table
+    /// that does not name them).
+    #[serde(default = "all_quantities")]
     pub quantities: Vec<String>,
+}
+
+/// Every quantity: what `output.quantities` is when not given.
+fn all_quantities() -> Vec<String> {
+    Quantity::ALL.iter().map(|q| q.name().to_string()).collect()
 }
 
 impl Default for OutputTable {
     fn default() -> Self {
         OutputTable {
-            quantities: Quantity::ALL.iter().map(|q| q.name().to_string()).collect(),
+            quantities: all_quantities(),
         }
     }
 }

@@ -499,6 +499,6 @@ fn a_modes_table_without_allowed_allows_both() {
     );
     let scene = parse_scene("t", &without_modes, &[]).unwrap_or_else(|e| panic!("{e}"));
     let full = parse_scene("t", PAPER, &[]).unwrap();
-    assert_eq!(scene.modes.allowed.len(), 2);
-    assert_eq!(scene, full);
+    assert_eq!(scene.file.settings.modes.allowed.len(), 2);
+    assert_eq!(scene.file.settings.modes, full.file.settings.modes);
 }
