@@ -5,23 +5,19 @@
 
 use std::sync::atomic::AtomicBool;
 
-use eulerdisk::{load_scene, run_scene, Backend, Override, ProgressStyle, Provenance, RunOptions};
+use crate::quiet_run::{run_quietly, Quiet};
+use eulerdisk::{load_scene, Override};
 
 /// The paper's scene at `rate` samples per second, without trajectory or figures.
 fn main_job_at(rate: f64) -> (tempfile::TempDir, eulerdisk::RunReport) {
     let overrides = [Override::new("run", "sample_rate", rate)];
     let scene = load_scene("tangent-toy", &overrides).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        out_dir: dir.path().to_path_buf(),
-        progress: ProgressStyle::Quiet,
-        backend: Backend::Generated,
-        figures: false,
-        trajectory: false,
-        provenance: Provenance::new(&scene, "tangent-toy", &overrides),
-    };
-    let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
-    (dir, report)
+    run_quietly(
+        &scene,
+        &overrides,
+        Quiet::default(),
+        &AtomicBool::new(false),
+    )
 }
 
 #[test]
@@ -98,18 +94,8 @@ fn located_numbers_do_not_depend_on_the_sampling_rate() {
 fn a_disk_that_rolls_throughout_has_one_rolling_phase() {
     // Steady rolling on a circle never slides: one phase, all of the last second rolling.
     let scene = load_scene("steady-circle", &[]).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        out_dir: dir.path().to_path_buf(),
-        progress: ProgressStyle::Quiet,
-        backend: Backend::Generated,
-        figures: false,
-        trajectory: false,
-        provenance: Provenance::new(&scene, "steady-circle", &[]),
-    };
-    let s = run_scene(&scene, &opts, &AtomicBool::new(false))
-        .unwrap()
-        .summary;
+    let (_dir, report) = run_quietly(&scene, &[], Quiet::default(), &AtomicBool::new(false));
+    let s = report.summary;
     assert_eq!(s.transitions, 0);
     assert_eq!(s.rolling_phases_per_s_last, Some(1.0));
     assert_eq!(s.rolling_phases_long_per_s_last, Some(1.0));

@@ -9,6 +9,7 @@ mod extrema;
 mod imports;
 mod outputs;
 mod pruned_scene;
+mod quiet_run;
 mod readme_commands;
 mod run_pipeline;
 mod scene_physics;

@@ -5,10 +5,8 @@
 use std::fs;
 use std::sync::atomic::AtomicBool;
 
-use eulerdisk::{
-    choose, load_scene, run_scene, Backend, Override, ProgressStyle, Provenance, Quantity,
-    RunModel, RunOptions, RunReport, Scene,
-};
+use crate::quiet_run::{run_quietly, Quiet};
+use eulerdisk::{choose, load_scene, Backend, Override, Quantity, RunModel, RunReport, Scene};
 
 const PRUNED: &str = "tangent-toy-pruned";
 
@@ -18,17 +16,12 @@ fn load(name: &str, sets: &[&str]) -> Scene {
 }
 
 fn short_run(scene: &Scene, figures: bool) -> (tempfile::TempDir, RunReport) {
-    let dir = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        out_dir: dir.path().to_path_buf(),
-        progress: ProgressStyle::Quiet,
-        backend: Backend::Generated,
+    let how = Quiet {
         figures,
         trajectory: true,
-        provenance: Provenance::new(scene, &scene.name, &[]),
+        ..Quiet::default()
     };
-    let report = run_scene(scene, &opts, &AtomicBool::new(false)).unwrap();
-    (dir, report)
+    run_quietly(scene, &[], how, &AtomicBool::new(false))
 }
 
 #[test]

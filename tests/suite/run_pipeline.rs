@@ -5,10 +5,8 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use eulerdisk::{
-    load_scene, run_scene, simulate_scene, Backend, Ending, Override, ProgressStyle, Provenance,
-    RunOptions,
-};
+use crate::quiet_run::{run_quietly, Quiet};
+use eulerdisk::{load_scene, simulate_scene, Backend, Ending, Override};
 
 fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::RunReport) {
     let overrides = [Override::new("run", "t_end", t_end)];
@@ -22,17 +20,12 @@ fn run_in_tempdir(
     interrupt: &AtomicBool,
 ) -> (tempfile::TempDir, eulerdisk::RunReport) {
     let scene = load_scene("tangent-toy", overrides).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        out_dir: dir.path().to_path_buf(),
-        progress: ProgressStyle::Quiet,
+    let how = Quiet {
         backend,
-        figures: false,
         trajectory: true,
-        provenance: Provenance::new(&scene, "tangent-toy", overrides),
+        ..Quiet::default()
     };
-    let report = run_scene(&scene, &opts, interrupt).unwrap();
-    (dir, report)
+    run_quietly(&scene, overrides, how, interrupt)
 }
 
 #[test]
@@ -99,16 +92,12 @@ fn a_failed_run_reports_its_steps_and_evaluations() {
     let overrides = [Override::new("run", "t_end", 5.0)];
     let mut scene = load_scene("tangent-toy", &overrides).unwrap();
     scene.config.max_steps = 300;
-    let dir = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        out_dir: dir.path().to_path_buf(),
-        progress: ProgressStyle::Quiet,
-        backend: Backend::Generated,
-        figures: false,
-        trajectory: false,
-        provenance: Provenance::new(&scene, "tangent-toy", &overrides),
-    };
-    let report = run_scene(&scene, &opts, &AtomicBool::new(false)).unwrap();
+    let (dir, report) = run_quietly(
+        &scene,
+        &overrides,
+        Quiet::default(),
+        &AtomicBool::new(false),
+    );
     assert_eq!(report.ending, Ending::Failed);
     let s = &report.summary;
     assert_eq!(s.stop_reason, "error", "{}", s.stop_detail);
