@@ -38,7 +38,7 @@
 //! * **Model commands**: [`model_command`]; a model file's loading and solving are the library
 //!   `model_interpreted`'s, this crate keeps the flags, the CSV files and the sentences; for
 //!   other front ends, the arguments read as the flags are ([`model_named`],
-//!   [`model_event_spec`], [`ModelArguments`], [`ModelFileError`]) and [`show_switched`]
+//!   [`model_event_spec`], [`model_value_error`], [`ModelArguments`], [`ModelFileError`]) and [`show_switched`]
 //!   ([`ModelFormat`]).
 //! * **Evaluation**: [`evaluate`], [`parse_params`], [`parse_state`], [`Backend`],
 //!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
@@ -139,7 +139,7 @@ pub use model_command::run as model_command;
 // reading `NAME=VALUE` and event arguments and of saying the library's errors with them.
 pub use model_file::{
     event_spec as model_event_spec, named as model_named, show_switched,
-    Arguments as ModelArguments, ModelFileError,
+    value_error as model_value_error, Arguments as ModelArguments, ModelFileError,
 };
 pub use model_show::Format as ModelFormat;
 

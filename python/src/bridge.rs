@@ -9,17 +9,14 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use eulerdisk::{
-    load_scene, load_sweep, model_event_spec, model_named, parse_scene, parse_sweep, plan,
-    run_scene, run_sweep, show_switched, Backend, ExecOptions, LoadedSweep, ModelArguments,
-    ModelFileError, ModelFormat, Override, ProgressStyle, Provenance, RunOptions, RunReport, Scene,
-    SceneError, SweepReport, DEFAULT_SCENE, TABLE_FILE,
+    load_scene, load_sweep, model_event_spec, model_named, model_value_error, parse_scene,
+    parse_sweep, plan, run_scene, run_sweep, show_switched, Backend, ExecOptions, LoadedSweep,
+    ModelArguments, ModelFileError, ModelFormat, Override, ProgressStyle, Provenance, RunOptions,
+    RunReport, Scene, SceneError, SweepReport, DEFAULT_SCENE, TABLE_FILE,
 };
 use model_algebra::CompiledModel;
 use model_dsl::CompiledSwitched;
-use model_interpreted::{
-    evaluate, initial_state, LoadError, ModelFile, ModelRef, RequestError, Solution, SolveFailure,
-    Stop, ValueError,
-};
+use model_interpreted::{evaluate, initial_state, LoadError, ModelFile, ModelRef, Solution, Stop};
 use model_runtime::{Method, Stats};
 
 /// Where a scene comes from.
@@ -287,9 +284,9 @@ impl FileModel {
         };
         let values = |flag, given: &[String]| model_named(flag, given);
         let params = model_interpreted::params(ModelRef::Smooth(model), &values("--set", sets)?)
-            .map_err(|e| value_error("--set", sets, e))?;
+            .map_err(|e| model_value_error("--set", sets, e))?;
         let y = initial_state(ModelRef::Smooth(model), &values("--state", state)?)
-            .map_err(|e| value_error("--state", state, e))?;
+            .map_err(|e| model_value_error("--state", state, e))?;
         let point = evaluate(model, t, &y, &params)?;
         Ok(serde_json::to_string(&point).expect("named numbers serialise"))
     }
@@ -319,20 +316,6 @@ impl FileModel {
         };
         model_interpreted::solve(model, &library).map_err(|f| arguments.solve_error(f))
     }
-}
-
-/// The library's complaint about a `NAME=VALUE` argument, said with the argument.
-fn value_error(flag: &'static str, given: &[String], error: ValueError) -> ModelFileError {
-    let arguments = ModelArguments {
-        set: if flag == "--set" { given } else { &[] },
-        state: if flag == "--state" { given } else { &[] },
-        event: &[],
-    };
-    let request = match flag {
-        "--set" => RequestError::Params(error),
-        _ => RequestError::State(error),
-    };
-    arguments.solve_error(SolveFailure::Request(request))
 }
 
 /// What `Model.solve` asks for, in the command line's terms.
