@@ -248,16 +248,9 @@ impl FileModel {
     /// The model called `chart` (`None`: the file's model), as the library chooses it.
     fn model(&self, chart: Option<&str>) -> Result<ModelRef<'_>, LoadError> {
         match (self, chart) {
-            (FileModel::Smooth(models), None) => Ok(ModelRef::Smooth(&models[0])),
-            (FileModel::Smooth(models), Some(name)) => (models.iter())
-                .find(|m| m.name == name)
-                .map(ModelRef::Smooth)
-                .ok_or_else(|| LoadError::NoSuchChart {
-                    name: name.to_string(),
-                    available: (models.iter().map(|m| format!("`{}`", m.name)))
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                }),
+            (FileModel::Smooth(models), chart) => {
+                model_interpreted::select_chart(models, chart).map(ModelRef::Smooth)
+            }
             (FileModel::Switched(model), None) => Ok(ModelRef::Switched(model)),
             (FileModel::Switched(_), Some(chart)) => Err(LoadError::ChartOfSwitched {
                 chart: chart.to_string(),

@@ -19,7 +19,8 @@
 //!
 //! * **Loading**: [`ModelFile::read`], [`ModelFile::from_text`] give a [`ModelFile`] (smooth,
 //!   with its charts, or switched); [`ModelFile::model`] chooses a [`ModelRef`]
-//!   ([`LoadError`]).
+//!   ([`LoadError`]); a front end that keeps only the compiled models picks one with
+//!   [`select_chart`].
 //! * **Solving**: [`solve`] with a [`SolveRequest`] ([`EventRequest`], [`Named`] values) gives
 //!   a [`Solution`] ([`SolvedEvent`], [`EventKind`], [`Stop`], [`AccumulationPoint`]) or a
 //!   [`SolveFailure`] ([`RequestError`], [`UnknownEvent`], [`RunFailure`], [`ValueError`]).
@@ -77,7 +78,7 @@ pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
 };
 pub use interpreted::MAX_STATES;
-pub use load::{ModelFile, ModelRef};
+pub use load::{select_chart, ModelFile, ModelRef};
 pub use request::{EventRequest, SolveRequest, Watched};
 pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 pub use switched::mode_graph;

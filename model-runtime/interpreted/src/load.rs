@@ -65,7 +65,9 @@ impl ModelFile {
     /// charts.
     pub fn model(&self, chart: Option<&str>) -> Result<ModelRef<'_>, LoadError> {
         match (self, chart) {
-            (ModelFile::Smooth(models), chart) => select(models, chart).map(ModelRef::Smooth),
+            (ModelFile::Smooth(models), chart) => {
+                select_chart(models.iter().map(|m| &m.compiled), chart).map(ModelRef::Smooth)
+            }
             (ModelFile::Switched(model), None) => Ok(ModelRef::Switched(model)),
             (ModelFile::Switched(_), Some(chart)) => Err(LoadError::ChartOfSwitched {
                 chart: chart.to_string(),
@@ -89,17 +91,19 @@ impl ModelFile {
     }
 }
 
-/// The model called `chart` among `models` (`None`: the model itself, the first).
-fn select<'a>(
-    models: &'a [TextModel],
+/// The model called `chart` among a file's compiled models, the model first and then its
+/// charts (`None`: the model itself): for a front end that keeps only the compiled models
+/// (a syntax tree stays on the thread that parsed it).
+pub fn select_chart<'a>(
+    models: impl IntoIterator<Item = &'a CompiledModel> + Clone,
     chart: Option<&str>,
 ) -> Result<&'a CompiledModel, LoadError> {
     let found = match chart {
-        None => models.first(),
-        Some(name) => models.iter().find(|m| m.compiled.name == name),
+        None => models.clone().into_iter().next(),
+        Some(name) => models.clone().into_iter().find(|m| m.name == name),
     };
-    found.map(|m| &m.compiled).ok_or_else(|| {
-        let names: Vec<&str> = models.iter().map(|m| m.compiled.name.as_str()).collect();
+    found.ok_or_else(|| {
+        let names: Vec<&str> = models.into_iter().map(|m| m.name.as_str()).collect();
         LoadError::NoSuchChart {
             name: chart.unwrap_or_default().to_string(),
             available: quoted(&names),
