@@ -1,7 +1,8 @@
 //! The paper's 100 s scene end to end, the number a user waits for: the paper's own settings
 //! (DP5 in physical time), the recommended ones (DOP853 in regularised time, the scenes'
 //! default) with the full models and with their pruned variants (what a scene asking only
-//! for θ and N runs).
+//! for θ and N runs), and the recommended ones run by the disk's mode graph said in the DSL
+//! (`equations::disk`, the switched model) instead of the hand-written system.
 //!
 //! The paper's `rtol = 1e-8`, `atol = 1e-10`, Cartesian slip chart, physical slip sign,
 //! single thread; the median of nine runs of each setting, alternating so that all see the
@@ -21,9 +22,9 @@
 use common::{Args, Clock};
 use equations::DiskParams;
 use equations::SlipChart;
-use equations::{simulate, DiskModels, GeneratedModels, PrunedModels, RunOutcome, SimError};
-use equations::{DiskConfig, InitialState};
-use model_runtime::Model;
+use equations::{simulate, simulate_switched, DiskModels, GeneratedModels, PrunedModels};
+use equations::{DiskConfig, InitialState, SimFailure};
+use model_runtime::{Model, Stats};
 
 mod common;
 
@@ -33,21 +34,39 @@ const PYTHON_RHS_EVALS: f64 = 8.9e6;
 /// The compiled peer with 4 interior guard checks per step (s, the faster end of its range).
 const COMPILED_SECONDS: f64 = 1.07;
 
+/// Which system runs a setting.
+#[derive(Clone, Copy, PartialEq)]
+enum System {
+    /// The hand-written system with the full generated models.
+    Full,
+    /// The hand-written system with the pruned variants.
+    Pruned,
+    /// The disk's switched model (the DSL's mode graph).
+    Switched,
+}
+
+/// What a run did, whichever system ran it.
+struct Outcome {
+    stats: Stats,
+    transitions: u64,
+    stop: String,
+}
+
 /// One setting's runs: the CPU times and the last outcome (every run is identical).
 struct Measured {
     label: &'static str,
     config: DiskConfig,
-    pruned: bool,
+    system: System,
     times: Vec<f64>,
-    outcome: Option<RunOutcome>,
+    outcome: Option<Outcome>,
 }
 
 impl Measured {
-    fn new(label: &'static str, config: DiskConfig, pruned: bool) -> Self {
+    fn new(label: &'static str, config: DiskConfig, system: System) -> Self {
         Measured {
             label,
             config,
-            pruned,
+            system,
             times: Vec::new(),
             outcome: None,
         }
@@ -57,11 +76,28 @@ impl Measured {
         &mut self,
         models: &DiskModels<R, S>,
         initial: &InitialState,
-    ) -> Result<(), SimError> {
+    ) -> Result<(), SimFailure> {
         let clock = Clock::start();
         let out = simulate(models, &self.config, initial, &mut ())?;
         self.times.push(clock.seconds());
-        self.outcome = Some(out);
+        self.outcome = Some(Outcome {
+            stats: out.stats,
+            transitions: out.transitions,
+            stop: out.stop.name().to_string(),
+        });
+        Ok(())
+    }
+
+    fn run_switched(&mut self, initial: &InitialState) -> Result<(), SimFailure> {
+        let params = DiskParams::paper();
+        let clock = Clock::start();
+        let out = simulate_switched(&params, &self.config, initial)?;
+        self.times.push(clock.seconds());
+        self.outcome = Some(Outcome {
+            stats: out.stats,
+            transitions: out.decisions().len() as u64,
+            stop: out.stopped_by.unwrap_or_else(|| "end time".to_string()),
+        });
         Ok(())
     }
 
@@ -95,16 +131,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let initial = InitialState::paper(&params);
     let mut runs = [
-        Measured::new("DP5, physical time (the paper's)", paper, false),
-        Measured::new("DOP853, regularised (default)", recommended, false),
-        Measured::new("DOP853, regularised, pruned", recommended, true),
+        Measured::new("DP5, physical time (the paper's)", paper, System::Full),
+        Measured::new("DOP853, regularised (default)", recommended, System::Full),
+        Measured::new("DOP853, regularised, pruned", recommended, System::Pruned),
+        Measured::new(
+            "DOP853, regularised, DSL mode graph",
+            recommended,
+            System::Switched,
+        ),
     ];
     for _ in 0..repeats {
         for m in runs.iter_mut() {
-            if m.pruned {
-                m.run(&pruned, &initial)?;
-            } else {
-                m.run(&full, &initial)?;
+            match m.system {
+                System::Full => m.run(&full, &initial)?,
+                System::Pruned => m.run(&pruned, &initial)?,
+                System::Switched => m.run_switched(&initial)?,
             }
         }
     }
@@ -120,7 +161,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     table.push_str("\n|---|");
     table.push_str(&"---:|".repeat(runs.len()));
     table.push('\n');
-    let outs: Vec<&RunOutcome> = runs
+    let outs: Vec<&Outcome> = runs
         .iter()
         .map(|r| r.outcome.as_ref().ok_or("no run"))
         .collect::<Result<_, _>>()?;
@@ -170,7 +211,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 )
             }),
         ),
-        ("stop", Box::new(|i| outs[i].stop.name().to_string())),
+        ("stop", Box::new(|i| outs[i].stop.clone())),
     ];
     for (k, f) in rows {
         table.push_str(&format!("| {k} |"));
@@ -196,6 +237,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             outs[i].stats.steps as f64 / outs[0].stats.steps as f64,
         ));
     }
+    // The mode graph in the DSL against the hand-written system, at the same settings.
+    let (dsl, default) = (&runs[3], &runs[1]);
+    let pairs: Vec<f64> = (dsl.times.iter().zip(&default.times))
+        .map(|(a, b)| a / b)
+        .collect();
+    table.push_str(&format!(
+        "{} / {}: time {:.3} (median of the per-round ratios), steps {:.3}, transitions {} / {}\n",
+        dsl.label,
+        default.label,
+        median(&pairs),
+        outs[3].stats.steps as f64 / outs[1].stats.steps as f64,
+        outs[3].transitions,
+        outs[1].transitions,
+    ));
     print!("{table}");
     std::fs::create_dir_all(&args.out)?;
     std::fs::write(args.out.join("paper_run.md"), table)?;

@@ -60,6 +60,9 @@ pub mod extrema;
 pub mod models;
 pub mod onset;
 mod run;
+pub mod switching;
+pub use switching::disk;
+mod switching_run;
 mod system;
 
 pub use embedded::{EmbedError, Embedded, Embedding, Variant};
@@ -70,6 +73,7 @@ pub use models::{
 };
 pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
 pub use run::simulate;
+pub use switching_run::{simulate_switched, SwitchedDiskRun, SwitchedEvent};
 pub use system::DiskGuard;
 
 use crate::issue::Issue;

@@ -52,6 +52,21 @@ pub fn emit_switched(
     let n_modes = mode_names.len();
     let mode_indices = 0..n_modes;
     let initial = compiled.initial.iter().map(|v| constant(v.unwrap_or(0.0)));
+    // The discrete values follow the model's parameters in `params` (their initial values
+    // are the defaults there): every mode's model reads them as parameters.
+    let n_discrete = compiled.discrete.len();
+    let n_params = compiled.n_params();
+    let discrete_names: Vec<&str> = compiled.discrete.iter().map(|(n, _)| n.as_str()).collect();
+    let discrete_consts = discrete_names.iter().enumerate().map(|(j, name)| {
+        let ident = format_ident!("{}", name);
+        let index = n_params + j;
+        let doc = format!(" Index of discrete value `{name}` in [`Model::params`](super::Model).");
+        quote! {
+            #[doc = #doc]
+            pub const #ident: usize = #index;
+        }
+    });
+    let mode_params = quote! { self.params };
     let decls = compiled.modes.iter().map(|mode| {
         let mode_name = &mode.model.name;
         let events = mode.events.iter().map(|event| {
@@ -100,10 +115,34 @@ pub fn emit_switched(
         }
     });
     let rhs_arms = mode_idents.iter().enumerate().map(|(k, m)| {
-        quote! { #k => ::model_runtime::Model::<N_STATES>::rhs(&#m::Model::new(self.params), t, y, dy), }
+        quote! { #k => ::model_runtime::Model::<N_STATES>::rhs(&#m::Model::new(#mode_params), t, y, dy), }
     });
     let jacobian_arms = mode_idents.iter().enumerate().map(|(k, m)| {
-        quote! { #k => ::model_runtime::Model::<N_STATES>::jacobian(&#m::Model::new(self.params), t, y, jac), }
+        quote! { #k => ::model_runtime::Model::<N_STATES>::jacobian(&#m::Model::new(#mode_params), t, y, jac), }
+    });
+    // Each mode's first step: the derivatives, then the declared number; one that is not
+    // finite and positive (or a model that cannot be evaluated there) leaves the step to the
+    // integrator.
+    let first_step_arms = compiled.modes.iter().enumerate().filter_map(|(k, mode)| {
+        let body = statements(&mode.first_step.as_ref()?.program);
+        let m = &mode_idents[k];
+        Some(quote! {
+            #k => {
+                let p = &#mode_params;
+                let mut derivative = [0.0f64; N_STATES];
+                ::model_runtime::Model::<N_STATES>::rhs(&#m::Model::new(*p), t, y, &mut derivative).ok()?;
+                let dy = &derivative;
+                let step = || -> ::core::result::Result<f64, ::model_runtime::EvalError> {
+                    let mut values = [0.0f64; 1];
+                    {
+                        let out = &mut values;
+                        #body
+                    }
+                    ::core::result::Result::Ok(values[0])
+                };
+                step().ok().filter(|h| h.is_finite() && *h > 0.0)
+            }
+        })
     });
     let guard_arms = compiled.modes.iter().enumerate().map(|(k, mode)| {
         let n = mode.events.len();
@@ -145,16 +184,22 @@ pub fn emit_switched(
     });
     let mut reset_arms = Vec::new();
     let mut decide_arms = Vec::new();
+    let layout = Layout {
+        states: compiled.states().len(),
+        discrete: n_discrete,
+        params: n_params,
+    };
     for (k, mode) in compiled.modes.iter().enumerate() {
         for (e, event) in mode.events.iter().enumerate() {
             if let Action::Jump(jump) = &event.action {
-                match decide_arm(k, e, &format!("{}.{}", mode.model.name, event.name), jump) {
+                let name = format!("{}.{}", mode.model.name, event.name);
+                match decide_arm(k, e, &name, jump, layout) {
                     Some(arm) => decide_arms.push(arm),
-                    None => reset_arms.push(reset_arm(k, e, false, jump)),
+                    None => reset_arms.push(reset_arm(k, e, false, jump, layout)),
                 }
             }
             if let Some(jump) = &event.accumulation {
-                reset_arms.push(reset_arm(k, e, true, jump));
+                reset_arms.push(reset_arm(k, e, true, jump, layout));
             }
         }
     }
@@ -184,6 +229,19 @@ pub fn emit_switched(
                 output, param, state, Outputs, Params, State, N_OUTPUTS, N_PARAMS, N_STATES,
                 OUTPUT_NAMES, PARAM_DEFAULTS, PARAM_NAMES, STATE_NAMES,
             };
+            /// The number of discrete values: numbers that hold between events, set only by
+            /// events, kept at the end of [`Model::params`] (after the parameters proper; their
+            /// defaults there are where a run starts).
+            pub const N_DISCRETE: usize = #n_discrete;
+            /// Index of each discrete value in [`Model::params`].
+            pub mod discrete {
+                #(#discrete_consts)*
+            }
+            /// Discrete value names, in index order.
+            pub const DISCRETE_NAMES: [&str; N_DISCRETE] = [#(#discrete_names),*];
+            /// What a Rust function of an event (`by FUNCTION`) writes: the states, then the
+            /// discrete values.
+            pub const N_VALUES: usize = N_STATES + N_DISCRETE;
             const MODEL_NAME: &str = #name;
             /// The number of modes.
             pub const N_MODES: usize = #n_modes;
@@ -204,7 +262,8 @@ pub fn emit_switched(
             /// The switched model with its parameter values and its mode graph.
             #[derive(Clone, Debug, PartialEq)]
             pub struct Model {
-                /// Parameter values, indexed by the constants of [`param`].
+                /// Parameter values, indexed by the constants of [`param`], then the discrete
+                /// values as they are now (indexed by the constants of [`discrete`]).
                 pub params: [f64; N_PARAMS],
                 graph: ::model_runtime::ModeGraph,
             }
@@ -257,7 +316,7 @@ pub fn emit_switched(
                     dy: &[f64; N_STATES],
                     values: &mut [f64],
                 ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
-                    let p = &self.params;
+                    let p = &#mode_params;
                     match mode {
                         #(#guard_arms)*
                         _ => return ::core::result::Result::Err(unknown_mode()),
@@ -271,7 +330,7 @@ pub fn emit_switched(
                     }
                 }
                 fn decide(
-                    &self,
+                    &mut self,
                     mode: usize,
                     event: usize,
                     t: f64,
@@ -285,15 +344,21 @@ pub fn emit_switched(
                     };
                     ::core::result::Result::Ok(next)
                 }
+                fn first_step(&self, mode: usize, t: f64, y: &[f64; N_STATES]) -> ::core::option::Option<f64> {
+                    match mode {
+                        #(#first_step_arms)*
+                        _ => ::core::option::Option::None,
+                    }
+                }
                 fn time_scale(&self, mode: usize, y: &[f64; N_STATES]) -> f64 {
-                    let p = &self.params;
+                    let p = &#mode_params;
                     match mode {
                         #(#clock_arms)*
                         _ => 1.0,
                     }
                 }
                 fn reset(
-                    &self,
+                    &mut self,
                     mode: usize,
                     event: usize,
                     accumulation: bool,
@@ -302,7 +367,7 @@ pub fn emit_switched(
                     dy: &[f64; N_STATES],
                     new: &mut [f64; N_STATES],
                 ) -> ::core::result::Result<(), ::model_runtime::EvalError> {
-                    let p = &self.params;
+                    let p = &#mode_params;
                     match (mode, event, accumulation) {
                         #(#reset_arms)*
                         _ => {}
@@ -329,15 +394,51 @@ fn option_index(index: Option<usize>) -> TokenStream {
     }
 }
 
+/// How many states and discrete values a reset may assign: a reset's slot `k` is state `k`
+/// below `states`, discrete value `k - states` above (kept after the `params` parameters).
+#[derive(Clone, Copy)]
+struct Layout {
+    states: usize,
+    discrete: usize,
+    params: usize,
+}
+
+/// The call of an event's Rust function with the values it may write: the new state alone,
+/// or, when the model has discrete values, the states then the discrete values, copied back
+/// only when the function succeeds.
+fn rust_call(function: &str, layout: Layout) -> TokenStream {
+    let function = format_ident!("{}", function);
+    if layout.discrete == 0 {
+        return quote! { super::#function(self, t, y, dy, new)? };
+    }
+    quote! {
+        {
+            let mut values = [0.0f64; N_VALUES];
+            values[..N_STATES].copy_from_slice(&new[..]);
+            values[N_STATES..].copy_from_slice(&self.params[N_PARAMS - N_DISCRETE..]);
+            let result = super::#function(self, t, y, dy, &mut values)?;
+            new.copy_from_slice(&values[..N_STATES]);
+            self.params[N_PARAMS - N_DISCRETE..].copy_from_slice(&values[N_STATES..]);
+            result
+        }
+    }
+}
+
 /// One arm of `decide`, for a jump whose Rust function also chooses the next mode: the call,
 /// and the check that the mode it names is one the event lists (or a stop it allows).
-fn decide_arm(mode: usize, event: usize, name: &str, jump: &Jump) -> Option<TokenStream> {
+fn decide_arm(
+    mode: usize,
+    event: usize,
+    name: &str,
+    jump: &Jump,
+    layout: Layout,
+) -> Option<TokenStream> {
     let choice = jump.choice.as_ref()?;
-    let function = format_ident!("{}", jump.by.as_deref()?);
+    let call = rust_call(jump.by.as_deref()?, layout);
     let modes = &choice.modes;
     let stop = choice.stop;
     Some(quote! {
-        (#mode, #event) => match super::#function(self, t, y, dy, new)? {
+        (#mode, #event) => match #call {
             ::core::option::Option::Some(next) if [#(#modes),*].contains(&next) => {
                 ::core::option::Option::Some(next)
             }
@@ -360,20 +461,29 @@ fn assigns(jump: &Jump) -> bool {
 /// One arm of `reset`: the program of the new values into a local array, then each into its
 /// state; or a call of the Rust function that computes the new state (`by FUNCTION`), which
 /// the model's module finds in the module around it.
-fn reset_arm(mode: usize, event: usize, accumulation: bool, jump: &Jump) -> TokenStream {
+fn reset_arm(
+    mode: usize,
+    event: usize,
+    accumulation: bool,
+    jump: &Jump,
+    layout: Layout,
+) -> TokenStream {
     if let Some(function) = &jump.by {
-        let function = format_ident!("{}", function);
+        let call = rust_call(function, layout);
         return quote! {
-            (#mode, #event, #accumulation) => super::#function(self, t, y, dy, new)?,
+            (#mode, #event, #accumulation) => #call,
         };
     }
     let n = jump.states.len();
     let body = statements(&jump.program);
-    let targets = jump
-        .states
-        .iter()
-        .enumerate()
-        .map(|(k, s)| quote! { new[#s] = values[#k]; });
+    let targets = jump.states.iter().enumerate().map(|(k, &s)| {
+        if s < layout.states {
+            quote! { new[#s] = values[#k]; }
+        } else {
+            let d = layout.params + s - layout.states;
+            quote! { self.params[#d] = values[#k]; }
+        }
+    });
     quote! {
         (#mode, #event, #accumulation) => {
             let mut values = [0.0f64; #n];

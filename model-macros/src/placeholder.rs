@@ -78,6 +78,7 @@ pub fn switched_placeholder(ast: &ModelAst) -> TokenStream {
     let compiled = CompiledSwitched {
         name: ast.name.to_string(),
         initial,
+        discrete: Vec::new(),
         modes: (modes.iter())
             .map(|mode| {
                 let mut model = stub.clone();
@@ -87,6 +88,7 @@ pub fn switched_placeholder(ast: &ModelAst) -> TokenStream {
                     guards: Program::default(),
                     events: Vec::new(),
                     time_scale: None,
+                    first_step: None,
                 }
             })
             .collect(),

@@ -98,7 +98,7 @@ pub trait SwitchedModel<const N: usize> {
     /// one.
     #[allow(clippy::too_many_arguments)] // The event's coordinates and its state, as written.
     fn reset(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         accumulation: bool,
@@ -114,7 +114,7 @@ pub trait SwitchedModel<const N: usize> {
     /// nothing ([`EvalError::Undecided`]): a model with such events implements it.
     #[allow(clippy::too_many_arguments)] // The event's coordinates and its state, as written.
     fn decide(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         _t: f64,
@@ -140,6 +140,13 @@ pub trait SwitchedModel<const N: usize> {
     fn time_scale(&self, _mode: usize, _y: &[f64; N]) -> f64 {
         1.0
     }
+
+    /// The step to try first when a segment of `mode` starts at `(t, y)` (the run's start, a
+    /// switch or a restart); `None` (the default) leaves it to the integrator's own guess (see
+    /// [`HybridSystem::first_step`]).
+    fn first_step(&self, _mode: usize, _t: f64, _y: &[f64; N]) -> Option<f64> {
+        None
+    }
 }
 
 /// A switched model in regularised time: its [`SwitchedModel::time_scale`].
@@ -149,8 +156,9 @@ impl<const N: usize, M: SwitchedModel<N>> crate::hybrid::regularised::TimeScale<
     }
 }
 
-/// A borrowed model is a model: [`Switched`] can own the model or borrow it.
-impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
+/// A borrowed model is a model: [`Switched`] can own the model or borrow it (mutably: events
+/// may change the model's discrete values).
+impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &mut M {
     fn graph(&self) -> &ModeGraph {
         (**self).graph()
     }
@@ -177,7 +185,7 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
         (**self).event_values(mode, t, y, dy, values)
     }
     fn reset(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         accumulation: bool,
@@ -189,7 +197,7 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
         (**self).reset(mode, event, accumulation, t, y, dy, out)
     }
     fn decide(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         t: f64,
@@ -204,6 +212,9 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
     }
     fn time_scale(&self, mode: usize, y: &[f64; N]) -> f64 {
         (**self).time_scale(mode, y)
+    }
+    fn first_step(&self, mode: usize, t: f64, y: &[f64; N]) -> Option<f64> {
+        (**self).first_step(mode, t, y)
     }
 }
 
@@ -227,7 +238,7 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &M {
 ///     }
 ///     fn event_values(&self, _: usize, _t: f64, y: &[f64; 2], _dy: &[f64; 2], g: &mut [f64])
 ///         -> Result<(), EvalError> { g[0] = y[0]; Ok(()) }
-///     fn reset(&self, _: usize, _: usize, _: bool, _t: f64, y: &[f64; 2], _dy: &[f64; 2],
+///     fn reset(&mut self, _: usize, _: usize, _: bool, _t: f64, y: &[f64; 2], _dy: &[f64; 2],
 ///              out: &mut [f64; 2]) -> Result<(), EvalError> {
 ///         out[1] = -0.5 * y[1];
 ///         Ok(())
@@ -324,7 +335,7 @@ impl<M> Switched<M> {
     /// The state after `event` fired at `hit`: the model's reset (ordinary or accumulation)
     /// if `reset`, else the event state; an error names the event if it is not finite.
     fn assigned<const N: usize>(
-        &self,
+        &mut self,
         event: EventId,
         reset: bool,
         accumulation: bool,
@@ -460,6 +471,10 @@ impl<const N: usize, M: SwitchedModel<N>> HybridSystem<N> for Switched<M> {
 
     fn guard_inputs(&self, mode: ModeId) -> GuardInputs<N> {
         self.model.guard_inputs(mode.index())
+    }
+
+    fn first_step(&self, mode: ModeId, t: f64, y: &[f64; N]) -> Option<f64> {
+        self.model.first_step(mode.index(), t, y)
     }
 
     fn on_event(

@@ -75,7 +75,7 @@ const CLOCKED: usize = DIM + 1;
 /// The disk's modes, for the clocked system's guard lists.
 const PHASES: [Phase; 3] = [Phase::Rolling, Phase::Sliding, Phase::Bridge];
 
-fn validate<R, S>(
+pub(super) fn validate<R, S>(
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
@@ -141,21 +141,7 @@ where
         };
         return Ok(stopped_at_start(stop, first));
     }
-    let options = HybridOptions {
-        step: StepOptions {
-            max_steps: config.max_steps,
-            control: config.step_control,
-            ..StepOptions::default()
-        },
-        // A backstop only: the disk counts its own decisions (each may take three driver
-        // transitions through bridges) and stops with a named reason first.
-        chatter: DriverChatter {
-            max_transitions: 3 * config.chatter.max_transitions + 3,
-            window: config.chatter.window,
-        },
-        sample_rate: config.sample_rate,
-        guard_checks: config.guard_checks,
-    };
+    let options = hybrid_options(config);
     let input_error = |e: InputError| SimError::Solve {
         mode: phase.mode(),
         error: e.into(),
@@ -311,6 +297,26 @@ where
     })
 }
 
+/// The driver's options for a run under `config` (the hand-written and the switched disk
+/// alike).
+pub(super) fn hybrid_options(config: &DiskConfig) -> HybridOptions {
+    HybridOptions {
+        step: StepOptions {
+            max_steps: config.max_steps,
+            control: config.step_control,
+            ..StepOptions::default()
+        },
+        // A backstop only: the disk counts its own decisions (each may take three driver
+        // transitions through bridges) and stops with a named reason first.
+        chatter: DriverChatter {
+            max_transitions: 3 * config.chatter.max_transitions + 3,
+            window: config.chatter.window,
+        },
+        sample_rate: config.sample_rate,
+        guard_checks: config.guard_checks,
+    }
+}
+
 /// A run that ends where it starts, at `first`, before any step.
 fn stopped_at_start(stop: StopReason, first: DiskSample) -> RunOutcome {
     RunOutcome {
@@ -373,7 +379,7 @@ impl DiskConfig {
 }
 
 /// Where the driver starts (see [`simulate`]), and the initial mode decision if one was made.
-fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
+pub(super) fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
     system: &mut DiskSystem<'_, R, S>,
     models: &DiskModels<R, S>,
     config: &DiskConfig,

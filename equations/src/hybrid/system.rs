@@ -23,12 +23,12 @@ use std::collections::VecDeque;
 mod bridge;
 mod inputs;
 
-use bridge::{AfterBridge, BridgePlan};
+pub(crate) use bridge::{AfterBridge, BridgePlan};
 pub(crate) use bridge::{BridgeStart, Entry};
 
 /// What the integrator is doing: one of the two modes, or a bridge between zero slip and the
 /// stick threshold (part of sliding).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) enum Phase {
     Rolling,
     Sliding,
@@ -159,7 +159,7 @@ struct Settings {
 pub(crate) struct DiskSystem<'a, R, S> {
     models: &'a DiskModels<R, S>,
     settings: Settings,
-    bridge: BridgePlan,
+    pub(crate) bridge: BridgePlan,
     /// Event-driven mode decisions so far.
     pub transitions: u64,
     recent: VecDeque<f64>,

@@ -25,5 +25,6 @@ mod pruned_run;
 mod reference_vs_explicit;
 mod scene_settings;
 mod singular;
+mod switched_disk;
 mod trajectories;
 mod variants;

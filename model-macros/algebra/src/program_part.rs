@@ -64,7 +64,7 @@ impl Program {
             .all(|operand| !matches!(operand, Operand::State(_) | Operand::Der(_) | Operand::Time))
     }
 
-    /// The states and the derivatives the program reads, each in increasing index order and
+    /// The states, derivatives and parameters the program reads, each in increasing index order and
     /// without repeats: what a caller must supply for its values (the rest may be anything).
     pub fn reads(&self) -> Reads {
         let mut reads = Reads::default();
@@ -73,10 +73,11 @@ impl Program {
                 Operand::State(i) => reads.states.push(i),
                 Operand::Der(i) => reads.ders.push(i),
                 Operand::Time => reads.time = true,
+                Operand::Param(i) => reads.params.push(i),
                 _ => {}
             }
         }
-        for list in [&mut reads.states, &mut reads.ders] {
+        for list in [&mut reads.states, &mut reads.ders, &mut reads.params] {
             list.sort_unstable();
             list.dedup();
         }
@@ -93,6 +94,8 @@ pub struct Reads {
     pub ders: Vec<usize>,
     /// Whether the time is read.
     pub time: bool,
+    /// The indices of the parameters read.
+    pub params: Vec<usize>,
 }
 
 /// The operands a statement reads.

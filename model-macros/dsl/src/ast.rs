@@ -195,6 +195,9 @@ pub struct Mode {
     pub name: syn::Ident,
     /// The name's node.
     pub id: NodeId,
+    /// `mode NAME like OTHER`: the mode whose lets, equations, states, clock and first step
+    /// this one takes (its events are its own).
+    pub like: Option<Named<()>>,
     /// Lets of this mode, after the model's.
     pub lets: Vec<Named<Expr>>,
     /// Equations of this mode, after the model's shared ones.
@@ -205,6 +208,23 @@ pub struct Mode {
     pub accumulations: Vec<Accumulates>,
     /// `time_scale = EXPR;`: this mode's clock in regularised time, instead of the model's.
     pub time_scale: Option<Named<Expr>>,
+    /// `first_step = EXPR;`: the step the integrator tries first when the mode starts.
+    pub first_step: Option<Named<Expr>>,
+    /// `states { NEW, .. } replace { OLD, .. }`: the mode carries other coordinates in some of
+    /// the model's state slots.
+    pub states: Option<ModeStates>,
+}
+
+/// `states { u_X, u_Y } replace { V_X, V_Y }` in a mode: the new states take the slots of the
+/// replaced ones, in order (as in a chart), while the run is in the mode.
+#[derive(Clone, Debug)]
+pub struct ModeStates {
+    /// The keyword's node.
+    pub id: NodeId,
+    /// The mode's own states.
+    pub new: Vec<Named<()>>,
+    /// The model's states whose slots they take.
+    pub replace: Vec<Named<()>>,
 }
 
 /// `when NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION]`: an event, located where the guard's relation
@@ -294,6 +314,12 @@ pub struct ModelAst {
     /// `time_scale = EXPR;` outside every mode: the clock, in regularised time, of every mode
     /// that declares none (`dt = time_scale dτ`).
     pub time_scale: Option<Named<Expr>>,
+    /// `first_step = EXPR;` outside every mode: the first step of every mode that declares
+    /// none.
+    pub first_step: Option<Named<Expr>>,
+    /// `discrete { NAME = VALUE, .. }`: values that hold between events, set only by events'
+    /// resets, read like parameters.
+    pub discrete: Vec<Named<f64>>,
     /// Doc comments written on parameters, states and outputs, by name (they document the
     /// emitted index constants).
     pub docs: BTreeMap<String, Vec<syn::Attribute>>,
@@ -321,6 +347,8 @@ impl ModelAst {
             events: Vec::new(),
             accumulations: Vec::new(),
             time_scale: None,
+            first_step: None,
+            discrete: Vec::new(),
             docs: BTreeMap::new(),
             spans: Spans::default(),
         }

@@ -86,6 +86,8 @@ impl Chart {
             events: Vec::new(),
             accumulations: Vec::new(),
             time_scale: None,
+            first_step: None,
+            discrete: Vec::new(),
             docs: model.docs.clone(),
             spans: model.spans.clone(),
         }

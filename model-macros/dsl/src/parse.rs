@@ -11,7 +11,7 @@ use crate::statements::{
     braced, check_docs_only, no_docs_here, once, parse_binding, parse_documented_name,
     parse_equation, parse_list, parse_name, recover_section, recover_statement, with_value,
 };
-use crate::switching::{parse_mode, parse_time_scale, parse_when, Events};
+use crate::switching::{parse_declared, parse_mode, parse_when, Declared, Events};
 use proc_macro2::TokenStream;
 use syn::parse::{ParseStream, Parser};
 use syn::Token;
@@ -79,6 +79,7 @@ struct Seen {
     equations: Option<SpanRange>,
     outputs: Option<SpanRange>,
     options: Option<SpanRange>,
+    discrete: Option<SpanRange>,
 }
 
 fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst> {
@@ -127,7 +128,7 @@ fn parse_item(
     }
     let keyword: syn::Ident = input.parse().map_err(|_| {
         input.error(
-            "expected `params`, `states`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart` or `options`",
+            "expected `params`, `states`, `discrete`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart` or `options`",
         )
     })?;
     let range = SpanRange::single(keyword.span());
@@ -226,10 +227,32 @@ fn parse_item(
             let mode = parse_mode(input, attrs, &mut model.spans, errors)?;
             model.modes.push(mode);
         }
-        "time_scale" => {
-            no_docs_here(&attrs, "`time_scale`", errors);
+        "discrete" => {
+            no_docs_here(&attrs, "`discrete`", errors);
+            once(&mut seen.discrete, range, "discrete", errors);
+            let content = braced(input)?;
+            recover_section(&content, errors, |input| {
+                parse_list(input, &mut model.discrete, |input| {
+                    let name = parse_documented_name(input, &mut model.spans, &mut model.docs)?;
+                    if !input.peek(Token![=]) {
+                        return Err(input.error(format!(
+                            "expected `= VALUE` after `{}`: a discrete value starts at a value written here",
+                            name.name
+                        )));
+                    }
+                    input.parse::<Token![=]>()?;
+                    Ok(with_value(name, parse_default(input)?))
+                })
+            });
+        }
+        word if Declared::of(word).is_some() => {
+            let what = Declared::of(word).expect("matched");
+            no_docs_here(&attrs, &format!("`{word}`"), errors);
             recover_statement(input, errors, |input| {
-                parse_time_scale(input, &keyword, &mut model.spans, &mut model.time_scale)
+                let mut slot = what.model_slot(model).take();
+                let result = parse_declared(input, &keyword, &mut model.spans, &mut slot, what);
+                *what.model_slot(model) = slot;
+                result
             });
         }
         "when" => {
@@ -245,7 +268,7 @@ fn parse_item(
             return Err(syn::Error::new(
                 keyword.span(),
                 format!(
-                    "unknown section `{other}`: expected `params`, `states`, `let`, `equations`, `outputs`, `mode`, `when`, `time_scale`, `variant`, `chart` or `options`"
+                    "unknown section `{other}`: expected `params`, `states`, `discrete`, `let`, `equations`, `outputs`, `mode`, `when`, `time_scale`, `first_step`, `variant`, `chart` or `options`"
                 ),
             ))
         }

@@ -12,7 +12,7 @@
 //! A mistake in a shared row is found in every mode: it is reported once, and a mistake found
 //! in some modes only names them.
 
-use crate::ast::{Accumulates, Expr, ModelAst, RelOp, Target, When};
+use crate::ast::{Accumulates, Expr, ModeStates, ModelAst, RelOp, Target, When};
 use crate::span::Errors;
 use crate::validate::{validate_one, Validated, RESERVED_MODULES};
 use model_algebra::{BinOp, Named, NodeId};
@@ -109,6 +109,8 @@ pub struct ModePlan {
     /// The output of the mode's model holding its time scale (its own, or the model's), if
     /// either is declared.
     pub time_scale: Option<(NodeId, usize)>,
+    /// The output holding its first step (its own, or the model's), if either is declared.
+    pub first_step: Option<(NodeId, usize)>,
 }
 
 /// A switched model ready for the compiler.
@@ -120,6 +122,9 @@ pub struct SwitchedPlan {
     pub modes: Vec<ModePlan>,
     /// Each state's initial value, where one is written.
     pub initial: Vec<Option<f64>>,
+    /// The discrete values and their initial values, in the order written: each mode's model
+    /// takes them as parameters after the model's own.
+    pub discrete: Vec<(String, f64)>,
 }
 
 impl ModelAst {
@@ -129,6 +134,8 @@ impl ModelAst {
             || !self.events.is_empty()
             || !self.accumulations.is_empty()
             || self.time_scale.is_some()
+            || self.first_step.is_some()
+            || !self.discrete.is_empty()
     }
 
     /// Every `by FUNCTION` of the model's events and accumulations, in the order written: the
@@ -155,6 +162,10 @@ struct ModeView<'a> {
     accumulations: Vec<&'a Accumulates>,
     /// The mode's own time scale, or the model's.
     time_scale: Option<&'a Named<Expr>>,
+    /// The mode's own first step, or the model's.
+    first_step: Option<&'a Named<Expr>>,
+    /// The mode's own states in some of the model's slots.
+    states: Option<&'a ModeStates>,
 }
 
 /// Checks a switched model and builds each mode's model; `Err` carries every problem.
@@ -173,6 +184,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
             "a switched model cannot have variants yet",
         );
     }
+    check_likes(ast, &mut errors);
     let views = mode_views(ast);
     let mode_index: BTreeMap<&str, usize> = views
         .iter()
@@ -184,6 +196,7 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         if RESERVED_MODULES.contains(&view.name.as_str())
             || view.name == "stop"
             || view.name == "mode"
+            || view.name == "discrete"
         {
             errors.at(
                 range(view.id),
@@ -199,20 +212,45 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
             );
         }
     }
-    let state_index: BTreeMap<&str, usize> = (ast.states.iter().enumerate())
-        .map(|(k, s)| (s.name.as_str(), k))
+    // Each mode's states (the model's, with the mode's own in the slots they replace), and the
+    // names a reset into the mode may assign: its states, then the discrete values.
+    let mode_states: Vec<Vec<Named<()>>> = views
+        .iter()
+        .map(|view| match view.states {
+            Some(own) => mode_state_list(ast, view, own, &mut errors),
+            None => ast.states.clone(),
+        })
+        .collect();
+    let assignable: Vec<BTreeMap<&str, usize>> = (mode_states.iter())
+        .map(|states| {
+            (states.iter().map(|s| s.name.as_str()))
+                .chain(ast.discrete.iter().map(|d| d.name.as_str()))
+                .enumerate()
+                .map(|(k, name)| (name, k))
+                .collect()
+        })
         .collect();
     let mode_list = || {
         let names: Vec<String> = views.iter().map(|v| format!("`{}`", v.name)).collect();
         format!("the modes are {}", names.join(", "))
     };
-    let state_list = || {
-        let names: Vec<String> = ast.states.iter().map(|s| format!("`{}`", s.name)).collect();
-        format!("the states are {}", names.join(", "))
+    let state_list = |mode: usize| {
+        let names: Vec<String> = (assignable[mode].iter())
+            .map(|(name, k)| (k, name))
+            .collect::<BTreeMap<_, _>>()
+            .into_values()
+            .map(|name| format!("`{name}`"))
+            .collect();
+        let what = if ast.discrete.is_empty() {
+            "the states are"
+        } else {
+            "the states and discrete values are"
+        };
+        format!("{what} {}", names.join(", "))
     };
 
     let mut plans_ast = Vec::new();
-    for view in &views {
+    for (this, view) in views.iter().enumerate() {
         let mut outputs = ast.outputs.clone();
         let user_outputs = outputs.len();
         let mut events = Vec::new();
@@ -260,15 +298,23 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 }
                 _ => None,
             };
+            // A reset assigns the states of the mode it goes on in (read in this one).
+            let into = to.unwrap_or(this);
             let mut planned = Vec::new();
             for reset in resets {
-                let Some(&state) = state_index.get(reset.name.as_str()) else {
+                let Some(&state) = assignable[into].get(reset.name.as_str()) else {
+                    let what = if ast.discrete.is_empty() {
+                        "a state"
+                    } else {
+                        "a state or a discrete value"
+                    };
                     errors.at(
                         range(reset.id),
                         format!(
-                            "event `{event}` resets `{}`, which is not a state; {}",
+                            "event `{event}` resets `{}`, which is not {what} of mode `{}`; {}",
                             reset.name,
-                            state_list()
+                            views[into].name,
+                            state_list(into)
                         ),
                     );
                     continue;
@@ -317,6 +363,14 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 value: clock.value.clone(),
             });
             (clock.id, outputs.len() - 1)
+        });
+        let first_step = view.first_step.map(|step| {
+            outputs.push(Named {
+                name: "first_step:".to_string(),
+                id: step.id,
+                value: step.value.clone(),
+            });
+            (step.id, outputs.len() - 1)
         });
         for (k, &(when, shared)) in view.events.iter().enumerate() {
             let guard_output = user_outputs + k;
@@ -436,6 +490,14 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         model.attrs = view.attrs.clone();
         model.name = syn::Ident::new(&view.name, ast.name.span());
         model.lets = ast.lets.iter().chain(&view.lets).cloned().collect();
+        model.states = mode_states[this].clone();
+        model.params.extend((ast.discrete.iter()).map(|d| Named {
+            name: d.name.clone(),
+            id: d.id,
+            value: Some(d.value),
+        }));
+        model.discrete = Vec::new();
+        model.first_step = None;
         model.equations = view.equations.clone();
         model.outputs = outputs;
         model.variants = Vec::new();
@@ -444,20 +506,21 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         model.events = Vec::new();
         model.accumulations = Vec::new();
         model.time_scale = None;
-        plans_ast.push((view, model, user_outputs, events, time_scale));
+        plans_ast.push((view, model, user_outputs, events, time_scale, first_step));
     }
 
     // Each mode's model through the smooth validator; a problem found in every mode is the
     // shared rows' and is reported once.
     let mut found: Vec<(String, String, syn::Error, Vec<String>)> = Vec::new();
     let mut modes = Vec::new();
-    for (view, model, user_outputs, events, time_scale) in plans_ast {
+    for (view, model, user_outputs, events, time_scale, first_step) in plans_ast {
         match validate_one(&model) {
             Ok(validated) => modes.push(ModePlan {
                 model: validated,
                 user_outputs,
                 events,
                 time_scale,
+                first_step,
             }),
             Err(error) => {
                 for error in error {
@@ -500,12 +563,113 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         ast: ast.clone(),
         modes,
         initial,
+        discrete: (ast.discrete.iter())
+            .map(|d| (d.name.clone(), d.value))
+            .collect(),
     })
+}
+
+/// Every `like OTHER` names another mode of the model that writes its own rows.
+fn check_likes(ast: &ModelAst, errors: &mut Errors) {
+    for mode in &ast.modes {
+        let Some(like) = &mode.like else { continue };
+        let range = ast.spans.range(like.id);
+        match ast.modes.iter().find(|m| m.name == like.name.as_str()) {
+            None => {
+                let names: Vec<String> =
+                    ast.modes.iter().map(|m| format!("`{}`", m.name)).collect();
+                errors.at(
+                    range,
+                    format!(
+                        "mode `{}` is like `{}`, which is not a mode; the modes are {}",
+                        mode.name,
+                        like.name,
+                        names.join(", ")
+                    ),
+                );
+            }
+            Some(base) if base.like.is_some() || base.name == mode.name => errors.at(
+                range,
+                format!(
+                    "mode `{}` is like `{}`, which does not write its own equations: name the \
+                     mode that does",
+                    mode.name, like.name
+                ),
+            ),
+            Some(_) => {}
+        }
+    }
+}
+
+/// The states of a mode that carries its own coordinates in some slots: the model's, with the
+/// new states in the place of the first replaced one, in order (as a chart places them). Every
+/// replaced name must be a state of the model, once, and as many states must come in as go
+/// out; a mistake is reported here and the model's states are used.
+fn mode_state_list(
+    ast: &ModelAst,
+    view: &ModeView,
+    own: &ModeStates,
+    errors: &mut Errors,
+) -> Vec<Named<()>> {
+    let range = |id: NodeId| ast.spans.range(id);
+    let mut ok = true;
+    let mut slots = Vec::new();
+    for old in &own.replace {
+        match ast.states.iter().position(|s| s.name == old.name) {
+            Some(k) if slots.contains(&k) => {
+                errors.at(
+                    range(old.id),
+                    format!("mode `{}` replaces `{}` twice", view.name, old.name),
+                );
+                ok = false;
+            }
+            Some(k) => slots.push(k),
+            None => {
+                let names: Vec<String> =
+                    ast.states.iter().map(|s| format!("`{}`", s.name)).collect();
+                errors.at(
+                    range(old.id),
+                    format!(
+                        "mode `{}` replaces `{}`, which is not a state of the model; the states are {}",
+                        view.name,
+                        old.name,
+                        names.join(", ")
+                    ),
+                );
+                ok = false;
+            }
+        }
+    }
+    if own.new.len() != own.replace.len() {
+        errors.at(
+            range(own.id),
+            format!(
+                "mode `{}` brings {} states in for {} replaced: the modes share the model's {} state slots",
+                view.name,
+                own.new.len(),
+                own.replace.len(),
+                ast.states.len()
+            ),
+        );
+        ok = false;
+    }
+    if !ok {
+        return ast.states.clone();
+    }
+    let first = slots.iter().copied().min().unwrap_or(ast.states.len());
+    let mut states: Vec<Named<()>> = ast.states[..first].to_vec();
+    states.extend(own.new.iter().cloned());
+    states.extend(
+        (ast.states[first..].iter().enumerate())
+            .filter(|(k, _)| !slots.contains(&(first + k)))
+            .map(|(_, s)| s.clone()),
+    );
+    states
 }
 
 /// The modes as written, or the model itself as its only mode when it has events but no
 /// modes; each with the model's shared equations and events added.
-fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
+fn mode_views<'a>(ast: &'a ModelAst) -> Vec<ModeView<'a>> {
     if ast.modes.is_empty() {
         return vec![ModeView {
             name: ast.name.to_string(),
@@ -516,11 +680,39 @@ fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
             events: ast.events.iter().map(|w| (w, false)).collect(),
             accumulations: ast.accumulations.iter().collect(),
             time_scale: ast.time_scale.as_ref(),
+            first_step: ast.first_step.as_ref(),
+            states: None,
         }];
     }
     ast.modes
         .iter()
         .map(|mode| {
+            // `like OTHER`: the other mode's rows first, then this one's own; its states,
+            // clock and first step unless this one writes its own. (An unknown or chained
+            // `like` is reported by `check_likes`.)
+            let base = (mode.like.as_ref())
+                .and_then(|like| ast.modes.iter().find(|m| m.name == like.name.as_str()))
+                .filter(|base| base.like.is_none());
+            let lets: Vec<Named<Expr>> = (base.iter().flat_map(|b| &b.lets))
+                .chain(&mode.lets)
+                .cloned()
+                .collect();
+            let own_equations: Vec<crate::ast::Equation> = (base.iter().flat_map(|b| &b.equations))
+                .chain(&mode.equations)
+                .cloned()
+                .collect();
+            let pick =
+                |own: &'a Option<Named<Expr>>,
+                 theirs: fn(&'a crate::ast::Mode) -> &'a Option<Named<Expr>>| {
+                    own.as_ref()
+                        .or_else(|| base.and_then(|b| theirs(b).as_ref()))
+                };
+            let time_scale = pick(&mode.time_scale, |m| &m.time_scale);
+            let first_step = pick(&mode.first_step, |m| &m.first_step);
+            let states = mode
+                .states
+                .as_ref()
+                .or_else(|| base.and_then(|b| b.states.as_ref()));
             let mut events: Vec<(&When, bool)> = mode.events.iter().map(|w| (w, false)).collect();
             events.extend(ast.events.iter().map(|w| (w, true)));
             let mut accumulations: Vec<&Accumulates> = mode.accumulations.iter().collect();
@@ -529,16 +721,13 @@ fn mode_views(ast: &ModelAst) -> Vec<ModeView<'_>> {
                 name: mode.name.to_string(),
                 id: mode.id,
                 attrs: mode.attrs.clone(),
-                lets: mode.lets.clone(),
-                equations: ast
-                    .equations
-                    .iter()
-                    .chain(&mode.equations)
-                    .cloned()
-                    .collect(),
+                lets,
+                equations: ast.equations.iter().cloned().chain(own_equations).collect(),
                 events,
                 accumulations,
-                time_scale: mode.time_scale.as_ref().or(ast.time_scale.as_ref()),
+                time_scale: time_scale.or(ast.time_scale.as_ref()),
+                first_step: first_step.or(ast.first_step.as_ref()),
+                states,
             }
         })
         .collect()

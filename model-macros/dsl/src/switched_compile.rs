@@ -13,6 +13,9 @@ pub struct CompiledSwitched {
     pub name: String,
     /// Each state's initial value, where one is written.
     pub initial: Vec<Option<f64>>,
+    /// The discrete values and their initial values: each mode's model takes them as
+    /// parameters after the model's own (their defaults there).
+    pub discrete: Vec<(String, f64)>,
     /// The modes, the first being where a run starts.
     pub modes: Vec<CompiledMode>,
 }
@@ -28,14 +31,19 @@ pub struct CompiledMode {
     pub events: Vec<CompiledEvent>,
     /// The mode's time scale, if one is declared.
     pub time_scale: Option<Clock>,
+    /// The step to try first when the mode starts, if one is declared (`out[0]`; reads `t`,
+    /// `y`, `dy`, `p`: the derivatives are evaluated first). A value that is not finite and
+    /// positive leaves the choice to the integrator.
+    pub first_step: Option<Clock>,
 }
 
-/// A mode's clock in regularised time: `dt = s dτ`.
+/// One number a mode declares besides its equations (its clock in regularised time,
+/// `dt = s dτ`, or its first step), compiled.
 #[derive(Clone, Debug)]
 pub struct Clock {
-    /// `out[0]` = `s` (reads `y` and `p` only).
+    /// `out[0]` = the number (a clock reads `y` and `p` only).
     pub program: Program,
-    /// `s` as the compiler simplified it, in the DSL's syntax.
+    /// The number as the compiler simplified it, in the DSL's syntax.
     pub text: String,
 }
 
@@ -79,9 +87,43 @@ pub struct Jump {
 }
 
 impl CompiledSwitched {
-    /// The state names (shared by every mode).
+    /// The state names of the first mode (every mode has as many; a mode may name some of
+    /// its slots its own way: [`CompiledSwitched::slot_names`]).
     pub fn states(&self) -> &[String] {
         &self.modes[0].model.states
+    }
+
+    /// Each state slot's name, or its names joined by `/` where modes name it differently
+    /// (`V_X/u_X`), in the order the modes first use them.
+    pub fn slot_names(&self) -> Vec<String> {
+        (0..self.states().len())
+            .map(|k| {
+                let mut names: Vec<&str> = Vec::new();
+                for mode in &self.modes {
+                    let name = mode.model.states[k].as_str();
+                    if !names.contains(&name) {
+                        names.push(name);
+                    }
+                }
+                names.join("/")
+            })
+            .collect()
+    }
+
+    /// The name a reset into mode `mode` assigns at `slot`: the mode's state there, or after
+    /// the states a discrete value.
+    pub fn value_name(&self, mode: usize, slot: usize) -> &str {
+        let states = &self.modes[mode].model.states;
+        match states.get(slot) {
+            Some(state) => state,
+            None => &self.discrete[slot - states.len()].0,
+        }
+    }
+
+    /// The number of the model's own parameters (each mode's model takes the discrete values
+    /// after them).
+    pub fn n_params(&self) -> usize {
+        self.modes[0].model.params.len() - self.discrete.len()
     }
 
     /// The mode named `name`.
@@ -176,6 +218,28 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
                 text: texts[output].clone(),
             }
         });
+        // Outputs are functions of the state (a trajectory's rows are computed from the states
+        // alone): one that reads a discrete value is refused at its name.
+        let n_params = model.params.len() - plan.discrete.len();
+        for (k, output) in mode.model.ast.outputs.iter().take(n_user).enumerate() {
+            let reads = all.select_outputs(k..k + 1).reads();
+            if let Some(&d) = reads.params.iter().find(|&&i| i >= n_params) {
+                errors.at(
+                    spans.range(output.id),
+                    format!(
+                        "output `{}` reads the discrete value `{}`: outputs are functions of the \
+                         state, parameters and time; a value held between events belongs in \
+                         equations, guards and resets",
+                        output.name,
+                        plan.discrete[d - n_params].0
+                    ),
+                );
+            }
+        }
+        let first_step = mode.first_step.map(|(_, output)| Clock {
+            program: all.select_outputs(output..output + 1),
+            text: texts[output].clone(),
+        });
         model.outputs.truncate(n_user);
         model.outputs_program = all.select_outputs(0..n_user);
         model.explanation.outputs.truncate(n_user);
@@ -184,12 +248,14 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
             guards,
             events,
             time_scale,
+            first_step,
         });
     }
     errors.finish()?;
     Ok(CompiledSwitched {
         name: plan.ast.name.to_string(),
         initial: plan.initial.clone(),
+        discrete: plan.discrete.clone(),
         modes,
     })
 }

@@ -26,14 +26,40 @@ pub fn switching_markdown(model: &CompiledSwitched) -> String {
     if !initial.is_empty() {
         let _ = writeln!(md, "Initial state: {}.", initial.join(", "));
     }
-    for mode in &model.modes {
+    if !model.discrete.is_empty() {
+        let values: Vec<String> = (model.discrete.iter())
+            .map(|(name, value)| format!("{name} = {value}"))
+            .collect();
+        let _ = writeln!(
+            md,
+            "Discrete values (held between events, set by resets): {}.",
+            values.join(", ")
+        );
+    }
+    for (k, mode) in model.modes.iter().enumerate() {
         let _ = writeln!(md, "\n## Mode `{}`\n", mode.model.name);
+        let own: Vec<(&String, &String)> = (mode.model.states.iter().zip(states))
+            .filter(|(a, b)| a != b)
+            .collect();
+        if !own.is_empty() {
+            let news: Vec<String> = own.iter().map(|(a, _)| format!("`{a}`")).collect();
+            let olds: Vec<String> = own.iter().map(|(_, b)| format!("`{b}`")).collect();
+            let _ = writeln!(
+                md,
+                "States: {} in the slots of {}.\n",
+                news.join(", "),
+                olds.join(", ")
+            );
+        }
         if let Some(clock) = &mode.time_scale {
             let _ = writeln!(
                 md,
                 "Time scale (regularised time, `dt = s dτ`): `s = {}`.\n",
                 clock.text
             );
+        }
+        if let Some(step) = &mode.first_step {
+            let _ = writeln!(md, "First step when the mode starts: `{}`.\n", step.text);
         }
         if mode.events.is_empty() {
             md.push_str("No event: the run stays in this mode.\n");
@@ -44,7 +70,7 @@ pub fn switching_markdown(model: &CompiledSwitched) -> String {
             let then = match &event.action {
                 Action::Record => "recorded; nothing changes".to_string(),
                 Action::Stop => "the run stops".to_string(),
-                Action::Jump(jump) => jump_text(model, &mode.model.name, jump, states),
+                Action::Jump(jump) => jump_text(model, k, jump),
             };
             let shared = if event.shared { " (every mode)" } else { "" };
             let _ = writeln!(
@@ -59,7 +85,7 @@ pub fn switching_markdown(model: &CompiledSwitched) -> String {
                     md,
                     "| `{}` accumulates | its firings converge (a Zeno point) | {} |",
                     event.name,
-                    jump_text(model, &mode.model.name, jump, states)
+                    jump_text(model, k, jump)
                 );
             }
         }
@@ -69,9 +95,8 @@ pub fn switching_markdown(model: &CompiledSwitched) -> String {
 
 /// The same as LaTeX: per mode, one line per event, `guard \downarrow 0 \Rightarrow resets`.
 pub fn switching_latex(model: &CompiledSwitched) -> String {
-    let states = model.states();
     let mut tex = String::from("\\begin{align*}\n");
-    for mode in &model.modes {
+    for (k, mode) in model.modes.iter().enumerate() {
         let _ = writeln!(
             tex,
             "&\\textbf{{{}}} \\\\",
@@ -88,7 +113,7 @@ pub fn switching_latex(model: &CompiledSwitched) -> String {
                     Crossing::Down => "\\downarrow",
                     Crossing::Both => "\\updownarrow",
                 },
-                action_latex(model, event, states)
+                action_latex(model, k, event)
             );
         }
     }
@@ -96,10 +121,11 @@ pub fn switching_latex(model: &CompiledSwitched) -> String {
     tex
 }
 
-fn action_latex(model: &CompiledSwitched, event: &CompiledEvent, states: &[String]) -> String {
+fn action_latex(model: &CompiledSwitched, mode: usize, event: &CompiledEvent) -> String {
     let jump = |jump: &Jump| {
+        let into = jump.to.unwrap_or(mode);
         let mut parts: Vec<String> = (jump.states.iter().zip(&jump.latex))
-            .map(|(&s, v)| format!("{}^{{+}} = {v}", latex_name(&states[s])))
+            .map(|(&s, v)| format!("{}^{{+}} = {v}", latex_name(model.value_name(into, s))))
             .collect();
         if let Some(function) = &jump.by {
             parts.push(format!(
@@ -148,9 +174,10 @@ fn crossing_words(crossing: Crossing) -> &'static str {
     }
 }
 
-fn jump_text(model: &CompiledSwitched, from: &str, jump: &Jump, states: &[String]) -> String {
+fn jump_text(model: &CompiledSwitched, from: usize, jump: &Jump) -> String {
+    let into = jump.to.unwrap_or(from);
     let mut parts: Vec<String> = (jump.states.iter().zip(&jump.texts))
-        .map(|(&s, v)| format!("`{} := {v}`", states[s]))
+        .map(|(&s, v)| format!("`{} := {v}`", model.value_name(into, s)))
         .collect();
     if let Some(function) = &jump.by {
         parts.push(format!("the state `by {function}` (Rust)"));
@@ -167,7 +194,7 @@ fn jump_text(model: &CompiledSwitched, from: &str, jump: &Jump, states: &[String
     }
     parts.push(match jump.to {
         Some(to) => format!("go to `{}`", model.modes[to].model.name),
-        None => format!("restart `{from}`"),
+        None => format!("restart `{}`", model.modes[from].model.name),
     });
     parts.join(", ")
 }

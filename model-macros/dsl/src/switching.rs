@@ -11,12 +11,13 @@
 //! solution of a search) is computed `by` a named Rust function: `-> sliding by slip_onset`.
 //! The grammar is described in the macro crate's `DSL.md`, section "Switching".
 
-use crate::ast::{Accumulates, Mode, Target, When};
+use crate::ast::{Accumulates, Mode, ModeStates, ModelAst, Target, When};
 use crate::expr::parse_relation;
 use crate::skip::skip_all;
 use crate::span::{Errors, SpanRange, Spans};
 use crate::statements::{
-    braced, check_docs_only, parse_binding, parse_equation, parse_name, recover_statement,
+    braced, check_docs_only, parse_binding, parse_equation, parse_list, parse_name,
+    recover_statement,
 };
 use model_algebra::Named;
 use syn::parse::ParseStream;
@@ -39,16 +40,32 @@ pub(crate) fn parse_mode(
 ) -> syn::Result<Mode> {
     let name: syn::Ident = input.parse()?;
     let id = spans.push(SpanRange::single(name.span()));
+    // `mode stopping like starting { .. }`: another mode's equations, with events of its own.
+    let like = if input.peek(syn::Ident) {
+        let word: syn::Ident = input.parse()?;
+        if word != "like" {
+            return Err(syn::Error::new(
+                word.span(),
+                format!("expected `{{` or `like MODE` after `mode {name}`"),
+            ));
+        }
+        Some(parse_name(input, spans)?)
+    } else {
+        None
+    };
     let content = braced(input)?;
     let mut mode = Mode {
         attrs,
         name,
         id,
+        like,
         lets: Vec::new(),
         equations: Vec::new(),
         events: Vec::new(),
         accumulations: Vec::new(),
         time_scale: None,
+        first_step: None,
+        states: None,
     };
     let mut equations_seen = false;
     while !content.is_empty() {
@@ -67,7 +84,7 @@ pub(crate) fn parse_mode(
             Ok(keyword) => keyword,
             Err(_) => {
                 errors.push(content.error(format!(
-                    "expected `let`, `equations {{ .. }}`, `when` or `time_scale` in mode `{}`",
+                    "expected `let`, `states {{ .. }} replace {{ .. }}`, `equations {{ .. }}`, `when`, `time_scale` or `first_step` in mode `{}`",
                     mode.name
                 )));
                 skip_all(&content);
@@ -103,17 +120,28 @@ pub(crate) fn parse_mode(
                     parse_when(input, item_attrs, spans, &mut events)
                 });
             }
-            "time_scale" => {
+            word if Declared::of(word).is_some() => {
+                let what = Declared::of(word).expect("matched");
                 recover_statement(&content, errors, |input| {
-                    parse_time_scale(input, &keyword, spans, &mut mode.time_scale)
+                    parse_declared(input, &keyword, spans, what.slot(&mut mode), what)
                 });
+            }
+            "states" => {
+                if mode.states.is_some() {
+                    errors.push(syn::Error::new(
+                        keyword.span(),
+                        format!("`states` is written twice in mode `{}`", mode.name),
+                    ));
+                }
+                let id = spans.push(SpanRange::single(keyword.span()));
+                mode.states = Some(parse_mode_states(&content, id, spans)?);
             }
             other => {
                 errors.push(syn::Error::new(
                     keyword.span(),
                     format!(
-                        "unknown section `{other}` in mode `{}`: expected `let`, `equations`, `when` or `time_scale` \
-                         (parameters, states, outputs and options belong to the model)",
+                        "unknown section `{other}` in mode `{}`: expected `let`, `states`, `equations`, `when`, `time_scale` \
+                         or `first_step` (parameters, outputs, discrete values and options belong to the model)",
                         mode.name
                     ),
                 ));
@@ -124,35 +152,114 @@ pub(crate) fn parse_mode(
     Ok(mode)
 }
 
-/// After the keyword `time_scale` (of a mode, or of the model): `= EXPR;`, the clock of
-/// regularised time (`dt = EXPR dτ`), into `slot` (an error if it is already set).
-pub(crate) fn parse_time_scale(
+/// A number a mode declares besides its equations, `KEYWORD = EXPR;`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Declared {
+    /// `time_scale`: the clock of regularised time (`dt = EXPR dτ`).
+    TimeScale,
+    /// `first_step`: the step the integrator tries first when the mode starts.
+    FirstStep,
+}
+
+impl Declared {
+    /// The declaration's keyword, if `word` is one.
+    pub(crate) fn of(word: &str) -> Option<Declared> {
+        match word {
+            "time_scale" => Some(Declared::TimeScale),
+            "first_step" => Some(Declared::FirstStep),
+            _ => None,
+        }
+    }
+
+    /// Where a mode keeps it.
+    pub(crate) fn slot(self, mode: &mut Mode) -> &mut Option<Named<crate::ast::Expr>> {
+        match self {
+            Declared::TimeScale => &mut mode.time_scale,
+            Declared::FirstStep => &mut mode.first_step,
+        }
+    }
+
+    /// Where the model keeps it (for the modes that declare none).
+    pub(crate) fn model_slot(self, model: &mut ModelAst) -> &mut Option<Named<crate::ast::Expr>> {
+        match self {
+            Declared::TimeScale => &mut model.time_scale,
+            Declared::FirstStep => &mut model.first_step,
+        }
+    }
+
+    fn example(self) -> &'static str {
+        match self {
+            Declared::TimeScale => "`time_scale = theta / (theta + 0.01);`",
+            Declared::FirstStep => "`first_step = 1e-3 * abs(v / der(v));`",
+        }
+    }
+}
+
+/// After a declaration's keyword (of a mode, or of the model): `= EXPR;`, into `slot` (an
+/// error if it is already set: a mode has one of each; the model's is for the modes that
+/// declare none).
+pub(crate) fn parse_declared(
     input: ParseStream,
     keyword: &syn::Ident,
     spans: &mut Spans,
     slot: &mut Option<Named<crate::ast::Expr>>,
+    what: Declared,
 ) -> syn::Result<()> {
     if slot.is_some() {
         return Err(syn::Error::new(
             keyword.span(),
-            "`time_scale` is written twice here: a mode has one clock (the model's `time_scale` \
-             is for the modes that declare none)",
+            format!(
+                "`{keyword}` is written twice here: a mode has one (the model's `{keyword}` is \
+                 for the modes that declare none)"
+            ),
         ));
     }
     if !input.peek(Token![=]) {
-        return Err(input.error(
-            "expected `=` and an expression after `time_scale`, e.g. `time_scale = theta / (theta + 0.01);`",
-        ));
+        return Err(input.error(format!(
+            "expected `=` and an expression after `{keyword}`, e.g. {}",
+            what.example()
+        )));
     }
     input.parse::<Token![=]>()?;
     let value = crate::expr::parse_expr(input, spans)?;
     input.parse::<Token![;]>()?;
     *slot = Some(Named {
-        name: "time_scale".to_string(),
+        name: keyword.to_string(),
         id: spans.push(SpanRange::single(keyword.span())),
         value,
     });
     Ok(())
+}
+
+/// After `states` in a mode: `{ NEW, .. } replace { OLD, .. }`.
+fn parse_mode_states(
+    input: ParseStream,
+    id: model_algebra::NodeId,
+    spans: &mut Spans,
+) -> syn::Result<ModeStates> {
+    let mut states = ModeStates {
+        id,
+        new: Vec::new(),
+        replace: Vec::new(),
+    };
+    let new = braced(input)?;
+    parse_list(&new, &mut states.new, |input| parse_name(input, spans))?;
+    let replace: syn::Ident = input.parse().map_err(|_| {
+        input.error(
+            "expected `replace { .. }`: a mode's states take the slots of states of the model",
+        )
+    })?;
+    if replace != "replace" {
+        return Err(syn::Error::new(
+            replace.span(),
+            "expected `replace { .. }`: a mode's states take the slots of states of the model",
+        ));
+    }
+    let replaced = braced(input)?;
+    parse_list(&replaced, &mut states.replace, |input| {
+        parse_name(input, spans)
+    })?;
+    Ok(states)
 }
 
 /// After the keyword `when`: `NAME: GUARD [-> TARGET] [{ RESETS } | by FUNCTION] [;]` or

@@ -47,7 +47,7 @@ impl SwitchedModel<3> for Everything {
         self.0.event_values(mode, t, y, dy, values)
     }
     fn reset(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         accumulation: bool,

@@ -7,6 +7,7 @@ mod cartesian_pendulum;
 mod common;
 mod dense_chain;
 mod guard_inputs;
+mod held;
 mod rotating_hoop;
 mod rust_reset;
 mod solve;

@@ -123,6 +123,21 @@ impl<'a> Interpreted<'a> {
         }
     }
 
+    /// The same model reading other parameter values (a switched model's discrete values,
+    /// which follow its parameters, change at events).
+    pub(crate) fn reading<'b>(&self, params: &'b [f64]) -> Interpreted<'b>
+    where
+        'a: 'b,
+    {
+        Interpreted {
+            model: self.model,
+            params,
+            info: self.info,
+            der_names: self.der_names,
+            pivots: self.pivots,
+        }
+    }
+
     /// An interpreter failure as the runtime's error, naming the pivot.
     pub(crate) fn error(&self, failure: EvalFailure) -> EvalError {
         match failure {

@@ -57,21 +57,29 @@ pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, SolveFailure> {
 /// A switched model run by the interpreter, in [`MAX_STATES`] components.
 struct InterpretedSwitched<'a> {
     model: &'a CompiledSwitched,
-    params: &'a [f64],
+    /// The parameters, then the discrete values as they are now (the model's parameters,
+    /// the discrete values' defaults the initial ones: what every mode's model reads).
+    values: Vec<f64>,
     modes: Vec<Interpreted<'a>>,
     graph: ModeGraph,
 }
 
 impl<'a> InterpretedSwitched<'a> {
-    fn new(model: &'a CompiledSwitched, params: &'a [f64]) -> Result<Self, SolveFailure> {
+    fn new(model: &'a CompiledSwitched, params: &[f64]) -> Result<Self, SolveFailure> {
+        let values = params.to_vec();
         Ok(InterpretedSwitched {
             model,
-            params,
+            values,
             modes: (model.modes.iter())
-                .map(|mode| Interpreted::new(&mode.model, params))
+                .map(|mode| Interpreted::new(&mode.model, &[]))
                 .collect(),
             graph: mode_graph(model)?,
         })
+    }
+
+    /// Mode `mode`'s model reading the values now.
+    fn mode(&self, mode: usize) -> Interpreted<'_> {
+        self.modes[mode].reading(&self.values)
     }
 
     fn inputs<'b>(&'b self, t: f64, y: &'b [f64], dy: &'b [f64]) -> Inputs<'b> {
@@ -79,7 +87,7 @@ impl<'a> InterpretedSwitched<'a> {
         Inputs {
             t,
             states: &y[..n],
-            params: self.params,
+            params: &self.values,
             ders: &dy[..n],
         }
     }
@@ -91,7 +99,7 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
     }
 
     fn rhs(&self, mode: usize, t: f64, y: &Padded, dy: &mut Padded) -> Result<(), EvalError> {
-        self.modes[mode].rhs(t, y, dy)
+        self.mode(mode).rhs(t, y, dy)
     }
 
     fn jacobian(
@@ -101,7 +109,7 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         y: &Padded,
         jac: &mut [Padded; MAX_STATES],
     ) -> Result<(), EvalError> {
-        self.modes[mode].jacobian(t, y, jac)
+        self.mode(mode).jacobian(t, y, jac)
     }
 
     fn event_values(
@@ -120,7 +128,7 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
     }
 
     fn reset(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         accumulation: bool,
@@ -137,10 +145,26 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         };
         let stores =
             (jump.program.eval(&self.inputs(t, y, dy))).map_err(|e| self.modes[mode].error(e))?;
-        for (&state, value) in jump.states.iter().zip(stores.outputs(jump.states.len())) {
-            out[state] = value;
+        let n = self.model.states().len();
+        let params = self.model.n_params();
+        for (&slot, value) in jump.states.iter().zip(stores.outputs(jump.states.len())) {
+            if slot < n {
+                out[slot] = value;
+            } else {
+                // A discrete value: after the parameters in what the modes read.
+                self.values[params + slot - n] = value;
+            }
         }
         Ok(())
+    }
+
+    fn first_step(&self, mode: usize, t: f64, y: &Padded) -> Option<f64> {
+        let step = self.model.modes[mode].first_step.as_ref()?;
+        let mut dy = [0.0; MAX_STATES];
+        self.rhs(mode, t, y, &mut dy).ok()?;
+        let stores = step.program.eval(&self.inputs(t, y, &dy)).ok()?;
+        let h = stores.outputs(1)[0];
+        (h.is_finite() && h > 0.0).then_some(h)
     }
 }
 
@@ -155,7 +179,7 @@ pub(crate) fn solve_switched(
     let n = model.states().len();
     check_size(&model.name, n)?;
     let params = &resolved.params;
-    let interpreted = InterpretedSwitched::new(model, params)?;
+    let mut interpreted = InterpretedSwitched::new(model, params)?;
     let tolerance = tolerance(n, request.rtol, request.atol);
     let options = HybridOptions {
         sample_rate: request.dt.map(|dt| 1.0 / dt),
@@ -165,7 +189,7 @@ pub(crate) fn solve_switched(
     let t_end = request.t_end;
     let run = match request.method {
         Method::Dopri5 => run_switched(
-            &interpreted,
+            &mut interpreted,
             Dopri5::new(),
             tolerance,
             options,
@@ -173,7 +197,7 @@ pub(crate) fn solve_switched(
             t_end,
         ),
         Method::Dop853 => run_switched(
-            &interpreted,
+            &mut interpreted,
             Dop853::new(),
             tolerance,
             options,
@@ -181,20 +205,27 @@ pub(crate) fn solve_switched(
             t_end,
         ),
         Method::Rodas4 => run_switched(
-            &interpreted,
+            &mut interpreted,
             Rodas4::new(),
             tolerance,
             options,
             start,
             t_end,
         ),
-        Method::Rk4 { h } => {
-            run_switched(&interpreted, Rk4::new(h), tolerance, options, start, t_end)
-        }
+        Method::Rk4 { h } => run_switched(
+            &mut interpreted,
+            Rk4::new(h),
+            tolerance,
+            options,
+            start,
+            t_end,
+        ),
     }
     .map_err(run_failure)?;
     let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
-    let at = |mode: &str, t: f64, y: &Padded| row(mode_model(mode), params, t, &y[..n]);
+    // Outputs read no discrete value (the compiler refuses it): the values at the end serve.
+    let values = &interpreted.values;
+    let at = |mode: &str, t: f64, y: &Padded| row(mode_model(mode), values, t, &y[..n]);
     let mut rows = Vec::with_capacity(run.samples.len() + 1);
     for (t, mode, y) in &run.samples {
         rows.push(at(mode, *t, y)?);
@@ -241,7 +272,7 @@ pub(crate) fn solve_switched(
     let first: &CompiledModel = &model.modes[0].model;
     Ok(Solution {
         model: model.name.clone(),
-        columns: columns(model.states().iter().chain(&first.outputs)),
+        columns: columns(model.slot_names().iter().chain(&first.outputs)),
         states: n,
         rows,
         events,

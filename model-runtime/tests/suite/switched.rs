@@ -103,7 +103,7 @@ impl SwitchedModel<2> for SwitchedBall {
         Ok(())
     }
     fn reset(
-        &self,
+        &mut self,
         _mode: usize,
         _event: usize,
         accumulation: bool,
@@ -120,7 +120,7 @@ impl SwitchedModel<2> for SwitchedBall {
         Ok(())
     }
     fn decide(
-        &self,
+        &mut self,
         mode: usize,
         event: usize,
         t: f64,
@@ -279,12 +279,12 @@ fn a_recorded_apex_passes_at_its_closed_form_times_and_changes_no_step() {
 
 #[test]
 fn a_terminal_event_ends_the_run_with_its_name() {
-    let ball = SwitchedBall::new(Tables {
+    let mut ball = SwitchedBall::new(Tables {
         impact: EventAction::Stop,
         on_accumulation: None,
         ..RESTS
     });
-    let (out, log) = drop(&ball);
+    let (out, log) = drop(&mut ball);
     let out = out.unwrap();
     let StopReason::User(stop) = out.stop else {
         panic!("{:?}", out.stop);

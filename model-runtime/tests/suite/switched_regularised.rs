@@ -38,7 +38,7 @@ impl SwitchedModel<2> for SlowNearTheFloor {
         Ok(())
     }
     fn reset(
-        &self,
+        &mut self,
         _: usize,
         _: usize,
         _: bool,

@@ -21,7 +21,7 @@ const MAX_BRIDGE: f64 = 1e-6;
 
 /// What happens when a bridge ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum AfterBridge {
+pub(crate) enum AfterBridge {
     /// The slip has reached zero: the rolling equations decide.
     StickDecision,
     /// The slip has grown to the stick threshold's double: sliding proper starts with it.
@@ -30,10 +30,10 @@ pub(super) enum AfterBridge {
 
 /// A planned bridge: when it ends, its constant derivative, and what follows it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct BridgePlan {
-    pub(super) t_end: f64,
-    pub(super) slope: [f64; DIM],
-    pub(super) then: AfterBridge,
+pub(crate) struct BridgePlan {
+    pub(crate) t_end: f64,
+    pub(crate) slope: [f64; DIM],
+    pub(crate) then: AfterBridge,
 }
 
 /// Where a segment starts: its phase and state, and on a bridge the slip it starts from.

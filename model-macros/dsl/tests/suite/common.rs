@@ -1,7 +1,7 @@
 //! Models from DSL text, through the one front end.
 
 use model_algebra::ModelSpec;
-use model_dsl::{spec_unchecked, validate, Source, Validated};
+use model_dsl::{spec_unchecked, validate, CompiledSwitched, Located, Source, Validated};
 
 /// The model `text` (`mod NAME { .. }`) and its charts, parsed and validated as `model!` does.
 fn validated(text: &str) -> Vec<Validated> {
@@ -52,4 +52,41 @@ pub fn charted(text: &str, chart: &str) -> ModelSpec {
 pub fn with_variant(text: &str, variant: &str) -> String {
     let end = text.rfind('}').expect("the module is closed");
     format!("{}{variant}\n{}", &text[..end], &text[end..])
+}
+
+/// The switched model `text`, compiled (a panic shows its errors).
+pub fn compile_switched(text: &str) -> CompiledSwitched {
+    match Source::new("m.dsl", text).compile_switched() {
+        Ok(model) => model,
+        Err(errors) => panic!("{errors}"),
+    }
+}
+
+/// The errors of the switched model `text`, which must be rejected.
+pub fn switched_errors(text: &str) -> Vec<Located> {
+    Source::new("bad.dsl", text)
+        .compile_switched()
+        .expect_err("must be rejected")
+        .0
+}
+
+/// The errors' messages.
+pub fn messages(found: &[Located]) -> Vec<String> {
+    found.iter().map(|e| e.message.clone()).collect()
+}
+
+/// The error whose message contains `needle`.
+pub fn find<'a>(found: &'a [Located], needle: &str) -> &'a Located {
+    found
+        .iter()
+        .find(|e| e.message.contains(needle))
+        .unwrap_or_else(|| panic!("no `{needle}` in {:#?}", messages(found)))
+}
+
+/// The text under an error's caret, `len` characters of it.
+pub fn underlined(error: &Located, len: usize) -> String {
+    (error.source_line.chars())
+        .skip(error.column - 1)
+        .take(len)
+        .collect()
 }

@@ -7,6 +7,7 @@ mod cartesian_disk;
 mod common;
 mod diagnostics;
 mod end_to_end;
+mod held;
 mod hostile;
 mod nonsmooth;
 mod op_counts;

@@ -1,24 +1,12 @@
 //! Switched models through the front end: modes and events parsed, checked, compiled, and
 //! every mistake in the new constructs located at its token.
 
+use crate::common::{compile_switched as compile, messages, switched_errors as errors};
+use crate::common::{find, underlined};
 use model_algebra::Inputs;
-use model_dsl::{Action, CompiledSwitched, Crossing, Located, Source};
+use model_dsl::{Action, Crossing, Source};
 
 const BALL: &str = include_str!("../../../examples/bouncing_ball.dsl");
-
-fn compile(text: &str) -> CompiledSwitched {
-    match Source::new("m.dsl", text).compile_switched() {
-        Ok(model) => model,
-        Err(errors) => panic!("{errors}"),
-    }
-}
-
-fn errors(text: &str) -> Vec<Located> {
-    Source::new("bad.dsl", text)
-        .compile_switched()
-        .expect_err("must be rejected")
-        .0
-}
 
 fn eval(program: &model_algebra::Program, y: &[f64], dy: &[f64], p: &[f64], n: usize) -> Vec<f64> {
     let inputs = Inputs {
@@ -158,27 +146,6 @@ fn shared_equations_and_events_join_every_mode() {
             .count(),
         1
     );
-}
-
-fn messages(found: &[Located]) -> Vec<String> {
-    found.iter().map(|e| e.message.clone()).collect()
-}
-
-fn find<'a>(found: &'a [Located], needle: &str) -> &'a Located {
-    found
-        .iter()
-        .find(|e| e.message.contains(needle))
-        .unwrap_or_else(|| panic!("no `{needle}` in {:#?}", messages(found)))
-}
-
-/// The text under an error's caret, `len` characters of it.
-fn underlined(error: &Located, len: usize) -> String {
-    error
-        .source_line
-        .chars()
-        .skip(error.column - 1)
-        .take(len)
-        .collect()
 }
 
 #[test]

@@ -87,3 +87,42 @@ fn a_chatter_fails_with_the_modes_and_the_work_done() {
     );
     assert_eq!((failure.steps, failure.events), (Some(3), 100));
 }
+
+/// Discrete values and a mode's own coordinates, interpreted: the ball that falls in its
+/// downward speed `w` (in the slot of `v`), counts its bounces and records an echo 0.1 s
+/// after each, read from the time of the last bounce it holds.
+#[test]
+fn held_values_and_a_modes_own_coordinates_run_interpreted() {
+    let file = compile("held_ball.dsl", include_str!("../held_ball.dsl"));
+    let solved = solve(model(&file), &tight(SolveRequest::new(2.0))).unwrap();
+    assert_eq!(solved.columns[..3], ["t", "h", "w/v"]);
+    let times = |name: &str| -> Vec<f64> {
+        (solved.events.iter().filter(|e| e.name == name))
+            .map(|e| e.t())
+            .collect()
+    };
+    let (g, e, h0) = (9.81f64, 0.8f64, 1.0f64);
+    let v1 = (2.0 * g * h0).sqrt();
+    let impacts = times("impact");
+    assert!(impacts.len() >= 3, "{impacts:?}");
+    let mut expected = (2.0 * h0 / g).sqrt();
+    for (k, t) in impacts.iter().enumerate() {
+        assert!(
+            (t - expected).abs() < 1e-9,
+            "impact {k}: {t} against {expected}"
+        );
+        expected += 2.0 * e.powi(k as i32 + 1) * v1 / g;
+    }
+    // Each echo 0.1 s after its bounce: the held time of the last bounce, read by a guard.
+    let echoes = times("echo");
+    assert_eq!(echoes.len(), impacts.len());
+    for (echo, impact) in echoes.iter().zip(&impacts) {
+        assert!(
+            (echo - impact - 0.1).abs() < 1e-9,
+            "echo {echo} after {impact}"
+        );
+    }
+    // While falling the slot holds the downward speed: positive, and g t after the apex.
+    let w = solved.column("w/v").unwrap();
+    assert!(w[1] > 0.0, "{}", w[1]);
+}

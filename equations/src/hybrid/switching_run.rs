@@ -1,0 +1,291 @@
+//! A run of the disk's switched model (module `switching`) on the same driver, settings and
+//! start as the hand-written run, reporting its events and its mode decisions: what the
+//! tests and the bench hold against [`super::simulate`].
+
+use super::run::{hybrid_options, initial_phase, validate};
+use super::switching::disk;
+use super::system::{DiskSystem, Phase};
+use super::{GeneratedModels, SimError, SimFailure};
+use crate::config::DiskConfig;
+use crate::issue::{Issue, Rule};
+use crate::modes::{SlipChart, DIM};
+use crate::params::DiskParams;
+use crate::settings::{Integrator, TimeVariable};
+use crate::start::InitialState;
+use model_runtime::{
+    AccumulationRule, Clocked, Dop853, Dopri5, EventId, HybridError, HybridSolver, InputError,
+    ModeGraph, ModeId, Observer, PhysicalTime, Regularised, Stats, Stepper, StopReason, Switched,
+    SwitchedModel, SwitchedNote, TransitionKind, TransitionRecord,
+};
+
+/// One event of a switched run: where it fired and where the run went on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SwitchedEvent {
+    /// Its time (s).
+    pub t: f64,
+    /// The mode it fired in.
+    pub mode: String,
+    /// Its name.
+    pub event: String,
+    /// The mode the run went on in (`None`: the run stopped there).
+    pub next: Option<String>,
+}
+
+impl SwitchedEvent {
+    /// Whether the event is a mode decision as the hand-written run counts them: an onset of
+    /// sliding, a decision at the slip's zero, or a decision the stick made at once (without
+    /// the bridge to the zero).
+    pub fn is_decision(&self) -> bool {
+        match (self.mode.as_str(), self.event.as_str()) {
+            ("rolling", "slips") | ("stopping", "halts") => true,
+            ("sliding", "sticks") => self.next.as_deref() != Some("stopping"),
+            _ => false,
+        }
+    }
+}
+
+/// What a run of the switched disk did.
+#[derive(Clone, Debug)]
+pub struct SwitchedDiskRun {
+    /// Every event, in order (the stop's included).
+    pub events: Vec<SwitchedEvent>,
+    /// Where it ended (s).
+    pub t: f64,
+    /// The event that stopped it (`None`: the end time).
+    pub stopped_by: Option<String>,
+    /// Integrator work.
+    pub stats: Stats,
+}
+
+impl SwitchedDiskRun {
+    /// The times of the mode decisions ([`SwitchedEvent::is_decision`]).
+    pub fn decisions(&self) -> Vec<f64> {
+        (self.events.iter().filter(|e| e.is_decision()))
+            .map(|e| e.t)
+            .collect()
+    }
+}
+
+/// Runs the disk's switched model from `initial` under `config` (still air, Cartesian slip
+/// chart, DOP853 or DP5, physical or regularised time), starting where the hand-written run
+/// starts (its initial decision, bridge included). Settings it cannot run are refused by key
+/// ([`SimError::Invalid`]).
+pub fn simulate_switched(
+    params: &DiskParams,
+    config: &DiskConfig,
+    initial: &InitialState,
+) -> Result<SwitchedDiskRun, SimFailure> {
+    let models = GeneratedModels::generated(*params, SlipChart::Cartesian)
+        .map_err(|e| SimFailure::from(SimError::Params(e)))?;
+    validate(&models, config, initial)?;
+    // What the switched disk supports, said like any other broken rule of the settings.
+    let unsupported = |key: &str, name: String, expected: &str| {
+        let rule = Rule::Unknown {
+            name,
+            expected: expected.to_string(),
+        };
+        let issues = vec![Issue::new(key, rule)];
+        SimFailure::from(SimError::Invalid { issues })
+    };
+    // The switched disk is the disk in still air (module `switching`).
+    let still = |value: f64| Rule::OutOfRange {
+        value,
+        min: 0.0,
+        max: 0.0,
+        open: false,
+    };
+    let air: Vec<Issue> = [("air.mu_a", params.mu_a), ("air.w_z", params.w_z)]
+        .into_iter()
+        .filter(|&(_, value)| value != 0.0)
+        .map(|(key, value)| Issue::new(key, still(value)))
+        .collect();
+    if !air.is_empty() {
+        return Err(SimFailure::from(SimError::Invalid { issues: air }));
+    }
+    if config.chart() != SlipChart::Cartesian {
+        let sign = format!("{:?}", config.slip_sign);
+        return Err(unsupported("run.slip_sign", sign, "physical"));
+    }
+    match config.integrator {
+        Integrator::Dop853 => run(Dop853::new(), Dop853::new(), &models, config, initial),
+        Integrator::Dopri5 => run(Dopri5::new(), Dopri5::new(), &models, config, initial),
+        other => Err(unsupported(
+            "solver.integrator",
+            format!("{other:?}"),
+            "dop853, dopri5",
+        )),
+    }
+}
+
+/// The clocked state's dimension in regularised time.
+const CLOCKED: usize = DIM + 1;
+
+fn run<St: Stepper<DIM>, Sc: Stepper<CLOCKED>>(
+    stepper: St,
+    clocked_stepper: Sc,
+    models: &GeneratedModels,
+    config: &DiskConfig,
+    initial: &InitialState,
+) -> Result<SwitchedDiskRun, SimFailure> {
+    let mut hand_written = DiskSystem::new(models, config);
+    let (start, _) = initial_phase(&mut hand_written, models, config, initial)?;
+    let mut model = disk::Model::for_run(&models.params, config);
+    let mode = match start.phase {
+        Phase::Rolling => disk::mode::rolling,
+        Phase::Sliding => disk::mode::sliding,
+        Phase::Bridge => model.hold(&hand_written.bridge),
+    };
+    let mut system = Switched::new(model, AccumulationRule::default()).map_err(input_error)?;
+    let first = (system.model().graph().ids())
+        .nth(mode)
+        .expect("the switched disk's modes are its graph's");
+    let options = hybrid_options(config);
+    let tolerance = config
+        .tolerance(SlipChart::Cartesian)
+        .map_err(input_error)?;
+    let mut collector = Collector {
+        graph: system.model().graph().clone(),
+        events: Vec::new(),
+        steps: 0,
+    };
+    let (t0, y0, t_end) = (initial.t, start.y, config.t_end);
+    let result = match config.time {
+        TimeVariable::Physical => {
+            let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input_error)?;
+            let out = solver.run(&mut system, first, t0, &y0, t_end, &mut collector);
+            out.map(|out| {
+                let stop = match out.stop {
+                    StopReason::User(stop) => StopReason::User(Some(stop)),
+                    StopReason::EndTime => StopReason::EndTime,
+                    StopReason::Observer => StopReason::Observer,
+                };
+                (out.t, stop, out.stats)
+            })
+        }
+        TimeVariable::Regularised => {
+            let modes: Vec<ModeId> = system.model().graph().ids().collect();
+            let mut clocked = Regularised::<_, DIM, CLOCKED>::new(&mut system, &modes, t0, t_end);
+            let tolerance = clocked.tolerance(&tolerance, (config.rtol, config.atol));
+            let options = model_runtime::HybridOptions {
+                sample_rate: None,
+                ..options
+            };
+            let mut solver =
+                HybridSolver::new(clocked_stepper, tolerance, options).map_err(input_error)?;
+            let mut physical = PhysicalTime::<_, DIM, CLOCKED>::new(&mut collector, t0, None);
+            let z0 = Regularised::<Switched<disk::Model>, DIM, CLOCKED>::start(&y0);
+            let out = solver.run(&mut clocked, first, t0, &z0, f64::MAX, &mut physical);
+            out.map(|out| {
+                let stop = match out.stop {
+                    StopReason::User(Clocked::Inner(stop)) => StopReason::User(Some(stop)),
+                    StopReason::User(Clocked::EndTime) => StopReason::User(None),
+                    StopReason::EndTime => StopReason::EndTime,
+                    StopReason::Observer => StopReason::Observer,
+                };
+                let t = match stop {
+                    StopReason::User(None) => t_end,
+                    _ => clocked.time_of(&out.y),
+                };
+                (t, stop, out.stats)
+            })
+        }
+    };
+    let (t, stop, stats) = result.map_err(|error| {
+        let stats = Box::new(collector.stats());
+        SimFailure {
+            error: hybrid_error(error),
+            stats,
+        }
+    })?;
+    let stopped_by = match stop {
+        StopReason::User(Some(stop)) => {
+            let event = stop.event();
+            let (mode, name) = collector.names(event);
+            collector.events.push(SwitchedEvent {
+                t,
+                mode,
+                event: name.clone(),
+                next: None,
+            });
+            Some(name)
+        }
+        _ => None,
+    };
+    Ok(SwitchedDiskRun {
+        events: collector.events,
+        t,
+        stopped_by,
+        stats,
+    })
+}
+
+fn input_error(error: InputError) -> SimFailure {
+    SimFailure::from(SimError::Solve {
+        mode: crate::Mode::Rolling,
+        error: error.into(),
+    })
+}
+
+/// A driver error of the switched disk, its mode named by the contact mode.
+fn hybrid_error(error: HybridError<ModeId>) -> SimError {
+    let mode = |id: ModeId| match disk::MODE_NAMES[id.index()] {
+        "rolling" => crate::Mode::Rolling,
+        _ => crate::Mode::Sliding,
+    };
+    match error {
+        HybridError::Solve { mode: m, error } => SimError::Solve {
+            mode: mode(m),
+            error,
+        },
+        HybridError::Transition { mode: m, t, source } => SimError::Transition {
+            mode: mode(m),
+            t,
+            source,
+        },
+        HybridError::Chattering { t, transitions, .. } => {
+            SimError::DriverChattering { t, transitions }
+        }
+    }
+}
+
+/// Collects the events and counts the steps.
+struct Collector {
+    graph: ModeGraph,
+    events: Vec<SwitchedEvent>,
+    steps: u64,
+}
+
+impl Collector {
+    /// The mode's and the event's names.
+    fn names(&self, event: EventId) -> (String, String) {
+        let mode = self.graph.mode(event.mode);
+        (mode.name.clone(), mode.events[event.event].name.clone())
+    }
+
+    fn stats(&self) -> Stats {
+        Stats {
+            steps: self.steps,
+            ..Stats::default()
+        }
+    }
+}
+
+impl Observer<DIM, ModeId, EventId, SwitchedNote> for Collector {
+    fn on_step(&mut self, _step: &model_runtime::StepView<'_, DIM, ModeId>) {
+        self.steps += 1;
+    }
+
+    fn on_transition(&mut self, record: TransitionRecord<DIM, ModeId, EventId, SwitchedNote>) {
+        let (mode, event) = self.names(record.hit.guard);
+        let next = match record.kind {
+            TransitionKind::Switch { to } => self.graph.mode_name(to).to_string(),
+            TransitionKind::Continue | TransitionKind::Pass => mode.clone(),
+        };
+        self.events.push(SwitchedEvent {
+            t: record.hit.t,
+            mode,
+            event,
+            next: Some(next),
+        });
+    }
+}
