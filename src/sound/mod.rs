@@ -24,6 +24,7 @@ use std::path::{Path, PathBuf};
 
 use crate::eval::Backend;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::run::provenance::is_papers_scene;
 use crate::scene::Scene;
 use peaks::{major_peaks, Peak, PeakRule, PeakRuleError};
 use rate::{rate_between, sliding_rates, PeakRate};
@@ -212,6 +213,8 @@ pub fn sound_scene(
     let analysis = analyse(&run.trace, opts)?;
     let sound = render(&analysis.peaks, analysis.span, &opts.render)?;
     let mut files = Vec::new();
+    // The paper's numbers are shown for the paper's scene only.
+    let paper = is_papers_scene(scene);
     let wav = out_dir.join(wav_name(opts.render.speed));
     let bytes = sound.wav_bytes().map_err(|e| SoundError::Wav {
         message: e.to_string(),
@@ -238,6 +241,7 @@ pub fn sound_scene(
             &analysis.peaks,
             analysis.span,
             opts.rate_window,
+            paper,
             out_dir,
         )?);
     }

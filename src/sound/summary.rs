@@ -13,6 +13,7 @@ use super::render::Sound;
 use super::trace::ForceRun;
 use super::{PeakAnalysis, SoundOptions};
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::run::provenance::is_papers_scene;
 use crate::scene::Scene;
 
 /// The rate of one window, in both readings.
@@ -89,8 +90,8 @@ pub struct SoundSummary {
     pub first_second: RateReading,
     /// The rate in the last second.
     pub last_second: RateReading,
-    /// The paper's numbers.
-    pub paper: PaperRates,
+    /// The paper's numbers, for the paper's scene only (`null` for another scene).
+    pub paper: Option<PaperRates>,
     /// The WAV file.
     pub wav: String,
     /// Time compression (simulated seconds per second of sound; 1 is real time).
@@ -166,11 +167,11 @@ impl SoundSummary {
             peaks_located: analysis.peaks.iter().filter(|p| p.located).count(),
             first_second: analysis.first_second.into(),
             last_second: analysis.last_second.into(),
-            paper: PaperRates {
+            paper: is_papers_scene(scene).then_some(PaperRates {
                 first_second: PAPER_FIRST_SECOND,
                 last_second: PAPER_LAST_SECOND,
                 recorded: RECORDED,
-            },
+            }),
             wav: wav
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
@@ -191,14 +192,15 @@ impl SoundSummary {
 
     /// A few lines for the terminal.
     pub fn table(&self) -> String {
-        let reading = |label: &str, r: &RateReading, paper: String| {
+        let reading = |label: &str, r: &RateReading, paper: Option<String>| {
+            let paper = paper.map_or(String::new(), |p| format!("; {p}"));
             match (r.per_second, r.angular, r.period) {
             (Some(rate), Some(angular), Some(period)) => format!(
-                "{label} [{:.3}, {:.3}] s: {} peaks, {rate:.2} peaks/s, angular 2π·rate = {angular:.1} 1/s (period {period:.4} s); {paper}\n",
+                "{label} [{:.3}, {:.3}] s: {} peaks, {rate:.2} peaks/s, angular 2π·rate = {angular:.1} 1/s (period {period:.4} s){paper}\n",
                 r.from, r.to, r.peaks
             ),
             _ => format!(
-                "{label} [{:.3}, {:.3}] s: {} peaks, too few for a rate; {paper}\n",
+                "{label} [{:.3}, {:.3}] s: {} peaks, too few for a rate{paper}\n",
                 r.from, r.to, r.peaks
             ),
         }
@@ -233,17 +235,21 @@ impl SoundSummary {
         s += &reading(
             "first second",
             &self.first_second,
-            format!("paper: {}", self.paper.first_second),
+            self.paper.map(|p| format!("paper: {}", p.first_second)),
         );
         s += &reading(
             "last second ",
             &self.last_second,
-            format!(
-                "paper at 99–100 s: {}, recorded toy: {}",
-                self.paper.last_second, self.paper.recorded
-            ),
+            self.paper.map(|p| {
+                format!(
+                    "paper at 99–100 s: {}, recorded toy: {}",
+                    p.last_second, p.recorded
+                )
+            }),
         );
-        s += "the paper's numbers are angular frequencies: 2π/0.14 s = 44.9, 2π/0.042 s = 149.6\n";
+        if self.paper.is_some() {
+            s += "the paper's numbers are angular frequencies: 2π/0.14 s = 44.9, 2π/0.042 s = 149.6\n";
+        }
         s += &format!(
             "sound: {} ({speed}), {:.2} s at {} Hz, 16-bit mono; each peak rings at {} Hz, decay {} ms, amplitude {} times one gain\n  (p: the peak's rise above its baseline in N/mg; the loudest knock {:.3} of full scale; peaks.csv lists each)\n",
             self.wav,
