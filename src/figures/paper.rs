@@ -171,8 +171,10 @@ fn peak_marks(located: &Located, span: Option<std::ops::Range<f64>>) -> Option<L
     })
 }
 
-/// Every figure of the paper for `data`, as chart descriptions.
-pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
+/// Every figure of the paper for `data`, as chart descriptions. The legends quote the
+/// paper's numbers only when `compared_with_paper` (the scene is the paper's: another disk or
+/// start has other numbers).
+pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -> Vec<Chart> {
     let mg = p.m * p.g;
     let located = Located::new(&data.extrema, mg);
     let all = &data.samples;
@@ -416,13 +418,13 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
     let (every, rate) = period.map_or(
         ("no full oscillation".to_string(), "N/mg".to_string()),
         |p| {
-            (
-                format!("peaks every {p:.4} s"),
-                format!(
-                    "N/mg; 2π/T = {:.1} s⁻¹ (paper 149 s⁻¹, recorded sound 154 s⁻¹)",
-                    2.0 * std::f64::consts::PI / p
-                ),
-            )
+            let omega = format!("N/mg; 2π/T = {:.1} s⁻¹", 2.0 * std::f64::consts::PI / p);
+            let paper = if compared_with_paper {
+                " (paper 149 s⁻¹, recorded sound 154 s⁻¹)"
+            } else {
+                ""
+            };
+            (format!("peaks every {p:.4} s"), omega + paper)
         },
     );
     let mut lines = vec![Line::new(
@@ -448,9 +450,10 @@ pub fn paper_charts(data: &RunData, p: &DiskParams) -> Vec<Chart> {
 pub fn write_paper_figures(
     data: &RunData,
     p: &DiskParams,
+    compared_with_paper: bool,
     dir: &Path,
 ) -> Result<Vec<String>, WriteError> {
-    let charts = paper_charts(data, p);
+    let charts = paper_charts(data, p, compared_with_paper);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let next = std::sync::atomic::AtomicUsize::new(0);
     let draw = || -> Result<(), WriteError> {

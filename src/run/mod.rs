@@ -473,9 +473,11 @@ pub fn write_outputs(
     files.push(path);
     timings.outputs_s = lap(&mut clock);
     let mut summary = Summary::of(&scene.name, data, &scene.params);
+    summary.compared_with_paper = is_papers_scene(scene);
     timings.analysis_s = lap(&mut clock);
     if opts.figures && !data.samples.is_empty() {
-        for stem in write_paper_figures(data, &scene.params, dir)? {
+        let paper = summary.compared_with_paper;
+        for stem in write_paper_figures(data, &scene.params, paper, dir)? {
             files.push(dir.join(format!("{stem}.png")));
             files.push(dir.join(format!("{stem}.svg")));
         }
@@ -483,7 +485,6 @@ pub fn write_outputs(
     timings.figures_s = lap(&mut clock);
     timings.total_s = clock;
     summary.timings = timings;
-    summary.compared_with_paper = is_papers_scene(scene);
     let path = dir.join("summary.json");
     let file = SummaryFile {
         summary: &summary,

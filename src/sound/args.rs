@@ -25,7 +25,8 @@ pub struct SoundArgs {
     /// The scene, the output directory and the solver, as for `run`.
     #[command(flatten)]
     pub run: RunArgs,
-    /// Samples per second of N(t) searched for peaks.
+    /// Samples per second of N(t) searched for peaks, besides its located extrema (which give
+    /// the peaks' heights exactly, whatever this rate).
     #[arg(long, default_value_t = 20_000.0)]
     pub force_rate: f64,
     /// Frequency of the resonance each force peak excites (Hz).
@@ -37,7 +38,7 @@ pub struct SoundArgs {
     /// Play the run K times faster (the name of the WAV says so).
     #[arg(long, default_value_t = 1.0, value_name = "K")]
     pub speed: f64,
-    /// Amplitude law of a knock, from the peak's rise p above its baseline (N/mg).
+    /// Amplitude law of a knock, from the peak's located rise p above its baseline (N/mg).
     #[arg(long, value_enum, default_value_t = Compression::Sqrt)]
     pub compression: Compression,
     /// A major peak rises at least this much above its baseline (N/mg)...

@@ -35,8 +35,15 @@ struct Series {
 }
 
 /// The series of the knock rate figure (angular, to compare with the paper): the rate from
-/// each interval, the windowed rate, and the paper's three numbers as levels.
-fn rate_series(rates: &[PeakRate], peaks: &[Peak], span: TimeSpan, window: f64) -> Vec<Series> {
+/// each interval, the windowed rate, and, for the paper's scene only (`paper`), the paper's
+/// three numbers as levels.
+fn rate_series(
+    rates: &[PeakRate],
+    peaks: &[Peak],
+    span: TimeSpan,
+    window: f64,
+    paper: bool,
+) -> Vec<Series> {
     let windowed: Vec<(f64, f64)> = rates
         .iter()
         .filter_map(|r| Some((r.centre(), r.angular()?)))
@@ -50,7 +57,7 @@ fn rate_series(rates: &[PeakRate], peaks: &[Peak], span: TimeSpan, window: f64) 
         points: vec![(span.start, value), (span.end, value)],
         color,
     };
-    vec![
+    let ours = [
         Series {
             label: "2π / interval between peaks".into(),
             points: intervals,
@@ -61,6 +68,8 @@ fn rate_series(rates: &[PeakRate], peaks: &[Peak], span: TimeSpan, window: f64) 
             points: windowed,
             color: colors::BLUE,
         },
+    ];
+    let papers = [
         level(
             format!("paper, first second: {PAPER_FIRST_SECOND}"),
             PAPER_FIRST_SECOND,
@@ -72,7 +81,11 @@ fn rate_series(rates: &[PeakRate], peaks: &[Peak], span: TimeSpan, window: f64) 
             colors::PURPLE,
         ),
         level(format!("recorded toy: {RECORDED}"), RECORDED, colors::BLACK),
-    ]
+    ];
+    let shown = if paper { papers.len() } else { 0 };
+    ours.into_iter()
+        .chain(papers.into_iter().take(shown))
+        .collect()
 }
 
 fn draw_rate_on<DB: DrawingBackend>(
@@ -85,7 +98,7 @@ fn draw_rate_on<DB: DrawingBackend>(
         .iter()
         .flat_map(|s| s.points.iter().map(|p| p.1))
         .filter(|v| v.is_finite())
-        .fold(RECORDED, f64::max)
+        .fold(1.0, f64::max)
         * 1.08;
     let x_end = span.end.max(span.start + 1e-9);
     let mut chart = ChartBuilder::on(root)
@@ -138,18 +151,19 @@ fn draw_rate_on<DB: DrawingBackend>(
     root.present()
 }
 
-/// Draws the knock rate against the paper's numbers to `dir/sound_peak_rate.png`,
-/// atomically; returns the path.
+/// Draws the knock rate (against the paper's numbers when `paper`: the scene is the
+/// paper's) to `dir/sound_peak_rate.png`, atomically; returns the path.
 pub fn write_rate_figure(
     rates: &[PeakRate],
     peaks: &[Peak],
     span: TimeSpan,
     window: f64,
+    paper: bool,
     dir: &Path,
 ) -> Result<PathBuf, WriteError> {
     register_font();
     let path = dir.join("sound_peak_rate.png");
-    let series = rate_series(rates, peaks, span, window);
+    let series = rate_series(rates, peaks, span, window, paper);
     produce_atomic(&path, |tmp| {
         let root = BitMapBackend::new(tmp, SIZE).into_drawing_area();
         draw_rate_on(&root, &series, span).map_err(|e| e.to_string())
@@ -342,6 +356,34 @@ pub fn write_spectrogram(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_papers_levels_only_for_the_papers_scene() {
+        let span = TimeSpan {
+            start: 0.0,
+            end: 2.0,
+        };
+        let peaks: Vec<Peak> = (0..8)
+            .map(|k| Peak {
+                t: 0.25 * f64::from(k),
+                n_over_mg: 2.0,
+                prominence: 1.0,
+                located: true,
+            })
+            .collect();
+        let labels = |paper| -> Vec<String> {
+            rate_series(&[], &peaks, span, 1.0, paper)
+                .into_iter()
+                .map(|s| s.label)
+                .collect()
+        };
+        let (with, without) = (labels(true), labels(false));
+        assert_eq!(with.len(), 5);
+        assert_eq!(without, with[..2]);
+        assert!(without
+            .iter()
+            .all(|l| !l.contains("paper") && !l.contains("recorded")));
+    }
 
     #[test]
     fn heat_runs_from_dark_to_bright() {

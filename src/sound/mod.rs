@@ -2,8 +2,9 @@
 //!
 //! The paper's claim is that the sharp peaks of the normal force `N(t)`, which come faster
 //! and faster as the disk settles, are the rattle one hears. To let a listener judge, the
-//! pipeline is: simulate and keep `N/mg` finely sampled ([`trace`]) → pick the major peaks
-//! with a written-down rule ([`peaks`]) → measure their rate ([`rate`]) → render each peak
+//! pipeline is: simulate and keep `N/mg`, sampled and at its located extrema ([`trace`]) →
+//! pick the major peaks with a written-down rule ([`peaks`]) → measure their rate ([`rate`])
+//! → render each peak
 //! as a knock on a resonance into a WAV ([`mod@render`]) → show the sound's spectrogram and the
 //! rate against the paper's numbers ([`mod@spectrogram`], `figures.rs`). Each stage is a plain
 //! function of the previous stage's data, so each is tested on synthetic input with a known
@@ -23,6 +24,7 @@ use std::path::{Path, PathBuf};
 
 use crate::eval::Backend;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::run::provenance::is_papers_scene;
 use crate::scene::Scene;
 use peaks::{major_peaks, Peak, PeakRule, PeakRuleError};
 use rate::{rate_between, sliding_rates, PeakRate};
@@ -34,7 +36,7 @@ use trace::{record_force, ForceTrace, TimeSpan, TraceError};
 /// Everything the sound needs besides the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SoundOptions {
-    /// Samples per second of `N/mg` for the peak search.
+    /// Samples per second of `N/mg` for the peak search (between its located extrema).
     pub force_rate: f64,
     /// What a major peak is.
     pub rule: PeakRule,
@@ -211,13 +213,15 @@ pub fn sound_scene(
     let analysis = analyse(&run.trace, opts)?;
     let sound = render(&analysis.peaks, analysis.span, &opts.render)?;
     let mut files = Vec::new();
+    // The paper's numbers are shown for the paper's scene only.
+    let paper = is_papers_scene(scene);
     let wav = out_dir.join(wav_name(opts.render.speed));
     let bytes = sound.wav_bytes().map_err(|e| SoundError::Wav {
         message: e.to_string(),
     })?;
     write_bytes_atomic(&wav, &bytes)?;
     files.push(wav.clone());
-    files.extend(files::write_tables(&analysis, out_dir)?);
+    files.extend(files::write_tables(&analysis, &sound, out_dir)?);
     if opts.figures {
         let spec = spectrogram(&sound.as_f64(), f64::from(sound.sample_rate), opts.stft)?;
         let view = figures::SpectrogramView {
@@ -237,6 +241,7 @@ pub fn sound_scene(
             &analysis.peaks,
             analysis.span,
             opts.rate_window,
+            paper,
             out_dir,
         )?);
     }

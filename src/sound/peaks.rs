@@ -20,8 +20,12 @@
 //! 4. no higher major peak within the refractory time: candidates are accepted from the
 //!    highest down and a candidate closer than `refractory` to an accepted one is dropped.
 //!
-//! The peak's time and height are refined by the parabola through its three samples, so the
-//! rate measured from peak intervals is not quantised by the sampling step.
+//! The trace carries the located extrema of `N` among its samples (`super::trace`), so a
+//! peak is normally a located maximum: its time and height are exact, and its baseline is a
+//! located minimum or, where the window's edge cuts a slope, a sample there. A peak that is a
+//! sample (a trace without located extrema, as in the tests' synthetic signals) has its time
+//! and height refined by the parabola through its three samples, so the rate measured from
+//! peak intervals is not quantised by the sampling step.
 
 use std::collections::BTreeSet;
 
@@ -130,6 +134,8 @@ pub struct Peak {
     pub n_over_mg: f64,
     /// Rise above the local baseline, in `N/mg`.
     pub prominence: f64,
+    /// Whether the peak is a located extremum (exact) rather than a refined sample.
+    pub located: bool,
 }
 
 /// The lowest value on one side of a peak.
@@ -210,7 +216,10 @@ pub fn major_peaks(trace: &ForceTrace, rule: &PeakRule) -> Result<Vec<Peak>, Pea
                     .min_prominence
                     .max(rule.min_relative_prominence * baseline.abs());
                 if prominence >= needed {
-                    let (tp, xp) = if end == i {
+                    let located = trace.is_located(i);
+                    let (tp, xp) = if located {
+                        (t[i], x[i])
+                    } else if end == i {
                         refine([t[i - 1], t[i], t[i + 1]], [x[i - 1], x[i], x[i + 1]])
                     } else {
                         (0.5 * (t[i] + t[end]), x[i])
@@ -219,6 +228,7 @@ pub fn major_peaks(trace: &ForceTrace, rule: &PeakRule) -> Result<Vec<Peak>, Pea
                         t: tp,
                         n_over_mg: xp,
                         prominence,
+                        located,
                     });
                 }
             }
@@ -379,6 +389,25 @@ mod tests {
             ..PeakRule::default()
         };
         assert_eq!(major_peaks(&tr, &every_bump).unwrap().len(), 14);
+    }
+
+    #[test]
+    fn a_located_peak_keeps_its_height_and_a_sampled_one_is_refined() {
+        // A sharp peak of height 3 at 0.5037 s, between the samples 0.5 and 0.51 s.
+        let f = |t: f64| 1.0 + 2.0 / (1.0 + ((t - 0.5037) / 0.003).powi(2));
+        let sampled = trace(f, 100.0, 1.0);
+        let coarse = major_peaks(&sampled, &PeakRule::default()).unwrap();
+        assert_eq!(coarse.len(), 1);
+        assert!(!coarse[0].located);
+        assert!(coarse[0].n_over_mg < 2.5, "{:?}", coarse[0]);
+        let exact = sampled.with_extrema(&[(0.5037, f(0.5037))]).unwrap();
+        let peaks = major_peaks(&exact, &PeakRule::default()).unwrap();
+        assert_eq!(peaks.len(), 1);
+        let p = peaks[0];
+        assert!(p.located);
+        assert_eq!((p.t, p.n_over_mg), (0.5037, 3.0));
+        // The baseline: the higher of the samples farthest inside the window, 0.46 and 0.55 s.
+        assert_eq!(p.prominence, 3.0 - f(46.0 / 100.0).max(f(55.0 / 100.0)));
     }
 
     #[test]

@@ -92,6 +92,7 @@ mod tests {
                 t,
                 n_over_mg: 2.0,
                 prominence: 1.0,
+                located: true,
             })
             .collect()
     }

@@ -7,6 +7,10 @@
 //! amplitude is a compressed function of the peak's rise above its baseline `p` (in `N/mg`):
 //! `√p` ([`Compression::Sqrt`], the default) or `ln(1 + p)` ([`Compression::Log`]).
 //! The sum is scaled so its largest magnitude is [`HEADROOM`] of full scale: never clipped.
+//! A knock's amplitude in the WAV ([`Sound::knock_amplitude`], the `amplitude` column of
+//! `peaks.csv`) is that law times the one gain of the whole sound. The peak heights and their
+//! baselines are located extrema of `N` (`super::peaks`), so the amplitudes do not depend on
+//! the rate at which `N` is sampled.
 //!
 //! A run of 100 s is a long listen: `speed = K` plays the peak times `K` times faster (the
 //! resonance itself keeps its pitch and decay), and the output names say so.
@@ -131,12 +135,22 @@ pub struct Sound {
     pub gain: f64,
     /// Knocks rendered.
     pub knocks: usize,
+    /// The amplitude law the knocks were rendered with.
+    pub compression: Compression,
 }
 
 impl Sound {
     /// Length (s).
     pub fn seconds(&self) -> f64 {
         self.samples.len() as f64 / f64::from(self.sample_rate)
+    }
+
+    /// The amplitude, as a fraction of full scale, of the knock of a peak that rises
+    /// `prominence` above its baseline: the amplitude law times the sound's gain (the sample
+    /// magnitude it reaches alone, before the tails of earlier knocks add to it, is this
+    /// times the resonance's first crest, `e^(−1/(4 f τ))`, 0.988 by default).
+    pub fn knock_amplitude(&self, prominence: f64) -> f64 {
+        self.compression.amplitude(prominence) * self.gain / 32767.0
     }
 
     /// The samples as floats in [−1, 1].
@@ -264,6 +278,7 @@ pub fn render(peaks: &[Peak], span: TimeSpan, opts: &RenderOptions) -> Result<So
         sample_rate: opts.sample_rate,
         gain,
         knocks,
+        compression: opts.compression,
     })
 }
 
@@ -276,6 +291,7 @@ mod tests {
             t,
             n_over_mg: 1.0 + prominence,
             prominence,
+            located: true,
         }
     }
 
@@ -306,6 +322,14 @@ mod tests {
             (f64::from(soft) / f64::from(loud) - 0.5).abs() < 2e-3,
             "{soft} {loud}"
         );
+        // The reported amplitudes: the loud knock's, times the resonance's highest sample, is
+        // the headroom; the soft one's is half of it.
+        let w = TAU * opts.ring.hz / 44_100.0;
+        let crest = (0..100)
+            .map(|k| (-(k as f64) / (opts.ring.decay_s * 44_100.0)).exp() * (w * k as f64).sin())
+            .fold(0.0, f64::max);
+        assert!((s.knock_amplitude(4.0) * crest - HEADROOM).abs() < 1e-12);
+        assert_eq!(s.knock_amplitude(1.0), 0.5 * s.knock_amplitude(4.0));
     }
 
     #[test]

@@ -13,6 +13,7 @@ use super::render::Sound;
 use super::trace::ForceRun;
 use super::{PeakAnalysis, SoundOptions};
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::run::provenance::is_papers_scene;
 use crate::scene::Scene;
 
 /// The rate of one window, in both readings.
@@ -77,16 +78,20 @@ pub struct SoundSummary {
     pub force_rate: f64,
     /// Samples of `N/mg` kept.
     pub force_samples: usize,
+    /// Located extrema of `N/mg` kept (exact; the peak heights and baselines among them).
+    pub located_extrema: usize,
     /// The rule that defines a major peak.
     pub rule: RuleSettings,
     /// Major peaks found.
     pub peaks: usize,
+    /// Of those, the peaks that are located extrema (the others are refined samples).
+    pub peaks_located: usize,
     /// The rate in the first second.
     pub first_second: RateReading,
     /// The rate in the last second.
     pub last_second: RateReading,
-    /// The paper's numbers.
-    pub paper: PaperRates,
+    /// The paper's numbers, for the paper's scene only (`null` for another scene).
+    pub paper: Option<PaperRates>,
     /// The WAV file.
     pub wav: String,
     /// Time compression (simulated seconds per second of sound; 1 is real time).
@@ -101,6 +106,9 @@ pub struct SoundSummary {
     pub ring_decay_s: f64,
     /// The amplitude law, with `p` the peak's rise above its baseline in `N/mg`.
     pub amplitude: &'static str,
+    /// The loudest knock's amplitude in the WAV (fraction of full scale; `peaks.csv` lists
+    /// every knock's).
+    pub amplitude_max: f64,
 }
 
 /// The peak rule as written in the summary.
@@ -152,16 +160,18 @@ impl SoundSummary {
             model: run.model.model.label(),
             model_reason: run.model.reason.clone(),
             force_rate: opts.force_rate,
-            force_samples: run.trace.len(),
+            force_samples: run.samples,
+            located_extrema: run.trace.located_count(),
             rule: opts.rule.into(),
             peaks: analysis.peaks.len(),
+            peaks_located: analysis.peaks.iter().filter(|p| p.located).count(),
             first_second: analysis.first_second.into(),
             last_second: analysis.last_second.into(),
-            paper: PaperRates {
+            paper: is_papers_scene(scene).then_some(PaperRates {
                 first_second: PAPER_FIRST_SECOND,
                 last_second: PAPER_LAST_SECOND,
                 recorded: RECORDED,
-            },
+            }),
             wav: wav
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
@@ -172,19 +182,25 @@ impl SoundSummary {
             ring_hz: opts.render.ring.hz,
             ring_decay_s: opts.render.ring.decay_s,
             amplitude: opts.render.compression.formula(),
+            amplitude_max: analysis
+                .peaks
+                .iter()
+                .map(|p| sound.knock_amplitude(p.prominence))
+                .fold(0.0, f64::max),
         }
     }
 
     /// A few lines for the terminal.
     pub fn table(&self) -> String {
-        let reading = |label: &str, r: &RateReading, paper: String| {
+        let reading = |label: &str, r: &RateReading, paper: Option<String>| {
+            let paper = paper.map_or(String::new(), |p| format!("; {p}"));
             match (r.per_second, r.angular, r.period) {
             (Some(rate), Some(angular), Some(period)) => format!(
-                "{label} [{:.3}, {:.3}] s: {} peaks, {rate:.2} peaks/s, angular 2π·rate = {angular:.1} 1/s (period {period:.4} s); {paper}\n",
+                "{label} [{:.3}, {:.3}] s: {} peaks, {rate:.2} peaks/s, angular 2π·rate = {angular:.1} 1/s (period {period:.4} s){paper}\n",
                 r.from, r.to, r.peaks
             ),
             _ => format!(
-                "{label} [{:.3}, {:.3}] s: {} peaks, too few for a rate; {paper}\n",
+                "{label} [{:.3}, {:.3}] s: {} peaks, too few for a rate{paper}\n",
                 r.from, r.to, r.peaks
             ),
         }
@@ -195,18 +211,20 @@ impl SoundSummary {
             format!("time compressed {}x", self.speed)
         };
         let mut s = format!(
-            "scene `{}`: t = {} … {} s ({}); N/mg sampled at {} /s ({} samples)\n",
+            "scene `{}`: t = {} … {} s ({}); N/mg sampled at {} /s ({} samples) and at its {} located extrema\n",
             self.scene,
             self.t_start,
             self.t_end,
             self.stop_reason,
             self.force_rate,
-            self.force_samples
+            self.force_samples,
+            self.located_extrema
         );
         s += &format!("models: {} ({})\n", self.model, self.model_reason);
         s += &format!(
-            "{} major peaks: local maxima of N/mg rising >= max({}, {}·|baseline|) above the higher flanking minimum within ±{} s,\n  >= {} of the largest rise within ±{} s, >= {} s apart\n",
+            "{} major peaks ({} of them located extrema): local maxima of N/mg rising >= max({}, {}·|baseline|) above the higher flanking minimum within ±{} s,\n  >= {} of the largest rise within ±{} s, >= {} s apart\n",
             self.peaks,
+            self.peaks_located,
             self.rule.min_prominence,
             self.rule.min_relative_prominence,
             self.rule.window_s,
@@ -217,25 +235,30 @@ impl SoundSummary {
         s += &reading(
             "first second",
             &self.first_second,
-            format!("paper: {}", self.paper.first_second),
+            self.paper.map(|p| format!("paper: {}", p.first_second)),
         );
         s += &reading(
             "last second ",
             &self.last_second,
-            format!(
-                "paper at 99–100 s: {}, recorded toy: {}",
-                self.paper.last_second, self.paper.recorded
-            ),
+            self.paper.map(|p| {
+                format!(
+                    "paper at 99–100 s: {}, recorded toy: {}",
+                    p.last_second, p.recorded
+                )
+            }),
         );
-        s += "the paper's numbers are angular frequencies: 2π/0.14 s = 44.9, 2π/0.042 s = 149.6\n";
+        if self.paper.is_some() {
+            s += "the paper's numbers are angular frequencies: 2π/0.14 s = 44.9, 2π/0.042 s = 149.6\n";
+        }
         s += &format!(
-            "sound: {} ({speed}), {:.2} s at {} Hz, 16-bit mono; each peak rings at {} Hz, decay {} ms, amplitude {}\n",
+            "sound: {} ({speed}), {:.2} s at {} Hz, 16-bit mono; each peak rings at {} Hz, decay {} ms, amplitude {} times one gain\n  (p: the peak's rise above its baseline in N/mg; the loudest knock {:.3} of full scale; peaks.csv lists each)\n",
             self.wav,
             self.sound_seconds,
             self.sample_rate,
             self.ring_hz,
             self.ring_decay_s * 1e3,
-            self.amplitude
+            self.amplitude,
+            self.amplitude_max
         );
         s
     }

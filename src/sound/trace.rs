@@ -1,12 +1,16 @@
-//! The normal force over time, sampled finely enough that no peak is missed.
+//! The normal force over time: its samples, with its located extrema among them.
 //!
 //! The trajectory's sampling (1 kHz for the paper's scene) is too coarse for the ends of the
-//! run, where a force peak lasts a few milliseconds; and the full samples of a 100 s run at
-//! 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and keeps
-//! only what it needs: the time and `N/mg`.
+//! run, where a force peak lasts a fraction of a millisecond; and the full samples of a 100 s
+//! run at 20 kHz would not fit in memory comfortably. So the sound runs its own simulation and
+//! keeps only what it needs: the time and `N/mg`. Samples alone cut the top off a sharp
+//! peak (at the end of the paper's run, 20 kHz samples read peaks of ~1400 mg as 115–1371),
+//! so the run also locates every maximum and minimum of `N` on the integrator's dense
+//! output (`equations::hybrid::extrema`) and puts them into the trace between the samples:
+//! a peak's height, and the minima between peaks, are then exact whatever the sampling rate.
 
-use equations::DIM;
 use equations::{simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, SimError};
+use equations::{Extremum, Watched, DIM};
 use model_runtime::Model;
 
 use super::SoundError;
@@ -19,11 +23,13 @@ use crate::scene::Scene;
 /// Most force samples one run may keep (about 0.8 GB of memory).
 pub const MAX_TRACE_SAMPLES: f64 = 5e7;
 
-/// `N/mg` at increasing times.
+/// `N/mg` at increasing times: samples, and possibly located extrema among them.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ForceTrace {
     t: Vec<f64>,
     n_over_mg: Vec<f64>,
+    /// Whether each point is a located extremum (exact) rather than a sample.
+    located: Vec<bool>,
 }
 
 /// Why a sequence of samples is not a force trace.
@@ -47,7 +53,7 @@ pub enum TraceError {
         /// Its value.
         value: f64,
     },
-    /// The times do not increase strictly.
+    /// The times do not increase strictly (among samples), or decrease (with extrema added).
     #[error("time does not increase at sample {index}: {previous} then {t}")]
     TimeNotIncreasing {
         /// Index of the sample.
@@ -59,32 +65,111 @@ pub enum TraceError {
     },
 }
 
-impl ForceTrace {
-    /// A trace from its two columns, checked: same length, finite, strictly increasing times.
-    pub fn new(t: Vec<f64>, n_over_mg: Vec<f64>) -> Result<ForceTrace, TraceError> {
-        if t.len() != n_over_mg.len() {
-            return Err(TraceError::LengthMismatch {
-                times: t.len(),
-                values: n_over_mg.len(),
+/// Checks a trace's columns: same length, finite, times increasing (strictly if `strict`).
+fn check_columns(t: &[f64], n_over_mg: &[f64], strict: bool) -> Result<(), TraceError> {
+    if t.len() != n_over_mg.len() {
+        return Err(TraceError::LengthMismatch {
+            times: t.len(),
+            values: n_over_mg.len(),
+        });
+    }
+    for (index, (&ti, &v)) in t.iter().zip(n_over_mg).enumerate() {
+        if !ti.is_finite() || !v.is_finite() {
+            return Err(TraceError::NotFinite {
+                index,
+                t: ti,
+                value: v,
             });
         }
-        for (index, (&ti, &v)) in t.iter().zip(&n_over_mg).enumerate() {
-            if !ti.is_finite() || !v.is_finite() {
-                return Err(TraceError::NotFinite {
-                    index,
-                    t: ti,
-                    value: v,
-                });
-            }
-            if index > 0 && ti <= t[index - 1] {
-                return Err(TraceError::TimeNotIncreasing {
-                    index,
-                    previous: t[index - 1],
-                    t: ti,
-                });
-            }
+        if index > 0 && (ti < t[index - 1] || (strict && ti == t[index - 1])) {
+            return Err(TraceError::TimeNotIncreasing {
+                index,
+                previous: t[index - 1],
+                t: ti,
+            });
         }
-        Ok(ForceTrace { t, n_over_mg })
+    }
+    Ok(())
+}
+
+impl ForceTrace {
+    /// A trace of samples from its two columns, checked: same length, finite, strictly
+    /// increasing times.
+    pub fn new(t: Vec<f64>, n_over_mg: Vec<f64>) -> Result<ForceTrace, TraceError> {
+        check_columns(&t, &n_over_mg, true)?;
+        let located = vec![false; t.len()];
+        Ok(ForceTrace {
+            t,
+            n_over_mg,
+            located,
+        })
+    }
+
+    /// The samples with the located extrema `(t, N/mg)` (in time order) merged in. Two points
+    /// may share a time: at a mode switch `N` jumps, and the values on either side are both
+    /// extrema (an extremum at a sample's time follows the sample). An extremum outside the
+    /// samples' span (by round-off: the run's last step, in regularised time, can end an ulp
+    /// past the end time) is moved to its edge, so the trace spans what the samples span.
+    pub fn with_extrema(self, extrema: &[(f64, f64)]) -> Result<ForceTrace, TraceError> {
+        let (t, x): (Vec<f64>, Vec<f64>) = extrema.iter().copied().unzip();
+        check_columns(&t, &x, false)?;
+        let inside = |te: f64| match self.span() {
+            Some(span) => te.clamp(span.start, span.end),
+            None => te,
+        };
+        let len = self.len() + extrema.len();
+        let mut merged = ForceTrace {
+            t: Vec::with_capacity(len),
+            n_over_mg: Vec::with_capacity(len),
+            located: Vec::with_capacity(len),
+        };
+        let mut located = extrema.iter().peekable();
+        for ((&ts, &xs), &exact) in self.t.iter().zip(&self.n_over_mg).zip(&self.located) {
+            while let Some(&&(te, xe)) = located.peek().filter(|e| e.0 < ts) {
+                merged.push(inside(te), xe, true);
+                located.next();
+            }
+            merged.push(ts, xs, exact);
+        }
+        for &(te, xe) in located {
+            merged.push(inside(te), xe, true);
+        }
+        Ok(merged)
+    }
+
+    /// The samples alone, without the located extrema.
+    pub fn samples(&self) -> ForceTrace {
+        let keep = |v: &[f64]| -> Vec<f64> {
+            v.iter()
+                .zip(&self.located)
+                .filter(|(_, &l)| !l)
+                .map(|(&x, _)| x)
+                .collect()
+        };
+        let (t, n_over_mg) = (keep(&self.t), keep(&self.n_over_mg));
+        let located = vec![false; t.len()];
+        ForceTrace {
+            t,
+            n_over_mg,
+            located,
+        }
+    }
+
+    fn push(&mut self, t: f64, n_over_mg: f64, located: bool) {
+        self.t.push(t);
+        self.n_over_mg.push(n_over_mg);
+        self.located.push(located);
+    }
+
+    /// Whether point `i` is a located extremum (its time and value exact) rather than a
+    /// sample.
+    pub fn is_located(&self, i: usize) -> bool {
+        self.located.get(i).copied().unwrap_or(false)
+    }
+
+    /// Number of located extrema in the trace.
+    pub fn located_count(&self) -> usize {
+        self.located.iter().filter(|&&l| l).count()
     }
 
     /// The times (s).
@@ -135,8 +220,10 @@ impl TimeSpan {
 /// A finished run seen from the sound's side.
 #[derive(Clone, Debug)]
 pub struct ForceRun {
-    /// `N/mg` over the run.
+    /// `N/mg` over the run: the samples and the located extrema.
     pub trace: ForceTrace,
+    /// Samples in the trace (the rest are located extrema).
+    pub samples: usize,
     /// Why the run ended (the CLI's stop reason name, e.g. `end_time`).
     pub stop_reason: String,
     /// Details of the stop.
@@ -145,11 +232,12 @@ pub struct ForceRun {
     pub model: ModelChoice,
 }
 
-/// Keeps `(t, N/mg)` of every sample.
+/// Keeps `(t, N/mg)` of every sample and of every located extremum of `N`.
 struct ForceObserver {
     mg: f64,
     t: Vec<f64>,
     n_over_mg: Vec<f64>,
+    extrema: Vec<(f64, f64)>,
 }
 
 impl DiskObserver for ForceObserver {
@@ -161,6 +249,16 @@ impl DiskObserver for ForceObserver {
         }
         self.t.push(s.t);
         self.n_over_mg.push(s.force.normal / self.mg);
+    }
+
+    fn wants_extrema(&self) -> bool {
+        true
+    }
+
+    fn on_extremum(&mut self, e: &Extremum) {
+        if e.quantity == Watched::NormalForce {
+            self.extrema.push((e.t, e.value / self.mg));
+        }
     }
 }
 
@@ -185,7 +283,8 @@ impl ModelsTask for Recording<'_> {
     }
 }
 
-/// Simulates `scene` and keeps `N/mg` at `rate` samples per second.
+/// Simulates `scene` and keeps `N/mg` at `rate` samples per second and at its located
+/// extrema.
 pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceRun, SoundError> {
     let t_end = scene.file.settings.run.t_end;
     if !(rate.is_finite() && rate > 0.0) {
@@ -207,6 +306,7 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
         mg: params.m * params.g,
         t: Vec::with_capacity((t_end * rate) as usize + 2),
         n_over_mg: Vec::with_capacity((t_end * rate) as usize + 2),
+        extrema: Vec::new(),
     };
     // The sound needs N only: the pruned models whenever the air is still.
     let model = choose_for(scene, backend, &[Quantity::N], "the sound");
@@ -219,9 +319,15 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
         .map_err(|e| e.to_string())
         .and_then(|r| r.map_err(|e| e.to_string()));
     let (stop_reason, stop_detail) = stop.map_err(|message| SoundError::Simulation { message })?;
-    let trace = ForceTrace::new(observer.t, observer.n_over_mg)?;
+    // In time order (an extremum inside a step can be found after one at the step's end).
+    let mut extrema = observer.extrema;
+    extrema.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let sampled = ForceTrace::new(observer.t, observer.n_over_mg)?;
+    let samples = sampled.len();
+    let trace = sampled.with_extrema(&extrema)?;
     Ok(ForceRun {
         trace,
+        samples,
         stop_reason,
         stop_detail,
         model,
@@ -255,5 +361,27 @@ mod tests {
         );
         let ok = ForceTrace::new(vec![0.0, 0.5], vec![1.0, 2.0]).unwrap();
         assert_eq!(ok.span().unwrap().length(), 0.5);
+        assert!(matches!(
+            ok.with_extrema(&[(0.4, 2.0), (0.3, 1.0)]),
+            Err(TraceError::TimeNotIncreasing { index: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn extrema_are_merged_between_the_samples_in_time_order() {
+        let samples = ForceTrace::new(vec![0.0, 1.0, 2.0], vec![1.0, 3.0, 1.0]).unwrap();
+        // A peak between samples, a jump at a sample's time (two values), one an ulp after
+        // the end.
+        let late = 2.0f64.next_up();
+        let merged = samples
+            .clone()
+            .with_extrema(&[(0.8, 4.0), (1.0, 3.5), (1.0, 0.5), (late, 0.2)])
+            .unwrap();
+        assert_eq!(merged.t(), [0.0, 0.8, 1.0, 1.0, 1.0, 2.0, 2.0]);
+        assert_eq!(merged.n_over_mg(), [1.0, 4.0, 3.0, 3.5, 0.5, 1.0, 0.2]);
+        let located: Vec<bool> = (0..merged.len()).map(|i| merged.is_located(i)).collect();
+        assert_eq!(located, [false, true, false, true, true, false, true]);
+        assert_eq!(merged.located_count(), 4);
+        assert_eq!(merged.samples(), samples);
     }
 }

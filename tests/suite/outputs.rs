@@ -108,7 +108,7 @@ fn short_runs_have_no_settled_values() {
 #[test]
 fn every_paper_figure_is_drawn() {
     let (p, data) = synthetic(0.1, 5.0);
-    let charts = paper_charts(&data, &p);
+    let charts = paper_charts(&data, &p, true);
     let stems: Vec<&str> = charts.iter().map(|c| c.stem.as_str()).collect();
     assert_eq!(
         stems, FIGURE_STEMS,
@@ -124,7 +124,7 @@ fn every_paper_figure_is_drawn() {
         assert!(c.lines.iter().all(|l| !l.points.is_empty()), "{}", c.stem);
     }
     let dir = tempfile::tempdir().unwrap();
-    let stems = write_paper_figures(&data, &p, dir.path()).unwrap();
+    let stems = write_paper_figures(&data, &p, true, dir.path()).unwrap();
     assert_eq!(stems.len(), 15);
     for stem in stems {
         for ext in ["png", "svg"] {
@@ -157,7 +157,7 @@ fn find<'a>(charts: &'a [eulerdisk::Chart], stem: &str) -> &'a eulerdisk::Chart 
 #[test]
 fn figures_with_nothing_to_show_say_why() {
     let (p, data) = steady(2.0);
-    let charts = paper_charts(&data, &p);
+    let charts = paper_charts(&data, &p, true);
     for (stem, why) in [
         ("fig02_theta_envelope", "completes no oscillation"),
         ("fig04_theta_dot_over_psi_dot", "no nutation"),
@@ -172,13 +172,15 @@ fn figures_with_nothing_to_show_say_why() {
     // Empty figures are drawn (with their note), not skipped.
     let dir = tempfile::tempdir().unwrap();
     assert_eq!(
-        write_paper_figures(&data, &p, dir.path()).unwrap().len(),
+        write_paper_figures(&data, &p, true, dir.path())
+            .unwrap()
+            .len(),
         15
     );
 
     // A run shorter than a second has nothing after its first second.
     let (p, short) = synthetic(0.1, 0.5);
-    let charts = paper_charts(&short, &p);
+    let charts = paper_charts(&short, &p, true);
     for stem in [
         "fig04_theta_dot_over_psi_dot",
         "fig09_normal_force_vs_theta",
@@ -196,7 +198,7 @@ fn figures_with_nothing_to_show_say_why() {
 #[test]
 fn time_axes_span_the_time_each_figure_covers() {
     let (p, data) = synthetic(0.1, 2.0);
-    let charts = paper_charts(&data, &p);
+    let charts = paper_charts(&data, &p, true);
     // Per-oscillation envelopes have points only inside the run; the axis spans all of it.
     let fig7 = find(&charts, "fig07_slip_speed_envelope");
     let first = fig7.lines[0].points.first().unwrap().0;
@@ -219,7 +221,7 @@ fn time_axes_span_the_time_each_figure_covers() {
 #[test]
 fn titles_write_time_ranges_one_way_and_fig8_draws_theta_under_the_force() {
     let (p, data) = synthetic(0.1, 3.0);
-    for c in paper_charts(&data, &p) {
+    for c in paper_charts(&data, &p, true) {
         if let Some(open) = c.title.find('[') {
             let range = &c.title[open..];
             let close = range.find("] s").unwrap_or_else(|| panic!("{}", c.title));

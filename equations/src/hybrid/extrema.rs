@@ -16,6 +16,12 @@
 //!   segment is reported as a maximum (minimum) too;
 //! * the slip speed, while sliding, as N (only interior extrema: it is continuous).
 //!
+//! A pair of extrema of N or v_C less than two thirds of a step apart can be missed (farther
+//! apart, never): see [`bracketed`]. θ's extrema are the zeros of Ω_y found by sign changes
+//! on the same points, so a pair of them inside one gap between scan points (a third of the
+//! step) is missed (Ω_y has the same sign at the gap's ends); a pair with a point between
+//! them is found.
+//!
 //! Bridges (about 1e-9 s at zero slip) are not scanned. The cost is `INTERIOR + 3` model
 //! evaluations per step and about twenty per extremum; a run that does not ask pays nothing.
 
@@ -218,14 +224,7 @@ impl Scanner {
                 }
                 None => {}
             }
-            for j in 1..v.len() - 1 {
-                let kind = if v[j - 1] < v[j] && v[j] >= v[j + 1] {
-                    ExtremumKind::Max
-                } else if v[j - 1] > v[j] && v[j] <= v[j + 1] {
-                    ExtremumKind::Min
-                } else {
-                    continue;
-                };
+            for (j, kind) in bracketed(v) {
                 let sign = if kind == ExtremumKind::Max { -1.0 } else { 1.0 };
                 let (t, f) = brent(ts[j - 1], ts[j], ts[j + 1], sign * v[j], |t| {
                     sign * value(q, t)
@@ -276,6 +275,28 @@ impl Scanner {
             out(found(Watched::Theta, kind, (root.t, theta, theta), mode));
         }
     }
+}
+
+/// The scan points `j` whose value is above (a maximum) or below (a minimum) both neighbours:
+/// each brackets an extremum in `[ts[j − 1], ts[j + 1]]`.
+///
+/// This is what bounds the scan. A maximum and the minimum after it (or the reverse), both
+/// between the hairs, are both bracketed when two scan points lie between them (the values
+/// then fall from one to the next, a descent that a maximum starts and a minimum ends): so
+/// always when they are more than two thirds of the step apart ([`INTERIOR`] = 2, gaps of a
+/// third). Closer pairs can be missed, even with one scan point between them: whether they
+/// are seen depends on where the points fall on the curve (the tests show both cases). Of two
+/// maxima in one bracket, Brent's method reports one.
+fn bracketed(v: &[f64]) -> impl Iterator<Item = (usize, ExtremumKind)> + '_ {
+    (1..v.len().saturating_sub(1)).filter_map(move |j| {
+        if v[j - 1] < v[j] && v[j] >= v[j + 1] {
+            Some((j, ExtremumKind::Max))
+        } else if v[j - 1] > v[j] && v[j] <= v[j + 1] {
+            Some((j, ExtremumKind::Min))
+        } else {
+            None
+        }
+    })
 }
 
 /// An extremum inside a segment.
@@ -401,6 +422,57 @@ mod tests {
         assert!((t - t_star).abs() <= X_TOL * (c - a), "t = {t}");
         assert!(((-f) - peak(t_star)).abs() <= 1e-12 * peak(t_star), "{f}");
         assert!(evals < 60, "{evals} evaluations");
+    }
+
+    /// The scan's times on a step `[0, 1]`, as [`Scanner::step`] lays them out.
+    fn scan_times() -> [f64; INTERIOR + 4] {
+        let mut ts = [0.0, EDGE, 0.0, 0.0, 1.0 - EDGE, 1.0];
+        for (k, t) in ts[2..INTERIOR + 2].iter_mut().enumerate() {
+            *t = (k + 1) as f64 / (INTERIOR + 1) as f64;
+        }
+        ts
+    }
+
+    /// A rising line with a bump: a maximum near `a` and a minimum near `a + d` (a cubic
+    /// with those turning points, on a slope that keeps the rest of the step rising).
+    fn pair(a: f64, d: f64) -> impl Fn(f64) -> f64 {
+        let b = a + d;
+        // f' = (t − a)(t − b): maximum at a, minimum at b; f rises outside [a, b].
+        move |t: f64| t * t * t / 3.0 - (a + b) * t * t / 2.0 + a * b * t
+    }
+
+    fn found(f: impl Fn(f64) -> f64) -> Vec<(usize, ExtremumKind)> {
+        let v: Vec<f64> = scan_times().iter().map(|&t| f(t)).collect();
+        bracketed(&v).collect()
+    }
+
+    #[test]
+    fn pairs_two_gaps_apart_are_always_bracketed() {
+        // The widest two neighbouring gaps between the hairs: two thirds of the step, less a
+        // hair. A pair farther apart has two scan points between its extrema.
+        let ts = scan_times();
+        let two_gaps = ts[1..INTERIOR + 3]
+            .windows(3)
+            .map(|w| w[2] - w[0])
+            .fold(0.0, f64::max);
+        assert!((two_gaps - (2.0 / 3.0 - EDGE)).abs() < 1e-15, "{two_gaps}");
+        let d = two_gaps * 1.001;
+        for k in 0..200 {
+            let a = EDGE + (1.0 - 2.0 * EDGE - d) * (k as f64 + 0.5) / 200.0;
+            let kinds: Vec<ExtremumKind> = found(pair(a, d)).into_iter().map(|x| x.1).collect();
+            assert_eq!(kinds, [ExtremumKind::Max, ExtremumKind::Min], "a = {a}");
+        }
+    }
+
+    #[test]
+    fn closer_pairs_can_be_missed() {
+        // Inside one gap (1/3, 2/3): the scan sees a rising sequence and neither extremum.
+        assert!(found(pair(0.45, 0.1)).is_empty());
+        // With one scan point between them (2/3, or 1/3), missed or found by where it falls.
+        assert!(found(pair(0.6, 0.1)).is_empty());
+        assert!(found(pair(0.1382, 0.334)).is_empty());
+        let kinds: Vec<ExtremumKind> = found(pair(0.2, 0.4)).into_iter().map(|x| x.1).collect();
+        assert_eq!(kinds, [ExtremumKind::Max, ExtremumKind::Min]);
     }
 
     #[test]
