@@ -74,6 +74,7 @@ pub use system::DiskGuard;
 
 use crate::issue::Issue;
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState};
+use crate::work::WorkExceeded;
 use crate::ParamError;
 use model_runtime::EvalError;
 use model_runtime::SolveError;
@@ -308,6 +309,10 @@ pub enum SimError {
         /// Driver transitions counted.
         transitions: usize,
     },
+    /// The run took more steps per simulated second than its [`crate::WorkBound`] allows:
+    /// its step size has collapsed far below what the scene's time scale needs.
+    #[error("{0}")]
+    WorkBound(WorkExceeded),
     /// Sliding had to start but no consistent slip direction exists.
     #[error("at t = {t}: {source}")]
     Onset {

@@ -1,0 +1,86 @@
+//! The limits of a run, hit from the command line: each names itself and the key that moves
+//! it, a run that fails on one exits 1 with its work and complete files, and a value no run
+//! can use is refused before anything is written.
+
+use std::path::Path;
+
+use super::cli_run::{csv, rejected, run};
+
+/// A disk of radius 1e-12 m started at θ = 3 rad: its time scale `sqrt(a/g)` is 3e-7 s and it
+/// takes about 2e8 steps per simulated second; the one second asked for would run for hours.
+const TINY_DISK: [&str; 4] = ["--set", "disk.a=1e-12", "--set", "initial.theta=3.0"];
+
+/// Runs the tiny disk under `max_steps_per_s` into `out`, expecting the work bound.
+fn over_the_work_bound(out: &Path, max_steps_per_s: f64) -> serde_json::Value {
+    let bound = format!("solver.max_steps_per_s={max_steps_per_s}");
+    let mut args = TINY_DISK.to_vec();
+    args.extend(["--t-end", "1", "--quiet", "--no-figures", "--set", &bound]);
+    args.extend(["--out", out.to_str().unwrap()]);
+    let o = run(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("the work bound was reached"), "{err}");
+    assert!(err.contains("raise `solver.max_steps_per_s`"), "{err}");
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// The run fails at the first step over `rate × (t + 0.1 s)`: a tenth of the rate's steps
+/// were taken (the simulated time is a few µs, far below the allowance), the work is in
+/// `summary.json`, and the files end where the run did, every value finite.
+#[test]
+fn a_collapsing_step_size_meets_the_work_bound_said_by_its_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut steps_at = Vec::new();
+    for rate in [1e5, 2e5] {
+        let out = dir.path().join(format!("out-{rate}"));
+        let summary = over_the_work_bound(&out, rate);
+        assert_eq!(summary["stop_reason"], "error");
+        let detail = summary["stop_detail"].as_str().unwrap();
+        assert!(detail.contains("solver.max_steps_per_s"), "{detail}");
+        let steps = summary["steps"].as_u64().unwrap() as f64;
+        let t_fail = summary["t_end"].as_f64().unwrap();
+        assert!(t_fail < 1e-3, "{t_fail}");
+        // The budget at the failure, in steps; the driver stops at the first step over it.
+        let budget = rate * (t_fail + 0.1);
+        assert!(
+            steps > 0.1 * rate && steps < budget * 1.01 + 10.0,
+            "{steps} vs {budget}"
+        );
+        assert!(summary["rhs_evals"].as_u64().unwrap() as f64 > steps);
+        steps_at.push(steps);
+        for name in ["trajectory.csv", "extrema.csv"] {
+            let (header, rows) = csv(&out.join(name));
+            for row in &rows {
+                assert_eq!(row.len(), header.len(), "{name}: {row:?}");
+            }
+        }
+        for name in ["trajectory.csv", "events.csv", "extrema.csv"] {
+            let text = std::fs::read_to_string(out.join(name)).unwrap();
+            assert!(!text.to_lowercase().contains("nan"), "{name}");
+        }
+        // The stop is the last event, dated where the run was last heard of: after every
+        // decision it made, and after the trajectory's last row.
+        let (_, events) = csv(&out.join("events.csv"));
+        let (stop, decisions) = events.split_last().unwrap();
+        assert_eq!(stop[2..4], ["stop", "error"]);
+        let t_stop: f64 = stop[0].parse().unwrap();
+        let t_decided: f64 = decisions.last().unwrap()[0].parse().unwrap();
+        assert!(t_stop >= t_decided, "{t_stop} < {t_decided}");
+        let (_, rows) = csv(&out.join("trajectory.csv"));
+        assert!(t_stop >= rows.last().unwrap()[0].parse::<f64>().unwrap());
+    }
+    // Twice the rate, twice the steps before the bound.
+    let ratio = steps_at[1] / steps_at[0];
+    assert!((ratio - 2.0).abs() < 0.05, "{steps_at:?}");
+}
+
+#[test]
+fn a_work_bound_no_run_can_meet_is_refused_by_its_key() {
+    for value in ["0", "-1", "nan", "inf"] {
+        rejected(
+            &["--set", &format!("solver.max_steps_per_s={value}")],
+            "solver.max_steps_per_s",
+        );
+    }
+}
