@@ -323,6 +323,20 @@ pub enum SimError {
     },
 }
 
+impl SimError {
+    /// When the run failed (s); `None` for a failure before its start (invalid input).
+    pub fn time(&self) -> Option<f64> {
+        match self {
+            SimError::Params(_) | SimError::Invalid { .. } => None,
+            SimError::Solve { error, .. } => error.time(),
+            SimError::Transition { t, .. }
+            | SimError::DriverChattering { t, .. }
+            | SimError::Onset { t, .. } => Some(*t),
+            SimError::WorkBound(over) => Some(over.t),
+        }
+    }
+}
+
 /// A run that failed, and the work it did until then: a failure that reports no work would
 /// hide what the run cost (and how far it got).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

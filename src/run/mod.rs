@@ -363,7 +363,7 @@ fn collect(
                 let why = "the simulation thread died".to_string();
                 break Ended {
                     outcome: None,
-                    stop: abandoned(collector, "error", why),
+                    stop: abandoned(collector, "error", why, None),
                     steps: None,
                     rhs_evals: None,
                 };
@@ -393,7 +393,7 @@ impl Ended {
             },
             Err(failure) => Ended {
                 outcome: None,
-                stop: abandoned(collector, "error", failure.message),
+                stop: abandoned(collector, "error", failure.message, failure.t),
                 steps: Some(failure.steps),
                 rhs_evals: Some(failure.rhs_evals),
             },
@@ -401,9 +401,12 @@ impl Ended {
     }
 }
 
-fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
+/// The stop record of a run that ended without an outcome, dated at `t` (the failure's own
+/// time) or where the collector last heard of it, whichever is later.
+fn abandoned(c: &Collector, reason: &str, detail: String, t: Option<f64>) -> StopRecord {
+    let heard = c.latest_t().unwrap_or(0.0);
     StopRecord {
-        t: c.latest_t().unwrap_or(0.0),
+        t: t.filter(|t| t.is_finite()).map_or(heard, |t| t.max(heard)),
         mode: c.latest_mode().unwrap_or(Mode::Rolling),
         reason: reason.to_string(),
         detail,

@@ -48,6 +48,8 @@ pub struct Failure {
     pub steps: u64,
     /// Right-hand-side evaluations until the failure.
     pub rhs_evals: u64,
+    /// When it failed (s), if the error says.
+    pub t: Option<f64>,
 }
 
 impl Failure {
@@ -57,6 +59,7 @@ impl Failure {
             message,
             steps: 0,
             rhs_evals: 0,
+            t: None,
         }
     }
 }
@@ -291,6 +294,7 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
                 message: failure.to_string(),
                 steps: failure.stats.steps,
                 rhs_evals: failure.stats.rhs_evals,
+                t: failure.error.time(),
             })
     }
 }
