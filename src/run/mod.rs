@@ -144,7 +144,13 @@ pub fn run_scene(
         file,
         timings,
     } = simulated?;
-    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started)?;
+    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started, interrupt)?;
+    // An interrupt while the figures were drawn: the run ends as interrupted, its data complete.
+    let ending = if summary.figures_not_drawn.is_empty() {
+        ending
+    } else {
+        Ending::Interrupted
+    };
     Ok(RunReport {
         summary,
         ending,
@@ -413,8 +419,6 @@ fn abandoned(c: &Collector, reason: &str, detail: String, t: Option<f64>) -> Sto
     }
 }
 
-/// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
-/// run, is committed here); returns the summary and the paths written.
 /// `summary.json`: the summary and how the run was produced.
 #[derive(serde::Serialize)]
 struct SummaryFile<'a> {
@@ -424,7 +428,9 @@ struct SummaryFile<'a> {
 }
 
 /// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
-/// run, is committed here); returns the summary and the paths written.
+/// run, is committed here); returns the summary and the paths written. Once `interrupt` is
+/// set, no further figure is started (the data files and `summary.json` are still written,
+/// the summary listing the figures left undrawn).
 pub fn write_outputs(
     scene: &Scene,
     data: &RunData,
@@ -432,6 +438,7 @@ pub fn write_outputs(
     trajectory: Option<TrajectoryFile>,
     mut timings: Timings,
     started: Instant,
+    interrupt: &AtomicBool,
 ) -> Result<(Summary, Vec<PathBuf>), WriteError> {
     let dir: &Path = &opts.out_dir;
     let lap = |since: &mut f64| {
@@ -478,10 +485,15 @@ pub fn write_outputs(
     let mut summary = Summary::of(&scene.name, data, &scene.params);
     timings.analysis_s = lap(&mut clock);
     if opts.figures && !data.samples.is_empty() {
-        for stem in write_paper_figures(data, &scene.params, dir)? {
+        if opts.progress != ProgressStyle::Quiet {
+            eprintln!("drawing the figures (Ctrl-C skips the rest)");
+        }
+        let figures = write_paper_figures(data, &scene.params, dir, interrupt)?;
+        for stem in figures.drawn {
             files.push(dir.join(format!("{stem}.png")));
             files.push(dir.join(format!("{stem}.svg")));
         }
+        summary.figures_not_drawn = figures.not_drawn;
     }
     timings.figures_s = lap(&mut clock);
     timings.total_s = clock;

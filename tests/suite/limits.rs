@@ -85,3 +85,119 @@ fn a_work_bound_no_run_can_meet_is_refused_by_its_key() {
         );
     }
 }
+
+/// `friction.mu_st = 1.8e308` (the largest finite number): static friction never gives way.
+/// The friction guard `T − mu_st N` overflowed to −inf at the first step and the run failed;
+/// the ν figure's reference line at 1.8e308 hung the plotting library. The run now rolls to
+/// its end, as with any coefficient friction never reaches, with every figure drawn.
+#[test]
+fn the_largest_static_friction_rolls_to_the_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = run(&[
+        "--set",
+        "friction.mu_st=1.7976931348623157e308",
+        "--t-end",
+        "5",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    let (_, events) = csv(&out.join("events.csv"));
+    let modes: Vec<&str> = events.iter().map(|e| e[2].as_str()).collect();
+    assert_eq!(modes, ["stop"], "it never slides: {events:?}");
+    let (header, rows) = csv(&out.join("trajectory.csv"));
+    assert_eq!(rows.len(), 5001);
+    assert!(rows
+        .iter()
+        .all(|r| r[1] == "rolling" && r.len() == header.len()));
+    for stem in eulerdisk::FIGURE_STEMS {
+        assert!(out.join(format!("{stem}.png")).is_file(), "{stem}");
+    }
+}
+
+/// One Ctrl-C while the figures are drawn: the figures being drawn are finished, no other is
+/// started, and the run exits at once as interrupted with its data files and `summary.json`
+/// complete; the summary lists the figures left undrawn, and every figure present is whole.
+#[test]
+fn one_ctrl_c_while_drawing_stops_the_figures_and_keeps_the_files() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
+        .args(["run", "--set", "friction.mu_st=1.7976931348623157e308"])
+        .args(["--out", out.to_str().unwrap()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let mut said = Vec::new();
+    for line in lines.by_ref() {
+        let line = line.unwrap();
+        let drawing = line.contains("drawing the figures");
+        said.push(line);
+        if drawing {
+            break;
+        }
+    }
+    let sent = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let interrupted = Instant::now();
+    said.extend(lines.map(|l| l.unwrap()));
+    let status = child.wait().unwrap();
+    let said = said.join("\n");
+    assert!(interrupted.elapsed() < Duration::from_secs(5), "{said}");
+    assert_eq!(status.code(), Some(130), "{said}");
+    assert!(
+        said.contains("interrupted while drawing the figures"),
+        "{said}"
+    );
+
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(summary["stop_reason"], "end_time");
+    let not_drawn: Vec<&str> = summary["figures_not_drawn"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert!(
+        !not_drawn.is_empty(),
+        "the interrupt came after every figure"
+    );
+    for stem in eulerdisk::FIGURE_STEMS {
+        let present = ["png", "svg"].map(|ext| out.join(format!("{stem}.{ext}")).is_file());
+        if not_drawn.contains(&stem) {
+            assert_eq!(present, [false, false], "{stem}");
+        } else {
+            assert_eq!(present, [true, true], "{stem}");
+            let svg = std::fs::read_to_string(out.join(format!("{stem}.svg"))).unwrap();
+            assert!(
+                svg.trim_end().ends_with("</svg>"),
+                "{stem}.svg is cut short"
+            );
+        }
+    }
+    let (_, rows) = csv(&out.join("trajectory.csv"));
+    assert_eq!(rows.len(), 100_001);
+    let (_, events) = csv(&out.join("events.csv"));
+    assert_eq!(events.last().unwrap()[2..4], ["stop", "end_time"]);
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        names.iter().all(|n| !n.starts_with(".partial-")),
+        "{names:?}"
+    );
+}
