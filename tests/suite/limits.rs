@@ -201,3 +201,50 @@ fn one_ctrl_c_while_drawing_stops_the_figures_and_keeps_the_files() {
         "{names:?}"
     );
 }
+
+/// A disk rolling under friction that never gives way (`μ_st = 1e300`), spun fast enough to
+/// leave the floor while rolling: at the located loss of contact `N` is zero to round-off and
+/// `T/N` was `−9.8e15` (or `0/0`, NaN). ν there is the law's bound `μ_st`; no column of any
+/// file holds a NaN or an infinity.
+#[test]
+fn a_rolling_loss_of_contact_writes_only_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = run(&[
+        "--set",
+        "friction.mu_st=1e300",
+        "--set",
+        "initial.Omega_x=100",
+        "--t-end",
+        "2",
+        "--quiet",
+        "--no-figures",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("contact_lost") && err.contains("while rolling"),
+        "{err}"
+    );
+    let (header, rows) = csv(&out.join("trajectory.csv"));
+    let last = rows.last().unwrap();
+    assert_eq!(last[1], "rolling");
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let normal: f64 = last[column("N_N")].parse().unwrap();
+    assert!(normal.abs() < 1e-12, "{normal}");
+    assert_eq!(last[column("nu_ratio")], "1e300");
+    for name in ["trajectory.csv", "events.csv", "extrema.csv"] {
+        let (header, rows) = csv(&out.join(name));
+        for row in &rows {
+            for (cell, name) in row.iter().zip(&header) {
+                let lower = cell.to_lowercase();
+                assert!(
+                    !lower.contains("nan") && !lower.contains("inf"),
+                    "{name}: {row:?}"
+                );
+            }
+        }
+    }
+}
