@@ -105,7 +105,7 @@ pub use run::{
 pub use analysis::summary::Summary;
 pub use analysis::synthetic::SyntheticRun;
 pub use figures::chart::Chart;
-pub use figures::paper::{paper_charts, write_paper_figures, FIGURE_STEMS};
+pub use figures::paper::{paper_charts, write_paper_figures, FiguresDrawn, FIGURE_STEMS};
 pub use quantity::Quantity;
 pub use record::RunData;
 

@@ -124,6 +124,14 @@ fn run(args: RunArgs) -> ExitCode {
                     ExitCode::from(EXIT_STOPPED)
                 }
                 Ending::Completed => ExitCode::SUCCESS,
+                Ending::Interrupted if !s.figures_not_drawn.is_empty() => {
+                    eprintln!(
+                        "interrupted while drawing the figures: {} of them not drawn (listed \
+                         in summary.json); the run and its data files are complete",
+                        s.figures_not_drawn.len()
+                    );
+                    ExitCode::from(EXIT_INTERRUPTED)
+                }
                 Ending::Interrupted => {
                     eprintln!(
                         "interrupted at t = {} s: the files hold the run up to then",

@@ -13,6 +13,7 @@ use crate::modes::{Mode, SlipChart};
 use crate::settings::{
     ChatterLimit, ErrorNorm, Integrator, RunTable, SlipSign, SolverTable, TimeVariable,
 };
+use crate::work::WorkBound;
 use model_runtime::{InteriorChecks, LimitingComponent, StepControl};
 use std::f64::consts::FRAC_PI_2;
 
@@ -119,6 +120,8 @@ pub struct DiskConfig {
     pub chatter: ChatterLimit,
     /// Budget of step attempts for the whole run.
     pub max_steps: u64,
+    /// Accepted steps allowed per simulated second (the scene's `solver.max_steps_per_s`).
+    pub work: WorkBound,
     /// The time variable the integrator steps in (adaptive integrators only).
     pub time: TimeVariable,
     /// The modes the disk may enter: a decision for another one ends the run with
@@ -151,6 +154,9 @@ impl DiskConfig {
                 window: 1e-6,
             },
             max_steps: 500_000_000,
+            work: WorkBound {
+                steps_per_s: solver.max_steps_per_s,
+            },
             time: solver.time,
             allowed: AllowedModes::ALL,
         }
@@ -217,6 +223,7 @@ impl DiskConfig {
                 false,
             );
         }
+        c.positive(WorkBound::KEY, self.work.steps_per_s);
         c.positive("chatter.window", self.chatter.window);
         if self.chatter.max_transitions == 0 {
             c.push("chatter.max_transitions", Rule::NotPositive { value: 0.0 });

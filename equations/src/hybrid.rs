@@ -78,6 +78,7 @@ pub use system::DiskGuard;
 
 use crate::issue::Issue;
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState};
+use crate::work::WorkExceeded;
 use crate::ParamError;
 use model_runtime::EvalError;
 use model_runtime::SolveError;
@@ -312,6 +313,10 @@ pub enum SimError {
         /// Driver transitions counted.
         transitions: usize,
     },
+    /// The run took more steps per simulated second than its [`crate::WorkBound`] allows:
+    /// its step size has collapsed far below what the scene's time scale needs.
+    #[error("{0}")]
+    WorkBound(WorkExceeded),
     /// Sliding had to start but no consistent slip direction exists.
     #[error("at t = {t}: {source}")]
     Onset {
@@ -320,6 +325,20 @@ pub enum SimError {
         /// Why.
         source: OnsetError,
     },
+}
+
+impl SimError {
+    /// When the run failed (s); `None` for a failure before its start (invalid input).
+    pub fn time(&self) -> Option<f64> {
+        match self {
+            SimError::Params(_) | SimError::Invalid { .. } => None,
+            SimError::Solve { error, .. } => error.time(),
+            SimError::Transition { t, .. }
+            | SimError::DriverChattering { t, .. }
+            | SimError::Onset { t, .. } => Some(*t),
+            SimError::WorkBound(over) => Some(over.t),
+        }
+    }
 }
 
 /// A run that failed, and the work it did until then: a failure that reports no work would

@@ -45,6 +45,7 @@ pub mod reference;
 mod scene;
 mod settings;
 mod start;
+mod work;
 
 pub use config::{AllowedModes, DiskConfig, ATOL_MAX, MAX_DELIVERED_SAMPLES, RTOL_MAX, RTOL_MIN};
 pub use hybrid::{
@@ -75,3 +76,4 @@ pub use settings::{
     spelled, ChatterLimit, ErrorNorm, Integrator, RunTable, SlipSign, SolverTable, TimeVariable,
 };
 pub use start::{InitialState, CONSTRAINT_TOL, STATE_NAMES};
+pub use work::{WorkBound, WorkExceeded};

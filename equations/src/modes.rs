@@ -367,6 +367,20 @@ impl ContactForce {
     pub fn admits_rolling(&self, mu_st: f64) -> bool {
         self.normal > 0.0 && self.friction() < mu_st * self.normal
     }
+
+    /// How far rolling is from needing more friction than `mu_st N`: `T − mu_st N`, divided by
+    /// `mu_st` when that is above 1. The guard of the friction limit: it changes sign where
+    /// `T = mu_st N`, and it stays finite for every finite force and coefficient. Unscaled,
+    /// `mu_st = 1.8e308` made `mu_st N` overflow at the first newton of normal force and the
+    /// run failed on a guard of `-inf`; the scaling by a constant keeps the zero and the sign,
+    /// and leaves every coefficient up to 1 (every real contact) exactly as it was.
+    pub fn friction_margin(&self, mu_st: f64) -> f64 {
+        if mu_st > 1.0 {
+            self.friction() / mu_st - self.normal
+        } else {
+            self.friction() - mu_st * self.normal
+        }
+    }
 }
 
 #[cfg(test)]
@@ -423,5 +437,24 @@ mod tests {
         assert!(!f.admits_rolling(0.2 - 1e-12) && f.admits_rolling(0.2 + 1e-12));
         let lifted = ContactForce { normal: -1.0, ..f };
         assert!(!lifted.admits_rolling(10.0));
+    }
+
+    #[test]
+    fn the_friction_margin_is_finite_and_changes_sign_where_rolling_stops_holding() {
+        let f = ContactForce {
+            r_x: 3e3,
+            r_y: 4e3,
+            normal: 2.5,
+        };
+        // T = 5e3 N: rolling holds for mu_st above 2000.
+        for mu_st in [0.0, 0.2, 1.0, 1999.0, 2001.0, 1e10, f64::MAX] {
+            let margin = f.friction_margin(mu_st);
+            assert!(margin.is_finite(), "{mu_st}: {margin}");
+            assert_eq!(margin < 0.0, f.admits_rolling(mu_st), "{mu_st}");
+        }
+        // Up to 1 it is the plain T - mu_st N, bit for bit.
+        assert_eq!(f.friction_margin(0.2), f.friction() - 0.2 * f.normal);
+        let heavy = ContactForce { normal: 1e300, ..f };
+        assert!(heavy.friction_margin(f64::MAX).is_finite());
     }
 }

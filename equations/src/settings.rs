@@ -7,6 +7,7 @@
 //! `summary.json` spell every setting alike.
 
 use crate::modes::SlipChart;
+use crate::work::WorkBound;
 use model_runtime::{parse_word, ParseSettingError};
 use model_runtime::{InteriorChecks, StepControl};
 use serde::{Deserialize, Serialize};
@@ -239,6 +240,9 @@ pub struct SolverTable {
     /// The variable the integrator steps in: `physical` or `regularised` (`regularised`).
     #[serde(with = "spelled")]
     pub time: TimeVariable,
+    /// The work bound: accepted steps allowed per simulated second (`1e6`,
+    /// [`WorkBound::DEFAULT`]); a run over it fails instead of running for hours.
+    pub max_steps_per_s: f64,
 }
 
 impl Default for SolverTable {
@@ -251,6 +255,7 @@ impl Default for SolverTable {
             error_norm: ErrorNorm::Components,
             step_control: StepControl::PiGustafsson,
             time: TimeVariable::Regularised,
+            max_steps_per_s: WorkBound::DEFAULT.steps_per_s,
         }
     }
 }

@@ -158,6 +158,19 @@ pub enum SolveError {
 }
 
 impl SolveError {
+    /// When the failure happened; an input error has no time.
+    pub fn time(&self) -> Option<f64> {
+        match self {
+            SolveError::StepSizeCollapse { t, .. }
+            | SolveError::Eval { t, .. }
+            | SolveError::MaxSteps { t, .. }
+            | SolveError::SingularIterationMatrix { t, .. }
+            | SolveError::GuardNotFinite { t, .. }
+            | SolveError::TransitionState { t, .. } => Some(*t),
+            SolveError::InvalidInput(_) => None,
+        }
+    }
+
     /// The same failure dated `t` instead (a run in regularised time reports the physical
     /// time, not the integration variable's); an input error has no time and is unchanged.
     pub fn at_time(mut self, t_new: f64) -> Self {

@@ -99,6 +99,9 @@ pub struct Summary {
     /// printed comparison shows the paper's values beside ours. Set by the caller, who knows
     /// the scene; `false` from [`Summary::of`].
     pub compared_with_paper: bool,
+    /// Stems of the paper's figures an interrupt left undrawn (empty when every figure asked
+    /// for was drawn, or none was asked for). Set by the caller, who draws them.
+    pub figures_not_drawn: Vec<String>,
 }
 
 /// One line of the printed comparison.
@@ -291,6 +294,7 @@ impl Summary {
             },
             timings: Timings::default(),
             compared_with_paper: false,
+            figures_not_drawn: Vec::new(),
         }
     }
 

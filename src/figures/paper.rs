@@ -11,6 +11,7 @@
 //! sliding, a run shorter than a second) says why in the picture.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use equations::DiskParams;
 
@@ -444,26 +445,41 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
     charts
 }
 
-/// Renders every figure into `dir` (PNG and SVG) on every core; returns the stems written.
+/// The figures of a run: the ones drawn, and the ones an interrupt left undrawn.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FiguresDrawn {
+    /// Stems of the figures written (PNG and SVG), in the order they are numbered.
+    pub drawn: Vec<String>,
+    /// Stems of the figures not drawn because `stop` was set first, in order.
+    pub not_drawn: Vec<String>,
+}
+
+/// Renders every figure into `dir` (PNG and SVG) on every core, until `stop` is set.
 /// The figures are independent and each is written atomically, so they are drawn in
-/// parallel, a few per thread, in the order they are numbered.
+/// parallel, a few per thread, in the order they are numbered. Each thread looks at `stop`
+/// before it starts a figure: an interrupt leaves the figures in progress to finish (a
+/// fraction of a second each) and draws no more, so every file present is complete.
 pub fn write_paper_figures(
     data: &RunData,
     p: &DiskParams,
     compared_with_paper: bool,
     dir: &Path,
-) -> Result<Vec<String>, WriteError> {
+    stop: &AtomicBool,
+) -> Result<FiguresDrawn, WriteError> {
     let charts = paper_charts(data, p, compared_with_paper);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let next = std::sync::atomic::AtomicUsize::new(0);
+    let next = AtomicUsize::new(0);
+    let done: Vec<AtomicBool> = charts.iter().map(|_| AtomicBool::new(false)).collect();
     let draw = || -> Result<(), WriteError> {
-        loop {
-            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        while !stop.load(Ordering::SeqCst) {
+            let i = next.fetch_add(1, Ordering::Relaxed);
             let Some(chart) = charts.get(i) else {
                 return Ok(());
             };
             render(chart, dir)?;
+            done[i].store(true, Ordering::SeqCst);
         }
+        Ok(())
     };
     std::thread::scope(|scope| {
         let workers: Vec<_> = (1..threads.min(charts.len()))
@@ -476,5 +492,13 @@ pub fn write_paper_figures(
             .chain(std::iter::once(mine))
             .collect::<Result<(), WriteError>>()
     })?;
-    Ok(charts.into_iter().map(|c| c.stem).collect())
+    let mut figures = FiguresDrawn::default();
+    for (chart, done) in charts.into_iter().zip(&done) {
+        if done.load(Ordering::SeqCst) {
+            figures.drawn.push(chart.stem);
+        } else {
+            figures.not_drawn.push(chart.stem);
+        }
+    }
+    Ok(figures)
 }

@@ -110,9 +110,15 @@ impl Collector {
         self.file.is_some()
     }
 
-    /// The time of the latest sample.
+    /// The time of the latest sample or event: where a run that failed was last heard of
+    /// (its events may have gone on past its last sample).
     pub fn latest_t(&self) -> Option<f64> {
-        self.latest.map(|s| s.t)
+        let sample = self.latest.map(|s| s.t);
+        let event = self.data.events.last().map(|e| e.t);
+        match (sample, event) {
+            (Some(s), Some(e)) => Some(s.max(e)),
+            (s, e) => s.or(e),
+        }
     }
 
     /// The mode of the latest sample or event.

@@ -144,7 +144,13 @@ pub fn run_scene(
         file,
         timings,
     } = simulated?;
-    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started)?;
+    let (summary, files) = write_outputs(scene, &data, opts, file, timings, started, interrupt)?;
+    // An interrupt while the figures were drawn: the run ends as interrupted, its data complete.
+    let ending = if summary.figures_not_drawn.is_empty() {
+        ending
+    } else {
+        Ending::Interrupted
+    };
     Ok(RunReport {
         summary,
         ending,
@@ -363,7 +369,7 @@ fn collect(
                 let why = "the simulation thread died".to_string();
                 break Ended {
                     outcome: None,
-                    stop: abandoned(collector, "error", why),
+                    stop: abandoned(collector, "error", why, None),
                     steps: None,
                     rhs_evals: None,
                 };
@@ -393,7 +399,7 @@ impl Ended {
             },
             Err(failure) => Ended {
                 outcome: None,
-                stop: abandoned(collector, "error", failure.message),
+                stop: abandoned(collector, "error", failure.message, failure.t),
                 steps: Some(failure.steps),
                 rhs_evals: Some(failure.rhs_evals),
             },
@@ -401,17 +407,18 @@ impl Ended {
     }
 }
 
-fn abandoned(c: &Collector, reason: &str, detail: String) -> StopRecord {
+/// The stop record of a run that ended without an outcome, dated at `t` (the failure's own
+/// time) or where the collector last heard of it, whichever is later.
+fn abandoned(c: &Collector, reason: &str, detail: String, t: Option<f64>) -> StopRecord {
+    let heard = c.latest_t().unwrap_or(0.0);
     StopRecord {
-        t: c.latest_t().unwrap_or(0.0),
+        t: t.filter(|t| t.is_finite()).map_or(heard, |t| t.max(heard)),
         mode: c.latest_mode().unwrap_or(Mode::Rolling),
         reason: reason.to_string(),
         detail,
     }
 }
 
-/// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
-/// run, is committed here); returns the summary and the paths written.
 /// `summary.json`: the summary and how the run was produced.
 #[derive(serde::Serialize)]
 struct SummaryFile<'a> {
@@ -421,7 +428,9 @@ struct SummaryFile<'a> {
 }
 
 /// Writes every output of `data` into `opts.out_dir` (the trajectory, streamed during the
-/// run, is committed here); returns the summary and the paths written.
+/// run, is committed here); returns the summary and the paths written. Once `interrupt` is
+/// set, no further figure is started (the data files and `summary.json` are still written,
+/// the summary listing the figures left undrawn).
 pub fn write_outputs(
     scene: &Scene,
     data: &RunData,
@@ -429,6 +438,7 @@ pub fn write_outputs(
     trajectory: Option<TrajectoryFile>,
     mut timings: Timings,
     started: Instant,
+    interrupt: &AtomicBool,
 ) -> Result<(Summary, Vec<PathBuf>), WriteError> {
     let dir: &Path = &opts.out_dir;
     let lap = |since: &mut f64| {
@@ -476,11 +486,16 @@ pub fn write_outputs(
     summary.compared_with_paper = is_papers_scene(scene);
     timings.analysis_s = lap(&mut clock);
     if opts.figures && !data.samples.is_empty() {
+        if opts.progress != ProgressStyle::Quiet {
+            eprintln!("drawing the figures (Ctrl-C skips the rest)");
+        }
         let paper = summary.compared_with_paper;
-        for stem in write_paper_figures(data, &scene.params, paper, dir)? {
+        let figures = write_paper_figures(data, &scene.params, paper, dir, interrupt)?;
+        for stem in figures.drawn {
             files.push(dir.join(format!("{stem}.png")));
             files.push(dir.join(format!("{stem}.svg")));
         }
+        summary.figures_not_drawn = figures.not_drawn;
     }
     timings.figures_s = lap(&mut clock);
     timings.total_s = clock;

@@ -15,7 +15,7 @@ use std::thread::Scope;
 
 use equations::DIM;
 use equations::{
-    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum,
+    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskParams, DiskSample, Extremum,
     InitialState, Mode, RunOutcome, StopReason, TransitionRecord, Trigger,
 };
 use model_runtime::{Model, Readable};
@@ -48,6 +48,8 @@ pub struct Failure {
     pub steps: u64,
     /// Right-hand-side evaluations until the failure.
     pub rhs_evals: u64,
+    /// When it failed (s), if the error says.
+    pub t: Option<f64>,
 }
 
 impl Failure {
@@ -57,6 +59,7 @@ impl Failure {
             message,
             steps: 0,
             rhs_evals: 0,
+            t: None,
         }
     }
 }
@@ -76,18 +79,45 @@ pub struct Outcome {
     pub last: Sample,
 }
 
-/// Converts one simulation sample of a disk with dynamic friction `mu_d`.
-///
-/// The friction ratio ν is the friction law's: `μ_d` while sliding (where `T = μ_d N` holds by
-/// construction; `T/N` of the computed forces would be `0/0`, or `−μ_d` from round-off, at the
-/// located instant the contact is lost), `T/N` while rolling.
-pub fn convert_sample(s: &DiskSample, mu_d: f64) -> Sample {
+/// The friction law's coefficients: they give ν where `T/N` of the computed forces does not.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionLaw {
+    /// Dynamic friction `μ_d`.
+    pub mu_d: f64,
+    /// Static friction `μ_st`.
+    pub mu_st: f64,
+}
+
+impl FrictionLaw {
+    /// The coefficients of the disk `p`.
+    pub fn of(p: &DiskParams) -> Self {
+        FrictionLaw {
+            mu_d: p.mu_d,
+            mu_st: p.mu_st,
+        }
+    }
+
+    /// The friction ratio ν in `mode` of a contact force with friction `t` and normal force
+    /// `n`. Sliding: `μ_d` (`T = μ_d N` holds by construction; `T/N` of the computed forces
+    /// would be `0/0`, or `−μ_d` from round-off, at the located instant the contact is lost).
+    /// Rolling: `T/N` while the contact is compressed, `N > 0`; at the located loss of contact
+    /// `N` is zero to round-off and `T/N` was `0/0` (NaN) or round-off's sign and size
+    /// (−9.8e15 seen): there ν is the bound `μ_st` it stayed below while rolling, the one value
+    /// the rolling law gives the ratio where the contact carries no force.
+    pub fn nu(self, mode: Mode, t: f64, n: f64) -> f64 {
+        match mode {
+            Mode::Sliding => self.mu_d,
+            Mode::Rolling if n > 0.0 && (t / n).is_finite() => t / n,
+            Mode::Rolling => self.mu_st,
+        }
+    }
+}
+
+/// Converts one simulation sample of a disk whose friction follows `law`.
+pub fn convert_sample(s: &DiskSample, law: FrictionLaw) -> Sample {
     let f = &s.force;
     let friction = f.r_x.hypot(f.r_y);
-    let nu = match s.mode {
-        Mode::Sliding => mu_d,
-        Mode::Rolling => friction / f.normal,
-    };
+    let nu = law.nu(s.mode, friction, f.normal);
     Sample {
         t: s.t,
         mode: s.mode,
@@ -125,7 +155,7 @@ pub fn convert_event(r: &TransitionRecord) -> EventRow {
 }
 
 /// Converts the simulation's stop reason; `allowed` are the modes the run was allowed.
-pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, mu_d: f64) -> Outcome {
+pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, law: FrictionLaw) -> Outcome {
     let mut mode = o.last.mode;
     let (reason, detail) = match o.stop {
         StopReason::ModeNotAllowed { t, mode: entered } => {
@@ -175,7 +205,7 @@ pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, mu_d: f64) -> Outc
         steps: o.stats.steps,
         rhs_evals: o.stats.rhs_evals,
         constraint_drift_max: o.max_drift.max_abs(),
-        last: convert_sample(&o.last, mu_d),
+        last: convert_sample(&o.last, law),
     }
 }
 
@@ -208,8 +238,8 @@ struct ChannelObserver<'a, O> {
     flush_every: f64,
     /// States the models do not integrate: blanked in every sample.
     frozen: Vec<&'static str>,
-    /// Dynamic friction, the friction ratio of every sliding sample.
-    mu_d: f64,
+    /// The friction law, which gives ν where the forces do not.
+    law: FrictionLaw,
     stop: &'a AtomicBool,
     /// Whether this observer stopped the run (the caller's stop flag or a closed channel).
     interrupted: bool,
@@ -240,7 +270,7 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     }
 
     fn on_sample(&mut self, sample: &DiskSample) {
-        let mut s = convert_sample(sample, self.mu_d);
+        let mut s = convert_sample(sample, self.law);
         if !self.frozen.is_empty() {
             s.forget(&self.frozen);
         }
@@ -286,11 +316,12 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
         simulate(models, self.config, self.initial, self.observer)
-            .map(|o| convert_outcome(&o, self.config.allowed, models.params.mu_d))
+            .map(|o| convert_outcome(&o, self.config.allowed, FrictionLaw::of(&models.params)))
             .map_err(|failure| Failure {
                 message: failure.to_string(),
                 steps: failure.stats.steps,
                 rhs_evals: failure.stats.rhs_evals,
+                t: failure.error.time(),
             })
     }
 }
@@ -328,7 +359,7 @@ pub fn simulate_into<O: Outlet>(
         flush_at: flush_every,
         flush_every,
         frozen: choice.frozen.clone(),
-        mu_d: scene.params.mu_d,
+        law: FrictionLaw::of(&scene.params),
         stop,
         interrupted: false,
     };
@@ -363,4 +394,25 @@ pub fn start<'scope>(
         let _ = tx.send(Message::Done(Box::new(result)));
     });
     rx
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nu_is_the_friction_laws_where_the_forces_give_none() {
+        let law = FrictionLaw {
+            mu_d: 0.115,
+            mu_st: 0.2,
+        };
+        assert_eq!(law.nu(Mode::Rolling, 0.3, 2.0), 0.15);
+        // The located loss of contact: 0/0, finite/round-off, a negative round-off N.
+        for (t, n) in [(0.0, 0.0), (30.4, -3.1e-15), (1.0, 0.0), (0.0, -0.0)] {
+            assert_eq!(law.nu(Mode::Rolling, t, n), 0.2, "{t}/{n}");
+        }
+        for (t, n) in [(0.0, 0.0), (0.23, 2.0), (-1.8e-16, -7.8e-16)] {
+            assert_eq!(law.nu(Mode::Sliding, t, n), 0.115, "{t}/{n}");
+        }
+    }
 }

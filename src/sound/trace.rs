@@ -17,7 +17,7 @@ use super::SoundError;
 use crate::eval::Backend;
 use crate::quantity::Quantity;
 use crate::run::model::{choose_for, with_models, ModelChoice, ModelsTask};
-use crate::run::simulation::convert_outcome;
+use crate::run::simulation::{convert_outcome, FrictionLaw};
 use crate::scene::Scene;
 
 /// Most force samples one run may keep (about 0.8 GB of memory).
@@ -278,7 +278,7 @@ impl ModelsTask for Recording<'_> {
             ..self.scene.config
         };
         let outcome = simulate(models, &config, &self.scene.initial, self.observer)?;
-        let stop = convert_outcome(&outcome, config.allowed, models.params.mu_d).stop;
+        let stop = convert_outcome(&outcome, config.allowed, FrictionLaw::of(&models.params)).stop;
         Ok((stop.reason, stop.detail))
     }
 }

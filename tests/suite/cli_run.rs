@@ -8,7 +8,8 @@ use std::time::{Duration, Instant};
 
 use eulerdisk::{Quantity, EVENTS_HEADER};
 
-fn run(args: &[&str]) -> Output {
+/// `eulerdisk run ARGS`, waited for.
+pub(crate) fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_eulerdisk"))
         .arg("run")
         .args(args)
@@ -16,7 +17,8 @@ fn run(args: &[&str]) -> Output {
         .unwrap()
 }
 
-fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+/// A CSV file's header and rows, split at commas.
+pub(crate) fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let text = fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
     let header = lines
@@ -120,7 +122,8 @@ fn short_run_writes_every_file() {
     assert!(leftovers.is_empty(), "{leftovers:?}");
 }
 
-fn rejected(args: &[&str], key: &str) {
+/// `eulerdisk run ARGS` exits 2 naming `key`, and writes nothing.
+pub(crate) fn rejected(args: &[&str], key: &str) {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let mut all = args.to_vec();

@@ -7,6 +7,7 @@ mod cli_run;
 mod cli_switched;
 mod extrema;
 mod imports;
+mod limits;
 mod outputs;
 mod paper_reference;
 mod pruned_scene;

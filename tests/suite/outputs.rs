@@ -2,6 +2,8 @@
 //! period, the disk slides while θ falls and rolls while it rises.
 
 use equations::DiskParams;
+use std::sync::atomic::AtomicBool;
+
 use eulerdisk::{paper_charts, write_paper_figures, Summary, SyntheticRun, FIGURE_STEMS};
 
 fn synthetic(period: f64, t_end: f64) -> (DiskParams, eulerdisk::RunData) {
@@ -124,14 +126,27 @@ fn every_paper_figure_is_drawn() {
         assert!(c.lines.iter().all(|l| !l.points.is_empty()), "{}", c.stem);
     }
     let dir = tempfile::tempdir().unwrap();
-    let stems = write_paper_figures(&data, &p, true, dir.path()).unwrap();
-    assert_eq!(stems.len(), 15);
-    for stem in stems {
+    let stop = AtomicBool::new(false);
+    let figures = write_paper_figures(&data, &p, true, dir.path(), &stop).unwrap();
+    assert_eq!(figures.drawn, FIGURE_STEMS);
+    assert!(figures.not_drawn.is_empty());
+    for stem in figures.drawn {
         for ext in ["png", "svg"] {
             let meta = std::fs::metadata(dir.path().join(format!("{stem}.{ext}"))).unwrap();
             assert!(meta.len() > 1000, "{stem}.{ext}");
         }
     }
+}
+
+/// A stop set before the figures are drawn draws none, and says so figure by figure.
+#[test]
+fn an_interrupt_before_the_figures_draws_none() {
+    let (p, data) = synthetic(0.1, 2.0);
+    let dir = tempfile::tempdir().unwrap();
+    let figures = write_paper_figures(&data, &p, true, dir.path(), &AtomicBool::new(true)).unwrap();
+    assert!(figures.drawn.is_empty());
+    assert_eq!(figures.not_drawn, FIGURE_STEMS);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
 
 /// A run where nothing moves but time: θ constant, no nutation, no slip (as spinning in place).
@@ -172,8 +187,9 @@ fn figures_with_nothing_to_show_say_why() {
     // Empty figures are drawn (with their note), not skipped.
     let dir = tempfile::tempdir().unwrap();
     assert_eq!(
-        write_paper_figures(&data, &p, true, dir.path())
+        write_paper_figures(&data, &p, true, dir.path(), &AtomicBool::new(false))
             .unwrap()
+            .drawn
             .len(),
         15
     );

@@ -12,6 +12,7 @@ use crate::config::{AllowedModes, DiskConfig};
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use crate::settings::{Integrator, TimeVariable};
 use crate::start::InitialState;
+use crate::work::WorkMeter;
 use model_runtime::ChatterLimit as DriverChatter;
 use model_runtime::{
     Clocked, Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
@@ -154,6 +155,7 @@ where
         gate: &mut gate,
         failure: None,
         scanner: Scanner::default(),
+        work: WorkMeter::new(config.work, initial.t),
     };
     let (ended, work) = match config.time {
         TimeVariable::Physical => {
@@ -227,6 +229,7 @@ where
     };
     adaptor.end_segment();
     let failure = adaptor.failure.take();
+    let over_budget = adaptor.work.exceeded();
     if let Ok(Ended {
         stop:
             model_runtime::StopReason::User(Halted {
@@ -269,6 +272,9 @@ where
             t,
             source,
         }));
+    }
+    if let Some(over) = over_budget {
+        return Err(failed(SimError::WorkBound(over)));
     }
     let stop = match out.stop {
         model_runtime::StopReason::EndTime => StopReason::EndTime,
@@ -529,6 +535,8 @@ struct Adaptor<'a, R, S, O> {
     failure: Option<(f64, Phase, EvalError)>,
     /// Locates extrema, when the user asks for them.
     scanner: Scanner,
+    /// Counts the steps against the run's work bound.
+    work: WorkMeter,
 }
 
 impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
@@ -553,7 +561,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
     }
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {
-        if self.gate.forbidden.is_some() {
+        if self.gate.forbidden.is_some() || self.work.exceeded().is_some() {
             return std::ops::ControlFlow::Break(());
         }
         self.user.proceed()
@@ -571,6 +579,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
     }
 
     fn on_step(&mut self, step: &StepView<'_, DIM, Phase>) {
+        self.work.step(step.t0, step.t1);
         if self.user.wants_extrema() {
             let user = &mut *self.user;
             self.scanner

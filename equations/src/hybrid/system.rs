@@ -463,7 +463,7 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
         match phase {
             Phase::Rolling => {
                 let f = ContactForce::rolling(p, &PhysicalState::from_rolling(y, 0.0), dy);
-                values[0] = f.friction() - p.mu_st * f.normal;
+                values[0] = f.friction_margin(p.mu_st);
                 values[1] = f.normal;
                 values[2] = floor;
             }

@@ -25,7 +25,7 @@ use equations::layout::THETA;
 use equations::DiskParams;
 use equations::Mode;
 use equations::{simulate, DiskObserver, DiskSample, SimError, StopReason, TransitionRecord};
-use equations::{DiskConfig, InitialState, TimeVariable};
+use equations::{DiskConfig, InitialState, TimeVariable, WorkBound};
 use model_runtime::SolveError;
 
 #[test]
@@ -169,6 +169,9 @@ fn a_slip_hovering_over_the_stick_threshold_stalls_physical_time_but_not_regular
             stick_threshold: 1e-9,
             t_end: 1.0,
             time,
+            // The stall in physical time takes ~1e5 steps within its first 0.1 s, over the
+            // default work bound; it is raised so that the stalled run ends and is compared.
+            work: WorkBound { steps_per_s: 1e7 },
             ..DiskConfig::paper()
         };
         let mut watch = NearStick {
