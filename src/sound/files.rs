@@ -1,37 +1,55 @@
-//! The peak tables, as CSV: plain enough to re-plot or to check against another detector.
+//! The peak tables, as CSV or Parquet (the scene's `output.format`): plain enough to re-plot
+//! or to check against another detector.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::PeakAnalysis;
-use crate::output::atomic::{write_atomic, WriteError};
+use crate::output::atomic::WriteError;
+use crate::output::cells::{Cell, Table};
+use crate::output::format::TableFormat;
 
-/// Writes `peaks.csv` (one row per major peak) and `peak_rate.csv` (one row per window with
-/// at least two peaks); returns their paths.
-pub fn write_tables(analysis: &PeakAnalysis, dir: &Path) -> Result<Vec<PathBuf>, WriteError> {
-    let peaks = dir.join("peaks.csv");
-    write_atomic(&peaks, |w| {
-        writeln!(w, "t_s,N_over_mg,prominence")?;
-        for p in &analysis.peaks {
-            writeln!(w, "{},{},{}", p.t, p.n_over_mg, p.prominence)?;
-        }
-        Ok(())
-    })?;
-    let rates = dir.join("peak_rate.csv");
-    write_atomic(&rates, |w| {
-        writeln!(w, "t_centre_s,window_s,peaks,rate_per_s,angular_per_s")?;
-        for r in &analysis.rates {
-            if let (Some(rate), Some(angular)) = (r.per_second, r.angular()) {
-                writeln!(
-                    w,
-                    "{},{},{},{rate},{angular}",
-                    r.centre(),
-                    r.to - r.from,
-                    r.peaks
-                )?;
-            }
-        }
-        Ok(())
-    })?;
-    Ok(vec![peaks, rates])
+/// Writes `peaks.<format>` (one row per major peak) and `peak_rate.<format>` (one row per
+/// window with at least two peaks); returns their paths.
+pub fn write_tables(
+    analysis: &PeakAnalysis,
+    dir: &Path,
+    format: TableFormat,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let mut peaks = Table::new(["t_s", "N_over_mg", "prominence"]);
+    peaks.rows = analysis
+        .peaks
+        .iter()
+        .map(|p| {
+            vec![
+                Cell::Float(p.t),
+                Cell::Float(p.n_over_mg),
+                Cell::Float(p.prominence),
+            ]
+        })
+        .collect();
+    let mut rates = Table::new([
+        "t_centre_s",
+        "window_s",
+        "peaks",
+        "rate_per_s",
+        "angular_per_s",
+    ]);
+    rates.rows = analysis
+        .rates
+        .iter()
+        .filter_map(|r| {
+            let (rate, angular) = (r.per_second?, r.angular()?);
+            Some(vec![
+                Cell::Float(r.centre()),
+                Cell::Float(r.to - r.from),
+                Cell::Int(i64::try_from(r.peaks).unwrap_or(i64::MAX)),
+                Cell::Float(rate),
+                Cell::Float(angular),
+            ])
+        })
+        .collect();
+    Ok(vec![
+        peaks.write(dir, "peaks", format)?,
+        rates.write(dir, "peak_rate", format)?,
+    ])
 }

@@ -8,6 +8,7 @@ mod cli_switched;
 mod extrema;
 mod imports;
 mod outputs;
+mod parquet_output;
 mod pruned_scene;
 mod quiet_run;
 mod readme_commands;
