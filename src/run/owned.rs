@@ -124,8 +124,10 @@ mod tests {
     #[test]
     fn the_owned_names_are_what_a_run_writes() {
         let names = owned_names();
-        assert_eq!(names.len(), 4 + 2 * FIGURE_STEMS.len());
+        // summary.json, three tables in two formats, the figures as PNG and SVG.
+        assert_eq!(names.len(), 1 + 3 * 2 + 2 * FIGURE_STEMS.len());
         assert!(names.contains(&"fig01a_theta.png".to_string()));
         assert!(names.contains(&"extrema.csv".to_string()));
+        assert!(names.contains(&"trajectory.parquet".to_string()));
     }
 }
