@@ -3,15 +3,20 @@
 //! The events, the extrema and a sweep's table are built once as rows of [`Cell`]s; the CSV
 //! writer prints them (numbers so that they parse back to the same bits, text quoted when it
 //! needs it) and the Parquet writer (`output::parquet`) gives each column the type its cells
-//! have. So the two formats cannot drift apart: same columns, same order, same values.
+//! have (`output::files` chooses between them). So the two formats cannot drift apart: same
+//! columns, same order, same values.
 
-use std::io::{self, Write};
-use std::path::{Path, PathBuf};
-
-use super::atomic::{write_atomic, WriteError};
-use super::format::TableFormat;
-use super::tables::quoted;
 use equations::Number;
+use std::io::{self, Write};
+
+/// Quotes a CSV field when it needs it.
+pub fn quoted(text: &str) -> String {
+    if text.contains([',', '"', '\n']) {
+        format!("\"{}\"", text.replace('"', "\"\"").replace('\n', " "))
+    } else {
+        text.to_string()
+    }
+}
 
 /// One value of a table.
 #[derive(Clone, Debug, PartialEq)]
@@ -115,21 +120,6 @@ impl Table {
     /// The cells of column `index`, top to bottom.
     pub fn column(&self, index: usize) -> impl Iterator<Item = &Cell> {
         self.rows.iter().map(move |r| &r[index])
-    }
-
-    /// Writes the table as `dir/<stem>.<format>`, atomically; returns the path.
-    pub fn write(
-        &self,
-        dir: &Path,
-        stem: &str,
-        format: TableFormat,
-    ) -> Result<PathBuf, WriteError> {
-        let path = dir.join(format.file(stem));
-        match format {
-            TableFormat::Csv => write_atomic(&path, |w| self.write_csv(w))?,
-            TableFormat::Parquet => super::parquet::write_table(&path, self)?,
-        }
-        Ok(path)
     }
 }
 

@@ -3,6 +3,7 @@
 
 pub mod atomic;
 pub mod cells;
+pub mod files;
 pub mod format;
 pub mod parquet;
 pub mod tables;

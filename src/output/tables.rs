@@ -95,18 +95,10 @@ pub fn split_fields(line: &str) -> Vec<String> {
     fields
 }
 
-/// Quotes a CSV field when it needs it.
-pub fn quoted(text: &str) -> String {
-    if text.contains([',', '"', '\n']) {
-        format!("\"{}\"", text.replace('"', "\"\"").replace('\n', " "))
-    } else {
-        text.to_string()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::cells::quoted;
     use proptest::prelude::*;
 
     proptest! {

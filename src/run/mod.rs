@@ -28,6 +28,7 @@ use crate::analysis::summary::Summary;
 use crate::eval::Backend;
 use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::output::files::write_table;
 use crate::output::tables::events_table;
 use crate::quantity::Quantity;
 use crate::record::{RunData, StopRecord, Timings};
@@ -462,9 +463,14 @@ pub fn write_outputs(
         reason: "unknown".into(),
         detail: String::new(),
     });
-    files.push(events_table(&data.events, &stop).write(dir, "events", format)?);
+    files.push(write_table(
+        &events_table(&data.events, &stop),
+        dir,
+        "events",
+        format,
+    )?);
     let located = Located::new(&data.extrema, scene.params.m * scene.params.g);
-    files.push(located.table().write(dir, "extrema", format)?);
+    files.push(write_table(&located.table(), dir, "extrema", format)?);
     timings.outputs_s = lap(&mut clock);
     let mut summary = Summary::of(&scene.name, data, &scene.params);
     timings.analysis_s = lap(&mut clock);

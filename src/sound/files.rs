@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use super::PeakAnalysis;
 use crate::output::atomic::WriteError;
 use crate::output::cells::{Cell, Table};
+use crate::output::files::write_table;
 use crate::output::format::TableFormat;
 
 /// Writes `peaks.<format>` (one row per major peak) and `peak_rate.<format>` (one row per
@@ -49,7 +50,7 @@ pub fn write_tables(
         })
         .collect();
     Ok(vec![
-        peaks.write(dir, "peaks", format)?,
-        rates.write(dir, "peak_rate", format)?,
+        write_table(&peaks, dir, "peaks", format)?,
+        write_table(&rates, dir, "peak_rate", format)?,
     ])
 }

@@ -24,6 +24,7 @@ use super::row::{belongs, table, Row};
 use super::shard::Shard;
 use super::spec::Keep;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::output::files::write_table;
 
 /// The definition file.
 pub const DEFINITION_FILE: &str = "sweep.json";
@@ -221,7 +222,12 @@ impl Store {
         rows: impl IntoIterator<Item = &'r Row>,
     ) -> Result<(), StoreError> {
         let rows: Vec<Row> = rows.into_iter().cloned().collect();
-        table(definition, &rows).write(&self.dir, TABLE_STEM, definition.format)?;
+        write_table(
+            &table(definition, &rows),
+            &self.dir,
+            TABLE_STEM,
+            definition.format,
+        )?;
         Ok(())
     }
 
