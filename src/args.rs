@@ -3,7 +3,8 @@
 //!
 //! One vocabulary for every subcommand: `--state NAME=VALUE` and `--set KEY=VALUE`
 //! (repeatable), `--integrator`, `--rtol`, `--atol`, `--t-end`, `-o/--out`, `-q/--quiet`,
-//! `-s` for `--set`, `-j/--jobs`. The exit codes:
+//! `-s` for `--set`, `-j/--jobs`, `-f/--format` (of what a command writes: its tables, or the
+//! equations `model show` prints). The exit codes:
 //!
 //! | code | meaning |
 //! |---|---|
@@ -25,6 +26,7 @@ use std::sync::Arc;
 use clap::{Args, ValueEnum};
 
 use crate::eval::Backend;
+use crate::output::format::TableFormat;
 use crate::run::ProgressStyle;
 use crate::scene::{Override, SceneError, DEFAULT_SCENE};
 
@@ -129,6 +131,10 @@ pub struct RunArgs {
     /// Override any scene key: `--set table.key=value` (repeatable).
     #[arg(short, long = "set", value_name = "TABLE.KEY=VALUE")]
     pub set: Vec<String>,
+    /// The format of the tables (trajectory, events, extrema, peaks): overrides
+    /// `output.format`.
+    #[arg(short, long, value_enum)]
+    pub format: Option<TableFormat>,
     /// Run the hand-written reference models instead of the generated ones.
     #[arg(long)]
     pub reference: bool,
@@ -157,6 +163,9 @@ impl RunArgs {
         }
         if let Some(v) = self.integrator {
             out.push(Override::new("solver", "integrator", v.name()));
+        }
+        if let Some(v) = self.format {
+            out.push(Override::new("output", "format", v.name()));
         }
         for spec in &self.set {
             out.push(Override::parse(spec)?);

@@ -6,11 +6,9 @@
 //! θ's oscillation is told from its ripples by hysteresis: a minimum counts as a cycle
 //! boundary once θ has risen [`PROMINENCE`] of the window's range above it.
 
-use std::io::{self, Write};
-
 use equations::{Extremum, ExtremumKind, Watched};
 
-use crate::output::tables::number;
+use crate::output::cells::{Cell, Table};
 
 /// Header of `extrema.csv`.
 pub const EXTREMA_HEADER: &str = "t_s,quantity,kind,value";
@@ -142,20 +140,23 @@ impl Located {
             .collect()
     }
 
-    /// Writes `extrema.csv`: one row per extremum, in time order, N as N/mg.
-    pub fn write_csv<W: Write>(&self, w: &mut W) -> io::Result<()> {
-        writeln!(w, "{EXTREMA_HEADER}")?;
-        for e in &self.list {
-            writeln!(
-                w,
-                "{},{},{},{}",
-                number(e.t),
-                quantity_name(e.quantity),
-                e.kind.name(),
-                number(e.value)
-            )?;
-        }
-        Ok(())
+    /// The table `extrema.csv` (or `.parquet`): one row per extremum, in time order, N as
+    /// N/mg.
+    pub fn table(&self) -> Table {
+        let mut table = Table::new(EXTREMA_HEADER.split(','));
+        table.rows = self
+            .list
+            .iter()
+            .map(|e| {
+                vec![
+                    Cell::Float(e.t),
+                    Cell::text(quantity_name(e.quantity)),
+                    Cell::text(e.kind.name()),
+                    Cell::Float(e.value),
+                ]
+            })
+            .collect();
+        table
     }
 }
 
@@ -205,11 +206,8 @@ mod tests {
         let mut n = theta(0.3, ExtremumKind::Max, 9.81);
         n.quantity = Watched::NormalForce;
         let located = Located::new(&[n, theta(0.1, ExtremumKind::Min, 0.2)], 4.905);
-        let mut out = Vec::new();
-        located.write_csv(&mut out).unwrap();
-        let text = String::from_utf8(out).unwrap();
         assert_eq!(
-            text,
+            located.table().csv(),
             "t_s,quantity,kind,value\n0.1,theta_rad,min,0.2\n0.3,N_over_mg,max,2\n"
         );
     }

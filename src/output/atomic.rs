@@ -106,6 +106,18 @@ impl AtomicFile {
     }
 }
 
+/// Writes go to the content (so an encoder that owns its writer, Parquet's, can own the file
+/// and hand it back for [`AtomicFile::commit`]).
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.writer().write(buf)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.writer().flush()
+    }
+}
+
 impl Drop for AtomicFile {
     fn drop(&mut self) {
         // Committed files were renamed away; an uncommitted one is removed.

@@ -1,12 +1,14 @@
-//! `trajectory.csv` and `events.csv`.
+//! The trajectory's CSV rows and the events' table.
 //!
 //! Plain CSV with a header whose every column carries its unit, numbers printed so they
-//! parse back to the same bits, so the files can be read by anything and compared exactly.
+//! parse back to the same bits, so the files can be read by anything and compared exactly;
+//! the events' table is also written as Parquet (`output::cells`).
 
 use std::io::{self, Write};
 
 use equations::{DiskParams, Number};
 
+use super::cells::{Cell, Table};
 use crate::quantity::Quantity;
 use crate::record::{EventRow, StopRecord};
 use crate::sample::Sample;
@@ -29,20 +31,6 @@ pub fn trajectory_header(quantities: &[Quantity]) -> String {
     h
 }
 
-/// Writes `trajectory.csv`.
-pub fn write_trajectory<W: Write>(
-    w: &mut W,
-    quantities: &[Quantity],
-    samples: &[Sample],
-    p: &DiskParams,
-) -> io::Result<()> {
-    writeln!(w, "{}", trajectory_header(quantities))?;
-    for s in samples {
-        write_trajectory_row(w, quantities, s, p)?;
-    }
-    Ok(())
-}
-
 /// Writes one row of `trajectory.csv` (a run streams them as its samples arrive).
 pub fn write_trajectory_row<W: Write>(
     w: &mut W,
@@ -60,39 +48,31 @@ pub fn write_trajectory_row<W: Write>(
 /// The header of `events.csv`.
 pub const EVENTS_HEADER: &str = "t_s,from,to,trigger,value,value_meaning,slip_direction_rad";
 
-/// Writes `events.csv`: one row per mode decision, then one row with the stop reason
-/// (`to` = `stop`, `trigger` = the reason, `value_meaning` = its details).
-pub fn write_events<W: Write>(w: &mut W, events: &[EventRow], stop: &StopRecord) -> io::Result<()> {
-    writeln!(w, "{EVENTS_HEADER}")?;
+/// The table `events.csv` (or `.parquet`): one row per mode decision, then one row with the
+/// stop reason (`to` = `stop`, `trigger` = the reason, `value_meaning` = its details).
+pub fn events_table(events: &[EventRow], stop: &StopRecord) -> Table {
+    let mut table = Table::new(EVENTS_HEADER.split(','));
     for e in events {
-        writeln!(
-            w,
-            "{},{},{},{},{},{},{}",
-            number(e.t),
-            e.from,
-            e.to,
-            e.trigger.name(),
-            number(e.value),
-            quoted(e.trigger.value_meaning()),
-            e.slip_direction.map(number).unwrap_or_default()
-        )?;
+        table.rows.push(vec![
+            Cell::Float(e.t),
+            Cell::text(e.from.name()),
+            Cell::text(e.to.name()),
+            Cell::text(e.trigger.name()),
+            Cell::Float(e.value),
+            Cell::text(e.trigger.value_meaning()),
+            Cell::float(e.slip_direction),
+        ]);
     }
-    writeln!(
-        w,
-        "{},{},stop,{},,{},",
-        number(stop.t),
-        stop.mode,
-        stop.reason,
-        quoted(&stop.detail)
-    )
-}
-
-/// The stop row of an `events.csv` text (its last row, as [`write_events`] writes it): the
-/// reason and its details; `None` when the last row is not a stop row.
-pub fn read_stop_row(events_csv: &str) -> Option<(String, String)> {
-    let last = events_csv.lines().rev().find(|l| !l.trim().is_empty())?;
-    let fields = split_fields(last);
-    (fields.len() == 7 && fields[2] == "stop").then(|| (fields[3].clone(), fields[5].clone()))
+    table.rows.push(vec![
+        Cell::Float(stop.t),
+        Cell::text(stop.mode.name()),
+        Cell::text("stop"),
+        Cell::text(stop.reason.as_str()),
+        Cell::Null,
+        Cell::text(stop.detail.as_str()),
+        Cell::Null,
+    ]);
+    table
 }
 
 /// Splits one CSV line into its fields, undoing the quoting of the tables' writer (`quoted`).
@@ -115,18 +95,10 @@ pub fn split_fields(line: &str) -> Vec<String> {
     fields
 }
 
-/// Quotes a CSV field when it needs it.
-pub fn quoted(text: &str) -> String {
-    if text.contains([',', '"', '\n']) {
-        format!("\"{}\"", text.replace('"', "\"\"").replace('\n', " "))
-    } else {
-        text.to_string()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::cells::quoted;
     use proptest::prelude::*;
 
     proptest! {
@@ -153,17 +125,12 @@ mod tests {
             reason: "error".into(),
             detail: "a, b".into(),
         };
-        let mut out = Vec::new();
-        write_events(&mut out, &[], &stop).unwrap();
-        let text = String::from_utf8(out).unwrap();
+        let text = events_table(&[], &stop).csv();
         assert_eq!(
             text.lines().nth(1).unwrap(),
             "1,rolling,stop,error,,\"a, b\","
         );
-        assert_eq!(
-            read_stop_row(&text),
-            Some(("error".to_string(), "a, b".to_string()))
-        );
+        assert_eq!(split_fields(text.lines().nth(1).unwrap())[5], "a, b");
         let tricky = "say \"x\", then y";
         assert_eq!(
             split_fields(&format!("1,{}", quoted(tricky))),

@@ -1,54 +1,13 @@
 //! Keeps what a run streams, sorted by the [`SamplePlan`]: the trajectory's grid (also
-//! written to `trajectory.csv` as it arrives, when a file is given), and the finely sampled
-//! first and last second for the figures.
-
-use std::io::Write;
-
-use equations::DiskParams;
+//! written to the trajectory file as it arrives, when a file is given), and the finely
+//! sampled first and last second for the figures.
 
 use super::plan::{SamplePlan, Window};
-use crate::output::atomic::{AtomicFile, WriteError};
-use crate::output::tables::{trajectory_header, write_trajectory_row};
-use crate::quantity::Quantity;
+use super::trajectory::TrajectoryFile;
+use crate::output::atomic::WriteError;
 use crate::record::{EventRow, RunData};
 use crate::sample::Sample;
 use equations::Mode;
-
-/// `trajectory.csv`, written row by row while the run goes on, so that writing overlaps the
-/// simulation instead of following it.
-#[derive(Debug)]
-pub struct TrajectoryFile {
-    file: AtomicFile,
-    quantities: Vec<Quantity>,
-    params: DiskParams,
-}
-
-impl TrajectoryFile {
-    /// Starts the file (under its temporary name) with its header.
-    pub fn create(
-        path: &std::path::Path,
-        quantities: &[Quantity],
-        params: DiskParams,
-    ) -> Result<TrajectoryFile, WriteError> {
-        let mut file = AtomicFile::create(path)?;
-        writeln!(file.writer(), "{}", trajectory_header(quantities)).map_err(|e| file.error(e))?;
-        Ok(TrajectoryFile {
-            file,
-            quantities: quantities.to_vec(),
-            params,
-        })
-    }
-
-    fn row(&mut self, s: &Sample) -> Result<(), WriteError> {
-        write_trajectory_row(self.file.writer(), &self.quantities, s, &self.params)
-            .map_err(|e| self.file.error(e))
-    }
-
-    /// Flushes the file and gives it its name.
-    pub fn commit(self) -> Result<(), WriteError> {
-        self.file.commit()
-    }
-}
 
 /// Collects a run's stream.
 #[derive(Debug)]
@@ -78,11 +37,14 @@ impl Collector {
 
     /// Takes one sample of the plan.
     pub fn sample(&mut self, s: Sample) -> Result<(), WriteError> {
-        if self.plan.is_coarse(s.t) {
+        if self.plan.is_written(s.t) {
             if let Some(file) = &mut self.file {
                 file.row(&s)?;
             }
-            self.data.samples.push(s);
+            // The scene's windows go to the file only: the analysis sees the one grid.
+            if self.plan.is_coarse(s.t) {
+                self.data.samples.push(s);
+            }
         }
         match self.plan.window(s.t) {
             Some(Window::First) => self.data.first_second.push(s),
@@ -105,7 +67,7 @@ impl Collector {
         }
     }
 
-    /// Whether it writes `trajectory.csv` as the samples arrive.
+    /// Whether it writes the trajectory file as the samples arrive.
     pub fn writes_file(&self) -> bool {
         self.file.is_some()
     }
@@ -155,6 +117,8 @@ impl Collector {
 mod tests {
     use super::*;
     use crate::analysis::synthetic::SyntheticRun;
+    use crate::output::format::TableFormat;
+    use crate::quantity::Quantity;
 
     #[test]
     fn keeps_the_trajectory_grid_and_both_windows() {
@@ -195,7 +159,8 @@ mod tests {
         .samples;
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("trajectory.csv");
-        let file = TrajectoryFile::create(&path, &[Quantity::Theta], p).unwrap();
+        let file =
+            TrajectoryFile::create(dir.path(), TableFormat::Csv, &[Quantity::Theta], p).unwrap();
         let mut c = Collector::new(SamplePlan::new(0.0, 2.0, 100.0)).writing(file);
         for s in &run[..150] {
             c.sample(*s).unwrap();

@@ -16,6 +16,7 @@ pub mod plan;
 pub mod progress;
 pub mod provenance;
 pub mod simulation;
+mod trajectory;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -26,18 +27,20 @@ use crate::analysis::extrema::Located;
 use crate::analysis::summary::Summary;
 use crate::eval::Backend;
 use crate::figures::paper::write_paper_figures;
-use crate::output::atomic::{write_atomic, write_bytes_atomic, WriteError};
-use crate::output::tables::write_events;
+use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::output::files::write_table;
+use crate::output::tables::events_table;
 use crate::quantity::Quantity;
 use crate::record::{RunData, StopRecord, Timings};
 use crate::scene::Scene;
-use collect::{Collector, TrajectoryFile};
+use collect::Collector;
 use equations::Mode;
 use model::ModelChoice;
 use plan::SamplePlan;
 use progress::Progress;
 use provenance::{is_papers_scene, Provenance};
 use simulation::{Failure, Message, Outcome};
+pub use trajectory::TrajectoryFile;
 
 /// How a run reports while it runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -130,7 +133,8 @@ pub fn run_scene(
         .trajectory
         .then(|| {
             TrajectoryFile::create(
-                &opts.out_dir.join("trajectory.csv"),
+                &opts.out_dir,
+                scene.file.cli.output.format,
                 &scene.quantities,
                 scene.params,
             )
@@ -179,10 +183,10 @@ pub struct Recorded {
     pub file: Option<TrajectoryFile>,
 }
 
-/// The scene's sampling: from 0 to its end time at its rate.
+/// The scene's sampling: from 0 to its end time at its rate, finer in its windows.
 fn scene_plan(scene: &Scene) -> SamplePlan {
     let run = &scene.file.settings.run;
-    SamplePlan::new(0.0, run.t_end, run.sample_rate)
+    SamplePlan::new(0.0, run.t_end, run.sample_rate).with_windows(&scene.file.cli.output.windows)
 }
 
 /// A scene's run in memory: its data (samples, events, stop, work) and how it ended.
@@ -449,24 +453,19 @@ pub fn write_outputs(
     };
     let mut clock = started.elapsed().as_secs_f64();
     let mut files = Vec::new();
-    let path = dir.join("trajectory.csv");
-    match trajectory {
-        Some(file) => {
-            file.commit()?;
-            files.push(path);
-        }
+    let format = scene.file.cli.output.format;
+    let trajectory = match trajectory {
+        Some(file) => Some(file),
         None if opts.trajectory => {
-            write_atomic(&path, |w| {
-                crate::output::tables::write_trajectory(
-                    w,
-                    &scene.quantities,
-                    &data.samples,
-                    &scene.params,
-                )
-            })?;
-            files.push(path);
+            let mut file = TrajectoryFile::create(dir, format, &scene.quantities, scene.params)?;
+            data.samples.iter().try_for_each(|s| file.row(s))?;
+            Some(file)
         }
-        None => {}
+        None => None,
+    };
+    if let Some(file) = trajectory {
+        file.commit()?;
+        files.push(dir.join(format.file(trajectory::STEM)));
     }
     let stop = data.stop.clone().unwrap_or(StopRecord {
         t: data.samples.last().map_or(0.0, |s| s.t),
@@ -474,13 +473,14 @@ pub fn write_outputs(
         reason: "unknown".into(),
         detail: String::new(),
     });
-    let path = dir.join("events.csv");
-    write_atomic(&path, |w| write_events(w, &data.events, &stop))?;
-    files.push(path);
-    let path = dir.join("extrema.csv");
+    files.push(write_table(
+        &events_table(&data.events, &stop),
+        dir,
+        "events",
+        format,
+    )?);
     let located = Located::new(&data.extrema, scene.params.m * scene.params.g);
-    write_atomic(&path, |w| located.write_csv(w))?;
-    files.push(path);
+    files.push(write_table(&located.table(), dir, "extrema", format)?);
     timings.outputs_s = lap(&mut clock);
     let mut summary = Summary::of(&scene.name, data, &scene.params);
     summary.compared_with_paper = is_papers_scene(scene);

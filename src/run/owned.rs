@@ -1,8 +1,9 @@
 //! The files `eulerdisk run` owns in its output directory, and clearing them for a rerun.
 //!
 //! A rerun into the same directory must not leave files of an earlier run beside the new ones
-//! (old figures after `--no-figures`, say). The run removes exactly the names it writes —
-//! `trajectory.csv`, `events.csv`, `extrema.csv`, `summary.json`, the paper figures' PNG and SVG files — and
+//! (old figures after `--no-figures`, or CSV tables after a rerun with `--format parquet`).
+//! The run removes exactly the names it writes — `trajectory`, `events` and `extrema` as
+//! `.csv` and `.parquet`, `summary.json`, the paper figures' PNG and SVG files — and
 //! partial files an interrupted writer of those names left behind; anything else in the
 //! directory is not the run's and stays.
 
@@ -11,21 +12,19 @@ use std::path::{Path, PathBuf};
 
 use crate::figures::paper::FIGURE_STEMS;
 use crate::output::atomic::WriteError;
+use crate::output::format::TableFormat;
 
 /// Prefix of the temporary names of files being written (`output::atomic`).
 const PARTIAL_PREFIX: &str = ".partial-";
 
 /// The file names a run may write into its output directory.
 pub fn owned_names() -> Vec<String> {
-    let mut names: Vec<String> = [
-        "trajectory.csv",
-        "events.csv",
-        "extrema.csv",
-        "summary.json",
-    ]
-    .iter()
-    .map(|n| n.to_string())
-    .collect();
+    let mut names = vec!["summary.json".to_string()];
+    for format in TableFormat::ALL {
+        for stem in ["trajectory", "events", "extrema"] {
+            names.push(format.file(stem));
+        }
+    }
     for stem in FIGURE_STEMS {
         names.push(format!("{stem}.png"));
         names.push(format!("{stem}.svg"));
@@ -125,8 +124,10 @@ mod tests {
     #[test]
     fn the_owned_names_are_what_a_run_writes() {
         let names = owned_names();
-        assert_eq!(names.len(), 4 + 2 * FIGURE_STEMS.len());
+        // summary.json, three tables in two formats, the figures as PNG and SVG.
+        assert_eq!(names.len(), 1 + 3 * 2 + 2 * FIGURE_STEMS.len());
         assert!(names.contains(&"fig01a_theta.png".to_string()));
         assert!(names.contains(&"extrema.csv".to_string()));
+        assert!(names.contains(&"trajectory.parquet".to_string()));
     }
 }

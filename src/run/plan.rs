@@ -6,13 +6,21 @@
 //! interpolation and a model evaluation, and a 100 s run sampled finely throughout spent more
 //! time producing samples than integrating. All grids are one fine grid `t0 + k / fine_rate`
 //! (the coarse rate divides it), so a sample's place in the plan follows from its time alone.
+//!
+//! A scene may also name windows of its own (`[output] windows`) where the trajectory file is
+//! sampled finer, at a whole multiple of its rate: the fine grid is then the least common
+//! multiple of all the rates, and each window keeps every so-many of its points.
 
 use std::ops::Range;
+
+use crate::scene::schema::SampleWindow;
 
 /// Length of the two finely sampled windows (s).
 pub const WINDOW: f64 = 1.0;
 /// Highest fine sampling rate used for the windows (1/s).
 pub const FINE_RATE_MAX: f64 = 20_000.0;
+/// Most points the fine grid may have over a run: the simulation visits each of them.
+pub const MAX_GRID_POINTS: f64 = 1e9;
 
 /// Which of the two fine windows a sample falls in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,6 +47,10 @@ pub struct SamplePlan {
     pub first: Option<Range<f64>>,
     /// The last second (fine), if recorded.
     pub last: Option<Range<f64>>,
+    /// Fine grid points per sample of the first and the last second.
+    pub figure_every: u64,
+    /// The scene's own windows: where, and the fine grid points per sample there.
+    pub windows: Vec<(Range<f64>, u64)>,
 }
 
 impl SamplePlan {
@@ -54,6 +66,40 @@ impl SamplePlan {
             coarse: true,
             first: Some(t0..t0 + WINDOW),
             last: Some(t_end - WINDOW..t_end),
+            figure_every: 1,
+            windows: Vec::new(),
+        }
+    }
+
+    /// How many times `rate` holds `base` when it is a whole multiple of it (to 1e-9), else
+    /// `None`.
+    pub fn multiple(rate: f64, base: f64) -> Option<u64> {
+        let m = (rate / base).round();
+        ((1.0..1e12).contains(&m) && (rate / base - m).abs() <= 1e-9 * m).then_some(m as u64)
+    }
+
+    /// This plan with the scene's `windows` sampled at their own rates too (each a whole
+    /// multiple of the trajectory's rate, as the scene's validation checks; one that is not
+    /// is left out). The fine grid becomes the least common multiple of all the rates.
+    pub fn with_windows(self, windows: &[SampleWindow]) -> SamplePlan {
+        let multiples: Vec<(Range<f64>, u64)> = windows
+            .iter()
+            .filter_map(|w| {
+                Some((
+                    w.from..w.to,
+                    SamplePlan::multiple(w.sample_rate, self.rate)?,
+                ))
+            })
+            .collect();
+        let every = multiples.iter().fold(self.every, |l, (_, m)| lcm(l, *m));
+        SamplePlan {
+            figure_every: every / self.every * self.figure_every,
+            windows: multiples
+                .into_iter()
+                .map(|(range, m)| (range, every / m))
+                .collect(),
+            every,
+            ..self
         }
     }
 
@@ -64,6 +110,7 @@ impl SamplePlan {
             coarse: false,
             first: None,
             last: Some(t_stop - WINDOW..t_stop),
+            windows: Vec::new(),
             ..self.clone()
         }
     }
@@ -78,6 +125,11 @@ impl SamplePlan {
     /// The fine grid's rate (1/s): the rate the simulation is asked to sample at.
     pub fn fine_rate(&self) -> f64 {
         self.rate * self.every as f64
+    }
+
+    /// The rate of the first and the last second's samples (1/s).
+    pub fn figure_rate(&self) -> f64 {
+        self.fine_rate() / self.figure_every as f64
     }
 
     /// The index of the fine grid point at `t` (the simulation samples exactly at
@@ -95,7 +147,9 @@ impl SamplePlan {
     pub fn window(&self, t: f64) -> Option<Window> {
         let inside =
             |w: &Option<Range<f64>>| w.as_ref().is_some_and(|w| w.start <= t && t <= w.end);
-        if inside(&self.first) {
+        if !self.index(t).is_multiple_of(self.figure_every) {
+            None
+        } else if inside(&self.first) {
             Some(Window::First)
         } else if inside(&self.last) {
             Some(Window::Last)
@@ -110,15 +164,69 @@ impl SamplePlan {
         self.coarse
     }
 
+    /// Whether the sample at `t` belongs in the trajectory file: on its grid, or on the grid
+    /// of one of the scene's windows.
+    pub fn is_written(&self, t: f64) -> bool {
+        self.is_coarse(t)
+            || self.windows.iter().any(|(w, every)| {
+                w.start <= t && t <= w.end && self.index(t).is_multiple_of(*every)
+            })
+    }
+
     /// Whether the sample at `t` is recorded at all.
     pub fn wants(&self, t: f64) -> bool {
-        self.is_coarse(t) || self.window(t).is_some()
+        self.is_written(t) || self.window(t).is_some()
     }
+}
+
+/// The least common multiple of `a` and `b` (both > 0).
+fn lcm(a: u64, b: u64) -> u64 {
+    let gcd = |mut a: u64, mut b: u64| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    a / gcd(a, b) * b
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scene_window_refines_the_grid_and_keeps_the_others() {
+        let window = SampleWindow {
+            from: 5.0,
+            to: 5.01,
+            sample_rate: 200_000.0,
+        };
+        let base = SamplePlan::new(0.0, 10.0, 1000.0);
+        let plan = base.clone().with_windows(&[window]);
+        assert_eq!(plan.fine_rate(), 200_000.0);
+        assert_eq!((plan.every, plan.figure_every), (200, 10));
+        let grid: Vec<f64> = (0..=2_000_000).map(|k| k as f64 / 200_000.0).collect();
+        let written: Vec<f64> = grid
+            .iter()
+            .copied()
+            .filter(|&t| plan.is_written(t))
+            .collect();
+        // 10 001 coarse points, and 2001 in the window of which 11 are coarse already.
+        assert_eq!(written.len(), 10_001 + 2001 - 11);
+        assert!(written.windows(2).all(|w| w[0] < w[1]));
+        // The figures' windows and the coarse grid are those of the plan without the window.
+        for &t in grid.iter().step_by(10) {
+            assert_eq!(plan.window(t), base.window(t), "{t}");
+            assert_eq!(plan.is_coarse(t), base.is_coarse(t), "{t}");
+        }
+        assert_eq!(plan.window(0.5 + 1.0 / 200_000.0), None);
+        assert!(!plan.wants(5.02 + 1.0 / 200_000.0));
+        assert_eq!(SamplePlan::multiple(200_000.0, 1000.0), Some(200));
+        assert_eq!(SamplePlan::multiple(1500.0, 1000.0), None);
+        assert_eq!(SamplePlan::multiple(500.0, 1000.0), None);
+        assert_eq!(lcm(20, 200), 200);
+        assert_eq!(lcm(20, 30), 60);
+    }
 
     #[test]
     fn the_plan_keeps_the_coarse_grid_and_both_windows() {

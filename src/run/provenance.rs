@@ -65,7 +65,8 @@ impl Provenance {
             scene.file.settings.run.t_end,
             scene.file.settings.run.sample_rate,
         )
-        .fine_rate();
+        .with_windows(&scene.file.cli.output.windows)
+        .figure_rate();
         let c = &scene.config;
         Provenance {
             program: format!("eulerdisk {VERSION}"),

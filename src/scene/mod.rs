@@ -11,7 +11,7 @@
 //! The scenes shipped in `scenes/` are compiled into the binary, so `eulerdisk run
 //! tangent-toy` works from any directory.
 
-mod schema;
+pub mod schema;
 mod validate;
 
 use std::path::{Path, PathBuf};

@@ -9,6 +9,7 @@
 use equations::SceneSettings;
 use serde::{Deserialize, Serialize};
 
+use crate::output::format::TableFormat;
 use crate::quantity::Quantity;
 
 /// The top-level keys of a scene file that belong to this program, not to the disk.
@@ -38,8 +39,8 @@ pub struct SceneFile {
     pub settings: SceneSettings,
 }
 
-/// `[output]`: the quantities written to `trajectory.csv`. They also decide the models that
-/// run: when none of them (nor the figures) needs a state the pruned variants drop (`X`, `Y`,
+/// `[output]`: the quantities written to the trajectory, and the format of the tables. The
+/// quantities also decide the models that run: when none of them (nor the figures) needs a state the pruned variants drop (`X`, `Y`,
 /// `Z`, `phi`, hence `energy`, `residual_Z`) and the air is still, the pruned 8-state models
 /// run (`crate::run::model`).
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
@@ -49,6 +50,27 @@ pub struct OutputTable {
     /// that does not name them).
     #[serde(default = "all_quantities")]
     pub quantities: Vec<String>,
+    /// The format of the trajectory, events and extrema (and of a sweep's table): `csv`
+    /// (default) or `parquet`; `-f/--format` on the command line.
+    #[serde(default)]
+    pub format: TableFormat,
+    /// Stretches of the run sampled finer than `run.sample_rate` in the trajectory file
+    /// (`windows = [{ from = 99.0, to = 100.0, sample_rate = 200000 }]`); none by default.
+    #[serde(default)]
+    pub windows: Vec<SampleWindow>,
+}
+
+/// `[output] windows`: one stretch of the run whose trajectory is sampled at its own rate, a
+/// whole multiple of `run.sample_rate` (all samples lie on one grid).
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SampleWindow {
+    /// Where it starts (s).
+    pub from: f64,
+    /// Where it ends (s), included.
+    pub to: f64,
+    /// Samples per second inside it.
+    pub sample_rate: f64,
 }
 
 /// Every quantity: what `output.quantities` is when not given.
@@ -60,6 +82,8 @@ impl Default for OutputTable {
     fn default() -> Self {
         OutputTable {
             quantities: all_quantities(),
+            format: TableFormat::default(),
+            windows: Vec::new(),
         }
     }
 }

@@ -2,13 +2,14 @@
 //!
 //! The disk's rules (physics, numerics, the initial state, the allowed modes) are the
 //! equations crate's, applied by [`SceneSettings::resolve`]; this program adds only the rules
-//! of its own table, `[output]`. Every rule is checked even after one fails, so the user sees
+//! of its own table, `[output]` (its quantities and its fine-sampling windows). Every rule is checked even after one fails, so the user sees
 //! all the problems of a scene in one go.
 
-use equations::{DiskConfig, DiskParams, InitialState, Issue, Rule};
+use equations::{DiskConfig, DiskParams, InitialState, Issue, Number, Rule};
 
 use super::schema::SceneFile;
 use crate::quantity::Quantity;
+use crate::run::plan::{SamplePlan, MAX_GRID_POINTS};
 
 /// A scene whose every rule holds, with its derived values.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,6 +33,7 @@ pub fn validate(name: &str, file: SceneFile) -> Result<Scene, Vec<Issue>> {
     let resolved = file.settings.resolve();
     let mut issues = resolved.as_ref().err().cloned().unwrap_or_default();
     let quantities = check_quantities(&mut issues, &file.cli.output.quantities);
+    check_windows(&mut issues, &file);
     match resolved {
         Ok(disk) if issues.is_empty() => Ok(Scene {
             name: name.to_string(),
@@ -67,4 +69,63 @@ fn check_quantities(issues: &mut Vec<Issue>, names: &[String]) -> Vec<Quantity> 
         }
     }
     out
+}
+
+/// The rules of `output.windows`: each inside the run, `from` before `to`, its rate positive
+/// and a whole multiple of `run.sample_rate`, and the common grid they make not too fine.
+fn check_windows(issues: &mut Vec<Issue>, file: &SceneFile) {
+    let run = &file.settings.run;
+    let windows = &file.cli.output.windows;
+    for (i, w) in windows.iter().enumerate() {
+        let key = |k: &str| format!("output.windows[{i}].{k}");
+        let mut in_range = |k: &str, value: f64, min: f64| {
+            if !value.is_finite() {
+                issues.push(Issue::new(key(k), Rule::NotFinite { value }));
+            } else if !(min..=run.t_end).contains(&value) {
+                let (max, open) = (run.t_end, false);
+                issues.push(Issue::new(
+                    key(k),
+                    Rule::OutOfRange {
+                        value,
+                        min,
+                        max,
+                        open,
+                    },
+                ));
+            }
+        };
+        in_range("from", w.from, 0.0);
+        in_range("to", w.to, w.from.max(0.0));
+        let rate = w.sample_rate;
+        if !(rate.is_finite() && rate > 0.0) {
+            issues.push(Issue::new(
+                key("sample_rate"),
+                Rule::NotPositive { value: rate },
+            ));
+        } else if SamplePlan::multiple(rate, run.sample_rate).is_none() {
+            issues.push(Issue::new(
+                key("sample_rate"),
+                Rule::Incompatible {
+                    value: Number(rate).to_string(),
+                    reason: "must be a whole multiple of `run.sample_rate` (the windows' samples \
+                             lie on the trajectory's grid)",
+                },
+            ));
+        }
+    }
+    let clean = issues.iter().all(|i| !i.key.starts_with("output.windows"));
+    if clean && !windows.is_empty() && run.sample_rate > 0.0 && run.t_end > 0.0 {
+        let plan = SamplePlan::new(0.0, run.t_end, run.sample_rate).with_windows(windows);
+        let points = plan.fine_rate() * run.t_end;
+        if points > MAX_GRID_POINTS {
+            issues.push(Issue::new(
+                "output.windows",
+                Rule::Incompatible {
+                    value: format!("{} grid points", Number(points)),
+                    reason: "the windows' rates make the sampling grid too fine (at most 1e9 \
+                             points over the run): lower a window's `sample_rate`",
+                },
+            ));
+        }
+    }
 }

@@ -221,7 +221,12 @@ pub fn sound_scene(
     })?;
     write_bytes_atomic(&wav, &bytes)?;
     files.push(wav.clone());
-    files.extend(files::write_tables(&analysis, &sound, out_dir)?);
+    files.extend(files::write_tables(
+        &analysis,
+        &sound,
+        out_dir,
+        scene.file.cli.output.format,
+    )?);
     if opts.figures {
         let spec = spectrogram(&sound.as_f64(), f64::from(sound.sample_rate), opts.stft)?;
         let view = figures::SpectrogramView {

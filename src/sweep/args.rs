@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::{Args, Subcommand};
 
 use super::execute::ExecOptions;
-use super::expand::{plan, run_arguments};
+use super::expand::{plan, run_arguments, FORMAT_KEY};
 use super::merge::merge;
 use super::run_sweep;
 use super::shard::Shard;
@@ -15,6 +15,7 @@ use super::spec::{self, BUILTIN};
 use crate::args::{
     interrupt_on_ctrl_c, print_out, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
 };
+use crate::output::format::TableFormat;
 
 /// `eulerdisk sweep`.
 #[derive(Debug, Args)]
@@ -39,6 +40,10 @@ pub struct SweepArgs {
     /// Override a scene key of every point before the axes: `--set table.key=value`.
     #[arg(short, long = "set", value_name = "TABLE.KEY=VALUE")]
     pub set: Vec<String>,
+    /// The format of the table and of the runs' tables: overrides `output.format` of every
+    /// point.
+    #[arg(short, long, value_enum)]
+    pub format: Option<TableFormat>,
     /// Validate every point and list them; run nothing.
     #[arg(long)]
     pub dry_run: bool,
@@ -110,7 +115,13 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
     if args.jobs == Some(0) {
         return input_error("--jobs must be at least 1");
     }
-    let plan = match plan(&loaded, &args.set) {
+    let mut sets: Vec<String> = args
+        .format
+        .map(|f| format!("{FORMAT_KEY}={f}"))
+        .into_iter()
+        .collect();
+    sets.extend(args.set.iter().cloned());
+    let plan = match plan(&loaded, &sets) {
         Ok(p) => p,
         Err(e) => return input_error(e),
     };
@@ -168,7 +179,7 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
                     e.points,
                     e.failed,
                     e.skipped,
-                    report.dir.join(super::store::TABLE_FILE).display()
+                    report.dir.join(d.format.file(super::store::TABLE_STEM)).display()
                 );
                 if let Err(code) = print_out(&said) {
                     return code;

@@ -118,8 +118,8 @@ impl Watchdog {
     }
 }
 
-/// Runs every point of `plan` (in `opts.shard`) that has no row in `store`; `interrupt` is
-/// Ctrl-C.
+/// Runs every point of `plan` (in `opts.shard`) that has no row in `store` (or a `timeout`
+/// row, when the store gives runs more time than before); `interrupt` is Ctrl-C.
 pub fn execute(
     plan: &Plan,
     store: &Store,
@@ -128,6 +128,10 @@ pub fn execute(
 ) -> Result<ExecReport, ExecError> {
     let d = &plan.definition;
     let mut rows = store.rows(d)?;
+    if store.reruns_timeouts() {
+        // Given more time than before: the runs that timed out are not done.
+        rows.retain(|_, r| r.status != Status::Timeout);
+    }
     let mine: Vec<usize> = (0..d.points.len())
         .filter(|&p| Shard::selects(opts.shard, p))
         .collect();

@@ -13,9 +13,12 @@ use serde::{Deserialize, Serialize};
 use super::axes::{self, as_number, AxisIssue, AxisValues};
 use super::columns::{summary_keys, ERROR_PREFIX, FIXED_COLUMNS, TIMING_COLUMNS};
 use super::spec::{Combine, LoadedSweep, SpecError, SweepFile};
+use crate::output::format::TableFormat;
 use crate::output::tables::number;
 use crate::scene::{self, Override, Scene, SceneError};
 
+/// The scene key of the tables' format, which no axis may vary.
+pub const FORMAT_KEY: &str = "output.format";
 /// Most points a sweep may have.
 pub const MAX_POINTS: usize = 1_000_000;
 /// How many bad points an error lists (the rest are counted).
@@ -39,8 +42,33 @@ pub struct Definition {
     pub axes: Vec<AxisValues>,
     /// The points: per point, one value per axis.
     pub points: Vec<Vec<toml::Value>>,
-    /// The summary keys written to `sweep.csv`.
+    /// The summary keys written to the table.
     pub columns: Vec<String>,
+    /// The format of the table and of the runs' tables: the points' `output.format` (one
+    /// for the whole sweep: `[set]` or `-f/--format`, never an axis).
+    #[serde(default)]
+    pub format: TableFormat,
+}
+
+impl Definition {
+    /// The definition without its `timeout_s`: what the rows depend on. A finished run's row
+    /// is the same under any timeout, so a folder (or a shard) made under another timeout is
+    /// the same sweep, and its timed-out runs can be run again with more time.
+    pub fn rows_defined(&self) -> Definition {
+        let mut d = self.clone();
+        d.file.timeout_s = None;
+        d
+    }
+
+    /// Whether this definition gives runs more time than `earlier` did (no timeout, or a
+    /// longer one), so that runs that timed out under `earlier` are worth running again.
+    pub fn allows_longer_than(&self, earlier: &Definition) -> bool {
+        match (self.file.timeout_s, earlier.file.timeout_s) {
+            (_, None) => false,
+            (None, Some(_)) => true,
+            (Some(now), Some(then)) => now > then,
+        }
+    }
 }
 
 /// One point of a sweep.
@@ -186,8 +214,13 @@ pub fn plan(sweep: &LoadedSweep, cli_sets: &[String]) -> Result<Plan, PlanError>
             failures,
         });
     }
+    let scenes: Vec<Scene> = good.into_iter().filter_map(Result::ok).collect();
+    let format = scenes
+        .first()
+        .map(|s| s.file.cli.output.format)
+        .unwrap_or_default();
     Ok(Plan {
-        scenes: good.into_iter().filter_map(Result::ok).collect(),
+        scenes,
         definition: Definition {
             name,
             file: file.clone(),
@@ -197,6 +230,7 @@ pub fn plan(sweep: &LoadedSweep, cli_sets: &[String]) -> Result<Plan, PlanError>
             axes,
             points,
             columns,
+            format,
         },
     })
 }
@@ -275,6 +309,12 @@ fn check_rules(file: &SweepFile, axes: &[AxisValues], issues: &mut Vec<AxisIssue
     for (i, a) in file.axes.iter().enumerate() {
         if let Err(e) = Override::at(&a.key, toml::Value::Boolean(false)) {
             issues.push(issue(format!("axis[{i}].key"), format!("`{}`: {e}", a.key)));
+        }
+        if a.key == FORMAT_KEY {
+            issues.push(issue(
+                format!("axis[{i}].key"),
+                format!("`{FORMAT_KEY}` is one for the whole sweep: give it in `[set]` or with -f/--format"),
+            ));
         }
         if file.axes[..i].iter().any(|b| b.key == a.key) {
             issues.push(issue(

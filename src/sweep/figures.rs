@@ -21,12 +21,13 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::as_number;
 use super::expand::Definition;
-use super::row::{axis_field, reference, value, Row, Status};
+use super::row::{reference, value, Row, Status};
 use super::spec::Combine;
 use crate::figures::axes::tick_label;
 use crate::figures::chart::{colors, render, Chart, DrawResult, Figure};
 use crate::figures::line::{Line, Marker, FAMILY};
 use crate::output::atomic::WriteError;
+use crate::output::cells::Cell;
 
 /// The colours of successive lines.
 const PALETTE: [RGBColor; 5] = [
@@ -133,7 +134,7 @@ fn line_chart(
             .zip(&r.values)
             .enumerate()
             .filter(|(i, _)| *i != x_index)
-            .map(|(_, (a, v))| format!("{} = {}", a.key, axis_field(v)))
+            .map(|(_, (a, v))| format!("{} = {}", a.key, Cell::from_toml(v).csv()))
             .collect::<Vec<_>>()
             .join(", ");
         groups.entry(label).or_default().push((x, y));
@@ -233,7 +234,9 @@ fn heat_map(
     let labels = |a: &super::axes::AxisValues| {
         a.values
             .iter()
-            .map(|v| as_number(v).map_or_else(|| axis_field(v), |n| tick_label(n, false, 0.0)))
+            .map(|v| {
+                as_number(v).map_or_else(|| Cell::from_toml(v).csv(), |n| tick_label(n, false, 0.0))
+            })
             .collect()
     };
     Some(HeatMap {

@@ -101,6 +101,14 @@ impl Drop for FolderLock {
     }
 }
 
+/// The process holding `dir`'s lock, if it is running (a lock left by a killed process does
+/// not count).
+pub fn running_holder(dir: &Path) -> Option<u32> {
+    let text = fs::read_to_string(dir.join(LOCK_FILE)).ok()?;
+    let pid = text.trim().parse::<u32>().ok()?;
+    running(pid).then_some(pid)
+}
+
 /// Whether a process `pid` runs on this machine (signal 0 checks without sending anything;
 /// "not permitted" means it runs under another user).
 fn running(pid: u32) -> bool {

@@ -4,13 +4,16 @@
 //! stands for the shard folders inside it (`out/shard-0-of-4`, ...). The merged folder is a
 //! sweep folder like any other — definition, rows, table, figures — so a sweep started on it
 //! runs exactly the missing points. Missing points and points found in more than one input
-//! are listed; a duplicate whose rows differ (timing aside) is a conflict.
+//! are listed; a duplicate whose rows differ (timing aside) is a conflict. A merge holds the
+//! output's sweep lock (`sweep.lock`) while it writes, and refuses an input that a running
+//! sweep is still writing into.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 
 use super::expand::{Definition, PointId};
+use super::lock::{self, FolderLock, LockError};
 use super::row::Row;
 use super::store::{
     read_manifest, read_rows, Manifest, Store, StoreError, DEFINITION_FILE, RUNS_DIR,
@@ -74,6 +77,9 @@ pub enum MergeError {
         /// Why.
         source: std::io::Error,
     },
+    /// The output is being written by a sweep or another merge, or an input by a sweep.
+    #[error(transparent)]
+    Lock(#[from] LockError),
     /// Two inputs hold different sweeps.
     #[error("{} holds another sweep than {} (different axes, keys, settings or base scene)", other.display(), first.display())]
     Different {
@@ -128,7 +134,7 @@ pub fn merge(
         let manifest =
             read_manifest(dir)?.ok_or_else(|| MergeError::NotASweep { dir: dir.clone() })?;
         match &definition {
-            Some((first, d)) if *d != manifest.definition => {
+            Some((first, d)) if d.rows_defined() != manifest.definition.rows_defined() => {
                 return Err(MergeError::Different {
                     first: first.clone(),
                     other: dir.clone(),
@@ -168,6 +174,15 @@ pub fn merge(
         .filter(|p| !have.contains(p))
         .map(PointId)
         .collect();
+    let _lock = FolderLock::take(out)?;
+    for dir in &inputs {
+        if let Some(pid) = lock::running_holder(dir) {
+            return Err(MergeError::Lock(LockError::Held {
+                dir: dir.clone(),
+                pid,
+            }));
+        }
+    }
     let store = Store::open(out, &Manifest::new(definition.clone(), None))?;
     for row in &rows {
         store.write_row(row)?;

@@ -1,7 +1,7 @@
 //! One row per run, and the table `sweep.csv` made of them.
 //!
 //! A row holds the point's axis values, how the run ended, every scalar key of its summary
-//! (as JSON values, so floats keep their bits) and its timing. `sweep.csv` is always rebuilt
+//! (as JSON values, so floats keep their bits) and its timing. The table is always rebuilt
 //! from the rows in point order, so the table of a sweep does not depend on the order runs
 //! finished in, on how many workers ran them, or on how many shards: sharded and merged, it is
 //! the same table row for row (the timing columns aside).
@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use super::axes::as_number;
 use super::columns::{ERROR_PREFIX, TIMING_COLUMNS};
 use super::expand::{axis_number, Definition, PointId};
-use crate::output::tables::{number, quoted};
+use crate::output::cells::{Cell, Table};
 
 /// How a run ended, for the sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -77,30 +77,6 @@ impl Row {
     }
 }
 
-/// A JSON scalar as a CSV field (numbers so that they parse back to the same bits).
-fn json_field(v: Option<&serde_json::Value>) -> String {
-    match v {
-        None | Some(serde_json::Value::Null) => String::new(),
-        Some(serde_json::Value::Number(n)) => match (n.as_u64(), n.as_i64(), n.as_f64()) {
-            (Some(u), _, _) => u.to_string(),
-            (_, Some(i), _) => i.to_string(),
-            (_, _, Some(f)) => number(f),
-            _ => n.to_string(),
-        },
-        Some(serde_json::Value::String(s)) => quoted(s),
-        Some(other) => quoted(&other.to_string()),
-    }
-}
-
-/// An axis value as a CSV field.
-pub fn axis_field(v: &toml::Value) -> String {
-    match v {
-        toml::Value::Float(f) => number(*f),
-        toml::Value::String(s) => quoted(s),
-        other => quoted(&other.to_string()),
-    }
-}
-
 /// The reference row of the error columns: the completed row with the smallest value of the
 /// `against` axis, the first such point on a tie.
 pub fn reference<'r>(d: &Definition, rows: impl IntoIterator<Item = &'r Row>) -> Option<&'r Row> {
@@ -150,34 +126,32 @@ pub fn header(d: &Definition) -> Vec<String> {
     h
 }
 
-/// `sweep.csv`: the header, then one line per row in point order.
-pub fn table(d: &Definition, rows: &[Row]) -> String {
+/// The sweep's table (`sweep.csv` or `sweep.parquet`): the header, then one row per run in
+/// point order.
+pub fn table(d: &Definition, rows: &[Row]) -> Table {
     let mut rows: Vec<&Row> = rows.iter().collect();
     rows.sort_by_key(|r| r.point);
     let reference = reference(d, rows.iter().copied());
-    let mut out = header(d).join(",");
-    out.push('\n');
+    let mut table = Table::new(header(d));
     for r in rows {
-        let mut f = vec![r.id()];
-        f.extend(r.values.iter().map(axis_field));
-        f.push(r.status.as_str().to_string());
-        f.push(quoted(&r.stop_reason));
-        f.extend(d.columns.iter().map(|k| json_field(r.summary.get(k))));
+        let mut f = vec![Cell::Text(r.id())];
+        f.extend(r.values.iter().map(Cell::from_toml));
+        f.push(Cell::text(r.status.as_str()));
+        f.push(Cell::text(r.stop_reason.as_str()));
+        f.extend(d.columns.iter().map(|k| Cell::from_json(r.summary.get(k))));
         if let Some(e) = &d.file.error {
-            f.extend(e.keys.iter().map(|k| {
-                reference
-                    .and_then(|re| relative_error(r, re, k))
-                    .map(number)
-                    .unwrap_or_default()
-            }));
+            f.extend(
+                e.keys
+                    .iter()
+                    .map(|k| Cell::float(reference.and_then(|re| relative_error(r, re, k)))),
+            );
         }
-        f.push(quoted(&r.stop_detail));
-        f.push(number(r.wall_s));
-        f.push(r.cpu_s.map(number).unwrap_or_default());
-        out.push_str(&f.join(","));
-        out.push('\n');
+        f.push(Cell::text(r.stop_detail.as_str()));
+        f.push(Cell::Float(r.wall_s));
+        f.push(Cell::float(r.cpu_s));
+        table.rows.push(f);
     }
-    out
+    table
 }
 
 /// Whether an axis value of a row is the one of the definition's point (a row read back

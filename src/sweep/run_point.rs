@@ -14,7 +14,7 @@ use std::sync::atomic::AtomicBool;
 use super::spec::Keep;
 use crate::analysis::summary::Summary;
 use crate::args::DEFAULT_BACKEND;
-use crate::output::tables::read_stop_row;
+use crate::output::format::TableFormat;
 use crate::run::provenance::Provenance;
 use crate::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use crate::scene::Scene;
@@ -35,12 +35,13 @@ pub struct PointOutcome {
 /// The options `eulerdisk run` would get for this run. Its provenance names the base scene;
 /// the point's own values are in its resolved settings (and in `sweep.json`).
 pub fn run_options(scene: &Scene, dir: &Path, keep: Keep) -> RunOptions {
+    let format = scene.file.cli.output.format;
     RunOptions {
         out_dir: dir.to_path_buf(),
         progress: ProgressStyle::Quiet,
         backend: DEFAULT_BACKEND,
         figures: keep == Keep::All,
-        trajectory: keep.files().contains(&"trajectory.csv"),
+        trajectory: keep.files(format).contains(&format.file("trajectory")),
         provenance: Provenance::new(scene, &scene.name, &[]),
     }
 }
@@ -54,12 +55,11 @@ pub fn run_point(scene: &Scene, keep: Keep, dir: &Path, interrupt: &AtomicBool) 
     let result = catch_unwind(AssertUnwindSafe(|| run_scene(scene, &opts, interrupt)));
     let outcome = match result {
         Ok(Ok(report)) => {
-            let events = fs::read_to_string(dir.join("events.csv")).unwrap_or_default();
-            let detail = read_stop_row(&events).map(|(_, d)| d).unwrap_or_default();
+            let detail = report.data.stop.as_ref().map(|s| s.detail.clone());
             PointOutcome {
                 ending: report.ending,
                 stop_reason: report.summary.stop_reason.clone(),
-                stop_detail: detail,
+                stop_detail: detail.unwrap_or_default(),
                 summary: Some(report.summary),
             }
         }
@@ -73,7 +73,7 @@ pub fn run_point(scene: &Scene, keep: Keep, dir: &Path, interrupt: &AtomicBool) 
             failure("panic", message)
         }
     };
-    tidy(dir, keep);
+    tidy(dir, keep, scene.file.cli.output.format);
     outcome
 }
 
@@ -87,17 +87,17 @@ fn failure(reason: &str, detail: String) -> PointOutcome {
 }
 
 /// Deletes what the sweep does not keep of a run's folder.
-fn tidy(dir: &Path, keep: Keep) {
+fn tidy(dir: &Path, keep: Keep, format: TableFormat) {
     match keep {
         Keep::None => {
             let _ = fs::remove_dir_all(dir);
         }
         Keep::All => {}
         Keep::Summary | Keep::Events => {
-            for file in ["trajectory.csv", "events.csv", "summary.json"] {
-                if !keep.files().contains(&file) {
-                    let _ = fs::remove_file(dir.join(file));
-                }
+            let kept = keep.files(format);
+            let written = ["trajectory", "events", "extrema"].map(|stem| format.file(stem));
+            for file in written.iter().filter(|f| !kept.contains(f)) {
+                let _ = fs::remove_file(dir.join(file));
             }
         }
     }

@@ -10,6 +10,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::output::format::TableFormat;
+
 /// A whole sweep file.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -70,21 +72,25 @@ pub enum Keep {
     None,
     /// `summary.json`.
     Summary,
-    /// `summary.json` and `events.csv`.
+    /// `summary.json` and the events (`events.csv` or `.parquet`).
     Events,
     /// Everything `eulerdisk run` writes, figures included.
     All,
 }
 
 impl Keep {
-    /// The files of a run's folder this keeps (`None`: the whole folder goes).
-    pub fn files(self) -> &'static [&'static str] {
-        match self {
-            Keep::None => &[],
-            Keep::Summary => &["summary.json"],
-            Keep::Events => &["summary.json", "events.csv"],
-            Keep::All => &["summary.json", "events.csv", "trajectory.csv"],
-        }
+    /// The files of a run's folder this keeps, its tables in `format` (`None`: the whole
+    /// folder goes).
+    pub fn files(self, format: TableFormat) -> Vec<String> {
+        let tables: &[&str] = match self {
+            Keep::None => return Vec::new(),
+            Keep::Summary => &[],
+            Keep::Events => &["events"],
+            Keep::All => &["events", "trajectory"],
+        };
+        let mut files = vec!["summary.json".to_string()];
+        files.extend(tables.iter().map(|stem| format.file(stem)));
+        files
     }
 }
 

@@ -4,6 +4,7 @@
 //! DIR/sweep.json        the definition (format, program version, shard), written first
 //! DIR/rows/r000042.json one finished run, written atomically the moment it finishes
 //! DIR/sweep.csv         the table, rebuilt atomically from rows/ as runs finish
+//!                       (`sweep.parquet` when the sweep's `output.format` is Parquet)
 //! DIR/runs/r000042/     what a run keeps (`keep`), if anything
 //! ```
 //!
@@ -23,10 +24,13 @@ use super::row::{belongs, table, Row};
 use super::shard::Shard;
 use super::spec::Keep;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
+use crate::output::files::write_table;
 
 /// The definition file.
 pub const DEFINITION_FILE: &str = "sweep.json";
-/// The table.
+/// The table's stem: `sweep.csv`, or `sweep.parquet` in a sweep whose format is Parquet.
+pub const TABLE_STEM: &str = "sweep";
+/// The table in the default format.
 pub const TABLE_FILE: &str = "sweep.csv";
 /// The folder of row files.
 pub const ROWS_DIR: &str = "rows";
@@ -100,6 +104,7 @@ pub enum StoreError {
 #[derive(Clone, Debug)]
 pub struct Store {
     dir: PathBuf,
+    rerun_timeouts: bool,
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> StoreError + '_ {
@@ -131,12 +136,16 @@ pub fn read_manifest(dir: &Path) -> Result<Option<Manifest>, StoreError> {
 
 impl Store {
     /// Opens (or creates) `dir` for `manifest`: a folder that already holds a different
-    /// sweep or shard is refused; leftovers of interrupted writes are removed.
+    /// sweep or shard is refused (a different `timeout_s` alone is the same sweep: with a
+    /// longer one, its timed-out runs are run again); leftovers of interrupted writes are
+    /// removed.
     pub fn open(dir: &Path, manifest: &Manifest) -> Result<Store, StoreError> {
         let rows = dir.join(ROWS_DIR);
         fs::create_dir_all(&rows).map_err(io(&rows))?;
+        let mut rerun_timeouts = false;
         if let Some(old) = read_manifest(dir)? {
-            let what = if old.definition != manifest.definition {
+            rerun_timeouts = manifest.definition.allows_longer_than(&old.definition);
+            let what = if old.definition.rows_defined() != manifest.definition.rows_defined() {
                 Some(format!("another sweep (`{}`, or the same with other axes, keys, settings or base scene)", old.definition.name))
             } else if old.shard != manifest.shard {
                 Some(format!("shard {}", Shard::label(old.shard)))
@@ -157,9 +166,16 @@ impl Store {
         write_bytes_atomic(&dir.join(DEFINITION_FILE), format!("{json}\n").as_bytes())?;
         let store = Store {
             dir: dir.to_path_buf(),
+            rerun_timeouts,
         };
         store.remove_partials()?;
         Ok(store)
+    }
+
+    /// Whether the runs that timed out here run again: the folder's earlier sweep had a
+    /// shorter `timeout_s` than this one.
+    pub fn reruns_timeouts(&self) -> bool {
+        self.rerun_timeouts
     }
 
     /// The folder.
@@ -198,16 +214,19 @@ impl Store {
         Ok(())
     }
 
-    /// Rewrites `sweep.csv` from `rows`, atomically.
+    /// Rewrites the table (`sweep.csv` or `sweep.parquet`, the definition's format) from
+    /// `rows`, atomically.
     pub fn write_table<'r>(
         &self,
         definition: &Definition,
         rows: impl IntoIterator<Item = &'r Row>,
     ) -> Result<(), StoreError> {
         let rows: Vec<Row> = rows.into_iter().cloned().collect();
-        write_bytes_atomic(
-            &self.dir.join(TABLE_FILE),
-            table(definition, &rows).as_bytes(),
+        write_table(
+            &table(definition, &rows),
+            &self.dir,
+            TABLE_STEM,
+            definition.format,
         )?;
         Ok(())
     }

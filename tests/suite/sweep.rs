@@ -696,3 +696,133 @@ values = [0.1, 0.115, 0.13]
         );
     }
 }
+
+/// Runs that timed out run again when the same sweep comes back with a longer `timeout_s`
+/// (the folder is the same sweep, not "another sweep"); with the same timeout they stay.
+#[test]
+fn a_longer_timeout_reruns_the_timed_out_points() {
+    let tmp = tempfile::tempdir().unwrap();
+    let with_timeout = |t: f64| {
+        format!(
+            "scene = \"tangent-toy-pruned\"\ntimeout_s = {t}\n[[axis]]\nkey = \"run.t_end\"\nvalues = [0.01, 20.0]\n"
+        )
+    };
+    let out = tmp.path().join("out");
+    // 1 µs: the 20 s run cannot finish (the timeout is watched every 20 ms).
+    let short = plan(&sweep_file(tmp.path(), &with_timeout(1e-6)), &[]).unwrap();
+    go(&short, &out, 1, None);
+    let rows = read_rows(&out, &short.definition).unwrap();
+    assert_eq!(rows[&1].status, Status::Timeout, "{:?}", rows[&1]);
+    // The same timeout again: nothing to do.
+    let again = go(&short, &out, 1, None);
+    assert_eq!((again.ran, again.skipped), (0, 2));
+    // A longer one: exactly the timed-out runs run again, and complete.
+    let long = plan(&sweep_file(tmp.path(), &with_timeout(600.0)), &[]).unwrap();
+    let timed_out: Vec<usize> = rows
+        .values()
+        .filter(|r| r.status == Status::Timeout)
+        .map(|r| r.point)
+        .collect();
+    let report = go(&long, &out, 1, None);
+    assert_eq!(report.ran, timed_out.len());
+    let rows = read_rows(&out, &long.definition).unwrap();
+    assert!(
+        rows.values().all(|r| r.status == Status::Completed),
+        "{rows:?}"
+    );
+    let manifest = read_manifest(&out).unwrap().unwrap();
+    assert_eq!(manifest.definition.file.timeout_s, Some(600.0));
+    // Another sweep still is another sweep.
+    let other = with_timeout(600.0).replace("20.0", "19.0");
+    let other = plan(&sweep_file(tmp.path(), &other), &[]).unwrap();
+    let err = run_sweep(&other, &out, &opts(1, None), &AtomicBool::new(false)).unwrap_err();
+    assert!(err.to_string().contains("another sweep"), "{err}");
+}
+
+/// `sweep merge` takes the output's lock and refuses an input a running sweep still writes.
+#[test]
+fn merge_takes_the_sweep_lock() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = "scene = \"tangent-toy-pruned\"\n[set]\nrun.t_end = 0.02\n[[axis]]\nkey = \"friction.mu_d\"\nvalues = [0.1, 0.12]\n";
+    let plan = plan(&sweep_file(tmp.path(), text), &[]).unwrap();
+    let out = tmp.path().join("out");
+    for index in 0..2 {
+        go(&plan, &out, 1, Some(Shard { index, count: 2 }));
+    }
+    let merged = tmp.path().join("merged");
+    let me = std::process::id().to_string();
+    // A running process (this one) holds an input: refused, nothing written.
+    let shard = sweep_dir(&out, Some(Shard { index: 1, count: 2 }));
+    fs::write(shard.join("sweep.lock"), &me).unwrap();
+    let err = merge(std::slice::from_ref(&out), &merged).unwrap_err();
+    assert!(err.to_string().contains("another sweep"), "{err}");
+    assert!(!merged.join(TABLE_FILE).exists());
+    fs::remove_file(shard.join("sweep.lock")).unwrap();
+    // ... or the output.
+    fs::create_dir_all(&merged).unwrap();
+    fs::write(merged.join("sweep.lock"), &me).unwrap();
+    assert!(merge(std::slice::from_ref(&out), &merged).is_err());
+    fs::remove_file(merged.join("sweep.lock")).unwrap();
+    let (_, rows, report) = merge(std::slice::from_ref(&out), &merged).unwrap();
+    assert!(report.complete() && rows.len() == 2, "{report:?}");
+    assert!(!merged.join("sweep.lock").exists(), "released");
+}
+
+/// A sweep with `output.format = "parquet"` writes `sweep.parquet`, typed, and no CSV table.
+#[test]
+fn a_parquet_sweep_writes_a_typed_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = "scene = \"tangent-toy-pruned\"\nkeep = \"events\"\n[set]\nrun.t_end = 0.02\n[[axis]]\nkey = \"friction.mu_d\"\nvalues = [0.1, 0.12]\n";
+    let sets = ["output.format=parquet".to_string()];
+    let plan = plan(&sweep_file(tmp.path(), text), &sets).unwrap();
+    let out = tmp.path().join("out");
+    go(&plan, &out, 1, None);
+    assert!(!out.join(TABLE_FILE).exists());
+    let table = eulerdisk::read_parquet(&out.join("sweep.parquet")).unwrap();
+    let col = |name: &str| table.header.iter().position(|h| h == name).unwrap();
+    assert_eq!(table.rows.len(), 2);
+    assert_eq!(
+        table.rows[1][col("friction.mu_d")],
+        eulerdisk::Cell::Float(0.12)
+    );
+    assert_eq!(
+        table.rows[0][col("status")],
+        eulerdisk::Cell::text("completed")
+    );
+    assert!(matches!(
+        table.rows[0][col("transitions")],
+        eulerdisk::Cell::Int(_)
+    ));
+    let run = out.join("runs").join("r000000");
+    assert!(run.join("events.parquet").is_file() && !run.join("events.csv").exists());
+    assert!(
+        !run.join("extrema.parquet").exists(),
+        "keep = events keeps the events only"
+    );
+    // An axis over the format is refused by its key.
+    let axis =
+        format!("{text}[[axis]]\nkey = \"output.format\"\nvalues = [\"csv\", \"parquet\"]\n");
+    let err = plan_err(tmp.path(), &axis);
+    assert!(err.contains("axis[1].key"), "{err}");
+}
+
+fn plan_err(dir: &Path, text: &str) -> String {
+    plan(&sweep_file(dir, text), &[]).unwrap_err().to_string()
+}
+
+/// The sweep file the Kubernetes recipe's ConfigMap carries is a valid sweep.
+#[test]
+fn the_kubernetes_configmap_holds_a_valid_sweep() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let yaml = fs::read_to_string(root.join("docs/k8s-sweep-job.yaml")).unwrap();
+    let text: String = yaml
+        .lines()
+        .skip_while(|l| l.trim() != "sweep.toml: |")
+        .skip(1)
+        .take_while(|l| l.starts_with("    "))
+        .map(|l| format!("{}\n", &l[4..]))
+        .collect();
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = plan(&sweep_file(tmp.path(), &text), &[]).unwrap();
+    assert_eq!(plan.definition.points.len(), 8);
+}
