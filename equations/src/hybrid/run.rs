@@ -345,7 +345,7 @@ struct Ended {
 
 /// A failure of a regularised run dated in physical time (`t`, the latest the clocked system
 /// saw) instead of the integration variable.
-fn in_physical_time(e: HybridError<Phase>, t: f64) -> HybridError<Phase> {
+pub(super) fn in_physical_time<Md>(e: HybridError<Md>, t: f64) -> HybridError<Md> {
     match e {
         HybridError::Solve { mode, error } => HybridError::Solve {
             mode,

@@ -2,7 +2,7 @@
 //! start as the hand-written run, reporting its events and its mode decisions: what the
 //! tests and the bench hold against [`super::simulate`].
 
-use super::run::{hybrid_options, initial_phase, validate};
+use super::run::{hybrid_options, in_physical_time, initial_phase, validate};
 use super::switching::disk;
 use super::system::{DiskSystem, Phase};
 use super::{GeneratedModels, SimError, SimFailure};
@@ -175,6 +175,8 @@ fn run<St: Stepper<DIM>, Sc: Stepper<CLOCKED>>(
             let mut physical = PhysicalTime::<_, DIM, CLOCKED>::new(&mut collector, t0, None);
             let z0 = Regularised::<Switched<disk::Model>, DIM, CLOCKED>::start(&y0);
             let out = solver.run(&mut clocked, first, t0, &z0, f64::MAX, &mut physical);
+            let at = clocked.latest_time();
+            let out = out.map_err(|e| in_physical_time(e, at));
             out.map(|out| {
                 let stop = match out.stop {
                     StopReason::User(Clocked::Inner(stop)) => StopReason::User(Some(stop)),
@@ -228,8 +230,8 @@ fn input_error(error: InputError) -> SimFailure {
 
 /// A driver error of the switched disk, its mode named by the contact mode.
 fn hybrid_error(error: HybridError<ModeId>) -> SimError {
-    let mode = |id: ModeId| match disk::MODE_NAMES[id.index()] {
-        "rolling" => crate::Mode::Rolling,
+    let mode = |id: ModeId| match id.index() {
+        disk::mode::rolling => crate::Mode::Rolling,
         _ => crate::Mode::Sliding,
     };
     match error {

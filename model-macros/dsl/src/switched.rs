@@ -235,10 +235,8 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         format!("the modes are {}", names.join(", "))
     };
     let state_list = |mode: usize| {
-        let names: Vec<String> = (assignable[mode].iter())
-            .map(|(name, k)| (k, name))
-            .collect::<BTreeMap<_, _>>()
-            .into_values()
+        let names: Vec<String> = (mode_states[mode].iter().map(|s| s.name.as_str()))
+            .chain(ast.discrete.iter().map(|d| d.name.as_str()))
             .map(|name| format!("`{name}`"))
             .collect();
         let what = if ast.discrete.is_empty() {
@@ -355,23 +353,20 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 ),
             });
         }
-        // The clock next, read by the integrator at every evaluation in regularised time.
-        let time_scale = view.time_scale.map(|clock| {
-            outputs.push(Named {
-                name: "time_scale:".to_string(),
-                id: clock.id,
-                value: clock.value.clone(),
-            });
-            (clock.id, outputs.len() - 1)
-        });
-        let first_step = view.first_step.map(|step| {
-            outputs.push(Named {
-                name: "first_step:".to_string(),
-                id: step.id,
-                value: step.value.clone(),
-            });
-            (step.id, outputs.len() - 1)
-        });
+        // The clock next (read by the integrator at every evaluation in regularised time),
+        // then the first step: each an output of its own, under a name no user can write.
+        let mut declared = |number: Option<&Named<Expr>>| {
+            number.map(|number| {
+                outputs.push(Named {
+                    name: format!("{}:", number.name),
+                    id: number.id,
+                    value: number.value.clone(),
+                });
+                (number.id, outputs.len() - 1)
+            })
+        };
+        let time_scale = declared(view.time_scale);
+        let first_step = declared(view.first_step);
         for (k, &(when, shared)) in view.events.iter().enumerate() {
             let guard_output = user_outputs + k;
             if names.insert(when.name.name.clone(), when.name.id).is_some() {
