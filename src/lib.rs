@@ -44,7 +44,8 @@
 //!   [`EvalCommandError`]; named numbers on the command line, [`parse_named_numbers`].
 //! * **Reading the outputs**: [`EVENTS_HEADER`], [`split_fields`]; the tables' format,
 //!   [`TableFormat`]; a table as cells, [`Table`] ([`Cell`]), and a Parquet file read back
-//!   into one, [`read_parquet`] ([`ParquetReadError`]).
+//!   into one, `read_parquet` (`ParquetReadError`), with the default feature `parquet`. A build
+//!   without it (the Python package's) refuses `output.format = "parquet"` by its key.
 //!
 //! ```
 //! use eulerdisk::{load_scene, split_fields, Override, DEFAULT_SCENE};
@@ -155,5 +156,6 @@ pub use named_numbers::{is_json_object, parse_assignments, parse_named_numbers};
 // Reading the outputs: the events table's header and one CSV line's fields.
 pub use output::cells::{Cell, Table};
 pub use output::format::TableFormat;
+#[cfg(feature = "parquet")]
 pub use output::parquet::{read_table as read_parquet, ReadError as ParquetReadError};
 pub use output::tables::{split_fields, EVENTS_HEADER};

@@ -8,6 +8,10 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Why a build without the `parquet` feature refuses the format, as the refusal says it.
+pub const PARQUET_UNAVAILABLE: &str =
+    "cannot be written by this build: it was built without the `parquet` feature; use \"csv\"";
+
 /// How the table files are written.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]

@@ -82,6 +82,80 @@ impl ParquetFile {
     }
 }
 
+/// Rows gathered before a batch goes to a streamed file.
+pub const BATCH_ROWS: usize = 8192;
+
+/// A table streamed row by row: a time column `t_s`, a `mode` column of names, then one
+/// `Float64` column per value. Rows are gathered into batches of [`BATCH_ROWS`] and handed to
+/// the file, which keeps at most one row group in memory.
+#[derive(Debug)]
+pub struct ParquetRows {
+    file: ParquetFile,
+    t: Vec<f64>,
+    modes: Vec<&'static str>,
+    values: Vec<Vec<f64>>,
+}
+
+impl ParquetRows {
+    /// Starts writing `path` with the columns `t_s`, `mode` and `columns`.
+    pub fn create(path: &Path, columns: &[String]) -> Result<ParquetRows, WriteError> {
+        let mut fields = vec![
+            Field::new("t_s", DataType::Float64, false),
+            Field::new("mode", DataType::Utf8, false),
+        ];
+        fields.extend(
+            columns
+                .iter()
+                .map(|c| Field::new(c.as_str(), DataType::Float64, false)),
+        );
+        Ok(ParquetRows {
+            file: ParquetFile::create(path, fields)?,
+            t: Vec::with_capacity(BATCH_ROWS),
+            modes: Vec::with_capacity(BATCH_ROWS),
+            values: vec![Vec::with_capacity(BATCH_ROWS); columns.len()],
+        })
+    }
+
+    /// Appends one row: its time, its mode's name and one value per column.
+    pub fn push(
+        &mut self,
+        t: f64,
+        mode: &'static str,
+        values: impl IntoIterator<Item = f64>,
+    ) -> Result<(), WriteError> {
+        self.t.push(t);
+        self.modes.push(mode);
+        for (column, v) in self.values.iter_mut().zip(values) {
+            column.push(v);
+        }
+        if self.t.len() >= BATCH_ROWS {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    /// Writes the rows gathered so far.
+    fn flush(&mut self) -> Result<(), WriteError> {
+        if self.t.is_empty() {
+            return Ok(());
+        }
+        let mut columns: Vec<ArrayRef> = vec![
+            Arc::new(Float64Array::from(std::mem::take(&mut self.t))),
+            Arc::new(StringArray::from_iter_values(self.modes.drain(..))),
+        ];
+        for column in &mut self.values {
+            columns.push(Arc::new(Float64Array::from(std::mem::take(column))));
+        }
+        self.file.write(columns)
+    }
+
+    /// Writes the last rows and the footer, and gives the file its name.
+    pub fn commit(mut self) -> Result<(), WriteError> {
+        self.flush()?;
+        self.file.commit()
+    }
+}
+
 /// A Parquet or Arrow error while writing `path`.
 fn error(path: &Path, e: impl std::error::Error + Send + Sync + 'static) -> WriteError {
     WriteError {

@@ -8,6 +8,7 @@
 use equations::{DiskConfig, DiskParams, InitialState, Issue, Number, Rule};
 
 use super::schema::SceneFile;
+use crate::output::format::{TableFormat, PARQUET_UNAVAILABLE};
 use crate::quantity::Quantity;
 use crate::run::plan::{SamplePlan, MAX_GRID_POINTS};
 
@@ -34,6 +35,7 @@ pub fn validate(name: &str, file: SceneFile) -> Result<Scene, Vec<Issue>> {
     let mut issues = resolved.as_ref().err().cloned().unwrap_or_default();
     let quantities = check_quantities(&mut issues, &file.cli.output.quantities);
     check_windows(&mut issues, &file);
+    check_format(&mut issues, &file);
     match resolved {
         Ok(disk) if issues.is_empty() => Ok(Scene {
             name: name.to_string(),
@@ -69,6 +71,21 @@ fn check_quantities(issues: &mut Vec<Issue>, names: &[String]) -> Vec<Quantity> 
         }
     }
     out
+}
+
+/// `output.format` names a writer this build has: without the `parquet` feature, Parquet is
+/// refused here, before any file is written.
+fn check_format(issues: &mut Vec<Issue>, file: &SceneFile) {
+    let format = file.cli.output.format;
+    if format == TableFormat::Parquet && !cfg!(feature = "parquet") {
+        issues.push(Issue::new(
+            "output.format",
+            Rule::Incompatible {
+                value: format.name().to_string(),
+                reason: PARQUET_UNAVAILABLE,
+            },
+        ));
+    }
 }
 
 /// The rules of `output.windows`: each inside the run, `from` before `to`, its rate positive

@@ -10,6 +10,7 @@ mod imports;
 mod limits;
 mod outputs;
 mod paper_reference;
+#[cfg(feature = "parquet")]
 mod parquet_output;
 mod pruned_scene;
 mod quiet_run;

@@ -769,6 +769,7 @@ fn merge_takes_the_sweep_lock() {
 }
 
 /// A sweep with `output.format = "parquet"` writes `sweep.parquet`, typed, and no CSV table.
+#[cfg(feature = "parquet")]
 #[test]
 fn a_parquet_sweep_writes_a_typed_table() {
     let tmp = tempfile::tempdir().unwrap();
