@@ -75,7 +75,6 @@ mod output;
 mod quantity;
 mod record;
 mod run;
-mod sample;
 mod scene;
 mod sound;
 mod sweep;
@@ -117,7 +116,7 @@ pub use sweep::columns::{scalar_entries, TIMING_COLUMNS};
 pub use sweep::execute::{ExecOptions, ExecReport};
 pub use sweep::expand::{plan, run_arguments, Plan, PlanError};
 pub use sweep::merge::merge;
-pub use sweep::row::{Row, Status};
+pub use sweep::row::{PointStop, Row, Status, SweepStop};
 pub use sweep::run_point::{process_cpu_s, run_options};
 pub use sweep::shard::Shard;
 pub use sweep::spec::{

@@ -41,6 +41,7 @@ mod issue;
 pub mod models;
 mod modes;
 mod params;
+pub mod record;
 pub mod reference;
 mod scene;
 mod settings;

@@ -19,7 +19,7 @@ use crate::output::format::TableFormat;
 use crate::output::parquet::ParquetFile;
 use crate::output::tables::{trajectory_header, write_trajectory_row};
 use crate::quantity::Quantity;
-use crate::sample::Sample;
+use equations::record::Sample;
 
 /// Rows gathered before a batch goes to the Parquet file.
 pub const BATCH_ROWS: usize = 8192;
