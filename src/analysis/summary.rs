@@ -13,8 +13,8 @@ use serde::Serialize;
 
 use super::extrema::Located;
 use super::oscillation::{mean_period, Series};
-use crate::quantity::Quantity;
 use crate::record::{RunData, SampleCounts, Timings};
+use equations::record::Quantity;
 use equations::record::{Sample, StopKind, TriggerKind};
 use equations::Mode;
 use equations::{ExtremumKind, Watched};
@@ -142,7 +142,7 @@ impl Summary {
             .map(|x| x.t)
             .or_else(|| s.last().map(|x| x.t))
             .unwrap_or(0.0);
-        let mg = p.m * p.g;
+        let mg = p.weight();
         let all = || s.iter().chain(&data.first_second).chain(&data.last_second);
         let located = Located::new(&data.extrema, mg);
         let exact = !located.is_empty();

@@ -176,7 +176,7 @@ fn peak_marks(located: &Located, span: Option<std::ops::Range<f64>>) -> Option<L
 /// paper's numbers only when `compared_with_paper` (the scene is the paper's: another disk or
 /// start has other numbers).
 pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -> Vec<Chart> {
-    let mg = p.m * p.g;
+    let mg = p.weight();
     let located = Located::new(&data.extrema, mg);
     let all = &data.samples;
     let t_start = all.first().map_or(0.0, |s| s.t);

@@ -9,7 +9,7 @@ use std::io::{self, Write};
 use equations::{DiskParams, Number};
 
 use super::cells::{Cell, Table};
-use crate::quantity::Quantity;
+use equations::record::Quantity;
 use equations::record::{Sample, Stop};
 use equations::TransitionRecord;
 

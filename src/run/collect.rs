@@ -118,7 +118,7 @@ mod tests {
     use super::*;
     use crate::analysis::synthetic::SyntheticRun;
     use crate::output::format::TableFormat;
-    use crate::quantity::Quantity;
+    use equations::record::Quantity;
 
     #[test]
     fn keeps_the_trajectory_grid_and_both_windows() {

@@ -30,10 +30,10 @@ use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
 use crate::output::files::write_table;
 use crate::output::tables::events_table;
-use crate::quantity::Quantity;
 use crate::record::{RunData, Timings};
 use crate::scene::Scene;
 use collect::Collector;
+use equations::record::Quantity;
 use equations::record::{Stop, StopKind};
 use equations::Mode;
 use model::ModelChoice;
@@ -473,7 +473,7 @@ pub fn write_outputs(
         "events",
         format,
     )?);
-    let located = Located::new(&data.extrema, scene.params.m * scene.params.g);
+    let located = Located::new(&data.extrema, scene.params.weight());
     files.push(write_table(&located.table(), dir, "extrema", format)?);
     timings.outputs_s = lap(&mut clock);
     let mut summary = Summary::of(&scene.name, data, &scene.params);

@@ -23,8 +23,8 @@ use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
 use super::plan::SamplePlan;
-use crate::quantity::forget_frozen;
 use crate::scene::Scene;
+use equations::record::forget_frozen;
 
 /// What the worker sends.
 #[derive(Debug)]

@@ -18,7 +18,7 @@ use crate::output::atomic::{AtomicFile, WriteError};
 use crate::output::format::TableFormat;
 use crate::output::parquet::ParquetFile;
 use crate::output::tables::{trajectory_header, write_trajectory_row};
-use crate::quantity::Quantity;
+use equations::record::Quantity;
 use equations::record::Sample;
 
 /// Rows gathered before a batch goes to the Parquet file.

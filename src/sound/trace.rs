@@ -16,9 +16,9 @@ use model_runtime::Model;
 
 use super::SoundError;
 use crate::eval::Backend;
-use crate::quantity::Quantity;
 use crate::run::model::{choose_for, with_models, ModelChoice, ModelsTask};
 use crate::scene::Scene;
+use equations::record::Quantity;
 
 /// Most force samples one run may keep (about 0.8 GB of memory).
 pub const MAX_TRACE_SAMPLES: f64 = 5e7;
@@ -303,7 +303,7 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
     }
     let params = scene.params;
     let mut observer = ForceObserver {
-        mg: params.m * params.g,
+        mg: params.weight(),
         t: Vec::with_capacity((t_end * rate) as usize + 2),
         n_over_mg: Vec::with_capacity((t_end * rate) as usize + 2),
         extrema: Vec::new(),

@@ -164,3 +164,31 @@ fn an_interrupt_stops_the_simulation_and_keeps_its_work() {
         s.rhs_evals
     );
 }
+
+/// A disk released at rest leaning 1e-3 rad past upright falls onto its other face: the run
+/// stops where θ reaches π minus the floor, and the files say so (`inclination_reached_pi`,
+/// the library's reason; the command line once wrote `inclination_reached_0` for both faces).
+#[test]
+fn a_disk_fallen_past_upright_is_said_to_reach_pi() {
+    let overrides = [
+        Override::new("run", "t_end", 5.0),
+        Override::new("initial", "theta", std::f64::consts::FRAC_PI_2 + 1e-3),
+        Override::new("initial", "Omega_x", 0.0),
+    ];
+    let (dir, report) = run_in_tempdir(&overrides, Backend::Generated, &AtomicBool::new(false));
+    let s = &report.summary;
+    assert_eq!(
+        s.stop_reason,
+        Some(StopKind::InclinationReachedPi),
+        "{}",
+        s.stop_detail
+    );
+    assert!(s.t_end < 5.0, "{}", s.t_end);
+    let last = report.data.samples.last().unwrap();
+    assert!(last.state.theta > 3.14, "{}", last.state.theta);
+    let events = std::fs::read_to_string(dir.path().join("events.csv")).unwrap();
+    let stop = events.lines().last().unwrap();
+    assert!(stop.contains(",stop,inclination_reached_pi,"), "{stop}");
+    let summary = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
+    assert!(summary.contains("\"stop_reason\": \"inclination_reached_pi\""));
+}

@@ -10,10 +10,12 @@
 //! [`TransitionRecord`]: crate::TransitionRecord
 //! [`StopReason`]: crate::StopReason
 
+mod quantity;
 mod sample;
 mod stop;
 mod trigger;
 
+pub use quantity::{forget_frozen, Quantity};
 pub use sample::{ContactForces, DiskState, FrictionLaw, Sample};
 pub use stop::{Stop, StopKind};
 pub use trigger::TriggerKind;

@@ -3,8 +3,8 @@
 //! One table drives the CSV header, the `[output] quantities` check and the value lookup, so
 //! a quantity's name, unit and meaning cannot drift apart between those places.
 
-use equations::record::Sample;
-use equations::DiskParams;
+use super::sample::Sample;
+use crate::params::DiskParams;
 
 /// A recordable quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -219,7 +219,7 @@ impl Quantity {
             Quantity::N => s.forces.normal,
             Quantity::T => s.forces.friction,
             Quantity::Nu => s.forces.nu,
-            Quantity::NOverMg => s.forces.normal / (p.m * p.g),
+            Quantity::NOverMg => s.forces.normal / p.weight(),
             Quantity::R_X => s.forces.r_x,
             Quantity::R_Y => s.forces.r_y,
             Quantity::Energy => s.energy,
@@ -263,7 +263,7 @@ mod tests {
 
     #[test]
     fn reads_name_states_of_the_rolling_layout() {
-        let states = equations::models::rolling::STATE_NAMES;
+        let states = crate::models::rolling::STATE_NAMES;
         for q in Quantity::ALL {
             assert!(!q.reads().is_empty(), "{}", q.name());
             for s in q.reads() {
