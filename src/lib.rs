@@ -4,6 +4,17 @@
 //! scene loader, parsers and writers the command uses, with random inputs, without a process
 //! per case.
 //!
+//! # What is here and what is below
+//!
+//! This crate keeps what a command line needs: arguments, scene files and their overrides,
+//! progress, the files (their names, formats and atomic writing), the figures and the printed
+//! summary. The physics and the run's records are the library's: the samples, the named
+//! state layout, the quantities and their units, the friction ratio, the mode decisions and
+//! the stop reasons with the words the files write are `equations::record`'s types, which
+//! this crate formats and matches on, never spelling or converting them itself; a model
+//! file is loaded and solved by `model_interpreted`. A second front end (the Python package)
+//! calls the same library functions.
+//!
 //! # The API by theme
 //!
 //! The modules are private; what the binary and the tests use is re-exported here, once, under
@@ -22,14 +33,16 @@
 //!   end, [`simulate_scene`] ([`SceneRun`]); the model it runs, [`choose`] ([`ModelChoice`], [`RunModel`]); the run's
 //!   origin, [`Provenance`]; one simulation and what it keeps, [`record_run`] ([`SamplePlan`],
 //!   [`Progress`], [`ProgressStyle`], [`Recorded`]).
-//! * **What a run gives**: [`RunData`], [`Summary`], [`Quantity`]; the paper's figures,
+//! * **What a run gives**: [`RunData`] (of `equations::record`'s samples, mode decisions and
+//!   stop), [`Summary`]; the paper's figures,
 //!   [`paper_charts`], [`write_paper_figures`], [`FIGURE_STEMS`], [`Chart`]; a run built by
 //!   hand, [`SyntheticRun`].
 //! * **Sweeps**: [`sweep_command`]; [`load_sweep`], [`parse_sweep`], [`BUILTIN_SWEEPS`]
 //!   ([`LoadedSweep`], [`Keep`]); [`plan`] ([`Plan`], [`PlanError`], [`run_arguments`]);
 //!   [`run_sweep`] ([`ExecOptions`], [`ExecReport`], [`SweepReport`], [`SweepError`],
 //!   [`Shard`], [`sweep_dir`], [`run_options`], [`process_cpu_s`]); the stored rows,
-//!   [`read_manifest`], [`read_rows`], [`Row`], [`Status`], [`scalar_entries`],
+//!   [`read_manifest`], [`read_rows`], [`Row`], [`Status`], [`PointStop`], [`SweepStop`],
+//!   [`scalar_entries`],
 //!   [`TIMING_COLUMNS`], [`TABLE_FILE`], [`ROWS_DIR`]; [`merge`].
 //! * **Sound**: [`sound_command`]; [`sound_scene`] with [`SoundOptions`] ([`SoundReport`],
 //!   [`SoundError`], [`wav_name`]); the pieces, [`record_force`] ([`ForceTrace`],
@@ -73,10 +86,8 @@ mod model_file;
 mod model_show;
 mod named_numbers;
 mod output;
-mod quantity;
 mod record;
 mod run;
-mod sample;
 mod scene;
 mod sound;
 mod sweep;
@@ -109,7 +120,6 @@ pub use analysis::summary::Summary;
 pub use analysis::synthetic::SyntheticRun;
 pub use figures::chart::Chart;
 pub use figures::paper::{paper_charts, write_paper_figures, FiguresDrawn, FIGURE_STEMS};
-pub use quantity::Quantity;
 pub use record::RunData;
 
 // Sweeps: the command, the sweep file, its plan, its execution and its stored rows.
@@ -118,7 +128,7 @@ pub use sweep::columns::{scalar_entries, TIMING_COLUMNS};
 pub use sweep::execute::{ExecOptions, ExecReport};
 pub use sweep::expand::{plan, run_arguments, Plan, PlanError};
 pub use sweep::merge::merge;
-pub use sweep::row::{Row, Status};
+pub use sweep::row::{PointStop, Row, Status, SweepStop};
 pub use sweep::run_point::{process_cpu_s, run_options};
 pub use sweep::shard::Shard;
 pub use sweep::spec::{

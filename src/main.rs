@@ -3,6 +3,7 @@
 use std::process::ExitCode;
 
 use clap::Parser;
+use equations::record::StopKind;
 use eulerdisk::is_json_object;
 use eulerdisk::{
     backend, evaluate, interrupt_on_ctrl_c, load_scene, parse_params, parse_scene, parse_state,
@@ -113,12 +114,12 @@ fn run(args: RunArgs) -> ExitCode {
             }
             let s = &report.summary;
             match report.ending {
-                Ending::Completed if s.stop_reason != "end_time" => {
+                Ending::Completed if s.stop_reason != Some(StopKind::EndTime) => {
                     eprintln!(
                         "stopped early at t = {} s of {} s ({}): {}",
                         Readable(s.t_end),
                         Readable(scene.file.settings.run.t_end),
-                        s.stop_reason,
+                        stop_word(s.stop_reason),
                         s.stop_detail
                     );
                     ExitCode::from(EXIT_STOPPED)
@@ -143,7 +144,7 @@ fn run(args: RunArgs) -> ExitCode {
                     eprintln!(
                         "the run failed at t = {} s ({}): {}\nthe files hold the run up to then",
                         Readable(s.t_end),
-                        s.stop_reason,
+                        stop_word(s.stop_reason),
                         s.stop_detail
                     );
                     ExitCode::from(EXIT_FAILED)
@@ -155,4 +156,9 @@ fn run(args: RunArgs) -> ExitCode {
             ExitCode::from(EXIT_FAILED)
         }
     }
+}
+
+/// A run's stop as its word (`-` for a run without one).
+fn stop_word(kind: Option<StopKind>) -> &'static str {
+    kind.map_or("-", StopKind::name)
 }

@@ -68,7 +68,7 @@ pub fn paper_start_normal_force() -> Result<NormalForceCheck, CheckError> {
         omega_z: start.state.y[layout::OMEGA_Z],
     };
     Ok(NormalForceCheck {
-        model: ev.outputs[rolling::output::N] / (p.m * p.g),
+        model: ev.outputs[rolling::output::N] / p.weight(),
         formula: rolling_normal_force_ratio(&p, start.state.y[layout::THETA], &rates)?,
     })
 }

@@ -1,73 +1,14 @@
-//! What a run leaves behind, in the CLI's own named types.
+//! What a run leaves behind: the library's records (`equations::record`) gathered, with the
+//! work it did and where its time went.
 //!
 //! The writers, the figures and the summary read only these, so they can be built and tested
-//! on synthetic runs, and the simulation's own types reach them through one conversion
-//! (`run::convert`).
+//! on synthetic runs. The samples, the mode decisions and the stop are the library's own
+//! types; what is added here is the command line's: how the samples were kept, the models
+//! chosen, the wall time.
 
 use crate::run::model::ModelChoice;
-use crate::sample::Sample;
-use equations::{Extremum, Mode};
-
-/// The quantity whose crossing caused a mode decision.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TriggerKind {
-    /// At the start, rolling would need more friction than `mu_st N`.
-    InitialFriction,
-    /// While rolling, `T/N` reached `mu_st`.
-    FrictionLimit,
-    /// While sliding, the slip speed reached zero.
-    SlipStopped,
-}
-
-impl TriggerKind {
-    /// The trigger's name in `events.csv`.
-    pub fn name(self) -> &'static str {
-        match self {
-            TriggerKind::InitialFriction => "initial_friction",
-            TriggerKind::FrictionLimit => "friction_limit",
-            TriggerKind::SlipStopped => "slip_stopped",
-        }
-    }
-
-    /// What `EventRow::value` holds for this trigger.
-    pub fn value_meaning(self) -> &'static str {
-        match self {
-            TriggerKind::InitialFriction | TriggerKind::FrictionLimit => "T/N",
-            TriggerKind::SlipStopped => "T_r/N_r rolling would need",
-        }
-    }
-}
-
-/// One mode decision.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EventRow {
-    /// Time (s).
-    pub t: f64,
-    /// Mode before.
-    pub from: Mode,
-    /// Mode after (sliding -> sliding: a restart from zero slip).
-    pub to: Mode,
-    /// What fired it.
-    pub trigger: TriggerKind,
-    /// The triggering quantity's value (a friction ratio, see [`TriggerKind::value_meaning`]).
-    pub value: f64,
-    /// When sliding starts: the friction direction α0 (rad).
-    pub slip_direction: Option<f64>,
-}
-
-/// Why a run ended.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StopRecord {
-    /// Time (s).
-    pub t: f64,
-    /// The mode in force.
-    pub mode: Mode,
-    /// Short name (`end_time`, `contact_lost`, `inclination_reached_0`, `chattering`,
-    /// `interrupted`, `error`).
-    pub reason: String,
-    /// Details (numbers, the error's message), may be empty.
-    pub detail: String,
-}
+use equations::record::{Sample, Stop};
+use equations::{Extremum, TransitionRecord};
 
 /// Integrator work.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -118,12 +59,12 @@ pub struct RunData {
     /// Finely sampled last second (for the figures).
     pub last_second: Vec<Sample>,
     /// Mode decisions in order.
-    pub events: Vec<EventRow>,
+    pub events: Vec<TransitionRecord>,
     /// Extrema of θ, N and the slip speed located on the dense output (module
     /// `equations::hybrid::extrema`), in the order found.
     pub extrema: Vec<Extremum>,
     /// Why it ended (`None` while running).
-    pub stop: Option<StopRecord>,
+    pub stop: Option<Stop>,
     /// Integrator work.
     pub work: Work,
     /// Largest constraint drift seen (SI units, before projection); `None` when the models

@@ -81,6 +81,7 @@ use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState};
 use crate::work::WorkExceeded;
 use crate::ParamError;
 use model_runtime::EvalError;
+use model_runtime::HybridError;
 use model_runtime::SolveError;
 use model_runtime::Stats;
 use std::f64::consts::FRAC_PI_2;
@@ -328,6 +329,25 @@ pub enum SimError {
 }
 
 impl SimError {
+    /// The disk's error for the driver's `error`, its modes named by the contact mode
+    /// `mode_of` gives (the one conversion of a driver error, for every runner of the disk).
+    pub(crate) fn from_driver<Md>(error: HybridError<Md>, mode_of: impl Fn(Md) -> Mode) -> Self {
+        match error {
+            HybridError::Solve { mode, error } => SimError::Solve {
+                mode: mode_of(mode),
+                error,
+            },
+            HybridError::Transition { mode, t, source } => SimError::Transition {
+                mode: mode_of(mode),
+                t,
+                source,
+            },
+            HybridError::Chattering { t, transitions, .. } => {
+                SimError::DriverChattering { t, transitions }
+            }
+        }
+    }
+
     /// When the run failed (s); `None` for a failure before its start (invalid input).
     pub fn time(&self) -> Option<f64> {
         match self {

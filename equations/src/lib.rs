@@ -13,6 +13,12 @@
 //! ([`InitialState`]), and the run ([`simulate`]) that takes what they resolve to
 //! ([`DiskScene`]).
 //!
+//! What a run leaves behind, named for front ends, is here too ([`record`]): samples in the
+//! one named state layout ([`layout`], [`STATE_NAMES`]), the quantities a file may record with
+//! their units, and the kinds of mode decisions and stops with the words the files write. A
+//! front end (the command line, the Python package) formats these and holds no physics of
+//! its own.
+//!
 //! # Example
 //!
 //! ```
@@ -41,6 +47,7 @@ mod issue;
 pub mod models;
 mod modes;
 mod params;
+pub mod record;
 pub mod reference;
 mod scene;
 mod settings;

@@ -182,6 +182,11 @@ impl DiskParams {
         ]
     }
 
+    /// The disk's weight `m g` (N): the scale of the normal force (`N/mg`).
+    pub fn weight(&self) -> f64 {
+        self.m * self.g
+    }
+
     /// Moment of inertia about any diameter (`e_x`, `e_y`): `m a² / 4`.
     #[allow(non_snake_case)]
     pub fn A(&self) -> f64 {

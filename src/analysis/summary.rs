@@ -13,9 +13,9 @@ use serde::Serialize;
 
 use super::extrema::Located;
 use super::oscillation::{mean_period, Series};
-use crate::quantity::Quantity;
-use crate::record::{RunData, SampleCounts, Timings, TriggerKind};
-use crate::sample::Sample;
+use crate::record::{RunData, SampleCounts, Timings};
+use equations::record::Quantity;
+use equations::record::{Sample, StopKind, TriggerKind};
 use equations::Mode;
 use equations::{ExtremumKind, Watched};
 
@@ -36,8 +36,9 @@ pub struct Summary {
     pub model_reason: String,
     /// Mode at the start (after the initial decision).
     pub start_mode: Option<Mode>,
-    /// Why the run ended, as a word (`end_time`, `contact_lost`, `error`, ...).
-    pub stop_reason: String,
+    /// Why the run ended, as a word (`end_time`, `contact_lost`, `error`, ...); `null` for
+    /// data without a stop.
+    pub stop_reason: Option<StopKind>,
     /// Why the run ended, in full: the error, the event and its numbers (empty at the end
     /// time).
     pub stop_detail: String,
@@ -141,7 +142,7 @@ impl Summary {
             .map(|x| x.t)
             .or_else(|| s.last().map(|x| x.t))
             .unwrap_or(0.0);
-        let mg = p.m * p.g;
+        let mg = p.weight();
         let all = || s.iter().chain(&data.first_second).chain(&data.last_second);
         let located = Located::new(&data.extrema, mg);
         let exact = !located.is_empty();
@@ -202,7 +203,7 @@ impl Summary {
         // A simulation that reported no counters (its thread died): say so rather than write
         // zeros. A failed run reports the work it did until it failed.
         let abandoned = |what: &str| {
-            let how = data.stop.as_ref().map_or("unknown", |s| s.reason.as_str());
+            let how = data.stop.as_ref().map_or("unknown", |s| s.kind.name());
             format!("the simulation was abandoned at its stop ({how}) before it reported {what}")
         };
         if data.work.steps.is_none() {
@@ -221,10 +222,7 @@ impl Summary {
             model: data.model.model.label(),
             model_reason: data.model.reason.clone(),
             start_mode: start_mode(data),
-            stop_reason: data
-                .stop
-                .as_ref()
-                .map_or("unknown".to_string(), |x| x.reason.clone()),
+            stop_reason: data.stop.as_ref().map(|x| x.kind),
             stop_detail: data
                 .stop
                 .as_ref()
@@ -233,7 +231,7 @@ impl Summary {
             transitions: data
                 .events
                 .iter()
-                .filter(|e| e.trigger != TriggerKind::InitialFriction)
+                .filter(|e| e.trigger.kind() != TriggerKind::InitialFriction)
                 .count(),
             steps: data.work.steps,
             rhs_evals: data.work.rhs_evals,
@@ -250,7 +248,7 @@ impl Summary {
                 .flatten(),
             slip_speed_max_after_50s: has_settled
                 .then(|| {
-                    let sampled = fold(settled().map(|x| x.slip.v_c), f64::max);
+                    let sampled = fold(settled().map(|x| x.slip.speed), f64::max);
                     largest(Watched::SlipSpeed, SETTLED_AFTER, sampled)
                 })
                 .flatten(),
@@ -326,7 +324,7 @@ impl Summary {
             ),
             row(
                 "stop_reason",
-                self.stop_reason.clone(),
+                self.stop_reason.map_or("-".into(), |k| k.to_string()),
                 Some("end_time (contact kept)"),
             ),
             row("t_end", format!("{}", self.t_end), Some("100")),
@@ -405,7 +403,7 @@ impl Summary {
 fn start_mode(data: &RunData) -> Option<Mode> {
     let t0 = data.samples.first().map(|s| s.t);
     match data.events.first() {
-        Some(e) if e.trigger == TriggerKind::InitialFriction => Some(e.to),
+        Some(e) if e.trigger.kind() == TriggerKind::InitialFriction => Some(e.to),
         Some(e) if Some(e.t) == t0 => Some(e.to),
         _ => data.samples.first().map(|s| s.mode),
     }

@@ -8,9 +8,10 @@ use std::f64::consts::PI;
 
 use equations::DiskParams;
 
-use crate::record::{EventRow, RunData, StopRecord, TriggerKind, Work};
-use crate::sample::{ContactForces, DiskState, Sample, Slip};
+use crate::record::{RunData, Work};
+use equations::record::{ContactForces, DiskState, Sample, Stop, StopKind};
 use equations::Mode;
+use equations::{Slip, TransitionRecord, Trigger};
 
 /// What the synthetic run is made of.
 #[derive(Clone, Copy, Debug)]
@@ -58,12 +59,12 @@ impl SyntheticRun {
                 ..Default::default()
             },
             slip: Slip {
-                v_c: if mode == Mode::Sliding {
+                speed: if mode == Mode::Sliding {
                     -1e-2 * theta_dot
                 } else {
                     0.0
                 },
-                alpha: 0.0,
+                direction: 0.0,
             },
             forces: ContactForces {
                 normal,
@@ -93,17 +94,21 @@ impl SyntheticRun {
         let mut events = Vec::new();
         for w in samples.windows(2) {
             if w[0].mode != w[1].mode {
-                events.push(EventRow {
+                events.push(TransitionRecord {
                     t: w[1].t,
                     from: w[0].mode,
                     to: w[1].mode,
                     trigger: if w[1].mode == Mode::Sliding {
-                        TriggerKind::FrictionLimit
+                        Trigger::FrictionLimit { ratio: p.mu_st }
                     } else {
-                        TriggerKind::SlipStopped
+                        Trigger::SlipStopped {
+                            rolling_ratio: p.mu_st,
+                            rolling_normal: w[1].forces.normal,
+                        }
                     },
-                    value: p.mu_st,
                     slip_direction: None,
+                    rolling_direction: None,
+                    drift: Default::default(),
                 });
             }
         }
@@ -114,10 +119,10 @@ impl SyntheticRun {
             events,
             // No dense output: the summary and the figures read the samples.
             extrema: Vec::new(),
-            stop: Some(StopRecord {
+            stop: Some(Stop {
                 t: self.t_end,
                 mode: Mode::Rolling,
-                reason: "end_time".into(),
+                kind: StopKind::EndTime,
                 detail: String::new(),
             }),
             work: Work {

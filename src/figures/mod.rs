@@ -6,7 +6,7 @@ mod legend;
 pub mod line;
 pub mod paper;
 
-use crate::quantity::Quantity;
+use equations::record::Quantity;
 
 /// Every quantity the figures plot (besides time): a run that draws them must compute these.
 pub const FIGURE_QUANTITIES: [Quantity; 6] = [

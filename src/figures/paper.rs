@@ -22,7 +22,7 @@ use crate::analysis::extrema::Located;
 use crate::analysis::oscillation::{cycle_extremes, upward_crossings, CycleExtremes, Series};
 use crate::output::atomic::WriteError;
 use crate::record::RunData;
-use crate::sample::Sample;
+use equations::record::Sample;
 use equations::{ExtremumKind, Watched};
 
 /// The file stems of the figures, in the order [`paper_charts`] builds them: the files a run
@@ -176,7 +176,7 @@ fn peak_marks(located: &Located, span: Option<std::ops::Range<f64>>) -> Option<L
 /// paper's numbers only when `compared_with_paper` (the scene is the paper's: another disk or
 /// start has other numbers).
 pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -> Vec<Chart> {
-    let mg = p.m * p.g;
+    let mg = p.weight();
     let located = Located::new(&data.extrema, mg);
     let all = &data.samples;
     let t_start = all.first().map_or(0.0, |s| s.t);
@@ -221,7 +221,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
             &format!("fig06{}_slip_speed", w.panel),
             format!("Fig. 6{}: slip speed v_C, {}", w.panel, w.label),
             "v_C (m/s)",
-            vec![Line::new("v_C", points(s, |x| x.slip.v_c), colors::BLUE)],
+            vec![Line::new("v_C", points(s, |x| x.slip.speed), colors::BLUE)],
         )));
         // θ first, so that the force spikes are drawn over it.
         let mut lines = vec![
@@ -313,7 +313,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
         t_start,
         t_end,
     )
-    .unwrap_or_else(|| per_cycle(all, |x| x.slip.v_c));
+    .unwrap_or_else(|| per_cycle(all, |x| x.slip.speed));
     let mut fig7 = whole_run(
         chart(
             "fig07_slip_speed_envelope",

@@ -9,9 +9,9 @@ use std::io::{self, Write};
 use equations::{DiskParams, Number};
 
 use super::cells::{Cell, Table};
-use crate::quantity::Quantity;
-use crate::record::{EventRow, StopRecord};
-use crate::sample::Sample;
+use equations::record::Quantity;
+use equations::record::{Sample, Stop};
+use equations::TransitionRecord;
 
 /// Formats a number so that it parses back to the same `f64`, compactly: plain notation for
 /// moderate magnitudes, exponent notation otherwise (Rust prints the shortest round-trip
@@ -48,30 +48,33 @@ pub fn write_trajectory_row<W: Write>(
 /// The header of `events.csv`.
 pub const EVENTS_HEADER: &str = "t_s,from,to,trigger,value,value_meaning,slip_direction_rad";
 
-/// The table `events.csv` (or `.parquet`): one row per mode decision, then one row with the
-/// stop reason (`to` = `stop`, `trigger` = the reason, `value_meaning` = its details).
-pub fn events_table(events: &[EventRow], stop: &StopRecord) -> Table {
+/// The table `events.csv` (or `.parquet`): one row per mode decision, then, when the run's
+/// stop is known, one row with it (`to` = `stop`, `trigger` = the reason, `value_meaning` =
+/// its details).
+pub fn events_table(events: &[TransitionRecord], stop: Option<&Stop>) -> Table {
     let mut table = Table::new(EVENTS_HEADER.split(','));
     for e in events {
         table.rows.push(vec![
             Cell::Float(e.t),
             Cell::text(e.from.name()),
             Cell::text(e.to.name()),
-            Cell::text(e.trigger.name()),
-            Cell::Float(e.value),
-            Cell::text(e.trigger.value_meaning()),
+            Cell::text(e.trigger.kind().name()),
+            Cell::Float(e.trigger.value()),
+            Cell::text(e.trigger.kind().value_meaning()),
             Cell::float(e.slip_direction),
         ]);
     }
-    table.rows.push(vec![
-        Cell::Float(stop.t),
-        Cell::text(stop.mode.name()),
-        Cell::text("stop"),
-        Cell::text(stop.reason.as_str()),
-        Cell::Null,
-        Cell::text(stop.detail.as_str()),
-        Cell::Null,
-    ]);
+    if let Some(stop) = stop {
+        table.rows.push(vec![
+            Cell::Float(stop.t),
+            Cell::text(stop.mode.name()),
+            Cell::text("stop"),
+            Cell::text(stop.kind.name()),
+            Cell::Null,
+            Cell::text(stop.detail.as_str()),
+            Cell::Null,
+        ]);
+    }
     table
 }
 
@@ -119,13 +122,8 @@ mod tests {
 
     #[test]
     fn stop_detail_with_commas_is_quoted() {
-        let stop = StopRecord {
-            t: 1.0,
-            mode: equations::Mode::Rolling,
-            reason: "error".into(),
-            detail: "a, b".into(),
-        };
-        let text = events_table(&[], &stop).csv();
+        let stop = Stop::failed(1.0, equations::Mode::Rolling, "a, b".into());
+        let text = events_table(&[], Some(&stop)).csv();
         assert_eq!(
             text.lines().nth(1).unwrap(),
             "1,rolling,stop,error,,\"a, b\","

@@ -5,9 +5,9 @@
 use super::plan::{SamplePlan, Window};
 use super::trajectory::TrajectoryFile;
 use crate::output::atomic::WriteError;
-use crate::record::{EventRow, RunData};
-use crate::sample::Sample;
-use equations::Mode;
+use crate::record::RunData;
+use equations::record::Sample;
+use equations::{Mode, TransitionRecord};
 
 /// Collects a run's stream.
 #[derive(Debug)]
@@ -56,7 +56,7 @@ impl Collector {
     }
 
     /// Takes one mode decision.
-    pub fn event(&mut self, e: EventRow) {
+    pub fn event(&mut self, e: TransitionRecord) {
         self.data.events.push(e);
     }
 
@@ -118,7 +118,7 @@ mod tests {
     use super::*;
     use crate::analysis::synthetic::SyntheticRun;
     use crate::output::format::TableFormat;
-    use crate::quantity::Quantity;
+    use equations::record::Quantity;
 
     #[test]
     fn keeps_the_trajectory_grid_and_both_windows() {

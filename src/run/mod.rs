@@ -30,10 +30,11 @@ use crate::figures::paper::write_paper_figures;
 use crate::output::atomic::{write_bytes_atomic, WriteError};
 use crate::output::files::write_table;
 use crate::output::tables::events_table;
-use crate::quantity::Quantity;
-use crate::record::{RunData, StopRecord, Timings};
+use crate::record::{RunData, Timings};
 use crate::scene::Scene;
 use collect::Collector;
+use equations::record::Quantity;
+use equations::record::{Stop, StopKind};
 use equations::Mode;
 use model::ModelChoice;
 use plan::SamplePlan;
@@ -164,10 +165,10 @@ pub fn run_scene(
 }
 
 /// How a run that ended with `stop` ended, for the exit code.
-fn ending_of(stop: &StopRecord) -> Ending {
-    match stop.reason.as_str() {
-        "interrupted" => Ending::Interrupted,
-        "error" | "mode_not_allowed" => Ending::Failed,
+fn ending_of(stop: &Stop) -> Ending {
+    match stop.kind {
+        StopKind::Interrupted => Ending::Interrupted,
+        kind if kind.is_failure() => Ending::Failed,
         _ => Ending::Completed,
     }
 }
@@ -373,7 +374,7 @@ fn collect(
                 let why = "the simulation thread died".to_string();
                 break Ended {
                     outcome: None,
-                    stop: abandoned(collector, "error", why, None),
+                    stop: abandoned(collector, why, None),
                     steps: None,
                     rhs_evals: None,
                 };
@@ -386,7 +387,7 @@ fn collect(
 /// work it reported (`None` when it reported none: its thread died).
 struct Ended {
     outcome: Option<Outcome>,
-    stop: StopRecord,
+    stop: Stop,
     steps: Option<u64>,
     rhs_evals: Option<u64>,
 }
@@ -403,7 +404,7 @@ impl Ended {
             },
             Err(failure) => Ended {
                 outcome: None,
-                stop: abandoned(collector, "error", failure.message, failure.t),
+                stop: abandoned(collector, failure.message, failure.t),
                 steps: Some(failure.steps),
                 rhs_evals: Some(failure.rhs_evals),
             },
@@ -411,16 +412,15 @@ impl Ended {
     }
 }
 
-/// The stop record of a run that ended without an outcome, dated at `t` (the failure's own
-/// time) or where the collector last heard of it, whichever is later.
-fn abandoned(c: &Collector, reason: &str, detail: String, t: Option<f64>) -> StopRecord {
+/// The stop of a run that failed without an outcome, dated at `t` (the failure's own time)
+/// or where the collector last heard of it, whichever is later.
+fn abandoned(c: &Collector, detail: String, t: Option<f64>) -> Stop {
     let heard = c.latest_t().unwrap_or(0.0);
-    StopRecord {
-        t: t.filter(|t| t.is_finite()).map_or(heard, |t| t.max(heard)),
-        mode: c.latest_mode().unwrap_or(Mode::Rolling),
-        reason: reason.to_string(),
+    Stop::failed(
+        t.filter(|t| t.is_finite()).map_or(heard, |t| t.max(heard)),
+        c.latest_mode().unwrap_or(Mode::Rolling),
         detail,
-    }
+    )
 }
 
 /// `summary.json`: the summary and how the run was produced.
@@ -467,19 +467,13 @@ pub fn write_outputs(
         file.commit()?;
         files.push(dir.join(format.file(trajectory::STEM)));
     }
-    let stop = data.stop.clone().unwrap_or(StopRecord {
-        t: data.samples.last().map_or(0.0, |s| s.t),
-        mode: data.samples.last().map_or(Mode::Rolling, |s| s.mode),
-        reason: "unknown".into(),
-        detail: String::new(),
-    });
     files.push(write_table(
-        &events_table(&data.events, &stop),
+        &events_table(&data.events, data.stop.as_ref()),
         dir,
         "events",
         format,
     )?);
-    let located = Located::new(&data.extrema, scene.params.m * scene.params.g);
+    let located = Located::new(&data.extrema, scene.params.weight());
     files.push(write_table(&located.table(), dir, "extrema", format)?);
     timings.outputs_s = lap(&mut clock);
     let mut summary = Summary::of(&scene.name, data, &scene.params);

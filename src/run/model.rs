@@ -21,8 +21,8 @@ use model_runtime::Model;
 
 use crate::eval::Backend;
 use crate::figures::FIGURE_QUANTITIES;
-use crate::quantity::Quantity;
 use crate::scene::Scene;
+use equations::record::Quantity;
 
 /// The models a run integrates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,30 +1,30 @@
-//! The bridge to the equations crate's run: the simulation's records -> the CLI's named
-//! records.
+//! The simulation on a worker thread, its records (the library's, `equations::record`)
+//! streamed to the caller.
 //!
 //! The simulation runs on a worker thread and streams what it observes through a bounded
 //! channel, in batches; the caller's thread writes and collects meanwhile (on a second core,
 //! the files cost the simulation nothing). The worker asks only for the samples of the
 //! [`SamplePlan`], and it stops by itself, through its observer, when the caller raises the
 //! stop flag (Ctrl-C); a mode the scene forbids ends the run by itself
-//! ([`StopReason::ModeNotAllowed`]).
+//! ([`equations::StopReason::ModeNotAllowed`]).
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::Scope;
 
+use equations::record::{FrictionLaw, Sample, Stop};
 use equations::DIM;
 use equations::{
-    simulate, AllowedModes, DiskConfig, DiskModels, DiskObserver, DiskParams, DiskSample, Extremum,
-    InitialState, Mode, RunOutcome, StopReason, TransitionRecord, Trigger,
+    simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum, InitialState,
+    TransitionRecord,
 };
-use model_runtime::{Model, Readable};
+use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
 use super::plan::SamplePlan;
-use crate::record::{EventRow, StopRecord, TriggerKind};
-use crate::sample::{ContactForces, DiskState, Sample, Slip};
 use crate::scene::Scene;
+use equations::record::forget_frozen;
 
 /// What the worker sends.
 #[derive(Debug)]
@@ -32,7 +32,7 @@ pub enum Message {
     /// Samples of the plan, in order.
     Samples(Vec<Sample>),
     /// A mode decision.
-    Event(EventRow),
+    Event(TransitionRecord),
     /// Located extrema, in order.
     Extrema(Vec<Extremum>),
     /// The run ended (boxed: an outcome holds a whole sample).
@@ -64,11 +64,11 @@ impl Failure {
     }
 }
 
-/// The end of a run, in the CLI's terms.
+/// The end of a run: why, the work, and the exact final state.
 #[derive(Clone, Debug)]
 pub struct Outcome {
     /// Why it ended.
-    pub stop: StopRecord,
+    pub stop: Stop,
     /// Accepted steps.
     pub steps: u64,
     /// Right-hand-side evaluations.
@@ -79,133 +79,14 @@ pub struct Outcome {
     pub last: Sample,
 }
 
-/// The friction law's coefficients: they give ν where `T/N` of the computed forces does not.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrictionLaw {
-    /// Dynamic friction `μ_d`.
-    pub mu_d: f64,
-    /// Static friction `μ_st`.
-    pub mu_st: f64,
-}
-
-impl FrictionLaw {
-    /// The coefficients of the disk `p`.
-    pub fn of(p: &DiskParams) -> Self {
-        FrictionLaw {
-            mu_d: p.mu_d,
-            mu_st: p.mu_st,
-        }
-    }
-
-    /// The friction ratio ν in `mode` of a contact force with friction `t` and normal force
-    /// `n`. Sliding: `μ_d` (`T = μ_d N` holds by construction; `T/N` of the computed forces
-    /// would be `0/0`, or `−μ_d` from round-off, at the located instant the contact is lost).
-    /// Rolling: `T/N` while the contact is compressed, `N > 0`; at the located loss of contact
-    /// `N` is zero to round-off and `T/N` was `0/0` (NaN) or round-off's sign and size
-    /// (−9.8e15 seen): there ν is the bound `μ_st` it stayed below while rolling, the one value
-    /// the rolling law gives the ratio where the contact carries no force.
-    pub fn nu(self, mode: Mode, t: f64, n: f64) -> f64 {
-        match mode {
-            Mode::Sliding => self.mu_d,
-            Mode::Rolling if n > 0.0 && (t / n).is_finite() => t / n,
-            Mode::Rolling => self.mu_st,
-        }
-    }
-}
-
-/// Converts one simulation sample of a disk whose friction follows `law`.
-pub fn convert_sample(s: &DiskSample, law: FrictionLaw) -> Sample {
-    let f = &s.force;
-    let friction = f.r_x.hypot(f.r_y);
-    let nu = law.nu(s.mode, friction, f.normal);
-    Sample {
-        t: s.t,
-        mode: s.mode,
-        state: DiskState::from_array(&s.state.y),
-        slip: Slip {
-            v_c: s.state.slip.speed,
-            alpha: s.state.slip.direction,
-        },
-        forces: ContactForces {
-            normal: f.normal,
-            friction,
-            nu,
-            r_x: f.r_x,
-            r_y: f.r_y,
-        },
-        energy: s.energy,
-    }
-}
-
-/// Converts one mode decision.
-pub fn convert_event(r: &TransitionRecord) -> EventRow {
-    let (trigger, value) = match r.trigger {
-        Trigger::InitialFriction { ratio } => (TriggerKind::InitialFriction, ratio),
-        Trigger::FrictionLimit { ratio } => (TriggerKind::FrictionLimit, ratio),
-        Trigger::SlipStopped { rolling_ratio, .. } => (TriggerKind::SlipStopped, rolling_ratio),
-    };
-    EventRow {
-        t: r.t,
-        from: r.from,
-        to: r.to,
-        trigger,
-        value,
-        slip_direction: r.slip_direction,
-    }
-}
-
-/// Converts the simulation's stop reason; `allowed` are the modes the run was allowed.
-pub fn convert_outcome(o: &RunOutcome, allowed: AllowedModes, law: FrictionLaw) -> Outcome {
-    let mut mode = o.last.mode;
-    let (reason, detail) = match o.stop {
-        StopReason::ModeNotAllowed { t, mode: entered } => {
-            mode = entered;
-            (
-                "mode_not_allowed",
-                format!(
-                    "the disk entered {entered} at t = {} s but modes.allowed = {:?}",
-                    Readable(t),
-                    allowed.modes().iter().map(|m| m.name()).collect::<Vec<_>>()
-                ),
-            )
-        }
-        StopReason::Requested { t } => (
-            "interrupted",
-            format!("stopped on request at t = {} s", Readable(t)),
-        ),
-        StopReason::EndTime => ("end_time", String::new()),
-        StopReason::ContactLost { t, mode } => (
-            "contact_lost",
-            format!("N fell through 0 at t = {} s while {mode}", Readable(t)),
-        ),
-        StopReason::InclinationReachedFloor { t, theta } => (
-            "inclination_reached_0",
-            format!("theta = {} rad at t = {} s", Readable(theta), Readable(t)),
-        ),
-        StopReason::Chattering {
-            t,
-            transitions,
-            window,
-        } => (
-            "chattering",
-            format!(
-                "{transitions} transitions within {} s at t = {} s",
-                Readable(window),
-                Readable(t)
-            ),
-        ),
-    };
+/// The outcome of the simulation's run `o`; `config` is the run's.
+fn outcome(o: &equations::RunOutcome, config: &DiskConfig, law: FrictionLaw) -> Outcome {
     Outcome {
-        stop: StopRecord {
-            t: o.last.t,
-            mode,
-            reason: reason.to_string(),
-            detail,
-        },
+        stop: Stop::of(o, config.allowed),
         steps: o.stats.steps,
         rhs_evals: o.stats.rhs_evals,
         constraint_drift_max: o.max_drift.max_abs(),
-        last: convert_sample(&o.last, law),
+        last: Sample::of(&o.last, law),
     }
 }
 
@@ -270,9 +151,9 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     }
 
     fn on_sample(&mut self, sample: &DiskSample) {
-        let mut s = convert_sample(sample, self.law);
+        let mut s = Sample::of(sample, self.law);
         if !self.frozen.is_empty() {
-            s.forget(&self.frozen);
+            forget_frozen(&mut s, &self.frozen);
         }
         self.batch.push(s);
         if self.batch.len() >= BATCH || s.t >= self.flush_at {
@@ -291,7 +172,7 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
 
     fn on_transition(&mut self, record: &TransitionRecord) {
         self.flush();
-        self.send(Message::Event(convert_event(record)));
+        self.send(Message::Event(*record));
     }
 
     fn proceed(&mut self) -> ControlFlow<()> {
@@ -316,22 +197,13 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
         simulate(models, self.config, self.initial, self.observer)
-            .map(|o| convert_outcome(&o, self.config.allowed, FrictionLaw::of(&models.params)))
+            .map(|o| outcome(&o, self.config, FrictionLaw::of(&models.params)))
             .map_err(|failure| Failure {
                 message: failure.to_string(),
                 steps: failure.stats.steps,
                 rhs_evals: failure.stats.rhs_evals,
                 t: failure.error.time(),
             })
-    }
-}
-
-/// The stop record of a run the caller interrupted.
-fn interrupted_record(stop: &StopRecord) -> StopRecord {
-    StopRecord {
-        reason: "interrupted".into(),
-        detail: format!("stopped by the user (Ctrl-C) at t = {} s", stop.t),
-        ..stop.clone()
     }
 }
 
@@ -372,8 +244,8 @@ pub fn simulate_into<O: Outlet>(
         .unwrap_or_else(|e| Err(Failure::before_start(e.to_string())));
     observer.flush();
     result.map(|mut o| {
-        if observer.interrupted && matches!(o.stop.reason.as_str(), "interrupted") {
-            o.stop = interrupted_record(&o.stop);
+        if observer.interrupted {
+            o.stop = o.stop.by_the_user();
         }
         o
     })
@@ -394,25 +266,4 @@ pub fn start<'scope>(
         let _ = tx.send(Message::Done(Box::new(result)));
     });
     rx
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn nu_is_the_friction_laws_where_the_forces_give_none() {
-        let law = FrictionLaw {
-            mu_d: 0.115,
-            mu_st: 0.2,
-        };
-        assert_eq!(law.nu(Mode::Rolling, 0.3, 2.0), 0.15);
-        // The located loss of contact: 0/0, finite/round-off, a negative round-off N.
-        for (t, n) in [(0.0, 0.0), (30.4, -3.1e-15), (1.0, 0.0), (0.0, -0.0)] {
-            assert_eq!(law.nu(Mode::Rolling, t, n), 0.2, "{t}/{n}");
-        }
-        for (t, n) in [(0.0, 0.0), (0.23, 2.0), (-1.8e-16, -7.8e-16)] {
-            assert_eq!(law.nu(Mode::Sliding, t, n), 0.115, "{t}/{n}");
-        }
-    }
 }

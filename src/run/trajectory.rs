@@ -14,8 +14,8 @@ use crate::output::atomic::{AtomicFile, WriteError};
 use crate::output::format::TableFormat;
 use crate::output::parquet::ParquetRows;
 use crate::output::tables::{trajectory_header, write_trajectory_row};
-use crate::quantity::Quantity;
-use crate::sample::Sample;
+use equations::record::Quantity;
+use equations::record::Sample;
 
 /// The file's stem: `trajectory.csv`, `trajectory.parquet`.
 pub const STEM: &str = "trajectory";

@@ -10,7 +10,7 @@ use equations::SceneSettings;
 use serde::{Deserialize, Serialize};
 
 use crate::output::format::TableFormat;
-use crate::quantity::Quantity;
+use equations::record::Quantity;
 
 /// The top-level keys of a scene file that belong to this program, not to the disk.
 pub const CLI_KEYS: [&str; 2] = ["description", "output"];

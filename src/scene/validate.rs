@@ -9,8 +9,8 @@ use equations::{DiskConfig, DiskParams, InitialState, Issue, Number, Rule};
 
 use super::schema::SceneFile;
 use crate::output::format::{TableFormat, PARQUET_UNAVAILABLE};
-use crate::quantity::Quantity;
 use crate::run::plan::{SamplePlan, MAX_GRID_POINTS};
+use equations::record::Quantity;
 
 /// A scene whose every rule holds, with its derived values.
 #[derive(Clone, Debug, PartialEq)]

@@ -14,6 +14,7 @@ use super::render::{Compression, RenderOptions, Ring};
 use super::{sound_scene, SoundOptions};
 use crate::args::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT, EXIT_STOPPED};
 use crate::scene;
+use equations::record::StopKind;
 use model_runtime::Readable;
 
 /// Where `sound` writes unless `--out` says otherwise.
@@ -124,7 +125,7 @@ pub fn command(args: &SoundArgs) -> ExitCode {
                 }
             }
             let s = &report.summary;
-            if s.stop_reason == "end_time" {
+            if s.stop_reason == StopKind::EndTime {
                 ExitCode::SUCCESS
             } else {
                 eprintln!(

@@ -4,6 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use equations::record::StopKind;
+
 use serde::Serialize;
 
 use super::figures::{PAPER_FIRST_SECOND, PAPER_LAST_SECOND, RECORDED};
@@ -67,7 +69,7 @@ pub struct SoundSummary {
     /// Last simulated time (s).
     pub t_end: f64,
     /// Why the run ended.
-    pub stop_reason: String,
+    pub stop_reason: StopKind,
     /// Details of the stop.
     pub stop_detail: String,
     /// The models that ran, e.g. `pruned (8 states)`.
@@ -155,7 +157,7 @@ impl SoundSummary {
             scene: scene.name.clone(),
             t_start: analysis.span.start,
             t_end: analysis.span.end,
-            stop_reason: run.stop_reason.clone(),
+            stop_reason: run.stop_reason,
             stop_detail: run.stop_detail.clone(),
             model: run.model.model.label(),
             model_reason: run.model.reason.clone(),

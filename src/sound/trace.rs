@@ -9,16 +9,16 @@
 //! output (`equations::hybrid::extrema`) and puts them into the trace between the samples:
 //! a peak's height, and the minima between peaks, are then exact whatever the sampling rate.
 
+use equations::record::{Stop, StopKind};
 use equations::{simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, SimError};
 use equations::{Extremum, Watched, DIM};
 use model_runtime::Model;
 
 use super::SoundError;
 use crate::eval::Backend;
-use crate::quantity::Quantity;
 use crate::run::model::{choose_for, with_models, ModelChoice, ModelsTask};
-use crate::run::simulation::{convert_outcome, FrictionLaw};
 use crate::scene::Scene;
+use equations::record::Quantity;
 
 /// Most force samples one run may keep (about 0.8 GB of memory).
 pub const MAX_TRACE_SAMPLES: f64 = 5e7;
@@ -224,8 +224,8 @@ pub struct ForceRun {
     pub trace: ForceTrace,
     /// Samples in the trace (the rest are located extrema).
     pub samples: usize,
-    /// Why the run ended (the CLI's stop reason name, e.g. `end_time`).
-    pub stop_reason: String,
+    /// Why the run ended.
+    pub stop_reason: StopKind,
     /// Details of the stop.
     pub stop_detail: String,
     /// The models that ran, and why.
@@ -270,7 +270,7 @@ struct Recording<'a> {
 }
 
 impl ModelsTask for Recording<'_> {
-    type Output = Result<(String, String), SimError>;
+    type Output = Result<(StopKind, String), SimError>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
         let config = DiskConfig {
@@ -278,8 +278,8 @@ impl ModelsTask for Recording<'_> {
             ..self.scene.config
         };
         let outcome = simulate(models, &config, &self.scene.initial, self.observer)?;
-        let stop = convert_outcome(&outcome, config.allowed, FrictionLaw::of(&models.params)).stop;
-        Ok((stop.reason, stop.detail))
+        let stop = Stop::of(&outcome, config.allowed);
+        Ok((stop.kind, stop.detail))
     }
 }
 
@@ -303,7 +303,7 @@ pub fn record_force(scene: &Scene, backend: Backend, rate: f64) -> Result<ForceR
     }
     let params = scene.params;
     let mut observer = ForceObserver {
-        mg: params.m * params.g,
+        mg: params.weight(),
         t: Vec::with_capacity((t_end * rate) as usize + 2),
         n_over_mg: Vec::with_capacity((t_end * rate) as usize + 2),
         extrema: Vec::new(),

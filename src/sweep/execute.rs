@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use super::columns::scalar_entries;
 use super::expand::{Plan, PointId};
-use super::row::{Row, Status};
+use super::row::{PointStop, Row, Status, SweepStop};
 use super::run_point::{process_cpu_s, run_point};
 use super::shard::Shard;
 use super::store::{Store, StoreError, SCRATCH_DIR};
@@ -230,7 +230,7 @@ fn run_one(plan: &Plan, store: &Store, point: usize, flag: &RunFlag, own_cpu: bo
         Ending::Interrupted if !timed_out => return None,
         Ending::Interrupted => (
             Status::Timeout,
-            "timeout".to_string(),
+            PointStop::Sweep(SweepStop::Timeout),
             format!(
                 "stopped after timeout_s = {} s at t = {} s",
                 d.file.timeout_s.unwrap_or_default(),

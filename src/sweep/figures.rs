@@ -21,13 +21,14 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axes::as_number;
 use super::expand::Definition;
-use super::row::{reference, value, Row, Status};
+use super::row::{reference, value, PointStop, Row, Status};
 use super::spec::Combine;
 use crate::figures::axes::tick_label;
 use crate::figures::chart::{colors, render, Chart, DrawResult, Figure};
 use crate::figures::line::{Line, Marker, FAMILY};
 use crate::output::atomic::WriteError;
 use crate::output::cells::Cell;
+use equations::record::StopKind;
 
 /// The colours of successive lines.
 const PALETTE: [RGBColor; 5] = [
@@ -99,8 +100,8 @@ pub fn write_figures(d: &Definition, rows: &[Row], dir: &Path) -> Result<Vec<Str
 /// drawn in its place (`failed`, `timeout`, or the stop reason of an early stop).
 fn failure(row: &Row) -> Option<String> {
     match row.status {
-        Status::Completed if row.stop_reason == "end_time" => None,
-        Status::Completed => Some(row.stop_reason.clone()),
+        Status::Completed if row.stop_reason == PointStop::Run(StopKind::EndTime) => None,
+        Status::Completed => Some(row.stop_reason.to_string()),
         other => Some(other.as_str().to_string()),
     }
 }
@@ -372,6 +373,7 @@ mod tests {
     use super::*;
     use crate::figures::line::Stroke;
     use crate::sweep::expand::plan;
+    use crate::sweep::row::SweepStop;
     use crate::sweep::spec::{parse, LoadedSweep};
 
     /// mu_d x mu_st, 2 x 2, a grid: the built-in paper scene, nothing run.
@@ -395,15 +397,24 @@ keys = ["transitions"]
         plan(&loaded, &[]).unwrap().definition
     }
 
+    /// A run that reached its end time.
+    const END: PointStop = PointStop::Run(StopKind::EndTime);
+
     /// Point `point` of `d` ending with `status` and `stop_reason`, `transitions` = `value`.
-    fn row(d: &Definition, point: usize, status: Status, stop_reason: &str, value: f64) -> Row {
+    fn row(
+        d: &Definition,
+        point: usize,
+        status: Status,
+        stop_reason: PointStop,
+        value: f64,
+    ) -> Row {
         let mut summary = serde_json::Map::new();
         summary.insert("transitions".into(), value.into());
         Row {
             point,
             values: d.points[point].clone(),
             status,
-            stop_reason: stop_reason.into(),
+            stop_reason,
             stop_detail: String::new(),
             summary,
             wall_s: 0.0,
@@ -415,10 +426,22 @@ keys = ["transitions"]
     fn runs_that_did_not_reach_their_end_are_drawn_as_failures() {
         let d = definition();
         let rows = [
-            row(&d, 0, Status::Completed, "end_time", 10.0),
-            row(&d, 1, Status::Completed, "contact_lost", 1.0),
-            row(&d, 2, Status::Failed, "error", 1.0),
-            row(&d, 3, Status::Timeout, "timeout", 1.0),
+            row(&d, 0, Status::Completed, END, 10.0),
+            row(
+                &d,
+                1,
+                Status::Completed,
+                PointStop::Run(StopKind::ContactLost),
+                1.0,
+            ),
+            row(&d, 2, Status::Failed, PointStop::Run(StopKind::Error), 1.0),
+            row(
+                &d,
+                3,
+                Status::Timeout,
+                PointStop::Sweep(SweepStop::Timeout),
+                1.0,
+            ),
         ];
         let map = heat_map(&d, &rows, None, "transitions", 0, 1).unwrap();
         assert_eq!(map.cells.values().collect::<Vec<_>>(), [&10.0]);
@@ -439,7 +462,7 @@ keys = ["transitions"]
     fn every_series_has_markers_of_its_own_shape() {
         let d = definition();
         let rows: Vec<Row> = (0..4)
-            .map(|i| row(&d, i, Status::Completed, "end_time", 5.0))
+            .map(|i| row(&d, i, Status::Completed, END, 5.0))
             .collect();
         let chart = line_chart(&d, &rows, None, "transitions", 0).unwrap();
         let strokes: Vec<Stroke> = chart.lines.iter().map(|l| l.stroke).collect();

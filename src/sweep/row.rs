@@ -6,6 +6,7 @@
 //! finished in, on how many workers ran them, or on how many shards: sharded and merged, it is
 //! the same table row for row (the timing columns aside).
 
+use equations::record::StopKind;
 use serde::{Deserialize, Serialize};
 
 use super::axes::as_number;
@@ -37,6 +38,47 @@ impl Status {
     }
 }
 
+/// Why one run of a sweep ended: the run's own stop, or what the sweep saw of it. Written
+/// as one word (`end_time`, `contact_lost`, `error`, `timeout`, ...).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum PointStop {
+    /// The run's stop.
+    Run(StopKind),
+    /// The sweep's word for a run that ended outside the simulation.
+    Sweep(SweepStop),
+}
+
+/// How a sweep's run ended outside the simulation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SweepStop {
+    /// Stopped after the sweep's `timeout_s`.
+    Timeout,
+    /// The run's outputs could not be written.
+    OutputError,
+    /// The run panicked.
+    Panic,
+}
+
+impl PointStop {
+    /// The word in `sweep.csv` (the serde name).
+    pub fn name(self) -> &'static str {
+        match self {
+            PointStop::Run(kind) => kind.name(),
+            PointStop::Sweep(SweepStop::Timeout) => "timeout",
+            PointStop::Sweep(SweepStop::OutputError) => "output_error",
+            PointStop::Sweep(SweepStop::Panic) => "panic",
+        }
+    }
+}
+
+impl std::fmt::Display for PointStop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The result of one run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Row {
@@ -47,7 +89,7 @@ pub struct Row {
     /// How it ended.
     pub status: Status,
     /// The stop reason (`end_time`, `contact_lost`, `error`, `timeout`, ...).
-    pub stop_reason: String,
+    pub stop_reason: PointStop,
     /// Details of the stop (the error's message), may be empty.
     pub stop_detail: String,
     /// Every scalar key of the run's summary (empty when the run produced none).
@@ -137,7 +179,7 @@ pub fn table(d: &Definition, rows: &[Row]) -> Table {
         let mut f = vec![Cell::Text(r.id())];
         f.extend(r.values.iter().map(Cell::from_toml));
         f.push(Cell::text(r.status.as_str()));
-        f.push(Cell::text(r.stop_reason.as_str()));
+        f.push(Cell::text(r.stop_reason.name()));
         f.extend(d.columns.iter().map(|k| Cell::from_json(r.summary.get(k))));
         if let Some(e) = &d.file.error {
             f.extend(

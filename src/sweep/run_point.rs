@@ -11,6 +11,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
+use super::row::{PointStop, SweepStop};
 use super::spec::Keep;
 use crate::analysis::summary::Summary;
 use crate::args::DEFAULT_BACKEND;
@@ -18,6 +19,7 @@ use crate::output::format::TableFormat;
 use crate::run::provenance::Provenance;
 use crate::run::{run_scene, Ending, ProgressStyle, RunOptions};
 use crate::scene::Scene;
+use equations::record::{Stop, StopKind};
 
 /// How one run ended, before the sweep decides what that means (a timeout or Ctrl-C).
 #[derive(Clone, Debug, PartialEq)]
@@ -25,7 +27,7 @@ pub struct PointOutcome {
     /// The run's own ending (`Interrupted` when its interrupt flag was set).
     pub ending: Ending,
     /// The stop reason (`end_time`, `error`, `output_error`, `panic`, ...).
-    pub stop_reason: String,
+    pub stop_reason: PointStop,
     /// Its details.
     pub stop_detail: String,
     /// The summary, when the run got as far as writing one.
@@ -55,32 +57,40 @@ pub fn run_point(scene: &Scene, keep: Keep, dir: &Path, interrupt: &AtomicBool) 
     let result = catch_unwind(AssertUnwindSafe(|| run_scene(scene, &opts, interrupt)));
     let outcome = match result {
         Ok(Ok(report)) => {
-            let detail = report.data.stop.as_ref().map(|s| s.detail.clone());
+            // A report without a stop would be a run that never ended: an error of the run.
+            let stop = report.data.stop.clone().unwrap_or_else(|| Stop {
+                kind: StopKind::Error,
+                ..Stop::failed(
+                    report.summary.t_end,
+                    equations::Mode::Rolling,
+                    String::new(),
+                )
+            });
             PointOutcome {
                 ending: report.ending,
-                stop_reason: report.summary.stop_reason.clone(),
-                stop_detail: detail.unwrap_or_default(),
+                stop_reason: PointStop::Run(stop.kind),
+                stop_detail: stop.detail,
                 summary: Some(report.summary),
             }
         }
-        Ok(Err(e)) => failure("output_error", e.to_string()),
+        Ok(Err(e)) => failure(SweepStop::OutputError, e.to_string()),
         Err(panic) => {
             let message = panic
                 .downcast_ref::<String>()
                 .cloned()
                 .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_else(|| "a panic without a message".into());
-            failure("panic", message)
+            failure(SweepStop::Panic, message)
         }
     };
     tidy(dir, keep, scene.file.cli.output.format);
     outcome
 }
 
-fn failure(reason: &str, detail: String) -> PointOutcome {
+fn failure(reason: SweepStop, detail: String) -> PointOutcome {
     PointOutcome {
         ending: Ending::Failed,
-        stop_reason: reason.to_string(),
+        stop_reason: PointStop::Sweep(reason),
         stop_detail: detail,
         summary: None,
     }

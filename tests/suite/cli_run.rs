@@ -6,7 +6,8 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use eulerdisk::{Quantity, EVENTS_HEADER};
+use equations::record::Quantity;
+use eulerdisk::EVENTS_HEADER;
 
 /// `eulerdisk run ARGS`, waited for.
 pub(crate) fn run(args: &[&str]) -> Output {

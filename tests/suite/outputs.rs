@@ -1,6 +1,7 @@
 //! Summary and figures on a synthetic run whose answers are known: θ oscillates with a set
 //! period, the disk slides while θ falls and rolls while it rises.
 
+use equations::record::StopKind;
 use equations::DiskParams;
 use std::sync::atomic::AtomicBool;
 
@@ -42,7 +43,7 @@ fn summary_reads_the_known_answers() {
     assert!(s.slip_speed_max_after_50s.unwrap() > 0.0);
     assert_eq!(s.transitions, data.events.len());
     assert_eq!(s.energy_drift_rel, Some(0.0));
-    assert_eq!(s.stop_reason, "end_time");
+    assert_eq!(s.stop_reason.map(StopKind::name), Some("end_time"));
     // The paper's column is shown only beside the paper's scene.
     let table = s.table();
     assert!(table.contains("theta_period_first_s"), "{table}");
@@ -71,10 +72,10 @@ fn an_abandoned_run_says_why_and_reports_no_made_up_counters() {
     data.work.rhs_evals = None;
     data.constraint_drift_max = None;
     let stop = data.stop.as_mut().unwrap();
-    stop.reason = "error".into();
+    stop.kind = StopKind::Error;
     stop.detail = "step size 1e-20 s below the spacing of t at t = 2.5 s".into();
     let s = Summary::of("synthetic", &data, &p);
-    assert_eq!(s.stop_reason, "error");
+    assert_eq!(s.stop_reason.map(StopKind::name), Some("error"));
     assert!(s.stop_detail.contains("step size"), "{}", s.stop_detail);
     assert_eq!(
         (s.steps, s.rhs_evals, s.constraint_drift_max),
@@ -160,7 +161,7 @@ fn steady(t_end: f64) -> (DiskParams, eulerdisk::RunData) {
     {
         s.state.theta = 0.4;
         s.state.omega_y = 0.0;
-        s.slip.v_c = 0.0;
+        s.slip.speed = 0.0;
     }
     (p, data)
 }

@@ -6,7 +6,8 @@ use std::fs;
 use std::sync::atomic::AtomicBool;
 
 use crate::quiet_run::{run_quietly, Quiet};
-use eulerdisk::{choose, load_scene, Backend, Override, Quantity, RunModel, RunReport, Scene};
+use equations::record::Quantity;
+use eulerdisk::{choose, load_scene, Backend, Override, RunModel, RunReport, Scene};
 
 const PRUNED: &str = "tangent-toy-pruned";
 

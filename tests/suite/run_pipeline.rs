@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use crate::quiet_run::{run_quietly, Quiet};
+use equations::record::StopKind;
 use eulerdisk::{load_scene, simulate_scene, Backend, Ending, Override};
 
 fn short_run(t_end: f64, backend: Backend) -> (tempfile::TempDir, eulerdisk::RunReport) {
@@ -33,7 +34,7 @@ fn paper_scene_first_seconds_match_the_paper() {
     let (_dir, report) = short_run(1.5, Backend::Generated);
     assert_eq!(report.ending, Ending::Completed);
     let s = &report.summary;
-    assert_eq!(s.stop_reason, "end_time");
+    assert_eq!(s.stop_reason.map(StopKind::name), Some("end_time"));
     assert_eq!(s.t_end, 1.5);
     assert_eq!(s.start_mode.map(|m| m.name()), Some("sliding"));
     // Paper: period 0.14 s, 2π/T = 44 1/s in the first second.
@@ -73,13 +74,13 @@ fn a_scene_simulated_in_memory_is_the_run_written_to_files() {
     assert_eq!(data.samples.len(), csv.lines().count() - 1);
     assert_eq!(data.samples.last().map(|s| s.t), Some(0.3));
     assert_eq!(data.work.steps, report.summary.steps);
-    let stop = data
-        .stop
-        .as_ref()
-        .map(|stop| (stop.reason.as_str(), stop.t));
+    let stop = data.stop.as_ref().map(|stop| (stop.kind, stop.t));
     assert_eq!(
         stop,
-        Some((report.summary.stop_reason.as_str(), report.summary.t_end))
+        report
+            .summary
+            .stop_reason
+            .map(|k| (k, report.summary.t_end))
     );
     assert_eq!(run.ending, report.ending);
     assert_eq!(data.work.rhs_evals, report.summary.rhs_evals);
@@ -100,7 +101,12 @@ fn a_failed_run_reports_its_steps_and_evaluations() {
     );
     assert_eq!(report.ending, Ending::Failed);
     let s = &report.summary;
-    assert_eq!(s.stop_reason, "error", "{}", s.stop_detail);
+    assert_eq!(
+        s.stop_reason.map(StopKind::name),
+        Some("error"),
+        "{}",
+        s.stop_detail
+    );
     let steps = s.steps.unwrap();
     assert!(steps > 0 && steps <= 300, "{steps}");
     assert!(s.rhs_evals.unwrap() > steps, "{:?}", s.rhs_evals);
@@ -121,7 +127,7 @@ fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
     ];
     let (_dir, report) = run_in_tempdir(&overrides, Backend::Generated, &AtomicBool::new(false));
     let s = &report.summary;
-    assert_eq!(s.stop_reason, "contact_lost");
+    assert_eq!(s.stop_reason.map(StopKind::name), Some("contact_lost"));
     assert!((s.t_end - 18.159).abs() < 1e-3, "{}", s.t_end);
     assert!(s.timings.replay_s > 0.0);
     // 20 kHz over the second before the stop; 1 kHz (every 20th) for the trajectory.
@@ -149,7 +155,7 @@ fn an_interrupt_stops_the_simulation_and_keeps_its_work() {
     });
     assert_eq!(report.ending, Ending::Interrupted);
     let s = &report.summary;
-    assert_eq!(s.stop_reason, "interrupted");
+    assert_eq!(s.stop_reason.map(StopKind::name), Some("interrupted"));
     assert!(s.t_end > 0.0 && s.t_end < 100.0, "{}", s.t_end);
     assert!(
         s.steps.is_some_and(|n| n > 0) && s.rhs_evals.is_some_and(|n| n > 0),
@@ -157,4 +163,36 @@ fn an_interrupt_stops_the_simulation_and_keeps_its_work() {
         s.steps,
         s.rhs_evals
     );
+}
+
+/// A disk released at rest leaning 1e-3 rad past upright falls onto its other face: the run
+/// stops where θ reaches π minus the floor, and the files say so (`inclination_reached_pi`,
+/// the library's reason; the command line once wrote `inclination_reached_0` for both faces).
+#[test]
+fn a_disk_fallen_past_upright_is_said_to_reach_pi() {
+    let overrides = [
+        Override::new("run", "t_end", 5.0),
+        Override::new("initial", "theta", std::f64::consts::FRAC_PI_2 + 1e-3),
+        Override::new("initial", "Omega_x", 0.0),
+    ];
+    let (dir, report) = run_in_tempdir(&overrides, Backend::Generated, &AtomicBool::new(false));
+    let s = &report.summary;
+    assert_eq!(
+        s.stop_reason,
+        Some(StopKind::InclinationReachedPi),
+        "{}",
+        s.stop_detail
+    );
+    assert!(s.t_end < 5.0, "{}", s.t_end);
+    let last = report.data.samples.last().unwrap();
+    assert!(
+        last.state.theta > std::f64::consts::PI - 1e-6,
+        "{}",
+        last.state.theta
+    );
+    let events = std::fs::read_to_string(dir.path().join("events.csv")).unwrap();
+    let stop = events.lines().last().unwrap();
+    assert!(stop.contains(",stop,inclination_reached_pi,"), "{stop}");
+    let summary = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
+    assert!(summary.contains("\"stop_reason\": \"inclination_reached_pi\""));
 }

@@ -28,7 +28,7 @@ fn simulate(name: &str, t_end: f64) -> RunData {
     )
     .unwrap();
     let stop = recorded.data.stop.clone().unwrap();
-    assert_eq!(stop.reason, "end_time", "{name}: {stop:?}");
+    assert_eq!(stop.kind.name(), "end_time", "{name}: {stop:?}");
     recorded.data
 }
 

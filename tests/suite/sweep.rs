@@ -371,7 +371,7 @@ values = [1.0, 100.0, 0.05]
     let rows = read_rows(&out, &plan.definition).unwrap();
     let r: Vec<&Row> = rows.values().collect();
     assert_eq!(
-        (r[0].status, r[0].stop_reason.as_str()),
+        (r[0].status, r[0].stop_reason.name()),
         (Status::Failed, "mode_not_allowed")
     );
     assert!(
@@ -380,7 +380,7 @@ values = [1.0, 100.0, 0.05]
         r[0].stop_detail
     );
     assert_eq!(
-        (r[1].status, r[1].stop_reason.as_str()),
+        (r[1].status, r[1].stop_reason.name()),
         (Status::Timeout, "timeout")
     );
     assert!(
@@ -389,7 +389,7 @@ values = [1.0, 100.0, 0.05]
         r[1].stop_detail
     );
     assert_eq!(
-        (r[2].status, r[2].stop_reason.as_str()),
+        (r[2].status, r[2].stop_reason.name()),
         (Status::Completed, "end_time")
     );
     // `keep = "events"` keeps the summary and the events, not the trajectory.

@@ -250,22 +250,7 @@ where
         }
     }
     let bridge = adaptor.bridge;
-    let out = ended.map_err(|e| {
-        failed(match e {
-            HybridError::Solve { mode, error } => SimError::Solve {
-                mode: mode.mode(),
-                error,
-            },
-            HybridError::Transition { mode, t, source } => SimError::Transition {
-                mode: mode.mode(),
-                t,
-                source,
-            },
-            HybridError::Chattering { t, transitions, .. } => {
-                SimError::DriverChattering { t, transitions }
-            }
-        })
-    })?;
+    let out = ended.map_err(|e| failed(SimError::from_driver(e, Phase::mode)))?;
     if let Some((t, phase, source)) = failure {
         return Err(failed(SimError::Transition {
             mode: phase.mode(),

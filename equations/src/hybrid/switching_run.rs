@@ -230,24 +230,10 @@ fn input_error(error: InputError) -> SimFailure {
 
 /// A driver error of the switched disk, its mode named by the contact mode.
 fn hybrid_error(error: HybridError<ModeId>) -> SimError {
-    let mode = |id: ModeId| match id.index() {
+    SimError::from_driver(error, |id: ModeId| match id.index() {
         disk::mode::rolling => crate::Mode::Rolling,
         _ => crate::Mode::Sliding,
-    };
-    match error {
-        HybridError::Solve { mode: m, error } => SimError::Solve {
-            mode: mode(m),
-            error,
-        },
-        HybridError::Transition { mode: m, t, source } => SimError::Transition {
-            mode: mode(m),
-            t,
-            source,
-        },
-        HybridError::Chattering { t, transitions, .. } => {
-            SimError::DriverChattering { t, transitions }
-        }
-    }
+    })
 }
 
 /// Collects the events and counts the steps.

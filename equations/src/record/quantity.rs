@@ -3,8 +3,8 @@
 //! One table drives the CSV header, the `[output] quantities` check and the value lookup, so
 //! a quantity's name, unit and meaning cannot drift apart between those places.
 
-use crate::sample::Sample;
-use equations::DiskParams;
+use super::sample::Sample;
+use crate::params::DiskParams;
 
 /// A recordable quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -211,15 +211,15 @@ impl Quantity {
             Quantity::Omega_x => st.omega_x,
             Quantity::Omega_y => st.omega_y,
             Quantity::Omega_z => st.omega_z,
-            Quantity::V_C => s.slip.v_c,
-            Quantity::Alpha => s.slip.alpha,
+            Quantity::V_C => s.slip.speed,
+            Quantity::Alpha => s.slip.direction,
             Quantity::ThetaDot => st.omega_y,
             Quantity::PsiDot => st.psi_dot(),
             Quantity::PhiDot => st.phi_dot(),
             Quantity::N => s.forces.normal,
             Quantity::T => s.forces.friction,
             Quantity::Nu => s.forces.nu,
-            Quantity::NOverMg => s.forces.normal / (p.m * p.g),
+            Quantity::NOverMg => s.forces.normal / p.weight(),
             Quantity::R_X => s.forces.r_x,
             Quantity::R_Y => s.forces.r_y,
             Quantity::Energy => s.energy,
@@ -229,19 +229,17 @@ impl Quantity {
     }
 }
 
-/// The frozen-state rule lives with the quantities, which know what each value reads.
-impl Sample {
-    /// Replaces every value that depends on a state in `frozen` (a state the models did not
-    /// integrate) by NaN, so a frozen value can never pass for a result.
-    pub fn forget(&mut self, frozen: &[&str]) {
-        for name in frozen {
-            if let Some(v) = self.state.get_mut(name) {
-                *v = f64::NAN;
-            }
+/// Replaces every value of `sample` that depends on a state in `frozen` (a state the models
+/// did not integrate) by NaN, so a frozen value can never pass for a result. The rule lives
+/// with the quantities, which know what each value reads.
+pub fn forget_frozen(sample: &mut Sample, frozen: &[&str]) {
+    for name in frozen {
+        if let Some(v) = sample.state.get_mut(name) {
+            *v = f64::NAN;
         }
-        if !Quantity::Energy.computed_without(frozen) {
-            self.energy = f64::NAN;
-        }
+    }
+    if !Quantity::Energy.computed_without(frozen) {
+        sample.energy = f64::NAN;
     }
 }
 
@@ -265,7 +263,7 @@ mod tests {
 
     #[test]
     fn reads_name_states_of_the_rolling_layout() {
-        let states = equations::models::rolling::STATE_NAMES;
+        let states = crate::models::rolling::STATE_NAMES;
         for q in Quantity::ALL {
             assert!(!q.reads().is_empty(), "{}", q.name());
             for s in q.reads() {
