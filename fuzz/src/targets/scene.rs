@@ -1,0 +1,120 @@
+//! The scene loader, as `eulerdisk run` calls it: a scene's text with `--set` overrides
+//! (`#set` lines, see [`super::toml`]), parsed, overridden, validated and completed.
+//!
+//! Seeds: the repository's `scenes/` and the edge cases of `fuzz/corpus/scene/`. A scene the
+//! loader accepts must be one a run can start: parameters the models accept, a start and
+//! settings whose every number is finite and within the run's own rules, and the models'
+//! right-hand side at the start finite or a clear error. A rejected scene's message must stay
+//! in proportion to its input (a key repeated a million times prints a bounded list).
+
+use equations::{GeneratedModels, Mode};
+use eulerdisk::{parse_scene, Override, Scene};
+use model_runtime::Model;
+
+use super::toml::{sets, VOCABULARY};
+use crate::mutate::mutated;
+use crate::rng::Rng;
+use crate::supervisor::{Corpus, Target};
+
+/// The scene target.
+#[derive(Debug)]
+pub struct SceneLoader {
+    corpus: Corpus,
+}
+
+impl SceneLoader {
+    /// The target, seeded from `scenes/` and `fuzz/corpus/scene/`.
+    pub const fn new() -> SceneLoader {
+        SceneLoader {
+            corpus: Corpus::new(&["scenes", "fuzz/corpus/scene"]),
+        }
+    }
+}
+
+impl Default for SceneLoader {
+    fn default() -> Self {
+        SceneLoader::new()
+    }
+}
+
+impl Target for SceneLoader {
+    fn name(&self) -> &'static str {
+        "scene"
+    }
+
+    fn extension(&self) -> &'static str {
+        "toml"
+    }
+
+    fn seeds(&self) -> &[String] {
+        self.corpus.texts()
+    }
+
+    fn input(&self, rng: &mut Rng) -> String {
+        mutated(rng, self.corpus.texts(), &VOCABULARY)
+    }
+
+    fn check(&self, text: &str) -> Result<(), String> {
+        let parsed: Result<Vec<Override>, _> =
+            sets(text).into_iter().map(Override::parse).collect();
+        let Ok(overrides) = parsed else {
+            return Ok(()); // a malformed `--set`: a clear error
+        };
+        match parse_scene("fuzz", text, &overrides) {
+            Ok(scene) => startable(&scene),
+            Err(e) => proportionate(&e.to_string(), text),
+        }
+    }
+}
+
+/// The longest message a rejected input of `len` bytes may give.
+pub fn message_bound(len: usize) -> usize {
+    (1 << 16) + 4 * len
+}
+
+/// `Err` when `message` is out of proportion to `input`.
+pub fn proportionate(message: &str, input: &str) -> Result<(), String> {
+    match message.len() <= message_bound(input.len()) {
+        true => Ok(()),
+        false => Err(format!(
+            "a {} byte input gave a {} byte message",
+            input.len(),
+            message.len()
+        )),
+    }
+}
+
+/// `Err` saying how an accepted scene cannot start.
+pub fn startable(scene: &Scene) -> Result<(), String> {
+    let name = &scene.name;
+    scene
+        .params
+        .validate()
+        .map_err(|e| format!("scene `{name}` accepted with parameters a run refuses: {e}"))?;
+    let chart = scene.config.chart();
+    let mut issues = scene.config.issues(scene.initial.t, chart);
+    issues.extend(scene.initial.issues());
+    if let Some(issue) = issues.first() {
+        return Err(format!(
+            "scene `{name}` accepted, but a run refuses it: {issue}"
+        ));
+    }
+    let models = GeneratedModels::generated(scene.params, chart)
+        .map_err(|e| format!("scene `{name}`: the generated models refuse it: {e}"))?;
+    let state = &scene.initial.state;
+    let y = match scene.initial.mode {
+        Mode::Rolling => state.y,
+        Mode::Sliding => models.sliding_vector(state, state.slip),
+    };
+    let mut dy = [0.0; equations::DIM];
+    let rhs = match scene.initial.mode {
+        Mode::Rolling => models.rolling.rhs(scene.initial.t, &y, &mut dy),
+        Mode::Sliding => models.sliding.rhs(scene.initial.t, &y, &mut dy),
+    };
+    match rhs.is_ok() && dy.iter().any(|v| !v.is_finite()) {
+        true => Err(format!(
+            "scene `{name}`: the start's derivative is Ok but not finite: {dy:?}"
+        )),
+        false => Ok(()),
+    }
+}
