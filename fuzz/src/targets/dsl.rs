@@ -11,9 +11,7 @@
 use model_algebra::{CompiledModel, Inputs};
 use model_dsl::Source;
 
-use crate::mutate::{mutated, Vocabulary};
-use crate::rng::Rng;
-use crate::supervisor::{Corpus, Target};
+use crate::mutate::Vocabulary;
 
 /// How far into the pipeline a DSL target goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,58 +24,35 @@ pub enum Stage {
     Eval,
 }
 
-/// A DSL target.
-#[derive(Debug)]
-pub struct Dsl {
-    stage: Stage,
-    corpus: Corpus,
-}
-
-impl Dsl {
-    /// The target that runs the DSL up to `stage`.
-    pub const fn new(stage: Stage) -> Dsl {
-        Dsl {
-            stage,
-            corpus: Corpus::new(&["fuzz/corpus/dsl"]),
+/// Runs `text` through the DSL up to `stage`.
+pub fn check(stage: Stage, text: &str) -> Result<(), String> {
+    match stage {
+        Stage::Front => front(text),
+        Stage::Compile => {
+            compile(text);
         }
-    }
-}
-
-impl Target for Dsl {
-    fn name(&self) -> &'static str {
-        match self.stage {
-            Stage::Front => "dsl-front",
-            Stage::Compile => "dsl-compile",
-            Stage::Eval => "dsl-eval",
-        }
-    }
-
-    fn extension(&self) -> &'static str {
-        "dsl"
-    }
-
-    fn seeds(&self) -> &[String] {
-        self.corpus.texts()
-    }
-
-    fn input(&self, rng: &mut Rng) -> String {
-        mutated(rng, self.corpus.texts(), &VOCABULARY)
-    }
-
-    fn check(&self, text: &str) -> Result<(), String> {
-        match self.stage {
-            Stage::Front => front(text),
-            Stage::Compile => {
-                compile(text);
-            }
-            Stage::Eval => {
-                for model in compile(text) {
-                    evaluate(&model);
-                }
+        Stage::Eval => {
+            for model in compile(text) {
+                evaluate(&model);
             }
         }
-        Ok(())
     }
+    Ok(())
+}
+
+/// [`check`] of the front end.
+pub fn check_front(text: &str) -> Result<(), String> {
+    check(Stage::Front, text)
+}
+
+/// [`check`] of the compiler.
+pub fn check_compile(text: &str) -> Result<(), String> {
+    check(Stage::Compile, text)
+}
+
+/// [`check`] of the compiled programs' evaluation.
+pub fn check_eval(text: &str) -> Result<(), String> {
+    check(Stage::Eval, text)
 }
 
 fn switched(text: &str) -> bool {
@@ -155,7 +130,7 @@ fn evaluate(model: &CompiledModel) {
 }
 
 /// The DSL's words and operators, Rust keywords, extreme numbers and strays.
-const VOCABULARY: Vocabulary = Vocabulary {
+pub const VOCABULARY: Vocabulary = Vocabulary {
     words: &[
         "mod",
         "pub",

@@ -4,15 +4,48 @@ pub mod dsl;
 pub mod models;
 pub mod scene;
 pub mod sweep;
+pub mod text;
 pub mod toml;
 
 use crate::supervisor::Target;
+use text::TextTarget;
 
-static DSL_FRONT: dsl::Dsl = dsl::Dsl::new(dsl::Stage::Front);
-static DSL_COMPILE: dsl::Dsl = dsl::Dsl::new(dsl::Stage::Compile);
-static DSL_EVAL: dsl::Dsl = dsl::Dsl::new(dsl::Stage::Eval);
-static SCENE: scene::SceneLoader = scene::SceneLoader::new();
-static SWEEP: sweep::SweepLoader = sweep::SweepLoader::new();
+const DSL_SEEDS: &[&str] = &["fuzz/corpus/dsl"];
+static DSL_FRONT: TextTarget = TextTarget::new(
+    "dsl-front",
+    "dsl",
+    DSL_SEEDS,
+    &dsl::VOCABULARY,
+    dsl::check_front,
+);
+static DSL_COMPILE: TextTarget = TextTarget::new(
+    "dsl-compile",
+    "dsl",
+    DSL_SEEDS,
+    &dsl::VOCABULARY,
+    dsl::check_compile,
+);
+static DSL_EVAL: TextTarget = TextTarget::new(
+    "dsl-eval",
+    "dsl",
+    DSL_SEEDS,
+    &dsl::VOCABULARY,
+    dsl::check_eval,
+);
+static SCENE: TextTarget = TextTarget::new(
+    "scene",
+    "toml",
+    &["scenes", "fuzz/corpus/scene"],
+    &toml::VOCABULARY,
+    scene::check,
+);
+static SWEEP: TextTarget = TextTarget::new(
+    "sweep",
+    "toml",
+    &["sweeps", "fuzz/corpus/sweep"],
+    &toml::VOCABULARY,
+    sweep::check,
+);
 static MODELS: models::Models = models::Models::new();
 
 /// Every target.

@@ -11,59 +11,17 @@ use equations::{GeneratedModels, Mode};
 use eulerdisk::{parse_scene, Override, Scene};
 use model_runtime::Model;
 
-use super::toml::{sets, VOCABULARY};
-use crate::mutate::mutated;
-use crate::rng::Rng;
-use crate::supervisor::{Corpus, Target};
+use super::toml::sets;
 
-/// The scene target.
-#[derive(Debug)]
-pub struct SceneLoader {
-    corpus: Corpus,
-}
-
-impl SceneLoader {
-    /// The target, seeded from `scenes/` and `fuzz/corpus/scene/`.
-    pub const fn new() -> SceneLoader {
-        SceneLoader {
-            corpus: Corpus::new(&["scenes", "fuzz/corpus/scene"]),
-        }
-    }
-}
-
-impl Default for SceneLoader {
-    fn default() -> Self {
-        SceneLoader::new()
-    }
-}
-
-impl Target for SceneLoader {
-    fn name(&self) -> &'static str {
-        "scene"
-    }
-
-    fn extension(&self) -> &'static str {
-        "toml"
-    }
-
-    fn seeds(&self) -> &[String] {
-        self.corpus.texts()
-    }
-
-    fn input(&self, rng: &mut Rng) -> String {
-        mutated(rng, self.corpus.texts(), &VOCABULARY)
-    }
-
-    fn check(&self, text: &str) -> Result<(), String> {
-        let parsed: Result<Vec<Override>, _> =
-            sets(text).into_iter().map(Override::parse).collect();
-        let Ok(overrides) = parsed else {
-            return Ok(()); // a malformed `--set`: a clear error
-        };
-        match parse_scene("fuzz", text, &overrides) {
-            Ok(scene) => startable(&scene),
-            Err(e) => proportionate(&e.to_string(), text),
-        }
+/// Checks one scene input (a scene's text with `#set` lines).
+pub fn check(text: &str) -> Result<(), String> {
+    let parsed: Result<Vec<Override>, _> = sets(text).into_iter().map(Override::parse).collect();
+    let Ok(overrides) = parsed else {
+        return Ok(()); // a malformed `--set`: a clear error
+    };
+    match parse_scene("fuzz", text, &overrides) {
+        Ok(scene) => startable(&scene),
+        Err(e) => proportionate(&e.to_string(), text),
     }
 }
 

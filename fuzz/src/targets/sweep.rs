@@ -11,67 +11,26 @@
 use eulerdisk::{parse_scene, parse_sweep, plan, run_arguments, LoadedSweep, Override, Plan};
 
 use super::scene::{proportionate, startable};
-use super::toml::{sets, VOCABULARY};
-use crate::mutate::mutated;
-use crate::rng::Rng;
-use crate::supervisor::{Corpus, Target};
+use super::toml::sets;
 
 /// The most points of one plan whose listing is checked (the first and the last half).
 const CHECKED_POINTS: usize = 64;
 
-/// The sweep target.
-#[derive(Debug)]
-pub struct SweepLoader {
-    corpus: Corpus,
-}
-
-impl SweepLoader {
-    /// The target, seeded from `sweeps/` and `fuzz/corpus/sweep/`.
-    pub const fn new() -> SweepLoader {
-        SweepLoader {
-            corpus: Corpus::new(&["sweeps", "fuzz/corpus/sweep"]),
-        }
-    }
-}
-
-impl Default for SweepLoader {
-    fn default() -> Self {
-        SweepLoader::new()
-    }
-}
-
-impl Target for SweepLoader {
-    fn name(&self) -> &'static str {
-        "sweep"
-    }
-
-    fn extension(&self) -> &'static str {
-        "toml"
-    }
-
-    fn seeds(&self) -> &[String] {
-        self.corpus.texts()
-    }
-
-    fn input(&self, rng: &mut Rng) -> String {
-        mutated(rng, self.corpus.texts(), &VOCABULARY)
-    }
-
-    fn check(&self, text: &str) -> Result<(), String> {
-        let file = match parse_sweep("fuzz", text) {
-            Ok(file) => file,
-            Err(e) => return proportionate(&e.to_string(), text),
-        };
-        let loaded = LoadedSweep {
-            name: "fuzz".into(),
-            folder: None,
-            file,
-        };
-        let cli_sets: Vec<String> = sets(text).into_iter().map(str::to_string).collect();
-        match plan(&loaded, &cli_sets) {
-            Ok(plan) => listing_is_true(&plan),
-            Err(e) => proportionate(&e.to_string(), text),
-        }
+/// Checks one sweep input (a sweep file's text with `#set` lines).
+pub fn check(text: &str) -> Result<(), String> {
+    let file = match parse_sweep("fuzz", text) {
+        Ok(file) => file,
+        Err(e) => return proportionate(&e.to_string(), text),
+    };
+    let loaded = LoadedSweep {
+        name: "fuzz".into(),
+        folder: None,
+        file,
+    };
+    let cli_sets: Vec<String> = sets(text).into_iter().map(str::to_string).collect();
+    match plan(&loaded, &cli_sets) {
+        Ok(plan) => listing_is_true(&plan),
+        Err(e) => proportionate(&e.to_string(), text),
     }
 }
 
