@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! fuzz [TARGET...|all] [--inputs N] [--seconds S] [--seed K]
+//! fuzz TARGET --replay FILE...
 //! ```
 //!
 //! Started as `fuzz --worker TARGET K START` it is a worker of the supervisor.
@@ -12,7 +13,7 @@ use std::time::Duration;
 use eulerdisk_fuzz::supervisor::{supervise, work, Budget, Target};
 use eulerdisk_fuzz::targets::{named, ALL};
 
-const USAGE: &str = "usage: fuzz [TARGET...|all] [--inputs N] [--seconds S] [--seed K]";
+const USAGE: &str = "usage: fuzz [TARGET...|all] [--inputs N] [--seconds S] [--seed K]\n       fuzz TARGET --replay FILE...";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -22,6 +23,11 @@ fn main() -> ExitCode {
             let number = |s: &str| s.parse::<u64>().expect("a number");
             work(target, number(seed), number(start));
             return ExitCode::SUCCESS;
+        }
+    }
+    if let [target, flag, files @ ..] = args.as_slice() {
+        if flag == "--replay" {
+            return replay(target, files);
         }
     }
     let (targets, budget) = match parse(&args) {
@@ -45,6 +51,39 @@ fn main() -> ExitCode {
         findings += tally.findings.len();
     }
     match findings {
+        0 => ExitCode::SUCCESS,
+        _ => ExitCode::FAILURE,
+    }
+}
+
+/// Runs the saved inputs `files` through `target`'s check in this process, timed: a finding
+/// reproduced (a panic shows its backtrace with `RUST_BACKTRACE=1`).
+fn replay(target: &str, files: &[String]) -> ExitCode {
+    let Some(target) = named(target) else {
+        eprintln!("unknown target `{target}`\n{USAGE}");
+        return ExitCode::from(2);
+    };
+    let mut wrong = 0;
+    for file in files {
+        let input = match std::fs::read_to_string(file) {
+            Ok(input) => input,
+            Err(e) => {
+                eprintln!("{file}: {e}");
+                return ExitCode::from(2);
+            }
+        };
+        let started = std::time::Instant::now();
+        let verdict = target.check(&input);
+        let seconds = started.elapsed().as_secs_f64();
+        match verdict {
+            Ok(()) => println!("{file}: ok in {seconds:.3} s"),
+            Err(e) => {
+                println!("{file}: wrong in {seconds:.3} s: {e}");
+                wrong += 1;
+            }
+        }
+    }
+    match wrong {
         0 => ExitCode::SUCCESS,
         _ => ExitCode::FAILURE,
     }
