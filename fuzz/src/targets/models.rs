@@ -250,3 +250,50 @@ fn finite(result: Result<(), EvalError>, numbers: &[f64]) -> Option<f64> {
 fn wrong_at(numbers: &[f64]) -> usize {
     numbers.iter().position(|v| !v.is_finite()).unwrap_or(0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_input_reads_back_as_written_special_values_included() {
+        let values: Values = [
+            ("theta", PI),
+            ("v_C", 5e-324),
+            ("a", -0.0),
+            ("Omega_z", f64::NAN),
+        ]
+        .into_iter()
+        .chain([
+            ("psi", f64::NEG_INFINITY),
+            ("m", f64::from_bits(PI.to_bits() + 1)),
+        ])
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        let again = read(&write(&values));
+        assert_eq!(again.len(), values.len());
+        for (k, v) in &values {
+            assert_eq!(again[k].to_bits(), v.to_bits(), "{k}");
+        }
+    }
+
+    #[test]
+    fn an_ok_carrying_a_non_finite_number_is_caught_and_an_error_is_not() {
+        assert_eq!(finite(Ok(()), &[1.0, 2.0]), None);
+        assert!(finite(Ok(()), &[1.0, f64::NAN]).is_some_and(f64::is_nan));
+        assert_eq!(finite(Ok(()), &[f64::INFINITY]), Some(f64::INFINITY));
+        let refused = EvalError::NonFinite {
+            model: "m",
+            quantity: "der(x)",
+            value: f64::NAN,
+        };
+        assert_eq!(finite(Err(refused), &[f64::NAN]), None);
+    }
+
+    #[test]
+    fn the_paper_start_evaluates_in_every_model() {
+        let seed =
+            "m = 0.4387\na = 0.03755\ntheta = 0.5707963267948966\nZ = 0.0203\nOmega_x = 1.0\n";
+        Models::new().check(seed).unwrap();
+    }
+}

@@ -76,3 +76,24 @@ pub fn startable(scene: &Scene) -> Result<(), String> {
         false => Ok(()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_message_out_of_proportion_to_its_input_is_a_finding() {
+        let input = "a = 1\n".repeat(1000);
+        assert!(proportionate(&"x".repeat(message_bound(input.len())), &input).is_ok());
+        let flood = "x".repeat(message_bound(input.len()) + 1);
+        assert!(proportionate(&flood, &input).is_err());
+    }
+
+    #[test]
+    fn a_scene_repeating_one_bad_entry_gives_a_bounded_message() {
+        let lines: String = (0..20_000)
+            .map(|k| format!("#set disk.m{k}=-1\n"))
+            .collect();
+        check(&format!("{lines}[disk]\nm = -1.0\n")).unwrap();
+    }
+}
