@@ -256,10 +256,24 @@ pub fn resolve(name_or_path: &str) -> Result<(String, String), SceneError> {
 
 /// Parses, overrides and validates a scene's text.
 pub fn parse(name: &str, text: &str, overrides: &[Override]) -> Result<Scene, SceneError> {
-    let mut tree: toml::Table = toml::from_str(text).map_err(|e| SceneError::Syntax {
+    from_tree(name, parse_tree(name, text)?, overrides)
+}
+
+/// A scene's text as a TOML tree (the first stage of [`parse`]; a sweep reads its base scene
+/// once and gives each point a copy of the tree).
+pub fn parse_tree(name: &str, text: &str) -> Result<toml::Table, SceneError> {
+    toml::from_str(text).map_err(|e| SceneError::Syntax {
         name: name.to_string(),
         message: e.to_string().trim_end().to_string(),
-    })?;
+    })
+}
+
+/// Overrides and validates a scene's TOML tree (the rest of [`parse`]).
+pub fn from_tree(
+    name: &str,
+    mut tree: toml::Table,
+    overrides: &[Override],
+) -> Result<Scene, SceneError> {
     for o in overrides {
         let entry = tree
             .entry(o.table.clone())

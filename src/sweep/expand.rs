@@ -193,12 +193,19 @@ pub fn plan(sweep: &LoadedSweep, cli_sets: &[String]) -> Result<Plan, PlanError>
     if !issues.is_empty() {
         return Err(PlanError::Rules { name, issues });
     }
+    // The base scene's text is read once; each point overrides a copy of its tree (reading
+    // the text again for each of up to a million points was most of the plan's time).
+    let tree = scene::parse_tree(&scene_name, &scene_text);
     let scenes: Vec<Result<Scene, PointFailure>> = points
         .par_iter()
         .enumerate()
         .map(|(i, values)| {
             let overrides = point_overrides(&base, &axes, values);
-            scene::parse(&scene_name, &scene_text, &overrides).map_err(|error| PointFailure {
+            let scene = match &tree {
+                Ok(tree) => scene::from_tree(&scene_name, tree.clone(), &overrides),
+                Err(_) => scene::parse(&scene_name, &scene_text, &overrides),
+            };
+            scene.map_err(|error| PointFailure {
                 point: PointId(i),
                 values: describe(&axes, values),
                 error,
