@@ -15,6 +15,7 @@
 //! cargo run -p model-macros --example bouncing_ball
 //! ```
 
+use model_runtime::Const;
 use model_runtime::{run_switched, Dop853, Fired, HybridOptions, SwitchedRun, Tolerance};
 
 model_macros::model! {
@@ -54,7 +55,7 @@ model_macros::model! {
 }
 
 /// The ball from its initial state, sampled every millisecond.
-fn run(t_end: f64) -> SwitchedRun<2> {
+fn run(t_end: f64) -> SwitchedRun<Const<2>> {
     let options = HybridOptions {
         sample_rate: Some(1000.0),
         ..HybridOptions::default()

@@ -20,6 +20,7 @@
 //! cargo run -p model-macros --example chaplygin_sleigh [-- OUT.csv]
 //! ```
 
+use model_runtime::Const;
 use model_runtime::{Direction, Event, Method, Output, Problem, Trajectory};
 use std::error::Error;
 use std::path::PathBuf;
@@ -112,7 +113,7 @@ fn closed_form() -> ClosedForm {
     ClosedForm::new(&Params::default(), v0, y0.omega)
 }
 
-fn solve() -> Result<Trajectory<6, 3>, Box<dyn Error>> {
+fn solve() -> Result<Trajectory<Const<6>, 3>, Box<dyn Error>> {
     let model = sleigh::Model::default();
     let times = (0..=400).map(|k| 0.025 * k as f64).collect();
     let trajectory = Problem::new(&model, initial().to_array(), (0.0, 10.0))
@@ -121,7 +122,7 @@ fn solve() -> Result<Trajectory<6, 3>, Box<dyn Error>> {
         .output(Output::Times(times))
         .event(
             Event::new("turned round", |_t, y, _dy| {
-                let s = State::from(*y);
+                let s = State::from(std::array::from_fn(|i| y[i]));
                 s.vx * s.phi.cos() + s.vy * s.phi.sin()
             })
             .direction(Direction::Up),
@@ -131,7 +132,7 @@ fn solve() -> Result<Trajectory<6, 3>, Box<dyn Error>> {
 }
 
 /// The largest difference of `(v, omega)` from the closed form over the trajectory.
-fn closed_form_error(trajectory: &Trajectory<6, 3>) -> f64 {
+fn closed_form_error(trajectory: &Trajectory<Const<6>, 3>) -> f64 {
     let exact = closed_form();
     let v = trajectory.column("v").unwrap_or_default();
     let omega = trajectory.column("omega").unwrap_or_default();

@@ -11,6 +11,7 @@
 //! cargo run -p model-macros --example double_pendulum [-- OUT.csv]
 //! ```
 
+use model_runtime::Const;
 use model_runtime::{Event, Method, Model as _, Output, Problem, Trajectory};
 use std::error::Error;
 use std::path::PathBuf;
@@ -61,7 +62,7 @@ fn textbook(p: &Params, y: &State) -> [f64; 2] {
 }
 
 /// Solves 20 s from a large swing; returns the trajectory.
-fn solve() -> Result<Trajectory<4, 3>, Box<dyn Error>> {
+fn solve() -> Result<Trajectory<Const<4>, 3>, Box<dyn Error>> {
     let model = double_pendulum::Model::default();
     let y0 = State {
         th1: 2.0,
@@ -83,7 +84,7 @@ fn solve() -> Result<Trajectory<4, 3>, Box<dyn Error>> {
 
 /// The largest relative difference between the compiled and the textbook accelerations over
 /// the trajectory's states.
-fn largest_disagreement(trajectory: &Trajectory<4, 3>) -> Result<f64, Box<dyn Error>> {
+fn largest_disagreement(trajectory: &Trajectory<Const<4>, 3>) -> Result<f64, Box<dyn Error>> {
     let model = double_pendulum::Model::default();
     let p = model.named_params();
     let mut worst: f64 = 0.0;
@@ -99,7 +100,7 @@ fn largest_disagreement(trajectory: &Trajectory<4, 3>) -> Result<f64, Box<dyn Er
 }
 
 /// The largest change of the energy along the trajectory, relative to its size.
-fn energy_drift(trajectory: &Trajectory<4, 3>) -> f64 {
+fn energy_drift(trajectory: &Trajectory<Const<4>, 3>) -> f64 {
     let energy = trajectory.column("energy").unwrap_or_default();
     let e0 = energy[0];
     energy.iter().map(|e| (e - e0).abs()).fold(0.0, f64::max) / e0.abs()

@@ -19,6 +19,7 @@
 //! cargo run -p model-macros --example heavy_top [-- OUT.csv]
 //! ```
 
+use model_runtime::Const;
 use model_runtime::{Direction, Event, Method, Output, Problem, Trajectory};
 use std::error::Error;
 use std::path::PathBuf;
@@ -112,7 +113,7 @@ fn nutation_bounds(p: &Params, y: &State) -> Option<[f64; 2]> {
     }
 }
 
-fn solve() -> Result<Trajectory<6, 3>, Box<dyn Error>> {
+fn solve() -> Result<Trajectory<Const<6>, 3>, Box<dyn Error>> {
     let model = heavy_top::Model::default();
     let times = (0..=1000).map(|k| 0.001 * k as f64).collect();
     let trajectory = Problem::new(&model, initial().to_array(), (0.0, 1.0))
@@ -132,7 +133,7 @@ fn solve() -> Result<Trajectory<6, 3>, Box<dyn Error>> {
 }
 
 /// The largest relative change of each conserved output along the trajectory.
-fn drifts(trajectory: &Trajectory<6, 3>) -> Vec<(&'static str, f64)> {
+fn drifts(trajectory: &Trajectory<Const<6>, 3>) -> Vec<(&'static str, f64)> {
     ["energy", "momentum_phi", "momentum_psi"]
         .into_iter()
         .map(|name| {
@@ -149,7 +150,7 @@ fn drifts(trajectory: &Trajectory<6, 3>) -> Vec<(&'static str, f64)> {
 
 /// The largest distance of a turning point's `cos(theta)` from the cubic's root it should sit
 /// on (events `deepest` at the larger `theta`, `highest` at the smaller).
-fn turning_point_error(trajectory: &Trajectory<6, 3>) -> f64 {
+fn turning_point_error(trajectory: &Trajectory<Const<6>, 3>) -> f64 {
     let Some([low, high]) = nutation_bounds(&heavy_top::Params::default(), &initial()) else {
         return f64::INFINITY;
     };

@@ -16,6 +16,7 @@
 //! cargo run -p model-macros --example rocking_block
 //! ```
 
+use model_runtime::Const;
 use model_runtime::{run_switched, Dop853, HybridOptions, SwitchedRun, Tolerance};
 
 model_macros::model! {
@@ -61,7 +62,7 @@ model_macros::model! {
 }
 
 /// The block from its initial state, sampled every millisecond.
-fn run(params: rocking_block::Params, t_end: f64) -> SwitchedRun<2> {
+fn run(params: rocking_block::Params, t_end: f64) -> SwitchedRun<Const<2>> {
     let options = HybridOptions {
         sample_rate: Some(1000.0),
         ..HybridOptions::default()

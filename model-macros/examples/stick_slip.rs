@@ -15,6 +15,7 @@
 //! cargo run -p model-macros --example stick_slip
 //! ```
 
+use model_runtime::Const;
 use model_runtime::{run_switched, Dop853, HybridOptions, SwitchedRun, Tolerance};
 
 model_macros::model! {
@@ -73,7 +74,7 @@ model_macros::model! {
 }
 
 /// The belt from its initial state, sampled every 10 ms.
-fn run(t_end: f64) -> SwitchedRun<3> {
+fn run(t_end: f64) -> SwitchedRun<Const<3>> {
     let options = HybridOptions {
         sample_rate: Some(100.0),
         ..HybridOptions::default()

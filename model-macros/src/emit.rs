@@ -288,16 +288,7 @@ fn model_impl(model: &CompiledModel) -> TokenStream {
                 let p = &self.params;
                 #rhs_zero
                 #rhs
-                for (quantity, value) in DER_NAMES.iter().zip(dy.iter()) {
-                    if !value.is_finite() {
-                        return ::core::result::Result::Err(::model_runtime::EvalError::NonFinite {
-                            model: MODEL_NAME,
-                            quantity: *quantity,
-                            value: *value,
-                        });
-                    }
-                }
-                ::core::result::Result::Ok(())
+                ::model_runtime::check_finite(MODEL_NAME, &DER_NAMES, dy)
             }
 
             fn jacobian(
@@ -309,18 +300,11 @@ fn model_impl(model: &CompiledModel) -> TokenStream {
                 let p = &self.params;
                 #jac_zero
                 #jacobian
-                for (names, row) in JACOBIAN_NAMES.iter().zip(jac.iter()) {
-                    for (quantity, value) in names.iter().zip(row.iter()) {
-                        if !value.is_finite() {
-                            return ::core::result::Result::Err(::model_runtime::EvalError::NonFinite {
-                                model: MODEL_NAME,
-                                quantity: *quantity,
-                                value: *value,
-                            });
-                        }
-                    }
-                }
-                ::core::result::Result::Ok(())
+                ::model_runtime::check_finite(
+                    MODEL_NAME,
+                    JACOBIAN_NAMES.as_flattened(),
+                    jac.as_flattened(),
+                )
             }
         }
     }
@@ -342,16 +326,7 @@ fn outputs_impl(model: &CompiledModel) -> TokenStream {
                 let p = &self.params;
                 #zero
                 #body
-                for (quantity, value) in OUTPUT_NAMES.iter().zip(out.iter()) {
-                    if !value.is_finite() {
-                        return ::core::result::Result::Err(::model_runtime::EvalError::NonFinite {
-                            model: MODEL_NAME,
-                            quantity: *quantity,
-                            value: *value,
-                        });
-                    }
-                }
-                ::core::result::Result::Ok(())
+                ::model_runtime::check_finite(MODEL_NAME, &OUTPUT_NAMES, out)
             }
         }
     }

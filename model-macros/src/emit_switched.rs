@@ -280,7 +280,7 @@ pub fn emit_switched(
                 }
             }
             #default_impl
-            impl ::model_runtime::SwitchedModel<N_STATES> for Model {
+            impl ::model_runtime::SwitchedModel<::model_runtime::Const<N_STATES>> for Model {
                 fn graph(&self) -> &::model_runtime::ModeGraph {
                     &self.graph
                 }
@@ -323,11 +323,14 @@ pub fn emit_switched(
                     }
                     ::core::result::Result::Ok(())
                 }
-                fn guard_inputs(&self, mode: usize) -> ::model_runtime::GuardInputs<N_STATES> {
-                    match mode {
+                fn guard_inputs(
+                    &self,
+                    mode: usize,
+                ) -> ::core::option::Option<::model_runtime::GuardInputs<::model_runtime::Const<N_STATES>>> {
+                    ::core::option::Option::Some(match mode {
                         #(#input_arms)*
                         _ => ::model_runtime::GuardInputs::ALL,
-                    }
+                    })
                 }
                 fn decide(
                     &mut self,

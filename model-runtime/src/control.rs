@@ -4,6 +4,7 @@
 //! The controller is shared by all adaptive methods (only the error order differs), so two
 //! methods compared on the same problem differ only in their formulas.
 
+use crate::dim::{Dim, Vector};
 use crate::error::{parse_word, ParseSettingError, SolveError};
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, StepStart};
@@ -183,26 +184,27 @@ impl Controller {
 
 /// Hairer's initial step-size guess (HNW I, II.4): balances `h*|f0|` against the state and
 /// estimates the second derivative with one explicit Euler step.
-pub(crate) fn initial_step<F: Rhs<N>, const N: usize>(
+pub(crate) fn initial_step<F: Rhs<D>, D: Dim>(
     sys: &F,
-    start: StepStart<'_, N>,
+    start: StepStart<'_, D>,
     order: u32,
-    tol: &Tolerance<N>,
+    tol: &Tolerance<D>,
     h_max: f64,
     stats: &mut Stats,
 ) -> Result<f64, SolveError> {
     let (t, y, f) = (start.t, start.y, start.f);
-    let scales = tol.scales(y, &[0.0; N]);
-    let norm = |v: &[f64; N]| -> f64 {
-        if N == 0 {
+    let dim = D::of(y);
+    let scales = tol.scales(y, &dim.zeros());
+    let norm = |v: &Vector<D>| -> f64 {
+        if dim.size() == 0 {
             return 0.0;
         }
         let mut s = 0.0;
-        for i in 0..N {
+        for i in 0..dim.size() {
             let x = v[i] / scales[i];
             s += x * x;
         }
-        (s / N as f64).sqrt()
+        (s / dim.size() as f64).sqrt()
     };
     let d0 = norm(y);
     let d1 = norm(f);
@@ -212,14 +214,14 @@ pub(crate) fn initial_step<F: Rhs<N>, const N: usize>(
         0.01 * d0 / d1
     };
     h0 = h0.min(h_max);
-    let mut y1 = [0.0; N];
-    for i in 0..N {
+    let mut y1 = dim.zeros();
+    for i in 0..dim.size() {
         y1[i] = y[i] + h0 * f[i];
     }
-    let mut f1 = [0.0; N];
+    let mut f1 = dim.zeros();
     eval(sys, t + h0, &y1, &mut f1, stats)?;
-    let mut diff = [0.0; N];
-    for i in 0..N {
+    let mut diff = dim.zeros();
+    for i in 0..dim.size() {
         diff[i] = f1[i] - f[i];
     }
     let d2 = norm(&diff) / h0;

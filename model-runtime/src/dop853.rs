@@ -11,9 +11,10 @@
 // The coefficients are kept digit for digit as published.
 #![allow(clippy::excessive_precision)]
 
+use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::stats::Stats;
-use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
+use crate::stepper::{eval, fill_all, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tableau::{combine, sum};
 use crate::tolerance::{ErrorEstimate, Tolerance};
 
@@ -234,80 +235,94 @@ const DENSE: [[(usize, f64); 12]; 4] = [
 
 /// DOP853.
 #[derive(Clone, Debug)]
-pub struct Dop853<const N: usize> {
-    k: [[f64; N]; 16],
-    cont: [[f64; N]; 8],
+pub struct Dop853<D: Dim> {
+    dim: D,
+    k: [Vector<D>; 16],
+    cont: [Vector<D>; 8],
 }
 
-impl<const N: usize> Dop853<N> {
+impl<const N: usize> Dop853<Const<N>> {
     /// A stepper.
     pub fn new() -> Self {
+        Self::new_in(Const)
+    }
+}
+
+impl<D: Dim> Dop853<D> {
+    /// A stepper for states of size `dim`.
+    pub fn new_in(dim: D) -> Self {
         Dop853 {
-            k: [[0.0; N]; 16],
-            cont: [[0.0; N]; 8],
+            dim,
+            k: std::array::from_fn(|_| dim.zeros()),
+            cont: std::array::from_fn(|_| dim.zeros()),
         }
     }
 }
 
-impl<const N: usize> Default for Dop853<N> {
+impl<const N: usize> Default for Dop853<Const<N>> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const N: usize> Dop853<N> {
+impl<D: Dim> Dop853<D> {
     /// Evaluates stage `s` (0-based) from the stages before it.
     #[inline(always)]
-    fn stage<F: Rhs<N>>(
+    fn stage<F: Rhs<D>>(
         &mut self,
         sys: &F,
         t: f64,
-        y: &[f64; N],
+        y: &Vector<D>,
         h: f64,
         s: usize,
         stats: &mut Stats,
     ) -> Result<(), SolveError> {
-        let mut yt = [0.0; N];
-        combine(y, h, A[s], &self.k, &mut yt);
-        let mut ks = [0.0; N];
+        let mut yt = self.dim.zeros();
+        combine::<D>(y, h, A[s], &self.k, &mut yt);
+        let mut ks = self.dim.zeros();
         eval(sys, t + C[s] * h, &yt, &mut ks, stats)?;
         self.k[s] = ks;
         Ok(())
     }
 }
 
-impl<const N: usize> Stepper<N> for Dop853<N> {
+impl<D: Dim> Stepper<D> for Dop853<D> {
     const NAME: &'static str = "DOP853";
     const ERROR_ORDER: u32 = 7;
+    #[inline(always)]
+    fn dim(&self) -> D {
+        self.dim
+    }
+
     const DENSE_ORDER: u32 = 7;
 
-    fn attempt<F: Rhs<N>>(
+    fn attempt<F: Rhs<D>>(
         &mut self,
         sys: &F,
-        start: StepStart<'_, N>,
+        start: StepStart<'_, D>,
         h: f64,
-        tol: &Tolerance<N>,
-        end: StepEnd<'_, N>,
+        tol: &Tolerance<D>,
+        end: StepEnd<'_, D>,
         stats: &mut Stats,
     ) -> Result<ErrorEstimate, SolveError> {
-        self.k[0] = *start.f;
+        self.k[0].assign(start.f);
         for s in 1..12 {
             self.stage(sys, start.t, start.y, h, s, stats)?;
         }
-        let mut b = [0.0; N];
-        sum(A[12], &self.k, &mut b);
-        for i in 0..N {
+        let mut b = self.dim.zeros();
+        sum::<D>(A[12], &self.k, &mut b);
+        for i in 0..self.dim.size() {
             end.y[i] = start.y[i] + h * b[i];
         }
         // Hairer's blended estimate: err5^2 / sqrt(err5^2 + 0.01 err3^2), which behaves like
         // the fifth-order estimate but cannot vanish by accident.
-        let mut e5 = [0.0; N];
-        sum(&ER, &self.k, &mut e5);
-        let mut e3 = [0.0; N];
-        sum(&BHH, &self.k, &mut e3);
+        let mut e5 = self.dim.zeros();
+        sum::<D>(&ER, &self.k, &mut e5);
+        let mut e3 = self.dim.zeros();
+        sum::<D>(&BHH, &self.k, &mut e3);
         let scales = tol.scales(start.y, end.y);
         let (mut err5, mut err3) = (0.0, 0.0);
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             let sk = scales[i];
             let a = e5[i] / sk;
             let c = (b[i] - e3[i]) / sk;
@@ -318,40 +333,40 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         if deno <= 0.0 {
             deno = 1.0;
         }
-        let norm = if N == 0 {
+        let norm = if self.dim.size() == 0 {
             0.0
         } else {
-            h.abs() * err5 * (1.0 / (N as f64 * deno)).sqrt()
+            h.abs() * err5 * (1.0 / (self.dim.size() as f64 * deno)).sqrt()
         };
         if norm <= 1.0 {
             eval(sys, start.t + h, end.y, end.f, stats)?;
-            self.k[12] = *end.f;
+            self.k[12].assign(end.f);
         }
         // The fifth-order estimate names the worst component.
         Ok(tol.estimate(norm, &e5, &scales))
     }
 
-    fn prepare_dense<F: Rhs<N>>(
+    fn prepare_dense<F: Rhs<D>>(
         &mut self,
         sys: &F,
-        start: StepStart<'_, N>,
-        end_y: &[f64; N],
-        end_f: &[f64; N],
+        start: StepStart<'_, D>,
+        end_y: &Vector<D>,
+        end_f: &Vector<D>,
         h: f64,
         stats: &mut Stats,
     ) -> Result<(), SolveError> {
-        self.k[12] = *end_f;
+        self.k[12].assign(end_f);
         for s in 13..16 {
             self.stage(sys, start.t, start.y, h, s, stats)?;
         }
         for (row, d) in DENSE.iter().enumerate() {
-            let mut v = [0.0; N];
-            sum(d, &self.k, &mut v);
-            for i in 0..N {
+            let mut v = self.dim.zeros();
+            sum::<D>(d, &self.k, &mut v);
+            for i in 0..self.dim.size() {
                 self.cont[4 + row][i] = h * v[i];
             }
         }
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             let ydiff = end_y[i] - start.y[i];
             let bspl = h * start.f[i] - ydiff;
             self.cont[0][i] = start.y[i];
@@ -362,12 +377,12 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         Ok(())
     }
 
-    fn interpolate(&self, s: f64, out: &mut [f64; N]) {
-        Components::ALL.fill(out, |i| self.value(s, i));
+    fn interpolate(&self, s: f64, out: &mut Vector<D>) {
+        fill_all::<D>(out, |i| self.value(s, i));
     }
 
     /// Component by component: the unchosen ones cost nothing.
-    fn interpolate_components(&self, s: f64, which: &Components<N>, out: &mut [f64; N]) {
+    fn interpolate_components(&self, s: f64, which: &Components<D>, out: &mut Vector<D>) {
         which.fill(out, |i| self.value(s, i));
     }
 
@@ -375,8 +390,8 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         self.value(s, i)
     }
 
-    fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
-        Components::ALL.fill(out, |i| self.rate(s, h, i));
+    fn interpolate_derivative(&self, s: f64, h: f64, out: &mut Vector<D>) {
+        fill_all::<D>(out, |i| self.rate(s, h, i));
     }
 
     /// Component by component, like the values.
@@ -384,14 +399,14 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         &self,
         s: f64,
         h: f64,
-        which: &Components<N>,
-        out: &mut [f64; N],
+        which: &Components<D>,
+        out: &mut Vector<D>,
     ) {
         which.fill(out, |i| self.rate(s, h, i));
     }
 }
 
-impl<const N: usize> Dop853<N> {
+impl<D: Dim> Dop853<D> {
     /// Component `i` of the seventh-order interpolant at `s`.
     #[inline(always)]
     fn value(&self, s: f64, i: usize) -> f64 {

@@ -4,9 +4,10 @@
 //! is reused as the next step's first (first same as last), so an accepted step costs six
 //! evaluations and its interpolant none.
 
+use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::stats::Stats;
-use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
+use crate::stepper::{eval, fill_all, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tableau::{combine, sum};
 use crate::tolerance::{ErrorEstimate, Tolerance};
 
@@ -60,72 +61,86 @@ const D: [(usize, f64); 6] = [
 
 /// Dormand–Prince 5(4).
 #[derive(Clone, Debug)]
-pub struct Dopri5<const N: usize> {
-    k: [[f64; N]; 7],
-    cont: [[f64; N]; 5],
+pub struct Dopri5<D: Dim> {
+    dim: D,
+    k: [Vector<D>; 7],
+    cont: [Vector<D>; 5],
 }
 
-impl<const N: usize> Dopri5<N> {
+impl<const N: usize> Dopri5<Const<N>> {
     /// A stepper.
     pub fn new() -> Self {
+        Self::new_in(Const)
+    }
+}
+
+impl<D: Dim> Dopri5<D> {
+    /// A stepper for states of size `dim`.
+    pub fn new_in(dim: D) -> Self {
         Dopri5 {
-            k: [[0.0; N]; 7],
-            cont: [[0.0; N]; 5],
+            dim,
+            k: std::array::from_fn(|_| dim.zeros()),
+            cont: std::array::from_fn(|_| dim.zeros()),
         }
     }
 }
 
-impl<const N: usize> Default for Dopri5<N> {
+impl<const N: usize> Default for Dopri5<Const<N>> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const N: usize> Stepper<N> for Dopri5<N> {
+impl<D: Dim> Stepper<D> for Dopri5<D> {
     const NAME: &'static str = "DOPRI5";
     const ERROR_ORDER: u32 = 4;
+    #[inline(always)]
+    fn dim(&self) -> D {
+        self.dim
+    }
+
     const DENSE_ORDER: u32 = 4;
 
-    fn attempt<F: Rhs<N>>(
+    fn attempt<F: Rhs<D>>(
         &mut self,
         sys: &F,
-        start: StepStart<'_, N>,
+        start: StepStart<'_, D>,
         h: f64,
-        tol: &Tolerance<N>,
-        end: StepEnd<'_, N>,
+        tol: &Tolerance<D>,
+        end: StepEnd<'_, D>,
         stats: &mut Stats,
     ) -> Result<ErrorEstimate, SolveError> {
-        self.k[0] = *start.f;
-        let mut yt = [0.0; N];
+        self.k[0].assign(start.f);
+        let mut yt = self.dim.zeros();
         for s in 1..6 {
-            combine(start.y, h, A[s], &self.k, &mut yt);
-            let mut ks = [0.0; N];
+            combine::<D>(start.y, h, A[s], &self.k, &mut yt);
+            let mut ks = self.dim.zeros();
             eval(sys, start.t + C[s] * h, &yt, &mut ks, stats)?;
             self.k[s] = ks;
         }
-        combine(start.y, h, A[6], &self.k, end.y);
+        combine::<D>(start.y, h, A[6], &self.k, end.y);
         eval(sys, start.t + h, end.y, end.f, stats)?;
-        self.k[6] = *end.f;
-        let mut err = [0.0; N];
-        sum(&E, &self.k, &mut err);
-        for e in err.iter_mut() {
+        self.k[6].assign(end.f);
+        let mut err = self.dim.zeros();
+        sum::<D>(&E, &self.k, &mut err);
+        for e in err.as_mut().iter_mut() {
             *e *= h;
         }
         Ok(tol.norm(&err, start.y, end.y))
     }
 
-    fn prepare_dense<F: Rhs<N>>(
+    fn prepare_dense<F: Rhs<D>>(
         &mut self,
         _sys: &F,
-        start: StepStart<'_, N>,
-        end_y: &[f64; N],
-        end_f: &[f64; N],
+        start: StepStart<'_, D>,
+        end_y: &Vector<D>,
+        end_f: &Vector<D>,
         h: f64,
         _stats: &mut Stats,
     ) -> Result<(), SolveError> {
-        let mut d = [0.0; N];
-        sum(&D, &self.k, &mut d);
-        for i in 0..N {
+        let mut d = self.dim.zeros();
+        sum::<D>(&D, &self.k, &mut d);
+        for i in 0..self.dim.size() {
             let ydiff = end_y[i] - start.y[i];
             let bspl = h * start.f[i] - ydiff;
             self.cont[0][i] = start.y[i];
@@ -137,16 +152,16 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         Ok(())
     }
 
-    fn interpolate(&self, s: f64, out: &mut [f64; N]) {
-        Components::ALL.fill(out, |i| self.value(s, i));
+    fn interpolate(&self, s: f64, out: &mut Vector<D>) {
+        fill_all::<D>(out, |i| self.value(s, i));
     }
 
-    fn interpolate_derivative(&self, s: f64, h: f64, out: &mut [f64; N]) {
-        Components::ALL.fill(out, |i| self.rate(s, h, i));
+    fn interpolate_derivative(&self, s: f64, h: f64, out: &mut Vector<D>) {
+        fill_all::<D>(out, |i| self.rate(s, h, i));
     }
 
     /// Component by component: the unchosen ones cost nothing.
-    fn interpolate_components(&self, s: f64, which: &Components<N>, out: &mut [f64; N]) {
+    fn interpolate_components(&self, s: f64, which: &Components<D>, out: &mut Vector<D>) {
         which.fill(out, |i| self.value(s, i));
     }
 
@@ -158,14 +173,14 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         &self,
         s: f64,
         h: f64,
-        which: &Components<N>,
-        out: &mut [f64; N],
+        which: &Components<D>,
+        out: &mut Vector<D>,
     ) {
         which.fill(out, |i| self.rate(s, h, i));
     }
 }
 
-impl<const N: usize> Dopri5<N> {
+impl<D: Dim> Dopri5<D> {
     /// Component `i` of the quartic interpolant at `s`.
     #[inline(always)]
     fn value(&self, s: f64, i: usize) -> f64 {

@@ -199,6 +199,16 @@ pub enum InputError {
         /// Its absolute tolerance.
         atol: f64,
     },
+    /// A vector has another number of components than the model has states (possible only
+    /// for a size known at run time, [`crate::Dyn`]).
+    Size {
+        /// What the vector is (`"atol"`, `"initial state"`, ...).
+        what: &'static str,
+        /// The model's number of states.
+        expected: usize,
+        /// The vector's number of components.
+        found: usize,
+    },
     /// A group of components declared as one vector for the error norm is unusable.
     ComponentGroup {
         /// The group's position in the declared list.
@@ -321,6 +331,14 @@ impl fmt::Display for InputError {
                 "tolerance of component {component} unusable (rtol = {rtol}, atol = {atol})",
                 rtol = Readable(*rtol),
                 atol = Readable(*atol)
+            ),
+            InputError::Size {
+                what,
+                expected,
+                found,
+            } => write!(
+                f,
+                "the {what} has {found} components, the model {expected} states"
             ),
             InputError::ComponentGroup {
                 group,

@@ -4,6 +4,8 @@
 //! [`GuardSpec`]; this module keeps one definition of what fires ([`GuardTracker`]) that the
 //! step-end checks, the interior checks and screening all share.
 
+use crate::dim::{Const, Dim, Vector};
+
 mod direction;
 mod inputs;
 mod interior;
@@ -97,8 +99,8 @@ pub struct GuardSpec<G> {
 
 /// A guard that fired: which one, exactly when, and the state there (from the dense output,
 /// not the end of the step).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EventHit<const N: usize, G> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventHit<D: Dim, G> {
     /// The guard's identifier.
     pub guard: G,
     /// Its index in the mode's guard list.
@@ -108,14 +110,16 @@ pub struct EventHit<const N: usize, G> {
     /// The last time found on the near side of the crossing (`t - before` is a few ulps).
     pub before: f64,
     /// The state at `t`, interpolated on the step's dense output.
-    pub y: [f64; N],
+    pub y: Vector<D>,
     /// `f(t, y)` in the mode in which the guard fired.
-    pub dy: [f64; N],
+    pub dy: Vector<D>,
     /// The guard's value at `t` (zero or of the far sign, tiny).
     pub value: f64,
     /// How it crossed.
     pub direction: Crossed,
 }
+
+impl<const N: usize, G: Copy> Copy for EventHit<Const<N>, G> {}
 
 /// Which guards' departures from zero are quiet at a segment start.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

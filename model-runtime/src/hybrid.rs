@@ -31,6 +31,7 @@ pub(crate) mod regularised;
 pub(crate) mod run;
 
 use crate::control::StepOptions;
+use crate::dim::{Const, Dim, Matrix, Vector};
 use crate::error::{EvalError, SolveError};
 use crate::events::{EventHit, GuardInputs, GuardSpec, InteriorChecks};
 use crate::jacobian::finite_difference_jacobian;
@@ -42,14 +43,14 @@ use std::fmt::{self, Debug};
 ///
 /// ```
 /// use model_runtime::{
-///     Dop853, Direction, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver,
+///     Const, Dop853, Direction, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver,
 ///     HybridSystem, StopReason, Tolerance, Transition,
 /// };
 ///
 /// /// A ball bouncing on the ground with restitution 0.9: y = (height, velocity).
 /// struct Ball;
 /// const GROUND: [GuardSpec<&str>; 1] = [GuardSpec { id: "ground", direction: Direction::Down }];
-/// impl HybridSystem<2> for Ball {
+/// impl HybridSystem<Const<2>> for Ball {
 ///     type Mode = ();
 ///     type Guard = &'static str;
 ///     type Stop = ();
@@ -61,8 +62,8 @@ use std::fmt::{self, Debug};
 ///     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GROUND }
 ///     fn guard_values(&self, _: (), _t: f64, y: &[f64; 2], _dy: &[f64; 2], g: &mut [f64])
 ///         -> Result<(), EvalError> { g[0] = y[0]; Ok(()) }
-///     fn on_event(&mut self, _: (), hit: &EventHit<2, &'static str>)
-///         -> Result<Transition<2, (), ()>, EvalError> {
+///     fn on_event(&mut self, _: (), hit: &EventHit<Const<2>, &'static str>)
+///         -> Result<Transition<Const<2>, (), ()>, EvalError> {
 ///         Ok(Transition::Continue { y: [0.0, -0.9 * hit.y[1]], note: () })
 ///     }
 /// }
@@ -73,7 +74,7 @@ use std::fmt::{self, Debug};
 /// assert_eq!(out.stop, StopReason::EndTime);
 /// assert!(out.transitions >= 2);
 /// ```
-pub trait HybridSystem<const N: usize> {
+pub trait HybridSystem<D: Dim> {
     /// The modes (typically a fieldless enum).
     type Mode: Copy + PartialEq + Debug;
     /// Guard identifiers (typically a fieldless enum).
@@ -90,8 +91,8 @@ pub trait HybridSystem<const N: usize> {
         &self,
         mode: Self::Mode,
         t: f64,
-        y: &[f64; N],
-        dy: &mut [f64; N],
+        y: &Vector<D>,
+        dy: &mut Vector<D>,
     ) -> Result<(), EvalError>;
 
     /// The Jacobian in `mode` (used by implicit steppers). The default uses central finite
@@ -100,10 +101,10 @@ pub trait HybridSystem<const N: usize> {
         &self,
         mode: Self::Mode,
         t: f64,
-        y: &[f64; N],
-        jac: &mut [[f64; N]; N],
+        y: &Vector<D>,
+        jac: &mut Matrix<D>,
     ) -> Result<(), EvalError> {
-        finite_difference_jacobian(|y, dy| self.rhs(mode, t, y, dy), y, jac)
+        finite_difference_jacobian::<D>(|y, dy| self.rhs(mode, t, y, dy), y, jac)
     }
 
     /// The guards of `mode`, in priority order (on equal event times the first wins).
@@ -118,18 +119,18 @@ pub trait HybridSystem<const N: usize> {
         &self,
         mode: Self::Mode,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
         values: &mut [f64],
     ) -> Result<(), EvalError>;
 
     /// The components of the state and of its derivative that the guards of `mode` read
-    /// (default: all). Screening estimates ([`InteriorChecks::Screened`]) interpolate only
+    /// (default, `None`: all). Screening estimates ([`InteriorChecks::Screened`]) interpolate only
     /// these and pass NaN in every other component; exact evaluations always get the full
     /// state. Declaring less than the guards read is safe but slow: the guard sees NaN, and a
     /// non-finite estimate only asks for an exact evaluation ([`crate::GuardSpec`]).
-    fn guard_inputs(&self, _mode: Self::Mode) -> GuardInputs<N> {
-        GuardInputs::ALL
+    fn guard_inputs(&self, _mode: Self::Mode) -> Option<GuardInputs<D>> {
+        None
     }
 
     /// The transition map, called when a guard of `mode` fires (`hit` holds the guard, the
@@ -140,15 +141,15 @@ pub trait HybridSystem<const N: usize> {
     fn on_event(
         &mut self,
         mode: Self::Mode,
-        hit: &EventHit<N, Self::Guard>,
-    ) -> Result<TransitionOf<N, Self>, EvalError>;
+        hit: &EventHit<D, Self::Guard>,
+    ) -> Result<TransitionOf<D, Self>, EvalError>;
 
     /// A step size to try first in a segment of `mode` starting at `(t, y)` (the run's start
     /// or a restart after a transition); `None` (the default) keeps the configured
     /// [`StepOptions::h_initial`] or the automatic choice. Useful where a transition lands on a
     /// state the automatic guess misjudges (e.g. the onset of a motion whose derivative is
     /// nearly singular there): a good first step saves a cascade of rejections.
-    fn first_step(&self, _mode: Self::Mode, _t: f64, _y: &[f64; N]) -> Option<f64> {
+    fn first_step(&self, _mode: Self::Mode, _t: f64, _y: &Vector<D>) -> Option<f64> {
         None
     }
 
@@ -157,28 +158,28 @@ pub trait HybridSystem<const N: usize> {
     /// the guards' reference signs to the projected state) and on the state a transition
     /// starts from. It should move the state by no more than the integration error: a
     /// projection that pushes a guard across zero is not an event.
-    fn project(&self, _mode: Self::Mode, _t: f64, _y: &mut [f64; N]) -> bool {
+    fn project(&self, _mode: Self::Mode, _t: f64, _y: &mut Vector<D>) -> bool {
         false
     }
 }
 
 /// What the transition map decided; `Nt` is the system's [`HybridSystem::Note`], handed to
 /// the observer with the applied transition.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Transition<const N: usize, Md, R, Nt = ()> {
+#[derive(Clone, Debug, PartialEq)]
+pub enum Transition<D: Dim, Md, R, Nt = ()> {
     /// Continue in mode `to` from state `y`.
     Switch {
         /// The new mode.
         to: Md,
         /// The state it starts from.
-        y: [f64; N],
+        y: Vector<D>,
         /// What the observer is told about it.
         note: Nt,
     },
     /// Restart the same mode from state `y` (e.g. after a velocity reset).
     Continue {
         /// The state it restarts from.
-        y: [f64; N],
+        y: Vector<D>,
         /// What the observer is told about it.
         note: Nt,
     },
@@ -201,12 +202,14 @@ pub enum Transition<const N: usize, Md, R, Nt = ()> {
     Stop(R),
 }
 
+impl<const N: usize, Md: Copy, R: Copy, Nt: Copy> Copy for Transition<Const<N>, Md, R, Nt> {}
+
 /// The [`Transition`] of a system `H`: its modes, stop reasons and notes.
-pub type TransitionOf<const N: usize, H> = Transition<
-    N,
-    <H as HybridSystem<N>>::Mode,
-    <H as HybridSystem<N>>::Stop,
-    <H as HybridSystem<N>>::Note,
+pub type TransitionOf<D, H> = Transition<
+    D,
+    <H as HybridSystem<D>>::Mode,
+    <H as HybridSystem<D>>::Stop,
+    <H as HybridSystem<D>>::Note,
 >;
 
 /// More than `max_transitions` transitions within any time window of width `window` is
@@ -258,11 +261,11 @@ pub enum StopReason<R> {
 
 /// The end of a hybrid run.
 #[derive(Clone, Debug, PartialEq)]
-pub struct HybridOutcome<const N: usize, Md, R> {
+pub struct HybridOutcome<D: Dim, Md, R> {
     /// Final time.
     pub t: f64,
     /// Final state.
-    pub y: [f64; N],
+    pub y: Vector<D>,
     /// Final mode.
     pub mode: Md,
     /// Why it ended.
@@ -333,7 +336,7 @@ impl<Md: Debug> fmt::Display for HybridError<Md> {
 impl<Md: Debug> std::error::Error for HybridError<Md> {}
 
 /// The result of [`crate::HybridSolver::run`] for a system `H`.
-pub type HybridResult<const N: usize, H> = Result<
-    HybridOutcome<N, <H as HybridSystem<N>>::Mode, <H as HybridSystem<N>>::Stop>,
-    HybridError<<H as HybridSystem<N>>::Mode>,
+pub type HybridResult<D, H> = Result<
+    HybridOutcome<D, <H as HybridSystem<D>>::Mode, <H as HybridSystem<D>>::Stop>,
+    HybridError<<H as HybridSystem<D>>::Mode>,
 >;

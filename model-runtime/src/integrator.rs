@@ -6,8 +6,8 @@
 //! gets the same rejection logic, end-time handling and collapse detection.
 
 use crate::control::{initial_step, min_step, Controller, StepOptions};
+use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::{InputError, SolveError};
-use crate::model::Model;
 use crate::stats::Stats;
 use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tolerance::{LimitingComponent, Tolerance};
@@ -24,17 +24,17 @@ enum InStep {
 
 /// A stepper plus its step-size control and the current and previous accepted points.
 #[derive(Clone, Debug)]
-pub struct Integrator<S, const N: usize> {
+pub struct Integrator<S, D: Dim> {
     stepper: S,
-    tol: Tolerance<N>,
+    tol: Tolerance<D>,
     opts: StepOptions,
     ctrl: Controller,
     t: f64,
-    y: [f64; N],
-    f: [f64; N],
+    y: Vector<D>,
+    f: Vector<D>,
     t_prev: f64,
-    y_prev: [f64; N],
-    f_prev: [f64; N],
+    y_prev: Vector<D>,
+    f_prev: Vector<D>,
     h: f64,
     has_step: bool,
     dense_ready: bool,
@@ -42,10 +42,18 @@ pub struct Integrator<S, const N: usize> {
     stats: Stats,
 }
 
-impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
+impl<S: Stepper<D>, D: Dim> Integrator<S, D> {
     /// An integrator; call [`Integrator::restart`] before the first step.
-    pub fn new(stepper: S, tol: Tolerance<N>, opts: StepOptions) -> Result<Self, InputError> {
+    pub fn new(stepper: S, tol: Tolerance<D>, opts: StepOptions) -> Result<Self, InputError> {
         tol.validate()?;
+        let dim = stepper.dim();
+        if tol.dim() != dim {
+            return Err(InputError::Size {
+                what: "tolerance",
+                expected: dim.size(),
+                found: tol.dim().size(),
+            });
+        }
         for h in [stepper.fixed_step(), opts.h_initial].into_iter().flatten() {
             if !(h.is_finite() && h > 0.0) {
                 return Err(InputError::StepSize { h });
@@ -66,11 +74,11 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
             opts,
             ctrl: Controller::new(S::ERROR_ORDER, opts.control),
             t: 0.0,
-            y: [0.0; N],
-            f: [0.0; N],
+            y: dim.zeros(),
+            f: dim.zeros(),
             t_prev: 0.0,
-            y_prev: [0.0; N],
-            f_prev: [0.0; N],
+            y_prev: dim.zeros(),
+            f_prev: dim.zeros(),
             h: 0.0,
             has_step: false,
             dense_ready: false,
@@ -81,23 +89,31 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
 
     /// Starts afresh at `(t, y)`: evaluates `f`, forgets the previous step (no first-same-as-last
     /// reuse across a restart, no error history) and chooses a new initial step size.
-    pub fn restart<F: Rhs<N>>(&mut self, sys: &F, t: f64, y: &[f64; N]) -> Result<(), SolveError> {
+    pub fn restart<F: Rhs<D>>(&mut self, sys: &F, t: f64, y: &Vector<D>) -> Result<(), SolveError> {
         self.restart_with_step(sys, t, y, None)
     }
 
     /// Like [`Integrator::restart`], trying `first_step` (if given, positive and finite) as the
     /// first step of an adaptive method instead of the configured or automatic one.
-    pub fn restart_with_step<F: Rhs<N>>(
+    pub fn restart_with_step<F: Rhs<D>>(
         &mut self,
         sys: &F,
         t: f64,
-        y: &[f64; N],
+        y: &Vector<D>,
         first_step: Option<f64>,
     ) -> Result<(), SolveError> {
         if !t.is_finite() {
             return Err(InputError::TimeSpan { t0: t, t_end: t }.into());
         }
-        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+        if y.as_ref().len() != self.y.as_ref().len() {
+            return Err(InputError::Size {
+                what: "initial state",
+                expected: self.y.as_ref().len(),
+                found: y.as_ref().len(),
+            }
+            .into());
+        }
+        if let Some(i) = y.as_ref().iter().position(|v| !v.is_finite()) {
             return Err(InputError::InitialState {
                 component: i,
                 value: y[i],
@@ -105,7 +121,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
             .into());
         }
         self.t = t;
-        self.y = *y;
+        self.y.assign(y);
         eval(sys, t, &self.y, &mut self.f, &mut self.stats)?;
         self.ctrl.reset();
         self.has_step = false;
@@ -136,7 +152,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
     /// an implicit one, rejects the attempt (a shorter step may stay clear of the singular
     /// region); it is returned, with its time, once the step cannot shrink any further.
     /// Fixed-step methods return it at once.
-    pub fn step<F: Rhs<N>>(&mut self, sys: &F, t_end: f64) -> Result<(), SolveError> {
+    pub fn step<F: Rhs<D>>(&mut self, sys: &F, t_end: f64) -> Result<(), SolveError> {
         if self.t >= t_end {
             return Ok(());
         }
@@ -162,8 +178,9 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
                 h = remaining;
             }
             self.attempts += 1;
-            let mut y1 = [0.0; N];
-            let mut f1 = [0.0; N];
+            let dim = self.dim();
+            let mut y1 = dim.zeros();
+            let mut f1 = dim.zeros();
             let attempt = self.stepper.attempt(
                 sys,
                 StepStart {
@@ -199,8 +216,8 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
                     self.stats.limiting.record(est.worst);
                 }
                 self.t_prev = self.t;
-                self.y_prev = self.y;
-                self.f_prev = self.f;
+                self.y_prev.assign(&self.y);
+                self.f_prev.assign(&self.f);
                 self.t = if last { t_end } else { self.t + h };
                 self.y = y1;
                 self.f = f1;
@@ -227,7 +244,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
     }
 
     /// Builds the interpolant of the last accepted step if it is not built yet.
-    pub fn ensure_dense<F: Rhs<N>>(&mut self, sys: &F) -> Result<(), SolveError> {
+    pub fn ensure_dense<F: Rhs<D>>(&mut self, sys: &F) -> Result<(), SolveError> {
         if self.has_step && !self.dense_ready {
             self.stepper.prepare_dense(
                 sys,
@@ -248,7 +265,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
 
     /// Where `t` falls in the last accepted step (clamped to it), the interpolant built when
     /// `t` is inside.
-    fn place<F: Rhs<N>>(&mut self, sys: &F, t: f64) -> Result<InStep, SolveError> {
+    fn place<F: Rhs<D>>(&mut self, sys: &F, t: f64) -> Result<InStep, SolveError> {
         if !self.has_step || t >= self.t {
             return Ok(InStep::End);
         }
@@ -263,15 +280,15 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
 
     /// The interpolated state at `t` inside the last accepted step (`t` is clamped to it).
     /// The end points are returned exactly.
-    pub fn interpolate<F: Rhs<N>>(
+    pub fn interpolate<F: Rhs<D>>(
         &mut self,
         sys: &F,
         t: f64,
-        out: &mut [f64; N],
+        out: &mut Vector<D>,
     ) -> Result<(), SolveError> {
         match self.place(sys, t)? {
-            InStep::End => *out = self.y,
-            InStep::Start => *out = self.y_prev,
+            InStep::End => out.assign(&self.y),
+            InStep::Start => out.assign(&self.y_prev),
             InStep::Inside { theta } => self.stepper.interpolate(theta, out),
         }
         Ok(())
@@ -280,14 +297,14 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
     /// The interpolated state at `t` inside the last accepted step and the time derivative of
     /// the interpolant there ([`Stepper::interpolate_derivative`]: an estimate of `f`, not a
     /// model evaluation). At the step's end points both are exact.
-    pub fn interpolate_with_derivative<F: Rhs<N>>(
+    pub fn interpolate_with_derivative<F: Rhs<D>>(
         &mut self,
         sys: &F,
         t: f64,
-        y: &mut [f64; N],
-        dy: &mut [f64; N],
+        y: &mut Vector<D>,
+        dy: &mut Vector<D>,
     ) -> Result<(), SolveError> {
-        let all = Components::ALL;
+        let all = Components::all(self.dim());
         self.interpolate_components(sys, t, &all, &all, y, dy)
     }
 
@@ -295,14 +312,14 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
     /// `rates` of `dy` only; the other components are left as they are (at the step's end
     /// points too), so that a caller that filled them with NaN sees NaN there.
     #[inline]
-    pub fn interpolate_components<F: Rhs<N>>(
+    pub fn interpolate_components<F: Rhs<D>>(
         &mut self,
         sys: &F,
         t: f64,
-        state: &Components<N>,
-        rates: &Components<N>,
-        y: &mut [f64; N],
-        dy: &mut [f64; N],
+        state: &Components<D>,
+        rates: &Components<D>,
+        y: &mut Vector<D>,
+        dy: &mut Vector<D>,
     ) -> Result<(), SolveError> {
         match self.place(sys, t)? {
             InStep::End => {
@@ -327,7 +344,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
     }
 
     /// The interpolant of the last step, if it has been built (see [`Integrator::ensure_dense`]).
-    pub fn dense(&self) -> Option<DenseStep<'_, S, N>> {
+    pub fn dense(&self) -> Option<DenseStep<'_, S, D>> {
         (self.has_step && self.dense_ready).then_some(DenseStep {
             stepper: &self.stepper,
             t0: self.t_prev,
@@ -339,9 +356,15 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
 
     /// Replaces the current state (e.g. by a projection onto constraints) and re-evaluates `f`.
     /// The interpolant of the last step is left as it was.
-    pub fn replace_state<F: Rhs<N>>(&mut self, sys: &F, y: &[f64; N]) -> Result<(), SolveError> {
-        self.y = *y;
+    pub fn replace_state<F: Rhs<D>>(&mut self, sys: &F, y: &Vector<D>) -> Result<(), SolveError> {
+        self.y.assign(y);
         eval(sys, self.t, &self.y, &mut self.f, &mut self.stats)
+    }
+
+    /// The size of the states it integrates.
+    #[inline(always)]
+    pub fn dim(&self) -> D {
+        self.stepper.dim()
     }
 
     /// Zeroes the work counters and the step budget (at the start of a run).
@@ -355,11 +378,11 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         self.t
     }
     /// Current state.
-    pub fn y(&self) -> &[f64; N] {
+    pub fn y(&self) -> &Vector<D> {
         &self.y
     }
     /// `f(t, y)` at the current point.
-    pub fn f(&self) -> &[f64; N] {
+    pub fn f(&self) -> &Vector<D> {
         &self.f
     }
     /// Start time of the last accepted step (equals [`Integrator::t`] before the first step).
@@ -371,7 +394,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         }
     }
     /// State at the start of the last accepted step.
-    pub fn y_prev(&self) -> &[f64; N] {
+    pub fn y_prev(&self) -> &Vector<D> {
         if self.has_step {
             &self.y_prev
         } else {
@@ -379,7 +402,7 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         }
     }
     /// `f` at the start of the last accepted step.
-    pub fn f_prev(&self) -> &[f64; N] {
+    pub fn f_prev(&self) -> &Vector<D> {
         if self.has_step {
             &self.f_prev
         } else {
@@ -399,30 +422,30 @@ impl<S: Stepper<N>, const N: usize> Integrator<S, N> {
         &mut self.stats
     }
     /// The tolerances.
-    pub fn tolerance(&self) -> &Tolerance<N> {
+    pub fn tolerance(&self) -> &Tolerance<D> {
         &self.tol
     }
 }
 
 /// Read access to the interpolant of one accepted step.
 #[derive(Clone, Copy, Debug)]
-pub struct DenseStep<'a, S, const N: usize> {
+pub struct DenseStep<'a, S, D: Dim> {
     stepper: &'a S,
     /// Start time of the step.
     pub t0: f64,
     /// End time of the step.
     pub t1: f64,
-    y0: &'a [f64; N],
-    y1: &'a [f64; N],
+    pub(crate) y0: &'a Vector<D>,
+    y1: &'a Vector<D>,
 }
 
-impl<S: Stepper<N>, const N: usize> DenseStep<'_, S, N> {
+impl<S: Stepper<D>, D: Dim> DenseStep<'_, S, D> {
     /// The interpolated state at `t ∈ [t0, t1]` (clamped; end points are exact).
-    pub fn at(&self, t: f64, out: &mut [f64; N]) {
+    pub fn at(&self, t: f64, out: &mut Vector<D>) {
         if t <= self.t0 {
-            *out = *self.y0;
+            out.assign(self.y0);
         } else if t >= self.t1 {
-            *out = *self.y1;
+            out.assign(self.y1);
         } else {
             self.stepper
                 .interpolate((t - self.t0) / (self.t1 - self.t0), out);
@@ -443,26 +466,28 @@ impl<S: Stepper<N>, const N: usize> DenseStep<'_, S, N> {
 }
 
 /// The end of a plain integration.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solution<const N: usize> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution<D: Dim> {
     /// Final time (the requested end time).
     pub t: f64,
     /// Final state.
-    pub y: [f64; N],
+    pub y: Vector<D>,
     /// Work done.
     pub stats: Stats,
 }
 
+impl<const N: usize> Copy for Solution<Const<N>> {}
+
 /// Integrates `model` from `(t0, y0)` to `t_end` without events.
-pub fn integrate<M: Model<N>, S: Stepper<N>, const N: usize>(
+pub fn integrate<M: Rhs<D>, S: Stepper<D>, D: Dim>(
     model: &M,
     stepper: S,
-    tol: Tolerance<N>,
+    tol: Tolerance<D>,
     opts: StepOptions,
     t0: f64,
-    y0: &[f64; N],
+    y0: &Vector<D>,
     t_end: f64,
-) -> Result<Solution<N>, SolveError> {
+) -> Result<Solution<D>, SolveError> {
     if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
         return Err(InputError::TimeSpan { t0, t_end }.into());
     }
@@ -473,7 +498,7 @@ pub fn integrate<M: Model<N>, S: Stepper<N>, const N: usize>(
     }
     Ok(Solution {
         t: it.t(),
-        y: *it.y(),
+        y: it.y().clone(),
         stats: *it.stats(),
     })
 }

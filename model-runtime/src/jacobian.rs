@@ -4,6 +4,7 @@
 //! A leaf (it needs only [`EvalError`]), so that the model contract and the hybrid driver can
 //! both fall back on it without depending on each other.
 
+use crate::dim::{Dim, Matrix, Vector};
 use crate::error::EvalError;
 
 /// The model name a non-finite entry is reported under; [`crate::Model::jacobian`] replaces it
@@ -13,22 +14,23 @@ pub(crate) const FD_MODEL: &str = "finite differences";
 /// Central-difference Jacobian of `f` at `y`. An entry that is not finite (the right-hand
 /// sides at `y ± h` overflow, or their difference does) is an [`EvalError::NonFinite`], never
 /// an `Ok` with an infinite or NaN Jacobian.
-pub fn finite_difference_jacobian<const N: usize>(
-    mut f: impl FnMut(&[f64; N], &mut [f64; N]) -> Result<(), EvalError>,
-    y: &[f64; N],
-    jac: &mut [[f64; N]; N],
+pub fn finite_difference_jacobian<D: Dim>(
+    mut f: impl FnMut(&Vector<D>, &mut Vector<D>) -> Result<(), EvalError>,
+    y: &Vector<D>,
+    jac: &mut Matrix<D>,
 ) -> Result<(), EvalError> {
-    let mut yp = *y;
-    let mut fp = [0.0; N];
-    let mut fm = [0.0; N];
-    for j in 0..N {
+    let dim = D::of(y);
+    let mut yp = y.clone();
+    let mut fp = dim.zeros();
+    let mut fm = dim.zeros();
+    for j in 0..dim.size() {
         let h = f64::EPSILON.cbrt() * y[j].abs().max(1.0);
         yp[j] = y[j] + h;
         f(&yp, &mut fp)?;
         yp[j] = y[j] - h;
         f(&yp, &mut fm)?;
         yp[j] = y[j];
-        for i in 0..N {
+        for i in 0..dim.size() {
             let entry = (fp[i] - fm[i]) / (2.0 * h);
             if !entry.is_finite() {
                 return Err(EvalError::NonFinite {
@@ -46,6 +48,7 @@ pub fn finite_difference_jacobian<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dim::Const;
 
     #[test]
     fn a_jacobian_that_overflows_is_an_error() {
@@ -55,7 +58,7 @@ mod tests {
             Ok(())
         };
         let mut jac = [[0.0; 1]; 1];
-        let result = finite_difference_jacobian(f, &[0.0], &mut jac);
+        let result = finite_difference_jacobian::<Const<1>>(f, &[0.0], &mut jac);
         assert!(
             matches!(result, Err(EvalError::NonFinite { value, .. }) if value == f64::NEG_INFINITY),
             "{result:?}"
@@ -64,7 +67,7 @@ mod tests {
             dy[0] = 3.0 * y[0];
             Ok(())
         };
-        finite_difference_jacobian(linear, &[1.0], &mut jac).unwrap();
+        finite_difference_jacobian::<Const<1>>(linear, &[1.0], &mut jac).unwrap();
         assert!((jac[0][0] - 3.0).abs() < 1e-9);
     }
 }

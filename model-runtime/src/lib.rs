@@ -1,7 +1,11 @@
 //! Runtime for models emitted by `model-macros`: integrators, exact event location and a
 //! generic hybrid (mode-switching) driver.
 //!
-//! * Methods, all behind one [`Stepper`] trait and allocation-free: [`Dopri5`] (5(4), dense
+//! * Models of any size, one code path: every item below is generic over a [`Dim`], the
+//!   number of states known at compile time ([`Const<N>`](Const), states in `[f64; N]`: what
+//!   `model!` emits, monomorphised to fixed-size arrays) or only at run time ([`Dyn`], states in
+//!   `Vec<f64>`: a model read from a file), as nalgebra's `Const`/`Dyn` do for matrices.
+//! * Methods, all behind one [`Stepper`] trait and allocation-free (for [`Const`] sizes): [`Dopri5`] (5(4), dense
 //!   order 4), [`Dop853`] (8(5,3), dense order 7), [`Rodas4`] (stiff, uses the model's
 //!   Jacobian, dense order 3) and fixed-step [`Rk4`] (cubic Hermite dense output).
 //! * [`Problem`]: one call from a model to a [`Trajectory`] (times, states, outputs, located
@@ -24,9 +28,13 @@
 //! that read well at the root, and a caller's imports then never depend on how the crate is
 //! split into files.
 //!
+//! * **Sizes**: [`Dim`] with [`Const`] and [`Dyn`]; a state [`Vector`], a Jacobian [`Matrix`],
+//!   their storage [`Array`] of [`Element`]s.
 //! * **The model contract** (what `model-macros` emits, what hand-written models implement):
-//!   [`Model`], [`WithOutputs`], [`Evaluation`], [`ModelInfo`], [`OpCounts`], [`EvalError`];
-//!   for emitted code only, [`solve_block`]; the default Jacobian, [`finite_difference_jacobian`].
+//!   [`Model`], [`WithOutputs`], [`Evaluation`], [`ModelInfo`], [`OpCounts`], [`EvalError`]; the
+//!   same of any size, what the drivers run ([`Model`]s are ones), [`System`] and
+//!   [`SystemOutputs`];
+//!   for emitted code only, [`solve_block`] and [`check_finite`]; the default Jacobian, [`finite_difference_jacobian`].
 //! * **Methods**: the [`Stepper`] trait ([`StepStart`], [`StepEnd`], [`Components`], the
 //!   right-hand side it steps, [`Rhs`]) and its implementations [`Dopri5`], [`Dop853`],
 //!   [`Rodas4`], [`Rk4`].
@@ -87,10 +95,12 @@
 
 mod accumulation;
 mod control;
+mod dim;
 mod dop853;
 mod dopri5;
 mod error;
 mod events;
+mod finite;
 mod hybrid;
 mod integrator;
 mod jacobian;
@@ -113,10 +123,12 @@ mod tolerance;
 
 pub use accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
 pub use control::{StepControl, StepOptions};
+pub use dim::{Array, Const, Dim, Dyn, Element, Matrix, Vector};
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use error::{parse_word, EvalError, GroupProblem, InputError, ParseSettingError, SolveError};
 pub use events::{Crossed, Direction, EventHit, GuardInputs, GuardSpec, InteriorChecks};
+pub use finite::check_finite;
 pub use hybrid::physical_time::PhysicalTime;
 pub use hybrid::regularised::{ClockGuard, Clocked, Regularised, TimeScale};
 pub use hybrid::run::HybridSolver;
@@ -127,7 +139,7 @@ pub use hybrid::{
 pub use integrator::{integrate, DenseStep, Integrator, Solution};
 pub use jacobian::finite_difference_jacobian;
 pub use linalg::solve_block;
-pub use model::{Evaluation, Model, ModelInfo, OpCounts, WithOutputs};
+pub use model::{Evaluation, Model, ModelInfo, OpCounts, System, SystemOutputs, WithOutputs};
 pub use observer::{
     Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
 };

@@ -1,10 +1,12 @@
 //! LU decomposition with partial pivoting for the implicit method's small dense systems.
 
+use crate::dim::{Dim, Matrix, Vector};
+
 /// An LU factorisation `P A = L U` of an `N×N` matrix, stored in place.
 #[derive(Clone, Debug)]
-pub(crate) struct Lu<const N: usize> {
-    lu: [[f64; N]; N],
-    perm: [usize; N],
+pub(crate) struct Lu<D: Dim> {
+    lu: Matrix<D>,
+    perm: D::Array<usize>,
 }
 
 /// The matrix is singular (a zero or non-finite pivot) at this column.
@@ -14,17 +16,15 @@ pub(crate) struct Singular {
     pub column: usize,
 }
 
-impl<const N: usize> Lu<N> {
+impl<D: Dim> Lu<D> {
     /// Factorises `a`.
-    pub(crate) fn new(mut a: [[f64; N]; N]) -> Result<Self, Singular> {
-        let mut perm = [0usize; N];
-        for (i, p) in perm.iter_mut().enumerate() {
-            *p = i;
-        }
-        for k in 0..N {
+    pub(crate) fn new(mut a: Matrix<D>) -> Result<Self, Singular> {
+        let n = D::of(&a).size();
+        let mut perm = D::of(&a).tabulate(|i| i);
+        for k in 0..n {
             let mut p = k;
             let mut best = a[k][k].abs();
-            for (i, row) in a.iter().enumerate().skip(k + 1) {
+            for (i, row) in a.as_ref().iter().enumerate().skip(k + 1) {
                 if row[k].abs() > best {
                     best = row[k].abs();
                     p = i;
@@ -33,14 +33,14 @@ impl<const N: usize> Lu<N> {
             if !(best > 0.0 && best.is_finite()) {
                 return Err(Singular { column: k });
             }
-            a.swap(k, p);
-            perm.swap(k, p);
+            a.as_mut().swap(k, p);
+            perm.as_mut().swap(k, p);
             let pivot = a[k][k];
-            for i in k + 1..N {
+            for i in k + 1..n {
                 let m = a[i][k] / pivot;
                 a[i][k] = m;
                 if m != 0.0 {
-                    for j in k + 1..N {
+                    for j in k + 1..n {
                         a[i][j] -= m * a[k][j];
                     }
                 }
@@ -50,21 +50,22 @@ impl<const N: usize> Lu<N> {
     }
 
     /// Solves `A x = b` in place.
-    pub(crate) fn solve(&self, b: &mut [f64; N]) {
-        let mut x = [0.0; N];
-        for i in 0..N {
+    pub(crate) fn solve(&self, b: &mut Vector<D>) {
+        let n = self.perm.as_ref().len();
+        let mut x = D::of(b).zeros();
+        for i in 0..n {
             x[i] = b[self.perm[i]];
         }
-        for i in 0..N {
+        for i in 0..n {
             let mut s = x[i];
             for j in 0..i {
                 s -= self.lu[i][j] * x[j];
             }
             x[i] = s;
         }
-        for i in (0..N).rev() {
+        for i in (0..n).rev() {
             let mut s = x[i];
-            for j in i + 1..N {
+            for j in i + 1..n {
                 s -= self.lu[i][j] * x[j];
             }
             x[i] = s / self.lu[i][i];
@@ -76,6 +77,7 @@ impl<const N: usize> Lu<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dim::Const;
     use proptest::prelude::*;
 
     proptest! {
@@ -94,7 +96,7 @@ mod tests {
                     b[i] += a[i][j] * x[j];
                 }
             }
-            Lu::new(a).unwrap().solve(&mut b);
+            Lu::<Const<_>>::new(a).unwrap().solve(&mut b);
             for i in 0..4 {
                 prop_assert!((b[i] - x[i]).abs() < 1e-12);
             }
@@ -104,10 +106,12 @@ mod tests {
     #[test]
     fn singular_matrix_is_reported() {
         let a = [[1.0, 2.0], [2.0, 4.0]];
-        assert!(Lu::new(a).is_err());
+        assert!(Lu::<Const<_>>::new(a).is_err());
         // Pivoting handles a zero in the corner.
         let mut b = [2.0, 3.0];
-        Lu::new([[0.0, 1.0], [1.0, 0.0]]).unwrap().solve(&mut b);
+        Lu::<Const<_>>::new([[0.0, 1.0], [1.0, 0.0]])
+            .unwrap()
+            .solve(&mut b);
         assert_eq!(b, [3.0, 2.0]);
     }
 }

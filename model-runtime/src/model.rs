@@ -3,10 +3,14 @@
 //! The compiler (`model-macros`) emits one type per model that implements [`Model`] and
 //! [`WithOutputs`]; hand-written models (test problems, the disk's reference) implement the
 //! same traits, so every integrator, event locator and driver runs on either without change.
-//! States live in fixed-size arrays so that a step allocates nothing.
+//! States live in fixed-size arrays so that a step allocates nothing. A model whose size is
+//! known only at run time implements the general [`System`] of [`crate::Dyn`] instead; every
+//! [`Model`] is a [`System`] of [`Const`], so the drivers are written once, over [`System`].
 
+use crate::dim::{Const, Dim, Vector};
 use crate::error::EvalError;
 use crate::jacobian::{finite_difference_jacobian, FD_MODEL};
+use crate::stepper::Rhs;
 
 /// Operation counts of one emitted function, after common-subexpression elimination.
 ///
@@ -60,7 +64,47 @@ pub struct ModelInfo {
     pub numeric_blocks: &'static [&'static str],
 }
 
-/// An explicit first-order system `dy/dt = f(t, y)` with a fixed number `N` of states.
+/// An explicit first-order system `dy/dt = f(t, y)` of any [`Dim`]: what every integrator
+/// and driver runs.
+///
+/// A model of a size fixed at compile time implements the more convenient [`Model`] (arrays
+/// of `N`) and is a `System<Const<N>>` through the blanket implementation; a model whose size
+/// is known only at run time (the DSL interpreter's) implements `System<Dyn>` itself. The
+/// right-hand side and the Jacobian are its [`Rhs`] (the steppers need no more).
+pub trait System<D: Dim>: Rhs<D> {
+    /// Names, sizes and costs.
+    fn info(&self) -> &ModelInfo;
+
+    /// The number of states.
+    fn dim(&self) -> D;
+}
+
+impl<M: Model<N>, const N: usize> System<Const<N>> for M {
+    #[inline]
+    fn info(&self) -> &ModelInfo {
+        Model::info(self)
+    }
+
+    #[inline(always)]
+    fn dim(&self) -> Const<N> {
+        Const
+    }
+}
+
+impl<M: Model<N>, const N: usize> Rhs<Const<N>> for M {
+    #[inline(always)]
+    fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+        Model::rhs(self, t, y, dy)
+    }
+    #[inline(always)]
+    fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
+        Model::jacobian(self, t, y, jac)
+    }
+}
+
+/// An explicit first-order system `dy/dt = f(t, y)` with a number `N` of states fixed at
+/// compile time: what `model-macros` emits and hand-written models implement. Every such model
+/// is a [`System`] of [`Const<N>`].
 ///
 /// The parameters are part of the value implementing the trait.
 pub trait Model<const N: usize> {
@@ -73,19 +117,21 @@ pub trait Model<const N: usize> {
     /// The Jacobian `jac[i][j] = ∂f_i/∂y_j`. The default uses central finite differences;
     /// emitted models override it with the symbolic derivative of the solved system.
     fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
-        finite_difference_jacobian(|y, dy| self.rhs(t, y, dy), y, jac).map_err(|e| match e {
-            // A non-finite entry is the model's, named as such.
-            EvalError::NonFinite {
-                model: FD_MODEL,
-                quantity,
-                value,
-            } => EvalError::NonFinite {
-                model: self.info().name,
-                quantity,
-                value,
+        finite_difference_jacobian::<Const<N>>(|y, dy| Model::rhs(self, t, y, dy), y, jac).map_err(
+            |e| match e {
+                // A non-finite entry is the model's, named as such.
+                EvalError::NonFinite {
+                    model: FD_MODEL,
+                    quantity,
+                    value,
+                } => EvalError::NonFinite {
+                    model: Model::info(self).name,
+                    quantity,
+                    value,
+                },
+                e => e,
             },
-            e => e,
-        })
+        )
     }
 }
 
@@ -104,10 +150,36 @@ pub trait WithOutputs<const N: usize, const M: usize>: Model<N> {
     /// The derivatives and the outputs at `(t, y)` in one call.
     fn evaluate(&self, t: f64, y: &[f64; N]) -> Result<Evaluation<N, M>, EvalError> {
         let mut der = [0.0; N];
-        self.rhs(t, y, &mut der)?;
+        Model::rhs(self, t, y, &mut der)?;
         let mut outputs = [0.0; M];
-        self.outputs(t, y, &der, &mut outputs)?;
+        WithOutputs::outputs(self, t, y, &der, &mut outputs)?;
         Ok(Evaluation { der, outputs })
+    }
+}
+
+/// A [`System`] with `M` secondary outputs, of any [`Dim`]: what [`crate::Problem`] records.
+/// Every [`WithOutputs`] is one.
+pub trait SystemOutputs<D: Dim, const M: usize>: System<D> {
+    /// Evaluates the outputs at `(t, y)` given `dy = f(t, y)`.
+    fn outputs(
+        &self,
+        t: f64,
+        y: &Vector<D>,
+        dy: &Vector<D>,
+        out: &mut [f64; M],
+    ) -> Result<(), EvalError>;
+}
+
+impl<W: WithOutputs<N, M>, const N: usize, const M: usize> SystemOutputs<Const<N>, M> for W {
+    #[inline]
+    fn outputs(
+        &self,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        out: &mut [f64; M],
+    ) -> Result<(), EvalError> {
+        WithOutputs::outputs(self, t, y, dy, out)
     }
 }
 

@@ -1,27 +1,35 @@
 //! Streaming output: a run hands every accepted step, dense sample, event and transition to an
 //! observer as it happens, so a long run never holds its trajectory in memory.
 
+use crate::dim::{Const, Dim, Vector};
 use crate::events::EventHit;
 use std::ops::ControlFlow;
 
 /// Evaluation of the interpolant of one accepted step.
-pub trait Interpolant<const N: usize> {
+pub trait Interpolant<D: Dim> {
+    /// The size of the states it interpolates.
+    fn dim(&self) -> D;
+
     /// The interpolated state at `t` inside the step (clamped to it; end points exact).
-    fn at(&self, t: f64, out: &mut [f64; N]);
+    fn at(&self, t: f64, out: &mut Vector<D>);
 
     /// Component `i` of [`Interpolant::at`] alone (the same value; a root search on one
     /// component need not interpolate the others).
     fn component_at(&self, t: f64, i: usize) -> f64 {
-        let mut out = [0.0; N];
+        let mut out = self.dim().zeros();
         self.at(t, &mut out);
         out[i]
     }
 }
 
-impl<S: crate::stepper::Stepper<N>, const N: usize> Interpolant<N>
-    for crate::integrator::DenseStep<'_, S, N>
+impl<S: crate::stepper::Stepper<D>, D: Dim> Interpolant<D>
+    for crate::integrator::DenseStep<'_, S, D>
 {
-    fn at(&self, t: f64, out: &mut [f64; N]) {
+    fn dim(&self) -> D {
+        D::of(self.y0)
+    }
+
+    fn at(&self, t: f64, out: &mut Vector<D>) {
         crate::integrator::DenseStep::at(self, t, out)
     }
 
@@ -33,7 +41,7 @@ impl<S: crate::stepper::Stepper<N>, const N: usize> Interpolant<N>
 /// One accepted step as an observer sees it. If an event cut the step short, `t1`/`y1` are the
 /// event time and state (the part of the step after the event is discarded); a step cut to
 /// nothing (an event at its very start) is not reported.
-pub struct StepView<'a, const N: usize, Md> {
+pub struct StepView<'a, D: Dim, Md> {
     /// The mode the step was taken in.
     pub mode: Md,
     /// Start time.
@@ -41,24 +49,24 @@ pub struct StepView<'a, const N: usize, Md> {
     /// End time.
     pub t1: f64,
     /// State at the start.
-    pub y0: &'a [f64; N],
+    pub y0: &'a Vector<D>,
     /// State at the end.
-    pub y1: &'a [f64; N],
+    pub y1: &'a Vector<D>,
     /// Derivative at the start.
-    pub f0: &'a [f64; N],
+    pub f0: &'a Vector<D>,
     /// The step's interpolant: present when [`Observer::wants_dense`] returns true.
-    pub dense: Option<&'a dyn Interpolant<N>>,
+    pub dense: Option<&'a dyn Interpolant<D>>,
 }
 
 /// A state sampled at a requested time from the dense output.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample<'a, const N: usize, Md> {
+pub struct Sample<'a, D: Dim, Md> {
     /// Sample time (`t0 + k / rate`).
     pub t: f64,
     /// The mode in force at `t` (at an event time: the mode before the transition).
     pub mode: Md,
     /// The interpolated state.
-    pub y: &'a [f64; N],
+    pub y: &'a Vector<D>,
 }
 
 /// What happened at a transition.
@@ -78,30 +86,32 @@ pub enum TransitionKind<Md> {
 
 /// A transition as it was applied (or an event that passed): which event triggered it, the state on both sides, and what
 /// the system noted about it ([`crate::HybridSystem::Note`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TransitionRecord<const N: usize, Md, G, Nt = ()> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct TransitionRecord<D: Dim, Md, G, Nt = ()> {
     /// The event that triggered it.
-    pub hit: EventHit<N, G>,
+    pub hit: EventHit<D, G>,
     /// The mode before.
     pub from: Md,
     /// What happened.
     pub kind: TransitionKind<Md>,
     /// The state the next segment starts from (after the transition map and projection).
-    pub y_after: [f64; N],
+    pub y_after: Vector<D>,
     /// The transition map's note, moved here from its [`crate::Transition`].
     pub note: Nt,
 }
 
+impl<const N: usize, Md: Copy, G: Copy, Nt: Copy> Copy for TransitionRecord<Const<N>, Md, G, Nt> {}
+
 /// Receives a run's output as it is produced. Every method has an empty default. `Nt` is the
 /// system's [`crate::HybridSystem::Note`].
-pub trait Observer<const N: usize, Md, G, Nt = ()> {
+pub trait Observer<D: Dim, Md, G, Nt = ()> {
     /// Whether [`StepView::dense`] should be provided (building it may cost extra evaluations,
     /// e.g. three per step for DOP853).
     fn wants_dense(&self) -> bool {
         false
     }
     /// An accepted step.
-    fn on_step(&mut self, _step: &StepView<'_, N, Md>) {}
+    fn on_step(&mut self, _step: &StepView<'_, D, Md>) {}
     /// Whether the sample due at `t` is wanted (default: every one). Asked before the state
     /// is interpolated, so an observer that needs the grid only in places (a coarse grid for
     /// a file and a fine one in a window, say) pays nothing for the samples it declines.
@@ -109,7 +119,7 @@ pub trait Observer<const N: usize, Md, G, Nt = ()> {
         true
     }
     /// A dense sample at a requested time.
-    fn on_sample(&mut self, _sample: &Sample<'_, N, Md>) {}
+    fn on_sample(&mut self, _sample: &Sample<'_, D, Md>) {}
     /// Asked after every accepted step and every transition: [`ControlFlow::Break`] ends the
     /// run there, with everything delivered so far (an interrupt, a time budget, a state the
     /// caller forbids). The default never stops.
@@ -118,25 +128,25 @@ pub trait Observer<const N: usize, Md, G, Nt = ()> {
     }
     /// A transition, handed over by value (the event that caused it and the system's note are
     /// in the record). Called before the next segment starts.
-    fn on_transition(&mut self, _record: TransitionRecord<N, Md, G, Nt>) {}
+    fn on_transition(&mut self, _record: TransitionRecord<D, Md, G, Nt>) {}
 }
 
 /// The observer that ignores everything.
-impl<const N: usize, Md, G, Nt> Observer<N, Md, G, Nt> for () {}
+impl<D: Dim, Md, G, Nt> Observer<D, Md, G, Nt> for () {}
 
 /// An observer that keeps samples and transitions in memory: convenient for tests and short
 /// runs, not for long ones.
 #[derive(Clone, Debug, Default)]
-pub struct Recorder<const N: usize, Md, G, Nt = ()> {
+pub struct Recorder<D: Dim, Md, G, Nt = ()> {
     /// Samples `(t, mode, y)`.
-    pub samples: Vec<(f64, Md, [f64; N])>,
+    pub samples: Vec<(f64, Md, Vector<D>)>,
     /// Transitions in order.
-    pub transitions: Vec<TransitionRecord<N, Md, G, Nt>>,
+    pub transitions: Vec<TransitionRecord<D, Md, G, Nt>>,
     /// Number of accepted steps seen.
     pub steps: u64,
 }
 
-impl<const N: usize, Md, G, Nt> Recorder<N, Md, G, Nt> {
+impl<D: Dim, Md, G, Nt> Recorder<D, Md, G, Nt> {
     /// An empty recorder.
     pub fn new() -> Self {
         Recorder {
@@ -147,14 +157,14 @@ impl<const N: usize, Md, G, Nt> Recorder<N, Md, G, Nt> {
     }
 }
 
-impl<const N: usize, Md: Copy, G, Nt> Observer<N, Md, G, Nt> for Recorder<N, Md, G, Nt> {
-    fn on_step(&mut self, _step: &StepView<'_, N, Md>) {
+impl<D: Dim, Md: Copy, G, Nt> Observer<D, Md, G, Nt> for Recorder<D, Md, G, Nt> {
+    fn on_step(&mut self, _step: &StepView<'_, D, Md>) {
         self.steps += 1;
     }
-    fn on_sample(&mut self, s: &Sample<'_, N, Md>) {
-        self.samples.push((s.t, s.mode, *s.y));
+    fn on_sample(&mut self, s: &Sample<'_, D, Md>) {
+        self.samples.push((s.t, s.mode, s.y.clone()));
     }
-    fn on_transition(&mut self, r: TransitionRecord<N, Md, G, Nt>) {
+    fn on_transition(&mut self, r: TransitionRecord<D, Md, G, Nt>) {
         self.transitions.push(r);
     }
 }

@@ -2,6 +2,7 @@
 //!
 //! No error control: useful as a simple, predictable baseline and for cross-checks.
 
+use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, StepEnd, StepStart, Stepper};
@@ -9,101 +10,116 @@ use crate::tolerance::{ErrorEstimate, Tolerance};
 
 /// Classical RK4 with a fixed step size.
 #[derive(Clone, Debug)]
-pub struct Rk4<const N: usize> {
+pub struct Rk4<D: Dim> {
+    dim: D,
     h: f64,
-    y0: [f64; N],
-    y1: [f64; N],
-    f0: [f64; N],
-    f1: [f64; N],
+    y0: Vector<D>,
+    y1: Vector<D>,
+    f0: Vector<D>,
+    f1: Vector<D>,
     h_last: f64,
 }
 
-impl<const N: usize> Rk4<N> {
+impl<const N: usize> Rk4<Const<N>> {
     /// A stepper with step size `h` (checked when the integrator is built).
     pub fn new(h: f64) -> Self {
+        Self::new_in(Const, h)
+    }
+}
+
+impl<D: Dim> Rk4<D> {
+    /// A stepper for states of size `dim` with step size `h` (checked when the integrator is
+    /// built).
+    pub fn new_in(dim: D, h: f64) -> Self {
         Rk4 {
+            dim,
             h,
-            y0: [0.0; N],
-            y1: [0.0; N],
-            f0: [0.0; N],
-            f1: [0.0; N],
+            y0: dim.zeros(),
+            y1: dim.zeros(),
+            f0: dim.zeros(),
+            f1: dim.zeros(),
             h_last: 0.0,
         }
     }
 }
 
-impl<const N: usize> Stepper<N> for Rk4<N> {
+impl<D: Dim> Stepper<D> for Rk4<D> {
     const NAME: &'static str = "RK4";
     const ERROR_ORDER: u32 = 3;
+    #[inline(always)]
+    fn dim(&self) -> D {
+        self.dim
+    }
+
     const DENSE_ORDER: u32 = 3;
 
     fn fixed_step(&self) -> Option<f64> {
         Some(self.h)
     }
 
-    fn attempt<F: Rhs<N>>(
+    fn attempt<F: Rhs<D>>(
         &mut self,
         sys: &F,
-        start: StepStart<'_, N>,
+        start: StepStart<'_, D>,
         h: f64,
-        _tol: &Tolerance<N>,
-        end: StepEnd<'_, N>,
+        _tol: &Tolerance<D>,
+        end: StepEnd<'_, D>,
         stats: &mut Stats,
     ) -> Result<ErrorEstimate, SolveError> {
         let (t, y, k1) = (start.t, start.y, start.f);
-        let mut yt = [0.0; N];
-        let (mut k2, mut k3, mut k4) = ([0.0; N], [0.0; N], [0.0; N]);
-        for i in 0..N {
+        let mut yt = self.dim.zeros();
+        let (mut k2, mut k3, mut k4) = (self.dim.zeros(), self.dim.zeros(), self.dim.zeros());
+        for i in 0..self.dim.size() {
             yt[i] = y[i] + 0.5 * h * k1[i];
         }
         eval(sys, t + 0.5 * h, &yt, &mut k2, stats)?;
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             yt[i] = y[i] + 0.5 * h * k2[i];
         }
         eval(sys, t + 0.5 * h, &yt, &mut k3, stats)?;
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             yt[i] = y[i] + h * k3[i];
         }
         eval(sys, t + h, &yt, &mut k4, stats)?;
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             end.y[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
         }
         eval(sys, t + h, end.y, end.f, stats)?;
         Ok(ErrorEstimate::NONE)
     }
 
-    fn prepare_dense<F: Rhs<N>>(
+    fn prepare_dense<F: Rhs<D>>(
         &mut self,
         _sys: &F,
-        start: StepStart<'_, N>,
-        end_y: &[f64; N],
-        end_f: &[f64; N],
+        start: StepStart<'_, D>,
+        end_y: &Vector<D>,
+        end_f: &Vector<D>,
         h: f64,
         _stats: &mut Stats,
     ) -> Result<(), SolveError> {
-        self.y0 = *start.y;
-        self.f0 = *start.f;
-        self.y1 = *end_y;
-        self.f1 = *end_f;
+        self.y0.assign(start.y);
+        self.f0.assign(start.f);
+        self.y1.assign(end_y);
+        self.f1.assign(end_f);
         self.h_last = h;
         Ok(())
     }
 
-    fn interpolate(&self, s: f64, out: &mut [f64; N]) {
-        hermite(s, self.h_last, &self.y0, &self.f0, &self.y1, &self.f1, out);
+    fn interpolate(&self, s: f64, out: &mut Vector<D>) {
+        hermite::<D>(s, self.h_last, &self.y0, &self.f0, &self.y1, &self.f1, out);
     }
 }
 
 /// The cubic Hermite interpolant through `(y0, f0)` and `(y1, f1)` over a step `h`, at
 /// `theta = s`.
-pub(crate) fn hermite<const N: usize>(
+pub(crate) fn hermite<D: Dim>(
     s: f64,
     h: f64,
-    y0: &[f64; N],
-    f0: &[f64; N],
-    y1: &[f64; N],
-    f1: &[f64; N],
-    out: &mut [f64; N],
+    y0: &Vector<D>,
+    f0: &Vector<D>,
+    y1: &Vector<D>,
+    f1: &Vector<D>,
+    out: &mut Vector<D>,
 ) {
     let s2 = s * s;
     let s3 = s2 * s;
@@ -111,7 +127,7 @@ pub(crate) fn hermite<const N: usize>(
     let h10 = s3 - 2.0 * s2 + s;
     let h01 = -2.0 * s3 + 3.0 * s2;
     let h11 = s3 - s2;
-    for i in 0..N {
+    for i in 0..out.as_ref().len() {
         out[i] = h00 * y0[i] + h * h10 * f0[i] + h01 * y1[i] + h * h11 * f1[i];
     }
 }

@@ -9,6 +9,7 @@
 // The coefficients are kept digit for digit as published.
 #![allow(clippy::excessive_precision)]
 
+use crate::dim::{Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::lu::Lu;
 use crate::stats::Stats;
@@ -19,7 +20,7 @@ const GAMMA: f64 = 0.25;
 const C2: f64 = 0.386;
 const C3: f64 = 0.21;
 const C4: f64 = 0.63;
-const D: [f64; 4] = [0.25, -0.1043, 0.1035, -0.3620000000000023e-01];
+const DI: [f64; 4] = [0.25, -0.1043, 0.1035, -0.3620000000000023e-01];
 const A21: f64 = 0.1544000000000000e+01;
 const A31: f64 = 0.9466785280815826e+00;
 const A32: f64 = 0.2557011698983284e+00;
@@ -70,62 +71,76 @@ const D3: [f64; 5] = [
 
 /// RODAS4.
 #[derive(Clone, Debug)]
-pub struct Rodas4<const N: usize> {
-    k: [[f64; N]; 6],
-    cont: [[f64; N]; 4],
+pub struct Rodas4<D: Dim> {
+    dim: D,
+    k: [Vector<D>; 6],
+    cont: [Vector<D>; 4],
 }
 
-impl<const N: usize> Rodas4<N> {
+impl<const N: usize> Rodas4<Const<N>> {
     /// A stepper.
     pub fn new() -> Self {
+        Self::new_in(Const)
+    }
+}
+
+impl<D: Dim> Rodas4<D> {
+    /// A stepper for states of size `dim`.
+    pub fn new_in(dim: D) -> Self {
         Rodas4 {
-            k: [[0.0; N]; 6],
-            cont: [[0.0; N]; 4],
+            dim,
+            k: std::array::from_fn(|_| dim.zeros()),
+            cont: std::array::from_fn(|_| dim.zeros()),
         }
     }
 }
 
-impl<const N: usize> Default for Rodas4<N> {
+impl<const N: usize> Default for Rodas4<Const<N>> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const N: usize> Stepper<N> for Rodas4<N> {
+impl<D: Dim> Stepper<D> for Rodas4<D> {
     const NAME: &'static str = "RODAS4";
     const ERROR_ORDER: u32 = 3;
+    #[inline(always)]
+    fn dim(&self) -> D {
+        self.dim
+    }
+
     const DENSE_ORDER: u32 = 3;
 
-    fn attempt<F: Rhs<N>>(
+    fn attempt<F: Rhs<D>>(
         &mut self,
         sys: &F,
-        start: StepStart<'_, N>,
+        start: StepStart<'_, D>,
         h: f64,
-        tol: &Tolerance<N>,
-        end: StepEnd<'_, N>,
+        tol: &Tolerance<D>,
+        end: StepEnd<'_, D>,
         stats: &mut Stats,
     ) -> Result<ErrorEstimate, SolveError> {
         let (t, y) = (start.t, start.y);
-        let mut jac = [[0.0; N]; N];
+        let mut jac = self.dim.zero_matrix();
         stats.jacobian_evals += 1;
         sys.jacobian(t, y, &mut jac).map_err(crate::error::at(t))?;
         // ∂f/∂t by a forward difference (zero for autonomous systems, up to round-off).
         let delt = (f64::EPSILON * t.abs().max(1e-5)).sqrt();
-        let mut ft = [0.0; N];
+        let mut ft = self.dim.zeros();
         eval(sys, t + delt, y, &mut ft, stats)?;
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             ft[i] = (ft[i] - start.f[i]) / delt;
         }
         let fac = 1.0 / (h * GAMMA);
-        let mut m = [[0.0; N]; N];
-        for i in 0..N {
-            for j in 0..N {
+        let mut m = self.dim.zero_matrix();
+        for i in 0..self.dim.size() {
+            for j in 0..self.dim.size() {
                 m[i][j] = -jac[i][j];
             }
             m[i][i] += fac;
         }
         stats.decompositions += 1;
-        let Ok(lu) = Lu::new(m) else {
+        let Ok(lu) = Lu::<D>::new(m) else {
             // The driver retries with a smaller step (which shifts the matrix by a larger
             // multiple of the identity) before reporting this.
             return Err(SolveError::SingularIterationMatrix { t, h });
@@ -133,15 +148,15 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
         let a: [&[f64]; 4] = [&[A21], &[A31, A32], &[A41, A42, A43], &[A51, A52, A53, A54]];
         let cs = [C2, C3, C4, 1.0];
         // Stage 1.
-        for i in 0..N {
-            self.k[0][i] = start.f[i] + h * D[0] * ft[i];
+        for i in 0..self.dim.size() {
+            self.k[0][i] = start.f[i] + h * DI[0] * ft[i];
         }
         lu.solve(&mut self.k[0]);
         // Stages 2..5.
-        let mut yt = [0.0; N];
-        let mut fy = [0.0; N];
+        let mut yt = self.dim.zeros();
+        let mut fy = self.dim.zeros();
         for s in 1..5 {
-            for i in 0..N {
+            for i in 0..self.dim.size() {
                 let mut v = y[i];
                 for (j, aij) in a[s - 1].iter().enumerate() {
                     v += aij * self.k[j][i];
@@ -149,9 +164,9 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
                 yt[i] = v;
             }
             eval(sys, t + cs[s - 1] * h, &yt, &mut fy, stats)?;
-            let hd = if s < 4 { h * D[s] } else { 0.0 };
-            let mut rhs = [0.0; N];
-            for i in 0..N {
+            let hd = if s < 4 { h * DI[s] } else { 0.0 };
+            let mut rhs = self.dim.zeros();
+            for i in 0..self.dim.size() {
                 let mut v = fy[i] + hd * ft[i];
                 for (j, cij) in C[s - 1].iter().enumerate() {
                     v += cij / h * self.k[j][i];
@@ -162,12 +177,12 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
             self.k[s] = rhs;
         }
         // Stage 6 (the embedded solution is y + Σ a5j k_j + k5; the new one adds k6).
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             yt[i] += self.k[4][i];
         }
         eval(sys, t + h, &yt, &mut fy, stats)?;
-        let mut rhs = [0.0; N];
-        for i in 0..N {
+        let mut rhs = self.dim.zeros();
+        for i in 0..self.dim.size() {
             let mut v = fy[i];
             for (j, cij) in C[4].iter().enumerate() {
                 v += cij / h * self.k[j][i];
@@ -176,7 +191,7 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
         }
         lu.solve(&mut rhs);
         self.k[5] = rhs;
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             end.y[i] = yt[i] + self.k[5][i];
         }
         let est = tol.norm(&self.k[5], y, end.y);
@@ -186,16 +201,16 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
         Ok(est)
     }
 
-    fn prepare_dense<F: Rhs<N>>(
+    fn prepare_dense<F: Rhs<D>>(
         &mut self,
         _sys: &F,
-        start: StepStart<'_, N>,
-        end_y: &[f64; N],
-        _end_f: &[f64; N],
+        start: StepStart<'_, D>,
+        end_y: &Vector<D>,
+        _end_f: &Vector<D>,
         _h: f64,
         _stats: &mut Stats,
     ) -> Result<(), SolveError> {
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             let (mut d2, mut d3) = (0.0, 0.0);
             for j in 0..5 {
                 d2 += D2[j] * self.k[j][i];
@@ -209,10 +224,10 @@ impl<const N: usize> Stepper<N> for Rodas4<N> {
         Ok(())
     }
 
-    fn interpolate(&self, s: f64, out: &mut [f64; N]) {
+    fn interpolate(&self, s: f64, out: &mut Vector<D>) {
         let s1 = 1.0 - s;
         let c = &self.cont;
-        for i in 0..N {
+        for i in 0..self.dim.size() {
             out[i] = c[0][i] * s1 + s * (c[1][i] + s1 * (c[2][i] + s * c[3][i]));
         }
     }

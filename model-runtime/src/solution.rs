@@ -2,10 +2,11 @@
 //! names, the located events, the work done and why it stopped; or why it failed, in the
 //! model's terms (a state by its name, an event by its name), never by an index.
 
+use crate::dim::{Dim, Vector};
 use crate::error::{EvalError, InputError, SolveError};
 use crate::events::Crossed;
 use crate::hybrid::HybridError;
-use crate::model::{ModelInfo, WithOutputs};
+use crate::model::{ModelInfo, SystemOutputs};
 use crate::readable::Readable;
 use crate::stats::Stats;
 use std::fmt;
@@ -13,7 +14,7 @@ use std::io::{self, Write};
 
 /// An event located during the run, with the exact state there.
 #[derive(Clone, Debug, PartialEq)]
-pub struct LocatedEvent<const N: usize> {
+pub struct LocatedEvent<D: Dim> {
     /// The event's name.
     pub name: String,
     /// Its position in the problem's event list.
@@ -21,9 +22,9 @@ pub struct LocatedEvent<const N: usize> {
     /// The event time (located to a few ulps, on the far side of the crossing).
     pub t: f64,
     /// The state at `t`, on the step's dense output.
-    pub y: [f64; N],
+    pub y: Vector<D>,
     /// The derivative at `(t, y)`.
-    pub der: [f64; N],
+    pub der: Vector<D>,
     /// How the event function crossed zero.
     pub crossed: Crossed,
 }
@@ -43,30 +44,30 @@ pub enum Termination {
 /// A solved trajectory: the recorded points with their outputs, the located events, the
 /// statistics and the stop reason, named after the model.
 #[derive(Clone, Debug)]
-pub struct Trajectory<const N: usize, const K: usize> {
+pub struct Trajectory<D: Dim, const K: usize> {
     /// The model's names (states, parameters, outputs).
-    pub info: &'static ModelInfo,
+    pub info: ModelInfo,
     /// The recorded times, non-decreasing.
     pub t: Vec<f64>,
     /// The state at each recorded time.
-    pub y: Vec<[f64; N]>,
+    pub y: Vec<Vector<D>>,
     /// The outputs at each recorded time.
     pub outputs: Vec<[f64; K]>,
     /// The events located, in time order (a terminal event is the last).
-    pub events: Vec<LocatedEvent<N>>,
+    pub events: Vec<LocatedEvent<D>>,
     /// Work done: steps, rejections, evaluations, events.
     pub stats: Stats,
     /// Why the run ended.
     pub stop: Termination,
 }
 
-impl<const N: usize, const K: usize> Trajectory<N, K> {
+impl<D: Dim, const K: usize> Trajectory<D, K> {
     /// Evaluates the outputs at the recorded points.
-    pub(crate) fn build<M: WithOutputs<N, K>>(
+    pub(crate) fn build<M: SystemOutputs<D, K>>(
         model: &M,
         t: Vec<f64>,
-        y: Vec<[f64; N]>,
-        events: Vec<LocatedEvent<N>>,
+        y: Vec<Vector<D>>,
+        events: Vec<LocatedEvent<D>>,
         stats: Stats,
         stop: Termination,
     ) -> Result<Self, SolveFailure> {
@@ -74,14 +75,16 @@ impl<const N: usize, const K: usize> Trajectory<N, K> {
             .iter()
             .zip(&y)
             .map(|(&t, y)| {
-                model
-                    .evaluate(t, y)
-                    .map(|ev| ev.outputs)
+                let mut der = D::of(y).zeros();
+                let mut outputs = [0.0; K];
+                (model.rhs(t, y, &mut der))
+                    .and_then(|()| model.outputs(t, y, &der, &mut outputs))
+                    .map(|()| outputs)
                     .map_err(|source| SolveFailure::Output { t, source })
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Trajectory {
-            info: model.info(),
+            info: *model.info(),
             t,
             y,
             outputs,
@@ -102,7 +105,7 @@ impl<const N: usize, const K: usize> Trajectory<N, K> {
     }
 
     /// The last recorded state.
-    pub fn last(&self) -> Option<&[f64; N]> {
+    pub fn last(&self) -> Option<&Vector<D>> {
         self.y.last()
     }
 
@@ -115,7 +118,7 @@ impl<const N: usize, const K: usize> Trajectory<N, K> {
         writeln!(out, "{}", header.join(","))?;
         for ((t, y), outputs) in self.t.iter().zip(&self.y).zip(&self.outputs) {
             let mut row = vec![t.to_string()];
-            row.extend(y.iter().chain(outputs).map(f64::to_string));
+            row.extend(y.as_ref().iter().chain(outputs).map(f64::to_string));
             writeln!(out, "{}", row.join(","))?;
         }
         Ok(())
@@ -129,8 +132,8 @@ pub enum SolveFailure {
     Solve {
         /// What went wrong, with state components as indices.
         error: SolveError,
-        /// The model's names, to say which state.
-        info: &'static ModelInfo,
+        /// The model's names, to say which state (boxed: the failure stays small).
+        info: Box<ModelInfo>,
         /// The events' names, to say which event.
         events: Vec<String>,
     },
@@ -167,7 +170,7 @@ impl SolveFailure {
     /// The failure of the single-mode hybrid run behind a solve.
     pub(crate) fn from_hybrid(
         error: HybridError<()>,
-        info: &'static ModelInfo,
+        info: Box<ModelInfo>,
         events: &[String],
     ) -> Self {
         let error = match error {

@@ -8,13 +8,14 @@
 //! event state. Nothing about stepping or event location is re-implemented here.
 
 use crate::control::StepOptions;
+use crate::dim::{Dim, Matrix, Vector};
 use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
 use crate::error::EvalError;
 use crate::events::{Direction, EventHit, GuardSpec, InteriorChecks};
 use crate::hybrid::run::HybridSolver;
 use crate::hybrid::{HybridError, HybridOptions, HybridSystem, StopReason, Transition};
-use crate::model::{Model, WithOutputs};
+use crate::model::{System, SystemOutputs};
 use crate::observer::{Observer, StepView};
 use crate::rk4::Rk4;
 use crate::rodas4::Rodas4;
@@ -50,27 +51,28 @@ pub enum Output {
     Times(Vec<f64>),
 }
 
-/// The function of an event: `g(t, y, dy)`, whose zero crossings are the event.
-pub type EventFunction<const N: usize> = Box<dyn Fn(f64, &[f64; N], &[f64; N]) -> f64>;
+/// The function of an event: `g(t, y, dy)`, whose zero crossings are the event. It reads the
+/// state and its derivative as slices, so one event type serves models of every [`Dim`].
+pub type EventFunction = Box<dyn Fn(f64, &[f64], &[f64]) -> f64>;
 
 /// An event: a named scalar function of `(t, y, dy)` whose zero crossings are located exactly.
 ///
 /// A non-terminal event restarts the integrator at the event state (a clean restart, as after
 /// any transition). Two events crossing at the very same time are reported once, for the one
 /// listed first ([`crate::GuardSpec`]: the segment ends at the earliest event).
-pub struct Event<const N: usize> {
+pub struct Event {
     name: String,
-    function: EventFunction<N>,
+    function: EventFunction,
     direction: Direction,
     terminal: bool,
 }
 
-impl<const N: usize> Event<N> {
+impl Event {
     /// An event firing on crossings of `function` through zero in either direction, not
     /// terminal.
     pub fn new(
         name: impl Into<String>,
-        function: impl Fn(f64, &[f64; N], &[f64; N]) -> f64 + 'static,
+        function: impl Fn(f64, &[f64], &[f64]) -> f64 + 'static,
     ) -> Self {
         Event {
             name: name.into(),
@@ -98,7 +100,7 @@ impl<const N: usize> Event<N> {
     }
 }
 
-impl<const N: usize> std::fmt::Debug for Event<N> {
+impl std::fmt::Debug for Event {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Event")
             .field("name", &self.name)
@@ -153,28 +155,28 @@ impl<const N: usize> std::fmt::Debug for Event<N> {
 /// assert!(sol.column("energy").unwrap().iter().all(|e| (e - 50.0).abs() < 1e-9));
 /// ```
 #[derive(Debug)]
-pub struct Problem<'m, M, const N: usize> {
+pub struct Problem<'m, M, D: Dim> {
     model: &'m M,
-    y0: [f64; N],
+    y0: Vector<D>,
     span: (f64, f64),
     method: Method,
-    tolerance: Tolerance<N>,
+    tolerance: Tolerance<D>,
     output: Output,
-    events: Vec<Event<N>>,
+    events: Vec<Event>,
     step: StepOptions,
     guard_checks: InteriorChecks,
 }
 
-impl<'m, M, const N: usize> Problem<'m, M, N> {
+impl<'m, M: System<D>, D: Dim> Problem<'m, M, D> {
     /// `model` (with its parameters) from `y0` over `span = (t0, t_end)`, with [`Method::Dopri5`]
     /// at `rtol = 1e-6`, `atol = 1e-9`, recording every step.
-    pub fn new(model: &'m M, y0: [f64; N], span: (f64, f64)) -> Self {
+    pub fn new(model: &'m M, y0: Vector<D>, span: (f64, f64)) -> Self {
         Problem {
             model,
             y0,
             span,
             method: Method::default(),
-            tolerance: Tolerance::scalar(1e-6, 1e-9),
+            tolerance: Tolerance::scalar_in(model.dim(), 1e-6, 1e-9),
             output: Output::default(),
             events: Vec::new(),
             step: StepOptions::default(),
@@ -190,12 +192,12 @@ impl<'m, M, const N: usize> Problem<'m, M, N> {
 
     /// The same relative and absolute tolerance for every state.
     pub fn tolerances(mut self, rtol: f64, atol: f64) -> Self {
-        self.tolerance = Tolerance::scalar(rtol, atol);
+        self.tolerance = Tolerance::scalar_in(self.model.dim(), rtol, atol);
         self
     }
 
     /// Full control of the error norm (per-state tolerances, vector groups).
-    pub fn tolerance(mut self, tolerance: Tolerance<N>) -> Self {
+    pub fn tolerance(mut self, tolerance: Tolerance<D>) -> Self {
         self.tolerance = tolerance;
         self
     }
@@ -207,7 +209,7 @@ impl<'m, M, const N: usize> Problem<'m, M, N> {
     }
 
     /// Adds an event (events listed first win ties).
-    pub fn event(mut self, event: Event<N>) -> Self {
+    pub fn event(mut self, event: Event) -> Self {
         self.events.push(event);
         self
     }
@@ -232,28 +234,30 @@ impl<'m, M, const N: usize> Problem<'m, M, N> {
     }
 
     /// Integrates and records the trajectory.
-    pub fn solve<const K: usize>(self) -> Result<Trajectory<N, K>, SolveFailure>
+    pub fn solve<const K: usize>(self) -> Result<Trajectory<D, K>, SolveFailure>
     where
-        M: WithOutputs<N, K>,
+        M: SystemOutputs<D, K>,
     {
+        let dim = self.model.dim();
         match self.method {
-            Method::Dopri5 => self.solve_with(Dopri5::new()),
-            Method::Dop853 => self.solve_with(Dop853::new()),
-            Method::Rodas4 => self.solve_with(Rodas4::new()),
-            Method::Rk4 { h } => self.solve_with(Rk4::new(h)),
+            Method::Dopri5 => self.solve_with(Dopri5::new_in(dim)),
+            Method::Dop853 => self.solve_with(Dop853::new_in(dim)),
+            Method::Rodas4 => self.solve_with(Rodas4::new_in(dim)),
+            Method::Rk4 { h } => self.solve_with(Rk4::new_in(dim, h)),
         }
     }
 
-    fn solve_with<S: Stepper<N>, const K: usize>(
+    fn solve_with<S: Stepper<D>, const K: usize>(
         self,
         stepper: S,
-    ) -> Result<Trajectory<N, K>, SolveFailure>
+    ) -> Result<Trajectory<D, K>, SolveFailure>
     where
-        M: WithOutputs<N, K>,
+        M: SystemOutputs<D, K>,
     {
-        let info = self.model.info();
+        let info = *self.model.info();
         let names: Vec<String> = self.events.iter().map(|e| e.name.clone()).collect();
-        let fail = |error: HybridError<()>| SolveFailure::from_hybrid(error, info, &names);
+        let fail =
+            |error: HybridError<()>| SolveFailure::from_hybrid(error, Box::new(info), &names);
         let (t0, t_end) = self.span;
         if let Output::Times(times) = &self.output {
             check_times(times, t0, t_end)?;
@@ -283,7 +287,7 @@ impl<'m, M, const N: usize> Problem<'m, M, N> {
             events: &self.events,
             located: Vec::new(),
         };
-        let mut record = Record::new(&self.output, t0, self.y0);
+        let mut record = Record::new(&self.output, t0, &self.y0);
         let outcome = solver
             .run(&mut system, (), t0, &self.y0, t_end, &mut record)
             .map_err(fail)?;
@@ -323,30 +327,24 @@ fn check_times(times: &[f64], t0: f64, t_end: f64) -> Result<(), SolveFailure> {
 }
 
 /// The model as a hybrid system with one mode whose guards are the events.
-struct Single<'a, M, const N: usize> {
+struct Single<'a, M, D: Dim> {
     model: &'a M,
     guards: Vec<GuardSpec<usize>>,
-    events: &'a [Event<N>],
-    located: Vec<LocatedEvent<N>>,
+    events: &'a [Event],
+    located: Vec<LocatedEvent<D>>,
 }
 
-impl<M: Model<N>, const N: usize> HybridSystem<N> for Single<'_, M, N> {
+impl<M: System<D>, D: Dim> HybridSystem<D> for Single<'_, M, D> {
     type Mode = ();
     type Guard = usize;
     type Stop = usize;
     type Note = ();
 
-    fn rhs(&self, _: (), t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+    fn rhs(&self, _: (), t: f64, y: &Vector<D>, dy: &mut Vector<D>) -> Result<(), EvalError> {
         self.model.rhs(t, y, dy)
     }
 
-    fn jacobian(
-        &self,
-        _: (),
-        t: f64,
-        y: &[f64; N],
-        jac: &mut [[f64; N]; N],
-    ) -> Result<(), EvalError> {
+    fn jacobian(&self, _: (), t: f64, y: &Vector<D>, jac: &mut Matrix<D>) -> Result<(), EvalError> {
         self.model.jacobian(t, y, jac)
     }
 
@@ -358,12 +356,12 @@ impl<M: Model<N>, const N: usize> HybridSystem<N> for Single<'_, M, N> {
         &self,
         _: (),
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         for (value, event) in values.iter_mut().zip(self.events) {
-            *value = (event.function)(t, y, dy);
+            *value = (event.function)(t, y.as_ref(), dy.as_ref());
         }
         Ok(())
     }
@@ -371,36 +369,39 @@ impl<M: Model<N>, const N: usize> HybridSystem<N> for Single<'_, M, N> {
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<N, usize>,
-    ) -> Result<Transition<N, (), usize>, EvalError> {
+        hit: &EventHit<D, usize>,
+    ) -> Result<Transition<D, (), usize>, EvalError> {
         let event = &self.events[hit.guard];
         self.located.push(LocatedEvent {
             name: event.name.clone(),
             index: hit.guard,
             t: hit.t,
-            y: hit.y,
-            der: hit.dy,
+            y: hit.y.clone(),
+            der: hit.dy.clone(),
             crossed: hit.direction,
         });
         Ok(if event.terminal {
             Transition::Stop(hit.guard)
         } else {
-            Transition::Continue { y: hit.y, note: () }
+            Transition::Continue {
+                y: hit.y.clone(),
+                note: (),
+            }
         })
     }
 }
 
 /// Collects the recorded points as the run streams its steps.
-struct Record<'o, const N: usize> {
+struct Record<'o, D: Dim> {
     output: &'o Output,
     /// The next requested time not yet recorded ([`Output::Times`]).
     next: usize,
     t: Vec<f64>,
-    y: Vec<[f64; N]>,
+    y: Vec<Vector<D>>,
 }
 
-impl<'o, const N: usize> Record<'o, N> {
-    fn new(output: &'o Output, t0: f64, y0: [f64; N]) -> Self {
+impl<'o, D: Dim> Record<'o, D> {
+    fn new(output: &'o Output, t0: f64, y0: &Vector<D>) -> Self {
         let mut record = Record {
             output,
             next: 0,
@@ -408,35 +409,35 @@ impl<'o, const N: usize> Record<'o, N> {
             y: Vec::new(),
         };
         match output {
-            Output::Steps => record.push(t0, y0),
+            Output::Steps => record.push(t0, y0.clone()),
             Output::Times(times) => {
                 while record.next < times.len() && times[record.next] <= t0 {
                     record.next += 1;
-                    record.push(t0, y0);
+                    record.push(t0, y0.clone());
                 }
             }
         }
         record
     }
 
-    fn push(&mut self, t: f64, y: [f64; N]) {
+    fn push(&mut self, t: f64, y: Vector<D>) {
         self.t.push(t);
         self.y.push(y);
     }
 }
 
-impl<const N: usize> Observer<N, (), usize> for Record<'_, N> {
+impl<D: Dim> Observer<D, (), usize> for Record<'_, D> {
     fn wants_dense(&self) -> bool {
         matches!(self.output, Output::Times(_))
     }
 
-    fn on_step(&mut self, step: &StepView<'_, N, ()>) {
+    fn on_step(&mut self, step: &StepView<'_, D, ()>) {
         match self.output {
-            Output::Steps => self.push(step.t1, *step.y1),
+            Output::Steps => self.push(step.t1, step.y1.clone()),
             Output::Times(times) => {
                 while self.next < times.len() && times[self.next] <= step.t1 {
                     let t = times[self.next];
-                    let mut y = *step.y1;
+                    let mut y = step.y1.clone();
                     if t < step.t1 {
                         // Always present: `wants_dense` asks the driver for it in this case.
                         if let Some(dense) = step.dense {

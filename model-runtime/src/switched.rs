@@ -51,6 +51,7 @@ pub(crate) mod graph;
 pub(crate) mod outcome;
 
 use crate::accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
+use crate::dim::{Const, Dim, Matrix, Vector};
 use crate::error::{EvalError, InputError};
 use crate::events::{EventHit, GuardInputs, GuardSpec};
 use crate::hybrid::{HybridSystem, Transition};
@@ -60,13 +61,13 @@ use outcome::{SwitchedNote, SwitchedStop};
 
 /// A hybrid model given by tables: implemented by the code `model!` emits and by the model
 /// interpreter. Modes and events are indices into [`SwitchedModel::graph`].
-pub trait SwitchedModel<const N: usize> {
+pub trait SwitchedModel<D: Dim> {
     /// The modes and events (the same graph for as long as the model lives: [`Switched`]
     /// reads it once for the guards).
     fn graph(&self) -> &ModeGraph;
 
     /// `dy = f(t, y)` in `mode`.
-    fn rhs(&self, mode: usize, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError>;
+    fn rhs(&self, mode: usize, t: f64, y: &Vector<D>, dy: &mut Vector<D>) -> Result<(), EvalError>;
 
     /// The Jacobian in `mode`; the default uses central finite differences of
     /// [`SwitchedModel::rhs`].
@@ -74,10 +75,10 @@ pub trait SwitchedModel<const N: usize> {
         &self,
         mode: usize,
         t: f64,
-        y: &[f64; N],
-        jac: &mut [[f64; N]; N],
+        y: &Vector<D>,
+        jac: &mut Matrix<D>,
     ) -> Result<(), EvalError> {
-        finite_difference_jacobian(|y, dy| self.rhs(mode, t, y, dy), y, jac)
+        finite_difference_jacobian::<D>(|y, dy| self.rhs(mode, t, y, dy), y, jac)
     }
 
     /// The guard values of `mode`'s events at `(t, y)` with `dy = f(t, y)`: one slot per
@@ -86,8 +87,8 @@ pub trait SwitchedModel<const N: usize> {
         &self,
         mode: usize,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
         values: &mut [f64],
     ) -> Result<(), EvalError>;
 
@@ -103,9 +104,9 @@ pub trait SwitchedModel<const N: usize> {
         event: usize,
         accumulation: bool,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
-        out: &mut [f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
+        out: &mut Vector<D>,
     ) -> Result<(), EvalError>;
 
     /// The state after event `event` of `mode`, an [`EventAction::Decide`], fired at
@@ -118,9 +119,9 @@ pub trait SwitchedModel<const N: usize> {
         mode: usize,
         event: usize,
         _t: f64,
-        _y: &[f64; N],
-        _dy: &[f64; N],
-        _out: &mut [f64; N],
+        _y: &Vector<D>,
+        _dy: &Vector<D>,
+        _out: &mut Vector<D>,
     ) -> Result<Option<usize>, EvalError> {
         Err(EvalError::Undecided {
             event: format!("{event} of mode {mode}"),
@@ -128,29 +129,31 @@ pub trait SwitchedModel<const N: usize> {
         })
     }
 
-    /// The components the guards of `mode` read (default: all); see
+    /// The components the guards of `mode` read (default, `None`: all); see
     /// [`HybridSystem::guard_inputs`].
-    fn guard_inputs(&self, _mode: usize) -> GuardInputs<N> {
-        GuardInputs::ALL
+    fn guard_inputs(&self, _mode: usize) -> Option<GuardInputs<D>> {
+        None
     }
 
     /// How much physical time one unit of regularised time is at `y` in `mode` (default 1):
     /// what [`crate::Regularised`] integrates a [`Switched`] model with (see
     /// [`crate::TimeScale`]).
-    fn time_scale(&self, _mode: usize, _y: &[f64; N]) -> f64 {
+    fn time_scale(&self, _mode: usize, _y: &Vector<D>) -> f64 {
         1.0
     }
 
     /// The step to try first when a segment of `mode` starts at `(t, y)` (the run's start, a
     /// switch or a restart); `None` (the default) leaves it to the integrator's own guess (see
     /// [`HybridSystem::first_step`]).
-    fn first_step(&self, _mode: usize, _t: f64, _y: &[f64; N]) -> Option<f64> {
+    fn first_step(&self, _mode: usize, _t: f64, _y: &Vector<D>) -> Option<f64> {
         None
     }
 }
 
 /// A switched model in regularised time: its [`SwitchedModel::time_scale`].
-impl<const N: usize, M: SwitchedModel<N>> crate::hybrid::regularised::TimeScale<N> for Switched<M> {
+impl<const N: usize, M: SwitchedModel<Const<N>>> crate::hybrid::regularised::TimeScale<N>
+    for Switched<M>
+{
     fn time_scale(&self, mode: ModeId, y: &[f64; N]) -> f64 {
         self.model.time_scale(mode.index(), y)
     }
@@ -158,19 +161,19 @@ impl<const N: usize, M: SwitchedModel<N>> crate::hybrid::regularised::TimeScale<
 
 /// A borrowed model is a model: [`Switched`] can own the model or borrow it (mutably: events
 /// may change the model's discrete values).
-impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &mut M {
+impl<D: Dim, M: SwitchedModel<D> + ?Sized> SwitchedModel<D> for &mut M {
     fn graph(&self) -> &ModeGraph {
         (**self).graph()
     }
-    fn rhs(&self, mode: usize, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+    fn rhs(&self, mode: usize, t: f64, y: &Vector<D>, dy: &mut Vector<D>) -> Result<(), EvalError> {
         (**self).rhs(mode, t, y, dy)
     }
     fn jacobian(
         &self,
         mode: usize,
         t: f64,
-        y: &[f64; N],
-        jac: &mut [[f64; N]; N],
+        y: &Vector<D>,
+        jac: &mut Matrix<D>,
     ) -> Result<(), EvalError> {
         (**self).jacobian(mode, t, y, jac)
     }
@@ -178,8 +181,8 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &mut M {
         &self,
         mode: usize,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         (**self).event_values(mode, t, y, dy, values)
@@ -190,9 +193,9 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &mut M {
         event: usize,
         accumulation: bool,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
-        out: &mut [f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
+        out: &mut Vector<D>,
     ) -> Result<(), EvalError> {
         (**self).reset(mode, event, accumulation, t, y, dy, out)
     }
@@ -201,19 +204,19 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &mut M {
         mode: usize,
         event: usize,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
-        out: &mut [f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
+        out: &mut Vector<D>,
     ) -> Result<Option<usize>, EvalError> {
         (**self).decide(mode, event, t, y, dy, out)
     }
-    fn guard_inputs(&self, mode: usize) -> GuardInputs<N> {
+    fn guard_inputs(&self, mode: usize) -> Option<GuardInputs<D>> {
         (**self).guard_inputs(mode)
     }
-    fn time_scale(&self, mode: usize, y: &[f64; N]) -> f64 {
+    fn time_scale(&self, mode: usize, y: &Vector<D>) -> f64 {
         (**self).time_scale(mode, y)
     }
-    fn first_step(&self, mode: usize, t: f64, y: &[f64; N]) -> Option<f64> {
+    fn first_step(&self, mode: usize, t: f64, y: &Vector<D>) -> Option<f64> {
         (**self).first_step(mode, t, y)
     }
 }
@@ -223,14 +226,14 @@ impl<const N: usize, M: SwitchedModel<N> + ?Sized> SwitchedModel<N> for &mut M {
 ///
 /// ```
 /// use model_runtime::{
-///     AccumulationRule, Direction, Dop853, EvalError, EventAction, EventDecl, HybridOptions,
+///     Const, AccumulationRule, Direction, Dop853, EvalError, EventAction, EventDecl, HybridOptions,
 ///     HybridSolver, ModeDecl, ModeGraph, StopReason, Switched, SwitchedModel, SwitchedStop,
 ///     Tolerance,
 /// };
 ///
 /// /// A ball, y = (height, velocity), bouncing with restitution 0.5.
 /// struct Ball(ModeGraph);
-/// impl SwitchedModel<2> for Ball {
+/// impl SwitchedModel<Const<2>> for Ball {
 ///     fn graph(&self) -> &ModeGraph { &self.0 }
 ///     fn rhs(&self, _: usize, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
 ///         *dy = [y[1], -9.81];
@@ -277,9 +280,9 @@ pub struct Switched<M> {
 
 impl<M> Switched<M> {
     /// The system of `model`, watching for accumulations by `rule` (checked here).
-    pub fn new<const N: usize>(model: M, rule: AccumulationRule) -> Result<Self, InputError>
+    pub fn new<D: Dim>(model: M, rule: AccumulationRule) -> Result<Self, InputError>
     where
-        M: SwitchedModel<N>,
+        M: SwitchedModel<D>,
     {
         let graph = model.graph();
         let specs = (graph.ids())
@@ -334,17 +337,17 @@ impl<M> Switched<M> {
 
     /// The state after `event` fired at `hit`: the model's reset (ordinary or accumulation)
     /// if `reset`, else the event state; an error names the event if it is not finite.
-    fn assigned<const N: usize>(
+    fn assigned<D: Dim>(
         &mut self,
         event: EventId,
         reset: bool,
         accumulation: bool,
-        hit: &EventHit<N, EventId>,
-    ) -> Result<[f64; N], EvalError>
+        hit: &EventHit<D, EventId>,
+    ) -> Result<Vector<D>, EvalError>
     where
-        M: SwitchedModel<N>,
+        M: SwitchedModel<D>,
     {
-        let mut out = hit.y;
+        let mut out = hit.y.clone();
         if reset {
             let (m, e) = (event.mode.index(), event.event);
             (self.model).reset(m, e, accumulation, hit.t, &hit.y, &hit.dy, &mut out)?;
@@ -354,16 +357,16 @@ impl<M> Switched<M> {
 
     /// `out`, the state after `event`, or the error that names the event and the component
     /// that is not finite.
-    fn finite<const N: usize>(
+    fn finite<D: Dim>(
         &self,
         event: EventId,
         accumulation: bool,
-        out: [f64; N],
-    ) -> Result<[f64; N], EvalError>
+        out: Vector<D>,
+    ) -> Result<Vector<D>, EvalError>
     where
-        M: SwitchedModel<N>,
+        M: SwitchedModel<D>,
     {
-        match out.iter().position(|v| !v.is_finite()) {
+        match out.as_ref().iter().position(|v| !v.is_finite()) {
             None => Ok(out),
             Some(component) => Err(EvalError::ResetNotFinite {
                 event: self.model.graph().event_name(event)
@@ -379,16 +382,16 @@ impl<M> Switched<M> {
     /// The transition of an [`EventAction::Decide`] event: the model's state and choice, a
     /// restart fed to the accumulation watch like a reset's (an accumulation stops the run:
     /// a decided event has no accumulation action).
-    fn decided<const N: usize>(
+    fn decided<D: Dim>(
         &mut self,
         mode: ModeId,
-        hit: &EventHit<N, EventId>,
-    ) -> Result<Transition<N, ModeId, SwitchedStop, SwitchedNote>, EvalError>
+        hit: &EventHit<D, EventId>,
+    ) -> Result<Transition<D, ModeId, SwitchedStop, SwitchedNote>, EvalError>
     where
-        M: SwitchedModel<N>,
+        M: SwitchedModel<D>,
     {
         let id = hit.guard;
-        let mut out = hit.y;
+        let mut out = hit.y.clone();
         let (m, e) = (mode.index(), id.event);
         let next = (self.model).decide(m, e, hit.t, &hit.y, &hit.dy, &mut out)?;
         let Some(next) = next else {
@@ -421,12 +424,12 @@ impl<M> Switched<M> {
 }
 
 /// Continues in `to` from `y`: a restart if that is the mode the event fired in.
-fn continue_in<const N: usize>(
+fn continue_in<D: Dim>(
     from: ModeId,
     to: ModeId,
-    y: [f64; N],
+    y: Vector<D>,
     note: SwitchedNote,
-) -> Transition<N, ModeId, SwitchedStop, SwitchedNote> {
+) -> Transition<D, ModeId, SwitchedStop, SwitchedNote> {
     if to == from {
         Transition::Continue { y, note }
     } else {
@@ -434,13 +437,19 @@ fn continue_in<const N: usize>(
     }
 }
 
-impl<const N: usize, M: SwitchedModel<N>> HybridSystem<N> for Switched<M> {
+impl<D: Dim, M: SwitchedModel<D>> HybridSystem<D> for Switched<M> {
     type Mode = ModeId;
     type Guard = EventId;
     type Stop = SwitchedStop;
     type Note = SwitchedNote;
 
-    fn rhs(&self, mode: ModeId, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+    fn rhs(
+        &self,
+        mode: ModeId,
+        t: f64,
+        y: &Vector<D>,
+        dy: &mut Vector<D>,
+    ) -> Result<(), EvalError> {
         self.model.rhs(mode.index(), t, y, dy)
     }
 
@@ -448,8 +457,8 @@ impl<const N: usize, M: SwitchedModel<N>> HybridSystem<N> for Switched<M> {
         &self,
         mode: ModeId,
         t: f64,
-        y: &[f64; N],
-        jac: &mut [[f64; N]; N],
+        y: &Vector<D>,
+        jac: &mut Matrix<D>,
     ) -> Result<(), EvalError> {
         self.model.jacobian(mode.index(), t, y, jac)
     }
@@ -462,26 +471,26 @@ impl<const N: usize, M: SwitchedModel<N>> HybridSystem<N> for Switched<M> {
         &self,
         mode: ModeId,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         self.model.event_values(mode.index(), t, y, dy, values)
     }
 
-    fn guard_inputs(&self, mode: ModeId) -> GuardInputs<N> {
+    fn guard_inputs(&self, mode: ModeId) -> Option<GuardInputs<D>> {
         self.model.guard_inputs(mode.index())
     }
 
-    fn first_step(&self, mode: ModeId, t: f64, y: &[f64; N]) -> Option<f64> {
+    fn first_step(&self, mode: ModeId, t: f64, y: &Vector<D>) -> Option<f64> {
         self.model.first_step(mode.index(), t, y)
     }
 
     fn on_event(
         &mut self,
         mode: ModeId,
-        hit: &EventHit<N, EventId>,
-    ) -> Result<Transition<N, ModeId, SwitchedStop, SwitchedNote>, EvalError> {
+        hit: &EventHit<D, EventId>,
+    ) -> Result<Transition<D, ModeId, SwitchedStop, SwitchedNote>, EvalError> {
         let id = hit.guard;
         let graph = self.model.graph();
         let decl = graph.event(id);

@@ -8,6 +8,7 @@
 //! comes to rest) rather than at the firing that revealed it.
 
 use crate::accumulation::AccumulationRule;
+use crate::dim::{Dim, Vector};
 use crate::hybrid::run::HybridSolver;
 use crate::hybrid::{HybridError, HybridOptions, StopReason};
 use crate::observer::{Observer, Sample, StepView, TransitionRecord};
@@ -36,7 +37,7 @@ pub enum Fired {
 
 /// One event of a run, by name.
 #[derive(Clone, Debug, PartialEq)]
-pub struct EventRecord<const N: usize> {
+pub struct EventRecord<D: Dim> {
     /// The event's name (as declared in its mode).
     pub event: String,
     /// The mode it fired in.
@@ -46,23 +47,23 @@ pub struct EventRecord<const N: usize> {
     /// When: the located crossing, or for an accumulation its extrapolated point `t_inf`.
     pub t: f64,
     /// The state at the event, before any reset.
-    pub y: [f64; N],
+    pub y: Vector<D>,
     /// The state the run went on from (equal to `y` for a record or a stop).
-    pub y_after: [f64; N],
+    pub y_after: Vector<D>,
 }
 
 /// The outcome of [`run_switched`].
 #[derive(Clone, Debug)]
-pub struct SwitchedRun<const N: usize> {
+pub struct SwitchedRun<D: Dim> {
     /// Every event, in time order.
-    pub events: Vec<EventRecord<N>>,
+    pub events: Vec<EventRecord<D>>,
     /// `(t, mode name, state)` at every sample (`options.sample_rate`), or at every step end
     /// (and the start) when no rate is set.
-    pub samples: Vec<(f64, String, [f64; N])>,
+    pub samples: Vec<(f64, String, Vector<D>)>,
     /// Final time.
     pub t: f64,
     /// Final state.
-    pub y: [f64; N],
+    pub y: Vector<D>,
     /// Final mode's name.
     pub mode: String,
     /// The terminal event, if one ended the run (`None`: the end time).
@@ -71,7 +72,7 @@ pub struct SwitchedRun<const N: usize> {
     pub stats: Stats,
 }
 
-impl<const N: usize> SwitchedRun<N> {
+impl<D: Dim> SwitchedRun<D> {
     /// The times of the events named `event` that did `fired`.
     pub fn times(&self, event: &str, fired: Fired) -> Vec<f64> {
         (self.events.iter())
@@ -83,16 +84,16 @@ impl<const N: usize> SwitchedRun<N> {
 
 /// A run that failed: why (with its modes named), and the work it did until then.
 #[derive(Clone, Debug, PartialEq)]
-pub struct SwitchedFailure<const N: usize> {
+pub struct SwitchedFailure<D: Dim> {
     /// What went wrong.
     pub error: HybridError<String>,
     /// The events met before the failure, in time order.
-    pub events: Vec<EventRecord<N>>,
+    pub events: Vec<EventRecord<D>>,
     /// The steps accepted before the failure.
     pub steps: u64,
 }
 
-impl<const N: usize> std::fmt::Display for SwitchedFailure<N> {
+impl<D: Dim> std::fmt::Display for SwitchedFailure<D> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
@@ -104,19 +105,19 @@ impl<const N: usize> std::fmt::Display for SwitchedFailure<N> {
     }
 }
 
-impl<const N: usize> std::error::Error for SwitchedFailure<N> {}
+impl<D: Dim> std::error::Error for SwitchedFailure<D> {}
 
 /// Runs `model` from `(t0, y0)` in its first mode to `t_end` with `stepper`, the tolerances
 /// and options given and the default [`AccumulationRule`]; a failure names the mode and keeps
 /// the work done.
-pub fn run_switched<const N: usize, M: SwitchedModel<N>, S: Stepper<N>>(
+pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
     model: M,
     stepper: S,
-    tolerance: Tolerance<N>,
+    tolerance: Tolerance<D>,
     options: HybridOptions,
-    (t0, y0): (f64, [f64; N]),
+    (t0, y0): (f64, Vector<D>),
     t_end: f64,
-) -> Result<SwitchedRun<N>, SwitchedFailure<N>> {
+) -> Result<SwitchedRun<D>, SwitchedFailure<D>> {
     let graph = model.graph().clone();
     let start = graph.first();
     let input = |error: crate::error::InputError| SwitchedFailure {
@@ -161,8 +162,8 @@ pub fn run_switched<const N: usize, M: SwitchedModel<N>, S: Stepper<N>>(
                 mode: graph.mode_name(event.mode).to_string(),
                 fired,
                 t,
-                y: outcome.y,
-                y_after: outcome.y,
+                y: outcome.y.clone(),
+                y_after: outcome.y.clone(),
             });
             Some(name)
         }
@@ -206,33 +207,35 @@ pub fn name_modes(graph: &ModeGraph, error: HybridError<ModeId>) -> HybridError<
     }
 }
 
-struct Collector<'g, const N: usize> {
+struct Collector<'g, D: Dim> {
     graph: &'g ModeGraph,
     every_step: bool,
-    events: Vec<EventRecord<N>>,
-    samples: Vec<(f64, String, [f64; N])>,
+    events: Vec<EventRecord<D>>,
+    samples: Vec<(f64, String, Vector<D>)>,
     steps: u64,
 }
 
-impl<const N: usize> Observer<N, ModeId, EventId, SwitchedNote> for Collector<'_, N> {
-    fn on_step(&mut self, step: &StepView<'_, N, ModeId>) {
+impl<D: Dim> Observer<D, ModeId, EventId, SwitchedNote> for Collector<'_, D> {
+    fn on_step(&mut self, step: &StepView<'_, D, ModeId>) {
         self.steps += 1;
         if !self.every_step {
             return;
         }
         let mode = self.graph.mode_name(step.mode);
         if self.samples.last().is_none_or(|(t, ..)| *t < step.t0) {
-            self.samples.push((step.t0, mode.to_string(), *step.y0));
+            self.samples
+                .push((step.t0, mode.to_string(), step.y0.clone()));
         }
-        self.samples.push((step.t1, mode.to_string(), *step.y1));
+        self.samples
+            .push((step.t1, mode.to_string(), step.y1.clone()));
     }
 
-    fn on_sample(&mut self, sample: &Sample<'_, N, ModeId>) {
+    fn on_sample(&mut self, sample: &Sample<'_, D, ModeId>) {
         let mode = self.graph.mode_name(sample.mode).to_string();
-        self.samples.push((sample.t, mode, *sample.y));
+        self.samples.push((sample.t, mode, sample.y.clone()));
     }
 
-    fn on_transition(&mut self, record: TransitionRecord<N, ModeId, EventId, SwitchedNote>) {
+    fn on_transition(&mut self, record: TransitionRecord<D, ModeId, EventId, SwitchedNote>) {
         let (event, fired, t) = match record.note {
             SwitchedNote::Recorded(event) => (event, Fired::Recorded, record.hit.t),
             SwitchedNote::Reset(event) => (event, Fired::Reset, record.hit.t),

@@ -2,31 +2,34 @@
 //! with the nonzero coefficients listed as `(stage, coefficient)` pairs, so each method's file
 //! reads like its Butcher tableau.
 
+use crate::dim::{Dim, Vector};
+
 /// `out = y + h * Σ a_j k[j]` over the listed terms.
 #[inline(always)]
-pub(crate) fn combine<const N: usize>(
-    y: &[f64; N],
+pub(crate) fn combine<D: Dim>(
+    y: &Vector<D>,
     h: f64,
     terms: &[(usize, f64)],
-    k: &[[f64; N]],
-    out: &mut [f64; N],
+    k: &[Vector<D>],
+    out: &mut Vector<D>,
 ) {
-    let mut acc = [0.0; N];
-    sum(terms, k, &mut acc);
-    for i in 0..N {
-        out[i] = y[i] + h * acc[i];
+    sum::<D>(terms, k, out);
+    let (y, out) = (y.as_ref(), out.as_mut());
+    for i in 0..out.len() {
+        out[i] = y[i] + h * out[i];
     }
 }
 
 /// `out = Σ a_j k[j]` over the listed terms.
 #[inline(always)]
-pub(crate) fn sum<const N: usize>(terms: &[(usize, f64)], k: &[[f64; N]], out: &mut [f64; N]) {
+pub(crate) fn sum<D: Dim>(terms: &[(usize, f64)], k: &[Vector<D>], out: &mut Vector<D>) {
     // Stage by stage over whole vectors: contiguous, bounds-checked once per stage.
-    *out = [0.0; N];
+    let out = out.as_mut();
+    out.fill(0.0);
     for &(j, a) in terms {
-        let kj = &k[j];
-        for i in 0..N {
-            out[i] += a * kj[i];
+        let kj = k[j].as_ref();
+        for (o, &kji) in out.iter_mut().zip(kj) {
+            *o += a * kji;
         }
     }
 }

@@ -16,6 +16,7 @@
 
 mod groups;
 
+use crate::dim::{Const, Dim, Vector};
 use crate::error::InputError;
 pub use groups::{ComponentGroup, VectorGroups};
 use std::ops::Range;
@@ -33,28 +34,38 @@ pub enum LimitingComponent {
 
 /// Relative and absolute tolerances, one pair per state component, and the components that
 /// form vectors.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Tolerance<const N: usize> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tolerance<D: Dim> {
     /// Relative tolerances.
-    pub rtol: [f64; N],
+    pub rtol: Vector<D>,
     /// Absolute tolerances.
-    pub atol: [f64; N],
-    groups: VectorGroups<N>,
+    pub atol: Vector<D>,
+    groups: VectorGroups<D>,
     limiting: LimitingComponent,
 }
 
-impl<const N: usize> Tolerance<N> {
+/// A tolerance of a size known at compile time is a plain value.
+impl<const N: usize> Copy for Tolerance<Const<N>> {}
+
+impl<const N: usize> Tolerance<Const<N>> {
     /// The same tolerances for every component.
     pub fn scalar(rtol: f64, atol: f64) -> Self {
-        Self::per_component([rtol; N], [atol; N])
+        Self::scalar_in(Const, rtol, atol)
+    }
+}
+
+impl<D: Dim> Tolerance<D> {
+    /// The same tolerances for every component of a state of size `dim`.
+    pub fn scalar_in(dim: D, rtol: f64, atol: f64) -> Self {
+        Self::per_component(dim.filled(rtol), dim.filled(atol))
     }
 
     /// Per-component tolerances.
-    pub fn per_component(rtol: [f64; N], atol: [f64; N]) -> Self {
+    pub fn per_component(rtol: Vector<D>, atol: Vector<D>) -> Self {
         Tolerance {
+            groups: VectorGroups::none(D::of(&rtol)),
             rtol,
             atol,
-            groups: VectorGroups::default(),
             limiting: LimitingComponent::Untracked,
         }
     }
@@ -77,8 +88,14 @@ impl<const N: usize> Tolerance<N> {
         }
     }
 
+    /// The size of the states this tolerance measures.
+    #[inline(always)]
+    pub fn dim(&self) -> D {
+        D::of(&self.rtol)
+    }
+
     /// The declared vector groups.
-    pub fn groups(&self) -> &VectorGroups<N> {
+    pub fn groups(&self) -> &VectorGroups<D> {
         &self.groups
     }
 
@@ -90,7 +107,14 @@ impl<const N: usize> Tolerance<N> {
     /// Checks that every tolerance is finite and non-negative and that no component has both
     /// zero (which would demand an exact solution). The groups were checked when declared.
     pub fn validate(&self) -> Result<(), InputError> {
-        for i in 0..N {
+        if self.atol.as_ref().len() != self.rtol.as_ref().len() {
+            return Err(InputError::Size {
+                what: "absolute tolerance",
+                expected: self.rtol.as_ref().len(),
+                found: self.atol.as_ref().len(),
+            });
+        }
+        for i in 0..self.dim().size() {
             let (r, a) = (self.rtol[i], self.atol[i]);
             let ok = r.is_finite() && a.is_finite() && r >= 0.0 && a >= 0.0 && (r > 0.0 || a > 0.0);
             if !ok {
@@ -114,13 +138,13 @@ impl<const N: usize> Tolerance<N> {
     /// The error scale of every component between the states `y0` and `y1`, grouped
     /// components taking their vector's magnitude (module docs).
     #[inline]
-    pub fn scales(&self, y0: &[f64; N], y1: &[f64; N]) -> [f64; N] {
-        let mut s = [0.0; N];
-        for i in 0..N {
+    pub fn scales(&self, y0: &Vector<D>, y1: &Vector<D>) -> Vector<D> {
+        let mut s = self.dim().zeros();
+        for i in 0..self.dim().size() {
             s[i] = self.scale(i, y0[i], y1[i]);
         }
         for g in self.groups.iter() {
-            let m = g.magnitude(y0).max(g.magnitude(y1));
+            let m = g.magnitude(y0.as_ref()).max(g.magnitude(y1.as_ref()));
             for i in g.range() {
                 s[i] = self.scale(i, m, 0.0);
             }
@@ -129,47 +153,49 @@ impl<const N: usize> Tolerance<N> {
     }
 
     /// The root-mean-square scaled norm of `v` with scales taken from `y0` and `y1`.
-    pub fn norm(&self, v: &[f64; N], y0: &[f64; N], y1: &[f64; N]) -> ErrorEstimate {
+    pub fn norm(&self, v: &Vector<D>, y0: &Vector<D>, y1: &Vector<D>) -> ErrorEstimate {
         let s = self.scales(y0, y1);
+        let n = self.dim().size();
         let mut sum = 0.0;
-        for i in 0..N {
+        for i in 0..n {
             let x = v[i] / s[i];
             sum += x * x;
         }
-        let norm = if N == 0 { 0.0 } else { (sum / N as f64).sqrt() };
+        let norm = if n == 0 { 0.0 } else { (sum / n as f64).sqrt() };
         self.estimate(norm, v, &s)
     }
 
     /// The estimate for a computed `norm` of `v` (scales `s`): NaN is reported as infinite,
     /// and the worst component is named when the step is rejected or when tracked.
-    pub fn estimate(&self, norm: f64, v: &[f64; N], s: &[f64; N]) -> ErrorEstimate {
+    pub fn estimate(&self, norm: f64, v: &Vector<D>, s: &Vector<D>) -> ErrorEstimate {
         if norm <= 1.0 {
             // Accepted: which component is worst matters only for reports of failures and the
             // opt-in count, so the common path does not search for it.
             let worst = match self.limiting {
                 LimitingComponent::Untracked => 0,
-                LimitingComponent::Tracked => worst_scaled(v, s),
+                LimitingComponent::Tracked => worst_scaled::<D>(v, s),
             };
             return ErrorEstimate { norm, worst };
         }
         // Rejected (or NaN, which counts as infinitely bad): name the worst component.
         ErrorEstimate {
             norm: if norm.is_nan() { f64::INFINITY } else { norm },
-            worst: worst_scaled(v, s),
+            worst: worst_scaled::<D>(v, s),
         }
     }
 
     /// The component of `v` with the largest scaled magnitude (a NaN one first).
-    pub fn worst(&self, v: &[f64; N], y0: &[f64; N], y1: &[f64; N]) -> usize {
-        worst_scaled(v, &self.scales(y0, y1))
+    pub fn worst(&self, v: &Vector<D>, y0: &Vector<D>, y1: &Vector<D>) -> usize {
+        worst_scaled::<D>(v, &self.scales(y0, y1))
     }
 }
 
 /// The component of `v` with the largest `|v_i / s_i|` (a NaN one first).
-fn worst_scaled<const N: usize>(v: &[f64; N], s: &[f64; N]) -> usize {
+fn worst_scaled<D: Dim>(v: &Vector<D>, s: &Vector<D>) -> usize {
     let scaled = |i: usize| v[i] / s[i];
-    (0..N).find(|&i| scaled(i).is_nan()).unwrap_or_else(|| {
-        (0..N)
+    let n = D::of(v).size();
+    (0..n).find(|&i| scaled(i).is_nan()).unwrap_or_else(|| {
+        (0..n)
             .max_by(|&a, &b| scaled(a).abs().total_cmp(&scaled(b).abs()))
             .unwrap_or(0)
     })
@@ -200,7 +226,7 @@ mod tests {
 
     #[test]
     fn norm_names_the_worst_component_and_maps_nan_to_infinity() {
-        let tol = Tolerance::<3>::scalar(0.0, 1.0);
+        let tol = Tolerance::<Const<3>>::scalar(0.0, 1.0);
         let e = tol.norm(&[1.0, -3.0, 2.0], &[0.0; 3], &[0.0; 3]);
         assert_eq!(e.worst, 1);
         assert!((e.norm - (14.0f64 / 3.0).sqrt()).abs() < 1e-15);
@@ -211,7 +237,7 @@ mod tests {
 
     #[test]
     fn validation_names_the_component() {
-        let mut tol = Tolerance::<2>::scalar(1e-6, 1e-9);
+        let mut tol = Tolerance::<Const<2>>::scalar(1e-6, 1e-9);
         assert!(tol.validate().is_ok());
         tol.atol[1] = -1.0;
         assert_eq!(

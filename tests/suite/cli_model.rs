@@ -501,3 +501,83 @@ fn unusable_solve_settings_are_input_errors() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
+
+const CHAIN: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/model-macros/examples/pendulum_chain.dsl"
+);
+
+/// `model solve` with `args` to standard output: the header and the rows.
+fn solved_csv(args: &[&str]) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut all = vec!["solve"];
+    all.extend(args);
+    let text = ok(&all);
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+/// A model runs in exactly its own states: a chain of 20 links (40 states) keeps its energy.
+#[test]
+fn solve_runs_a_chain_of_forty_states() {
+    let (header, rows) = solved_csv(&[
+        CHAIN, "--state", "q1=0.5", "--state", "q7=-0.4", "--state", "q20=1", "--t-end", "0.5",
+        "--dt", "0.05", "--rtol", "1e-10", "--atol", "1e-12",
+    ]);
+    assert_eq!(header.len(), 1 + 40 + 1, "{header:?}");
+    assert_eq!((header[1].as_str(), header[40].as_str()), ("q1", "w20"));
+    assert_eq!(rows.len(), 11);
+    let energy: Vec<f64> = rows.iter().map(|r| r[41]).collect();
+    // At rest: the potential alone, -g (20 cos 0.5 + 14 cos 0.4 + cos 1 + the 17 links at 0, 175 in all).
+    let potential = -9.81
+        * (20.0 * 0.5f64.cos() + 14.0 * 0.4f64.cos() + 1.0f64.cos() + 210.0 - 20.0 - 14.0 - 1.0);
+    assert!(
+        (energy[0] - potential).abs() < 1e-9 * potential.abs(),
+        "{energy:?}"
+    );
+    let drift = energy
+        .iter()
+        .map(|e| (e - energy[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(drift < 1e-8 * energy[0].abs(), "energy drift {drift:e}");
+    assert!(rows.last().unwrap()[21..41].iter().any(|w| w.abs() > 0.1));
+}
+
+/// A model of three states at its closed form: a rotation and a decay.
+#[test]
+fn solve_runs_a_model_of_three_states() {
+    let (_dir, path) = file(
+        "mod three {
+            params { w = 2, k = 0.5 }
+            states { x, y, z }
+            equations { der(x) = -w * y; der(y) = w * x; der(z) = -k * z; }
+        }",
+    );
+    let (header, rows) = solved_csv(&[
+        arg(&path),
+        "--state",
+        "x=1",
+        "--state",
+        "z=3",
+        "--t-end",
+        "2",
+        "--dt",
+        "0.5",
+        "--rtol",
+        "1e-12",
+        "--atol",
+        "1e-14",
+    ]);
+    assert_eq!(header, ["t", "x", "y", "z"]);
+    assert_eq!(rows.len(), 5);
+    for row in rows {
+        let t = row[0];
+        let exact = [(2.0 * t).cos(), (2.0 * t).sin(), 3.0 * (-0.5 * t).exp()];
+        for (got, want) in row[1..].iter().zip(exact) {
+            assert!((got - want).abs() < 1e-10, "t = {t}: {got} vs {want}");
+        }
+    }
+}

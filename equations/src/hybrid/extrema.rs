@@ -29,6 +29,7 @@ use super::models::DiskModels;
 use super::system::Phase;
 use crate::modes::layout::{OMEGA_Y, THETA};
 use crate::modes::{ContactForce, Mode, PhysicalState, DIM};
+use model_runtime::Const;
 use model_runtime::{find_crossing, Interpolant, Model, StepView};
 
 /// Interior points per step at which N and the slip speed are evaluated.
@@ -155,7 +156,7 @@ impl Scanner {
         &mut self,
         models: &DiskModels<R, S>,
         phase: Phase,
-        step: &StepView<'_, DIM, Phase>,
+        step: &StepView<'_, Const<DIM>, Phase>,
         out: &mut impl FnMut(Extremum),
     ) {
         let Some(dense) = step.dense else { return };
@@ -251,7 +252,7 @@ impl Scanner {
     /// root refined on the interpolant (a zero at a step's end counts in the step it ends).
     fn theta(
         &self,
-        dense: &dyn Interpolant<DIM>,
+        dense: &dyn Interpolant<Const<DIM>>,
         ts: &[f64],
         w: &[f64],
         mode: Mode,

@@ -14,6 +14,7 @@ use crate::settings::{Integrator, TimeVariable};
 use crate::start::InitialState;
 use crate::work::WorkMeter;
 use model_runtime::ChatterLimit as DriverChatter;
+use model_runtime::Const;
 use model_runtime::{
     Clocked, Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
     LimitingComponent, Model, Observer, PhysicalTime, Regularised, Rk4, Rodas4, Sample,
@@ -100,8 +101,8 @@ fn run_with<St, Sc, R, S, O>(
     observer: &mut O,
 ) -> Result<RunOutcome, SimFailure>
 where
-    St: Stepper<DIM>,
-    Sc: Stepper<CLOCKED>,
+    St: Stepper<Const<DIM>>,
+    Sc: Stepper<Const<CLOCKED>>,
     R: Model<DIM>,
     S: Model<DIM>,
     O: DiskObserver,
@@ -354,7 +355,7 @@ pub(super) fn in_physical_time<Md>(e: HybridError<Md>, t: f64) -> HybridError<Md
 impl DiskConfig {
     /// The error norm of a run sliding in `chart`: the tolerances, the vector groups of
     /// [`DiskConfig::error_norm`], and whether the limiting component is counted.
-    pub fn tolerance(&self, chart: SlipChart) -> Result<Tolerance<DIM>, InputError> {
+    pub fn tolerance(&self, chart: SlipChart) -> Result<Tolerance<Const<DIM>>, InputError> {
         let tol = self
             .error_norm
             .groups(chart)
@@ -534,8 +535,8 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
     }
 }
 
-impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::DiskGuard, DiskNote>
-    for Adaptor<'_, R, S, O>
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
+    Observer<Const<DIM>, Phase, super::DiskGuard, DiskNote> for Adaptor<'_, R, S, O>
 {
     fn wants_sample(&self, t: f64) -> bool {
         self.user.wants_sample(t)
@@ -552,7 +553,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
         self.user.proceed()
     }
 
-    fn on_sample(&mut self, s: &Sample<'_, DIM, Phase>) {
+    fn on_sample(&mut self, s: &Sample<'_, Const<DIM>, Phase>) {
         match sample_at(self.models, self.bridge, s.t, s.mode, s.y) {
             Ok(sample) => self.user.on_sample(&sample),
             Err(e) => {
@@ -563,7 +564,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
         }
     }
 
-    fn on_step(&mut self, step: &StepView<'_, DIM, Phase>) {
+    fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Phase>) {
         self.work.step(step.t0, step.t1);
         if self.user.wants_extrema() {
             let user = &mut *self.user;
@@ -585,7 +586,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Observer<DIM, Phase, super::
 
     fn on_transition(
         &mut self,
-        record: model_runtime::TransitionRecord<DIM, Phase, super::DiskGuard, DiskNote>,
+        record: model_runtime::TransitionRecord<Const<DIM>, Phase, super::DiskGuard, DiskNote>,
     ) {
         if !matches!(record.kind, model_runtime::TransitionKind::Pass) {
             self.end_segment();

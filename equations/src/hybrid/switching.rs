@@ -277,7 +277,7 @@ fn transition(
     };
     match system.on_event(phase, &hit)? {
         Transition::Switch { to, y, .. } => {
-            new[..DIM].copy_from_slice(&y);
+            new[..DIM].copy_from_slice(y.as_ref());
             Ok(Some(match to {
                 Phase::Rolling => disk::mode::rolling,
                 Phase::Sliding => disk::mode::sliding,

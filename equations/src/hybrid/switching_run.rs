@@ -12,6 +12,7 @@ use crate::modes::{SlipChart, DIM};
 use crate::params::DiskParams;
 use crate::settings::{Integrator, TimeVariable};
 use crate::start::InitialState;
+use model_runtime::Const;
 use model_runtime::{
     AccumulationRule, Clocked, Dop853, Dopri5, EventId, HybridError, HybridSolver, InputError,
     ModeGraph, ModeId, Observer, PhysicalTime, Regularised, Stats, Stepper, StopReason, Switched,
@@ -120,7 +121,7 @@ pub fn simulate_switched(
 /// The clocked state's dimension in regularised time.
 const CLOCKED: usize = DIM + 1;
 
-fn run<St: Stepper<DIM>, Sc: Stepper<CLOCKED>>(
+fn run<St: Stepper<Const<DIM>>, Sc: Stepper<Const<CLOCKED>>>(
     stepper: St,
     clocked_stepper: Sc,
     models: &GeneratedModels,
@@ -258,12 +259,15 @@ impl Collector {
     }
 }
 
-impl Observer<DIM, ModeId, EventId, SwitchedNote> for Collector {
-    fn on_step(&mut self, _step: &model_runtime::StepView<'_, DIM, ModeId>) {
+impl Observer<Const<DIM>, ModeId, EventId, SwitchedNote> for Collector {
+    fn on_step(&mut self, _step: &model_runtime::StepView<'_, Const<DIM>, ModeId>) {
         self.steps += 1;
     }
 
-    fn on_transition(&mut self, record: TransitionRecord<DIM, ModeId, EventId, SwitchedNote>) {
+    fn on_transition(
+        &mut self,
+        record: TransitionRecord<Const<DIM>, ModeId, EventId, SwitchedNote>,
+    ) {
         let (mode, event) = self.names(record.hit.guard);
         let next = match record.kind {
             TransitionKind::Switch { to } => self.graph.mode_name(to).to_string(),

@@ -13,6 +13,7 @@ use crate::config::DiskConfig;
 use crate::modes::layout::{THETA, U_X, U_Y, V_C};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use crate::settings::{SlipSign, TimeVariable};
+use model_runtime::Const;
 use model_runtime::{
     Direction, EvalError, EventHit, GuardInputs, GuardSpec, HybridSystem, Model, TimeScale,
     Transition,
@@ -118,7 +119,7 @@ pub(crate) struct DiskNote {
 }
 
 /// A transition of the disk.
-type DiskTransition = Transition<DIM, Phase, Halted, DiskNote>;
+type DiskTransition = Transition<Const<DIM>, Phase, Halted, DiskNote>;
 
 /// A mode decision that starts sliding, and where it leads: the next segment, or a stop.
 pub(crate) struct SlidingStart {
@@ -389,7 +390,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
     }
 }
 
-impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
+impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<Const<DIM>> for DiskSystem<'_, R, S> {
     type Mode = Phase;
     type Guard = DiskGuard;
     type Stop = Halted;
@@ -443,8 +444,9 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
 
     /// What [`Self::guard_values`] reads in `phase` (module `inputs`), so that screening
     /// interpolates four components instead of twenty-four.
-    fn guard_inputs(&self, phase: Phase) -> GuardInputs<DIM> {
-        inputs::guard_inputs(phase, self.models.chart, self.models.params.k_F() != 0.0)
+    fn guard_inputs(&self, phase: Phase) -> Option<GuardInputs<Const<DIM>>> {
+        let with_air = self.models.params.k_F() != 0.0;
+        Some(inputs::guard_inputs(phase, self.models.chart, with_air))
     }
 
     fn guard_values(
@@ -480,7 +482,7 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<DIM> for DiskSystem<'_, R, S> {
     fn on_event(
         &mut self,
         phase: Phase,
-        hit: &EventHit<DIM, DiskGuard>,
+        hit: &EventHit<Const<DIM>, DiskGuard>,
     ) -> Result<DiskTransition, EvalError> {
         match hit.guard {
             DiskGuard::ContactLost => {

@@ -2,6 +2,7 @@
 //! `guard_inputs` lists exactly those components, and a run that screens with them fires every
 //! event at the same instant, to the bit, as one that interpolates everything.
 
+use model_runtime::Const;
 use model_runtime::{
     run_switched, Dop853, EvalError, GuardInputs, HybridOptions, ModeGraph, SwitchedModel,
     Tolerance,
@@ -29,7 +30,7 @@ model_macros::model! {
 /// A model that declares nothing: its guards are screened on every component.
 struct Everything(oscillator::Model);
 
-impl SwitchedModel<3> for Everything {
+impl SwitchedModel<Const<3>> for Everything {
     fn graph(&self) -> &ModeGraph {
         self.0.graph()
     }
@@ -64,11 +65,15 @@ impl SwitchedModel<3> for Everything {
 fn the_guards_inputs_are_what_their_program_reads() {
     let (x, v) = (oscillator::state::x, oscillator::state::v);
     let model = oscillator::Model::default();
-    let free = model.guard_inputs(oscillator::mode::free);
+    let free = model
+        .guard_inputs(oscillator::mode::free)
+        .expect("declared");
     // turn reads der(x), wall reads x, pulls reads der(v).
     assert_eq!(free.state.indices(), &[x]);
     assert_eq!(free.rates.indices(), &[x, v]);
-    let held = model.guard_inputs(oscillator::mode::held);
+    let held = model
+        .guard_inputs(oscillator::mode::held)
+        .expect("declared");
     assert_eq!(held, GuardInputs::of(&[], &[]));
     // Checked against the guards themselves: NaN outside the declaration changes no bit,
     // NaN in a declared component spoils some guard.
@@ -120,7 +125,7 @@ fn screening_with_the_derived_inputs_changes_no_event() {
         out.unwrap()
     };
     let (declared, everything) = (run(true), run(false));
-    let events = |r: &model_runtime::SwitchedRun<3>| -> Vec<(String, u64)> {
+    let events = |r: &model_runtime::SwitchedRun<Const<3>>| -> Vec<(String, u64)> {
         (r.events.iter())
             .map(|e| (e.event.clone(), e.t.to_bits()))
             .collect()

@@ -4,6 +4,7 @@
 //! where the run goes (`-> a | b | stop by FUNCTION`): the ball that comes to rest once its
 //! impacts are slow, at the closed-form instant.
 
+use model_runtime::Const;
 use model_runtime::{
     run_switched, Dop853, EvalError, Fired, HybridError, HybridOptions, Tolerance,
 };
@@ -159,7 +160,7 @@ fn bounce_below_4(
     Ok(())
 }
 
-fn tolerance() -> Tolerance<2> {
+fn tolerance() -> Tolerance<Const<2>> {
     Tolerance::scalar(1e-10, 1e-12)
 }
 
@@ -225,7 +226,7 @@ fn the_table_of_modes_names_the_rust_function() {
     );
 }
 
-fn landing_run(params: landing::Params) -> model_runtime::SwitchedRun<2> {
+fn landing_run(params: landing::Params) -> model_runtime::SwitchedRun<Const<2>> {
     run_switched(
         landing::Model::from_params(params),
         Dop853::new(),

@@ -2,6 +2,7 @@
 //! The ball slowed near the floor keeps its closed-form impacts when `Regularised` integrates
 //! it with the declared clock; a mode's own clock overrides the model's.
 
+use model_runtime::Const;
 use model_runtime::{
     AccumulationRule, Clocked, Dop853, HybridOptions, HybridSolver, Observer, PhysicalTime,
     Regularised, StopReason, Switched, SwitchedModel, SwitchedNote, Tolerance, TransitionRecord,
@@ -29,8 +30,8 @@ model_macros::model! {
 #[derive(Default)]
 struct Impacts(Vec<f64>);
 
-impl Observer<2, ModeId, EventId, SwitchedNote> for Impacts {
-    fn on_transition(&mut self, record: TransitionRecord<2, ModeId, EventId, SwitchedNote>) {
+impl Observer<Const<2>, ModeId, EventId, SwitchedNote> for Impacts {
+    fn on_transition(&mut self, record: TransitionRecord<Const<2>, ModeId, EventId, SwitchedNote>) {
         self.0.push(record.hit.t);
     }
 }

@@ -156,16 +156,6 @@ pub enum RequestError {
         /// The end.
         t_end: f64,
     },
-    /// The model has more states than the interpreter bridge integrates.
-    #[error("`{model}` has {states} states; the interpreter integrates at most {max} (compile the model with `model!` instead)")]
-    TooManyStates {
-        /// The model's name.
-        model: String,
-        /// Its number of states.
-        states: usize,
-        /// The most there may be.
-        max: usize,
-    },
     /// The runtime refused a setting (the time span, a tolerance), in its words.
     #[error("{0}")]
     Settings(String),

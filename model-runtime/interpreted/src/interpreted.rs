@@ -1,47 +1,22 @@
-//! A compiled model run by the interpreter as a runtime [`Model`].
+//! A compiled model run by the interpreter as a runtime [`System`].
 //!
-//! The runtime's models have a state dimension fixed at compile time; a file's model has its
-//! own. Rather than instantiating the integrators once per dimension, the interpreted model is
-//! embedded in [`MAX_STATES`] components: the components past the model's states have zero
-//! derivatives and stay zero. The error norm is a root mean square over all components, so
-//! each component's tolerances are scaled by `sqrt(n / MAX_STATES)` ([`tolerance`]), which
-//! makes the norm, and with it every step-size decision, exactly that of the model's `n`
-//! states alone. The runtime's [`ModelInfo`] is `'static` (a compiled model's is a constant),
-//! so an interpreted model's names are leaked once per model solved.
+//! A file's model has its size only when the file is read, so it is a system of the runtime's
+//! run-time size [`Dyn`]: its states are vectors of exactly its own `n` components, integrated
+//! by the same integrators, error norm and drivers as a model compiled by `model!` (which run
+//! on fixed-size arrays). There is no padding and no limit on the number of states, and the
+//! tolerance is the request's own.
+//!
+//! The runtime's [`ModelInfo`] and [`EvalError`] name things with `'static` strings (a
+//! compiled model's are constants), so an interpreted model's names are leaked once per model
+//! solved.
 
-use crate::error::{PointError, RequestError, SolveFailure};
+use crate::error::{PointError, SolveFailure};
 use model_algebra::{CompiledModel, EvalFailure, Inputs, Ops};
-use model_runtime::{EvalError, Model, ModelInfo, OpCounts, Tolerance, WithOutputs};
+use model_runtime::{Dyn, EvalError, ModelInfo, OpCounts, Rhs, System, SystemOutputs, Tolerance};
 
-/// The most states an interpreted model may have.
-pub const MAX_STATES: usize = 32;
-
-/// A state of [`MAX_STATES`] components.
-pub(crate) type Padded = [f64; MAX_STATES];
-
-/// Refuses a model of more than [`MAX_STATES`] states.
-pub(crate) fn check_size(model: &str, states: usize) -> Result<(), RequestError> {
-    if states > MAX_STATES {
-        return Err(RequestError::TooManyStates {
-            model: model.to_string(),
-            states,
-            max: MAX_STATES,
-        });
-    }
-    Ok(())
-}
-
-/// `y` in [`MAX_STATES`] components, zero past its own.
-pub(crate) fn pad(y: &[f64]) -> Padded {
-    let mut padded = [0.0; MAX_STATES];
-    padded[..y.len()].copy_from_slice(y);
-    padded
-}
-
-/// The tolerance of `n` states embedded in [`MAX_STATES`]: the same error norm.
-pub(crate) fn tolerance(n: usize, rtol: f64, atol: f64) -> Tolerance<MAX_STATES> {
-    let scale = (n as f64 / MAX_STATES as f64).sqrt();
-    Tolerance::per_component([rtol * scale; MAX_STATES], [atol * scale; MAX_STATES])
+/// The request's tolerance for the `n` states of a model.
+pub(crate) fn tolerance(n: usize, rtol: f64, atol: f64) -> Tolerance<Dyn> {
+    Tolerance::scalar_in(Dyn(n), rtol, atol)
 }
 
 /// `t`, the states and the outputs of `model` at `(t, y)`, as a trajectory row.
@@ -66,7 +41,7 @@ pub(crate) fn row(
     Ok(row)
 }
 
-/// A compiled model run by the interpreter, in [`MAX_STATES`] components.
+/// A compiled model run by the interpreter, in its own number of states.
 pub(crate) struct Interpreted<'a> {
     model: &'a CompiledModel,
     params: &'a [f64],
@@ -100,12 +75,10 @@ fn op_counts(ops: Ops) -> OpCounts {
 
 impl<'a> Interpreted<'a> {
     pub(crate) fn new(model: &'a CompiledModel, params: &'a [f64]) -> Self {
-        let n = model.states.len();
-        let padding = (n..MAX_STATES).map(|k| format!("(unused {k})"));
         let pivots = leak_all(model.pivots.iter().chain(&model.numeric_blocks).cloned());
         let info = Box::leak(Box::new(ModelInfo {
             name: leak(model.name.clone()),
-            state_names: leak_all(model.states.iter().cloned().chain(padding)),
+            state_names: leak_all(model.states.iter().cloned()),
             param_names: leak_all(model.params.iter().map(|(name, _)| name.clone())),
             output_names: &[],
             rhs_ops: op_counts(model.rhs.ops()),
@@ -156,14 +129,9 @@ impl<'a> Interpreted<'a> {
     }
 }
 
-impl Model<MAX_STATES> for Interpreted<'_> {
-    fn info(&self) -> &'static ModelInfo {
-        self.info
-    }
-
-    fn rhs(&self, t: f64, y: &Padded, dy: &mut Padded) -> Result<(), EvalError> {
-        let n = self.model.states.len();
-        let der = (self.model.derivatives(t, &y[..n], self.params)).map_err(|e| self.error(e))?;
+impl Rhs<Dyn> for Interpreted<'_> {
+    fn rhs(&self, t: f64, y: &Vec<f64>, dy: &mut Vec<f64>) -> Result<(), EvalError> {
+        let der = (self.model.derivatives(t, y, self.params)).map_err(|e| self.error(e))?;
         if let Some(k) = der.iter().position(|v| !v.is_finite()) {
             return Err(EvalError::NonFinite {
                 model: self.info.name,
@@ -171,41 +139,43 @@ impl Model<MAX_STATES> for Interpreted<'_> {
                 value: der[k],
             });
         }
-        dy[..n].copy_from_slice(&der);
-        dy[n..].fill(0.0);
+        dy.copy_from_slice(&der);
         Ok(())
     }
 
-    fn jacobian(
-        &self,
-        t: f64,
-        y: &Padded,
-        jac: &mut [Padded; MAX_STATES],
-    ) -> Result<(), EvalError> {
-        let n = self.model.states.len();
+    fn jacobian(&self, t: f64, y: &Vec<f64>, jac: &mut Vec<Vec<f64>>) -> Result<(), EvalError> {
         let inputs = Inputs {
             t,
-            states: &y[..n],
+            states: y,
             params: self.params,
             ders: &[],
         };
         let stores = (self.model.jacobian.eval(&inputs)).map_err(|e| self.error(e))?;
-        *jac = [[0.0; MAX_STATES]; MAX_STATES];
-        for (row, values) in jac.iter_mut().zip(stores.jacobian(n)) {
-            row[..n].copy_from_slice(&values);
+        for (row, values) in jac.iter_mut().zip(stores.jacobian(y.len())) {
+            row.copy_from_slice(&values);
         }
         Ok(())
     }
 }
 
+impl System<Dyn> for Interpreted<'_> {
+    fn info(&self) -> &ModelInfo {
+        self.info
+    }
+
+    fn dim(&self) -> Dyn {
+        Dyn(self.model.states.len())
+    }
+}
+
 /// The outputs are evaluated by the interpreter at the recorded points ([`row`]), not by the
 /// runtime.
-impl WithOutputs<MAX_STATES, 0> for Interpreted<'_> {
+impl SystemOutputs<Dyn, 0> for Interpreted<'_> {
     fn outputs(
         &self,
         _t: f64,
-        _y: &Padded,
-        _dy: &Padded,
+        _y: &Vec<f64>,
+        _dy: &Vec<f64>,
         _out: &mut [f64; 0],
     ) -> Result<(), EvalError> {
         Ok(())

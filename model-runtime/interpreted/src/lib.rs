@@ -29,9 +29,10 @@
 //!   [`initial_state`], [`resolve`].
 //! * **For a switched model**: its runtime [`mode_graph`].
 //!
-//! An interpreted model is embedded in [`MAX_STATES`] components (the runtime's models have
-//! compile-time sizes), with its tolerance scaled so that every step-size decision is that of
-//! its own states; a model with more states is a [`RequestError::TooManyStates`].
+//! An interpreted model runs in exactly its own states, of any number: the runtime's
+//! integrators and drivers are written once over a state size known at compile time
+//! (`model!`'s models, `model_runtime::Const`) or at run time (a file's, `model_runtime::Dyn`),
+//! so the interpreter needs no padding and the request's tolerance is the model's own.
 //!
 //! ```
 //! use model_interpreted::{solve, EventKind, EventRequest, ModelFile, SolveRequest, Stop};
@@ -77,7 +78,6 @@ mod values;
 pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
 };
-pub use interpreted::MAX_STATES;
 pub use load::{select_chart, ModelFile, ModelRef};
 pub use request::{EventRequest, SolveRequest, Watched};
 pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};

@@ -6,7 +6,7 @@
 //! function, and is evaluated by the interpreter there.
 
 use crate::error::{RequestError, RunFailure, SolveFailure};
-use crate::interpreted::{check_size, pad, row, tolerance, Interpreted, MAX_STATES};
+use crate::interpreted::{row, tolerance, Interpreted};
 use crate::request::{Resolved, ResolvedEvent, SolveRequest, Watched};
 use crate::solution::{EventKind, Solution, SolvedEvent, Stop};
 use model_algebra::CompiledModel;
@@ -23,18 +23,15 @@ impl ResolvedEvent {
     /// The runtime's event: the state read from `y`, or the output evaluated at `(t, y, dy)`
     /// by the interpreter (NaN where it cannot be, which the runtime reports naming the
     /// event).
-    fn event(&self, shared: &Arc<Shared>) -> Event<MAX_STATES> {
+    fn event(&self, shared: &Arc<Shared>) -> Event {
         let name = &self.request.name;
         let event = match self.watched {
             Watched::State(k) => Event::new(name, move |_t, y, _dy| y[k]),
             Watched::Output(j) => {
                 let shared = Arc::clone(shared);
                 Event::new(name, move |t, y, dy| {
-                    let n = shared.model.states.len();
-                    (shared
-                        .model
-                        .outputs_at(t, &y[..n], &dy[..n], &shared.params))
-                    .map_or(f64::NAN, |outputs| outputs[j])
+                    (shared.model.outputs_at(t, y, dy, &shared.params))
+                        .map_or(f64::NAN, |outputs| outputs[j])
                 })
             }
         };
@@ -54,14 +51,13 @@ pub(crate) fn solve_smooth(
     request: &SolveRequest,
 ) -> Result<Solution, SolveFailure> {
     let n = model.states.len();
-    check_size(&model.name, n)?;
     let params = &resolved.params;
     let interpreted = Interpreted::new(model, params);
     let output = match resolved.times {
         Some(times) => Output::Times(times),
         None => Output::Steps,
     };
-    let mut problem = Problem::new(&interpreted, pad(&resolved.y0), (request.t0, request.t_end))
+    let mut problem = Problem::new(&interpreted, resolved.y0, (request.t0, request.t_end))
         .method(request.method)
         .tolerance(tolerance(n, request.rtol, request.atol))
         .output(output);
@@ -91,14 +87,14 @@ pub(crate) fn solve_smooth(
     })?;
     let mut rows = Vec::with_capacity(solved.t.len() + 1);
     for (&t, y) in solved.t.iter().zip(&solved.y) {
-        rows.push(row(model, params, t, &y[..n])?);
+        rows.push(row(model, params, t, y)?);
     }
     let events = (solved.events.iter())
         .map(|event| {
             Ok(SolvedEvent {
                 name: event.name.clone(),
                 kind: EventKind::Crossing,
-                row: row(model, params, event.t, &event.y[..n])?,
+                row: row(model, params, event.t, &event.y)?,
             })
         })
         .collect::<Result<Vec<_>, SolveFailure>>()?;

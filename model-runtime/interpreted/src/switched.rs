@@ -2,23 +2,23 @@
 //! modes' programs run by the interpreter, exactly as for the model `model!` compiles from the
 //! same text.
 //!
-//! Each mode is embedded in [`MAX_STATES`] components as a smooth model is (see
-//! `interpreted`), with the same tolerance scaling. The trajectory's rows are `t`, the states
+//! Each mode runs in the model's own states, as a smooth model does (see `interpreted`), with
+//! the request's tolerance. The trajectory's rows are `t`, the states
 //! and the outputs of the mode in force; each located event is an event of the solution under
 //! its name (an impact, a stick, a stop), and an accumulation of an event's resets an
 //! [`EventKind::Accumulation`] at the extrapolated accumulation point, with the state its rule
 //! sets.
 
 use crate::error::{RunFailure, SolveFailure};
-use crate::interpreted::{check_size, pad, row, tolerance, Interpreted, Padded, MAX_STATES};
+use crate::interpreted::{row, tolerance, Interpreted};
 use crate::request::{Resolved, SolveRequest};
 use crate::smooth::columns;
 use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 use model_algebra::{CompiledModel, Inputs};
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
-    run_switched, AccumulationAction, Direction, Dop853, Dopri5, EvalError, EventAction, EventDecl,
-    Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Model, Rk4, Rodas4,
+    run_switched, AccumulationAction, Direction, Dop853, Dopri5, Dyn, EvalError, EventAction,
+    EventDecl, Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Rhs, Rk4, Rodas4,
     SwitchedFailure, SwitchedModel, SwitchedRun,
 };
 
@@ -54,7 +54,7 @@ pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, SolveFailure> {
     ModeGraph::new(modes).map_err(|error| SolveFailure::Graph(error.to_string()))
 }
 
-/// A switched model run by the interpreter, in [`MAX_STATES`] components.
+/// A switched model run by the interpreter, in its own number of states.
 struct InterpretedSwitched<'a> {
     model: &'a CompiledSwitched,
     /// The parameters, then the discrete values as they are now (the model's parameters,
@@ -83,22 +83,21 @@ impl<'a> InterpretedSwitched<'a> {
     }
 
     fn inputs<'b>(&'b self, t: f64, y: &'b [f64], dy: &'b [f64]) -> Inputs<'b> {
-        let n = self.model.states().len();
         Inputs {
             t,
-            states: &y[..n],
+            states: y,
             params: &self.values,
-            ders: &dy[..n],
+            ders: dy,
         }
     }
 }
 
-impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
+impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
     fn graph(&self) -> &ModeGraph {
         &self.graph
     }
 
-    fn rhs(&self, mode: usize, t: f64, y: &Padded, dy: &mut Padded) -> Result<(), EvalError> {
+    fn rhs(&self, mode: usize, t: f64, y: &Vec<f64>, dy: &mut Vec<f64>) -> Result<(), EvalError> {
         self.mode(mode).rhs(t, y, dy)
     }
 
@@ -106,8 +105,8 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         &self,
         mode: usize,
         t: f64,
-        y: &Padded,
-        jac: &mut [Padded; MAX_STATES],
+        y: &Vec<f64>,
+        jac: &mut Vec<Vec<f64>>,
     ) -> Result<(), EvalError> {
         self.mode(mode).jacobian(t, y, jac)
     }
@@ -116,8 +115,8 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         &self,
         mode: usize,
         t: f64,
-        y: &Padded,
-        dy: &Padded,
+        y: &Vec<f64>,
+        dy: &Vec<f64>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         let guards = &self.model.modes[mode].guards;
@@ -133,9 +132,9 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         event: usize,
         accumulation: bool,
         t: f64,
-        y: &Padded,
-        dy: &Padded,
-        out: &mut Padded,
+        y: &Vec<f64>,
+        dy: &Vec<f64>,
+        out: &mut Vec<f64>,
     ) -> Result<(), EvalError> {
         let event = &self.model.modes[mode].events[event];
         let jump = match (&event.action, &event.accumulation, accumulation) {
@@ -158,9 +157,9 @@ impl SwitchedModel<MAX_STATES> for InterpretedSwitched<'_> {
         Ok(())
     }
 
-    fn first_step(&self, mode: usize, t: f64, y: &Padded) -> Option<f64> {
+    fn first_step(&self, mode: usize, t: f64, y: &Vec<f64>) -> Option<f64> {
         let step = self.model.modes[mode].first_step.as_ref()?;
-        let mut dy = [0.0; MAX_STATES];
+        let mut dy = vec![0.0; y.len()];
         self.rhs(mode, t, y, &mut dy).ok()?;
         let stores = step.program.eval(&self.inputs(t, y, &dy)).ok()?;
         let h = stores.outputs(1)[0];
@@ -177,7 +176,6 @@ pub(crate) fn solve_switched(
     request: &SolveRequest,
 ) -> Result<Solution, SolveFailure> {
     let n = model.states().len();
-    check_size(&model.name, n)?;
     let params = &resolved.params;
     let mut interpreted = InterpretedSwitched::new(model, params)?;
     let tolerance = tolerance(n, request.rtol, request.atol);
@@ -185,12 +183,12 @@ pub(crate) fn solve_switched(
         sample_rate: request.dt.map(|dt| 1.0 / dt),
         ..HybridOptions::default()
     };
-    let start = (request.t0, pad(&resolved.y0));
+    let start = (request.t0, resolved.y0);
     let t_end = request.t_end;
     let run = match request.method {
         Method::Dopri5 => run_switched(
             &mut interpreted,
-            Dopri5::new(),
+            Dopri5::new_in(Dyn(n)),
             tolerance,
             options,
             start,
@@ -198,7 +196,7 @@ pub(crate) fn solve_switched(
         ),
         Method::Dop853 => run_switched(
             &mut interpreted,
-            Dop853::new(),
+            Dop853::new_in(Dyn(n)),
             tolerance,
             options,
             start,
@@ -206,7 +204,7 @@ pub(crate) fn solve_switched(
         ),
         Method::Rodas4 => run_switched(
             &mut interpreted,
-            Rodas4::new(),
+            Rodas4::new_in(Dyn(n)),
             tolerance,
             options,
             start,
@@ -214,7 +212,7 @@ pub(crate) fn solve_switched(
         ),
         Method::Rk4 { h } => run_switched(
             &mut interpreted,
-            Rk4::new(h),
+            Rk4::new_in(Dyn(n), h),
             tolerance,
             options,
             start,
@@ -225,7 +223,7 @@ pub(crate) fn solve_switched(
     let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
     // Outputs read no discrete value (the compiler refuses it): the values at the end serve.
     let values = &interpreted.values;
-    let at = |mode: &str, t: f64, y: &Padded| row(mode_model(mode), values, t, &y[..n]);
+    let at = |mode: &str, t: f64, y: &[f64]| row(mode_model(mode), values, t, y);
     let mut rows = Vec::with_capacity(run.samples.len() + 1);
     for (t, mode, y) in &run.samples {
         rows.push(at(mode, *t, y)?);
@@ -284,7 +282,7 @@ pub(crate) fn solve_switched(
 
 /// The mode the run continued in after its `k`-th event (its own, for an event that ended
 /// the run).
-fn mode_after(run: &SwitchedRun<MAX_STATES>, k: usize) -> &str {
+fn mode_after(run: &SwitchedRun<Dyn>, k: usize) -> &str {
     let event = &run.events[k];
     match run.events.get(k + 1) {
         Some(next) => next.mode.as_str(),
@@ -295,7 +293,7 @@ fn mode_after(run: &SwitchedRun<MAX_STATES>, k: usize) -> &str {
 
 /// A failed run in the model's words (modes by name, what resolves a chatter), with the work
 /// done until then.
-fn run_failure(failure: SwitchedFailure<MAX_STATES>) -> SolveFailure {
+fn run_failure(failure: SwitchedFailure<Dyn>) -> SolveFailure {
     let message = match &failure.error {
         HybridError::Chattering {
             t,

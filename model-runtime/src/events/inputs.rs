@@ -10,19 +10,33 @@
 //! non-finite estimate) only asks for the exact evaluation, with the full state. Exact
 //! evaluations never depend on the declaration.
 
+use crate::dim::{Const, Dim};
 use crate::stepper::Components;
 
 /// The components of the state `y` and of its derivative `dy` that a mode's guards read.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct GuardInputs<const N: usize> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct GuardInputs<D: Dim> {
     /// The components of `y` the guards read.
-    pub state: Components<N>,
+    pub state: Components<D>,
     /// The components of `dy` the guards read.
-    pub rates: Components<N>,
+    pub rates: Components<D>,
 }
 
-impl<const N: usize> GuardInputs<N> {
-    /// Every component of both: what a system that declares nothing gets.
+impl<D: Dim> GuardInputs<D> {
+    /// Every component of both, in states of size `dim`: what a system that declares nothing
+    /// gets.
+    pub fn all(dim: D) -> Self {
+        GuardInputs {
+            state: Components::all(dim),
+            rates: Components::all(dim),
+        }
+    }
+}
+
+impl<const N: usize> Copy for GuardInputs<Const<N>> {}
+
+impl<const N: usize> GuardInputs<Const<N>> {
+    /// Every component of both.
     pub const ALL: Self = GuardInputs {
         state: Components::ALL,
         rates: Components::ALL,
@@ -49,7 +63,7 @@ impl<const N: usize> GuardInputs<N> {
     }
 }
 
-impl<const N: usize> Default for GuardInputs<N> {
+impl<const N: usize> Default for GuardInputs<Const<N>> {
     /// [`GuardInputs::ALL`].
     fn default() -> Self {
         Self::ALL

@@ -6,6 +6,7 @@
 //! Apart from the system so that each file holds one side of the transformation.
 
 use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
+use crate::dim::Const;
 use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::root::find_crossing;
 
@@ -37,10 +38,10 @@ impl<'o, O, const N: usize, const M: usize> PhysicalTime<'o, O, N, M> {
     }
 }
 
-impl<O, Md, G, Nt, const N: usize, const M: usize> Observer<M, Md, ClockGuard<G>, Nt>
+impl<O, Md, G, Nt, const N: usize, const M: usize> Observer<Const<M>, Md, ClockGuard<G>, Nt>
     for PhysicalTime<'_, O, N, M>
 where
-    O: Observer<N, Md, G, Nt>,
+    O: Observer<Const<N>, Md, G, Nt>,
     Md: Copy,
     G: Copy,
 {
@@ -48,7 +49,7 @@ where
         self.rate.is_some() || self.inner.wants_dense()
     }
 
-    fn on_step(&mut self, step: &StepView<'_, M, Md>) {
+    fn on_step(&mut self, step: &StepView<'_, Const<M>, Md>) {
         let (t0, t1) = (self.t_seg + step.y0[N], self.t_seg + step.y1[N]);
         // Round-off in the located end of a run leaves its clock an ulp or so short of a
         // sample due exactly there.
@@ -99,11 +100,11 @@ where
             y0: &y0,
             y1: &y1,
             f0: &physical_rate(step.f0),
-            dense: physical.as_ref().map(|d| d as &dyn Interpolant<N>),
+            dense: physical.as_ref().map(|d| d as &dyn Interpolant<Const<N>>),
         });
     }
 
-    fn on_transition(&mut self, record: TransitionRecord<M, Md, ClockGuard<G>, Nt>) {
+    fn on_transition(&mut self, record: TransitionRecord<Const<M>, Md, ClockGuard<G>, Nt>) {
         let ClockGuard::Inner(guard) = record.hit.guard else {
             return;
         };
@@ -133,7 +134,7 @@ where
 /// A step's dense output in `τ`, evaluated in physical time: each evaluation first finds the
 /// `τ` at which the clock reads `t` (the clock rises monotonically, `s > 0`), to a few ulps.
 struct InPhysicalTime<'a, const N: usize, const M: usize> {
-    dense: &'a dyn Interpolant<M>,
+    dense: &'a dyn Interpolant<Const<M>>,
     /// The step's ends in `τ`.
     tau: (f64, f64),
     /// The clock at those ends.
@@ -179,7 +180,11 @@ impl<const N: usize, const M: usize> InPhysicalTime<'_, N, M> {
     }
 }
 
-impl<const N: usize, const M: usize> Interpolant<N> for InPhysicalTime<'_, N, M> {
+impl<const N: usize, const M: usize> Interpolant<Const<N>> for InPhysicalTime<'_, N, M> {
+    fn dim(&self) -> Const<N> {
+        Const
+    }
+
     fn at(&self, t: f64, out: &mut [f64; N]) {
         let mut z = [0.0; M];
         self.dense.at(self.tau_at(t), &mut z);

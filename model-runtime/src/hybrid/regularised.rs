@@ -25,13 +25,14 @@
 //! driver's own sampling must stay off (its grid would be in `τ`).
 
 use super::{HybridSystem, Transition};
+use crate::dim::Const;
 use crate::error::EvalError;
 use crate::events::{Direction, EventHit, GuardInputs, GuardSpec};
 use crate::stepper::Components;
 use crate::tolerance::{LimitingComponent, Tolerance};
 
 /// A hybrid system's time transformation `dt = s dτ`, per mode.
-pub trait TimeScale<const N: usize>: HybridSystem<N> {
+pub trait TimeScale<const N: usize>: HybridSystem<Const<N>> {
     /// `s(y) > 0` in `mode`: how much physical time one unit of `τ` is at `y`. It should
     /// vanish like the distance to the points where the right-hand side is not smooth, and
     /// be 1 (or close) away from them.
@@ -64,7 +65,7 @@ pub enum Clocked<R> {
 ///
 /// ```
 /// use model_runtime::{
-///     Clocked, Dop853, Direction, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver,
+///     Const, Clocked, Dop853, Direction, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver,
 ///     HybridSystem, PhysicalTime, Recorder, Regularised, StopReason, TimeScale, Tolerance,
 ///     Transition,
 /// };
@@ -72,7 +73,7 @@ pub enum Clocked<R> {
 /// /// y' = -1, stopped when y reaches 0.45 (at t = 0.55), integrated with s = y.
 /// struct Drain;
 /// const GUARDS: [GuardSpec<&str>; 1] = [GuardSpec { id: "half", direction: Direction::Down }];
-/// impl HybridSystem<1> for Drain {
+/// impl HybridSystem<Const<1>> for Drain {
 ///     type Mode = ();
 ///     type Guard = &'static str;
 ///     type Stop = f64;
@@ -84,8 +85,8 @@ pub enum Clocked<R> {
 ///     fn guards(&self, _: ()) -> &[GuardSpec<&'static str>] { &GUARDS }
 ///     fn guard_values(&self, _: (), _t: f64, y: &[f64; 1], _dy: &[f64; 1], g: &mut [f64])
 ///         -> Result<(), EvalError> { g[0] = y[0] - 0.45; Ok(()) }
-///     fn on_event(&mut self, _: (), hit: &EventHit<1, &'static str>)
-///         -> Result<Transition<1, (), f64>, EvalError> { Ok(Transition::Stop(hit.t)) }
+///     fn on_event(&mut self, _: (), hit: &EventHit<Const<1>, &'static str>)
+///         -> Result<Transition<Const<1>, (), f64>, EvalError> { Ok(Transition::Stop(hit.t)) }
 /// }
 /// impl TimeScale<1> for Drain {
 ///     fn time_scale(&self, _: (), y: &[f64; 1]) -> f64 { y[0] }
@@ -105,7 +106,7 @@ pub enum Clocked<R> {
 /// assert_eq!(seen.samples.len(), 6);
 /// assert!((seen.samples[3].2[0] - 0.7).abs() < 1e-9);
 /// ```
-pub struct Regularised<'a, H: HybridSystem<N>, const N: usize, const M: usize> {
+pub struct Regularised<'a, H: HybridSystem<Const<N>>, const N: usize, const M: usize> {
     inner: &'a mut H,
     /// Physical time at the start of the current segment.
     t_seg: f64,
@@ -157,10 +158,10 @@ pub(super) fn physical_rate<const N: usize, const M: usize>(dz: &[f64; M]) -> [f
 /// An event of the clocked run (dated in `τ`) as the inner system sees it: at physical time
 /// `t`, its state without the clock, its rate in physical time, the inner `guard`.
 pub(super) fn physical_hit<G, const N: usize, const M: usize>(
-    hit: &EventHit<M, ClockGuard<G>>,
+    hit: &EventHit<Const<M>, ClockGuard<G>>,
     guard: G,
     t: f64,
-) -> EventHit<N, G> {
+) -> EventHit<Const<N>, G> {
     EventHit {
         guard,
         index: hit.index,
@@ -231,7 +232,7 @@ impl<'a, H: TimeScale<N>, const N: usize, const M: usize> Regularised<'a, H, N, 
 
     /// Tolerances for the clocked state: `tol` for the states (its vector groups kept), and
     /// `clock.0` (relative), `clock.1` (absolute) for the clock.
-    pub fn tolerance(&self, tol: &Tolerance<N>, clock: (f64, f64)) -> Tolerance<M> {
+    pub fn tolerance(&self, tol: &Tolerance<Const<N>>, clock: (f64, f64)) -> Tolerance<Const<M>> {
         let rtol = with_clock(&tol.rtol, clock.0);
         let atol = with_clock(&tol.atol, clock.1);
         let mut out = Tolerance::per_component(rtol, atol);
@@ -255,7 +256,9 @@ impl<'a, H: TimeScale<N>, const N: usize, const M: usize> Regularised<'a, H, N, 
     }
 }
 
-impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regularised<'_, H, N, M> {
+impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<Const<M>>
+    for Regularised<'_, H, N, M>
+{
     type Mode = H::Mode;
     type Guard = ClockGuard<H::Guard>;
     type Stop = Clocked<H::Stop>;
@@ -287,14 +290,14 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
     }
 
     /// The inner guards' inputs, and the clock with its rate (the physical time and `s`).
-    fn guard_inputs(&self, mode: H::Mode) -> GuardInputs<M> {
-        let inner = self.inner.guard_inputs(mode);
-        let lift = |c: &Components<N>| {
+    fn guard_inputs(&self, mode: H::Mode) -> Option<GuardInputs<Const<M>>> {
+        let inner = self.inner.guard_inputs(mode)?;
+        let lift = |c: &Components<Const<N>>| {
             let mut list: Vec<usize> = c.indices().to_vec();
             list.push(N);
             list
         };
-        GuardInputs::of(&lift(&inner.state), &lift(&inner.rates))
+        Some(GuardInputs::of(&lift(&inner.state), &lift(&inner.rates)))
     }
 
     fn guard_values(
@@ -316,8 +319,8 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<M> for Regula
     fn on_event(
         &mut self,
         mode: H::Mode,
-        hit: &EventHit<M, Self::Guard>,
-    ) -> Result<Transition<M, H::Mode, Self::Stop, H::Note>, EvalError> {
+        hit: &EventHit<Const<M>, Self::Guard>,
+    ) -> Result<Transition<Const<M>, H::Mode, Self::Stop, H::Note>, EvalError> {
         let ClockGuard::Inner(guard) = hit.guard else {
             return Ok(Transition::Stop(Clocked::EndTime));
         };
@@ -381,7 +384,7 @@ mod tests {
         direction: Direction::Down,
     }];
 
-    impl HybridSystem<1> for Root {
+    impl HybridSystem<Const<1>> for Root {
         type Mode = ();
         type Guard = &'static str;
         type Stop = f64;
@@ -407,8 +410,8 @@ mod tests {
         fn on_event(
             &mut self,
             _: (),
-            hit: &EventHit<1, &'static str>,
-        ) -> Result<Transition<1, (), f64>, EvalError> {
+            hit: &EventHit<Const<1>, &'static str>,
+        ) -> Result<Transition<Const<1>, (), f64>, EvalError> {
             Ok(Transition::Stop(hit.t))
         }
     }
@@ -419,20 +422,20 @@ mod tests {
         }
     }
 
-    fn tol() -> Tolerance<1> {
+    fn tol() -> Tolerance<Const<1>> {
         Tolerance::scalar(1e-10, 1e-12)
     }
 
+    /// A regularised run's outcome, its physical stop time and its samples.
+    type ClockedRun = (
+        crate::hybrid::HybridOutcome<Const<2>, (), Clocked<f64>>,
+        f64,
+        Recorder<Const<1>, (), &'static str>,
+    );
+
     /// Runs `Root` in regularised time to `t_end`; returns the outcome, the physical stop
     /// time and the samples at `rate`.
-    fn clocked_run(
-        t_end: f64,
-        rate: f64,
-    ) -> (
-        crate::hybrid::HybridOutcome<2, (), Clocked<f64>>,
-        f64,
-        Recorder<1, (), &'static str>,
-    ) {
+    fn clocked_run(t_end: f64, rate: f64) -> ClockedRun {
         let mut sys = Root;
         let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, t_end);
         let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
@@ -490,11 +493,11 @@ mod tests {
     fn steps_carry_their_dense_output_in_physical_time() {
         /// Checks the interpolant of every step against `y = sqrt(1 - t)` in physical time.
         struct Dense(usize, f64);
-        impl Observer<1, (), &'static str> for Dense {
+        impl Observer<Const<1>, (), &'static str> for Dense {
             fn wants_dense(&self) -> bool {
                 true
             }
-            fn on_step(&mut self, step: &crate::observer::StepView<'_, 1, ()>) {
+            fn on_step(&mut self, step: &crate::observer::StepView<'_, Const<1>, ()>) {
                 let dense = step.dense.expect("asked for");
                 for k in 0..=4 {
                     let t = step.t0 + (step.t1 - step.t0) * k as f64 / 4.0;
@@ -522,11 +525,11 @@ mod tests {
     #[test]
     fn declined_samples_cost_nothing_and_are_not_delivered() {
         struct Even(Vec<f64>);
-        impl Observer<1, (), &'static str> for Even {
+        impl Observer<Const<1>, (), &'static str> for Even {
             fn wants_sample(&self, t: f64) -> bool {
                 (t * 4.0).round() as i64 % 2 == 0
             }
-            fn on_sample(&mut self, s: &Sample<'_, 1, ()>) {
+            fn on_sample(&mut self, s: &Sample<'_, Const<1>, ()>) {
                 self.0.push(s.t);
             }
         }
@@ -545,7 +548,7 @@ mod tests {
     #[test]
     fn an_observer_can_stop_the_run() {
         struct Budget(u32);
-        impl Observer<1, (), &'static str> for Budget {
+        impl Observer<Const<1>, (), &'static str> for Budget {
             fn proceed(&mut self) -> std::ops::ControlFlow<()> {
                 self.0 -= 1;
                 if self.0 == 0 {

@@ -11,6 +11,7 @@ use super::chatter::RecentTransitions;
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
 };
+use crate::dim::{Dim, Matrix, Vector};
 use crate::error::{at, EvalError, InputError, SolveError};
 use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
@@ -18,18 +19,21 @@ use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, T
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, Stepper};
 use crate::tolerance::Tolerance;
+
+/// The outcome of a run of `H` in states of size `D`.
+type Outcome<D, H> = HybridOutcome<D, <H as HybridSystem<D>>::Mode, <H as HybridSystem<D>>::Stop>;
 use std::fmt::Debug;
 
 /// Runs hybrid systems with one stepper and one set of options.
 #[derive(Clone, Debug)]
-pub struct HybridSolver<S, const N: usize> {
-    integrator: Integrator<S, N>,
+pub struct HybridSolver<S, D: Dim> {
+    integrator: Integrator<S, D>,
     options: HybridOptions,
 }
 
-impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
+impl<S: Stepper<D>, D: Dim> HybridSolver<S, D> {
     /// A solver; the options are checked here.
-    pub fn new(stepper: S, tol: Tolerance<N>, options: HybridOptions) -> Result<Self, InputError> {
+    pub fn new(stepper: S, tol: Tolerance<D>, options: HybridOptions) -> Result<Self, InputError> {
         if let Some(rate) = options.sample_rate {
             if !rate.is_finite() || rate <= 0.0 {
                 return Err(InputError::SampleRate { rate });
@@ -61,13 +65,13 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
         sys: &mut H,
         mode: H::Mode,
         t0: f64,
-        y0: &[f64; N],
+        y0: &Vector<D>,
         t_end: f64,
         observer: &mut O,
-    ) -> HybridResult<N, H>
+    ) -> HybridResult<D, H>
     where
-        H: HybridSystem<N>,
-        O: Observer<N, H::Mode, H::Guard, H::Note>,
+        H: HybridSystem<D>,
+        O: Observer<D, H::Mode, H::Guard, H::Note>,
     {
         let input = |e: InputError| HybridError::Solve {
             mode,
@@ -77,13 +81,14 @@ impl<S: Stepper<N>, const N: usize> HybridSolver<S, N> {
             return Err(input(InputError::TimeSpan { t0, t_end }));
         }
         self.integrator.reset_counters();
+        let dim = self.integrator.dim();
         let mut run = Run {
             it: &mut self.integrator,
             opts: self.options,
             tracker: GuardTracker::default(),
             values: Vec::new(),
             end_values: Vec::new(),
-            inputs: GuardInputs::ALL,
+            inputs: GuardInputs::all(dim),
             recent: RecentTransitions::new(self.options.chatter),
             next_sample: 0,
             t_first: t0,
@@ -101,13 +106,13 @@ pub(super) struct InMode<'a, H, Md> {
     mode: Md,
 }
 
-impl<const N: usize, H: HybridSystem<N>> Rhs<N> for InMode<'_, H, H::Mode> {
+impl<D: Dim, H: HybridSystem<D>> Rhs<D> for InMode<'_, H, H::Mode> {
     #[inline]
-    fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]) -> Result<(), EvalError> {
+    fn rhs(&self, t: f64, y: &Vector<D>, dy: &mut Vector<D>) -> Result<(), EvalError> {
         self.sys.rhs(self.mode, t, y, dy)
     }
     #[inline]
-    fn jacobian(&self, t: f64, y: &[f64; N], jac: &mut [[f64; N]; N]) -> Result<(), EvalError> {
+    fn jacobian(&self, t: f64, y: &Vector<D>, jac: &mut Matrix<D>) -> Result<(), EvalError> {
         self.sys.jacobian(self.mode, t, y, jac)
     }
 }
@@ -120,8 +125,8 @@ enum Search {
 }
 
 /// The state of one run.
-pub(super) struct Run<'a, S, const N: usize, Md> {
-    pub(super) it: &'a mut Integrator<S, N>,
+pub(super) struct Run<'a, S, D: Dim, Md> {
+    pub(super) it: &'a mut Integrator<S, D>,
     pub(super) opts: HybridOptions,
     pub(super) tracker: GuardTracker,
     /// Guard values at one point: a segment start, an event.
@@ -129,7 +134,7 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     /// Guard values at the end of the last accepted step.
     pub(super) end_values: Vec<f64>,
     /// What the current mode's guards read (see [`HybridSystem::guard_inputs`]).
-    pub(super) inputs: GuardInputs<N>,
+    pub(super) inputs: GuardInputs<D>,
     pub(super) recent: RecentTransitions<Md>,
     pub(super) next_sample: u64,
     pub(super) t_first: f64,
@@ -138,7 +143,7 @@ pub(super) struct Run<'a, S, const N: usize, Md> {
     pub(super) passes: u64,
 }
 
-impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, Md> {
+impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
     fn solve_err(&self, error: SolveError) -> HybridError<Md> {
         HybridError::Solve {
             mode: self.mode,
@@ -150,13 +155,13 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         &mut self,
         sys: &mut H,
         t0: f64,
-        y0: &[f64; N],
+        y0: &Vector<D>,
         t_end: f64,
         obs: &mut O,
-    ) -> Result<HybridOutcome<N, Md, H::Stop>, HybridError<Md>>
+    ) -> Result<HybridOutcome<D, Md, H::Stop>, HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         self.start_segment(sys, t0, y0, Quiet::All)?;
         self.emit_samples(sys, t0, obs)?;
@@ -181,10 +186,10 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         sys: &mut H,
         mut found: Option<Found>,
         obs: &mut O,
-    ) -> Result<Option<HybridOutcome<N, Md, H::Stop>>, HybridError<Md>>
+    ) -> Result<Option<Outcome<D, H>>, HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         while let Some(f) = found {
             let hit = self.event_hit(sys, f)?;
@@ -235,13 +240,13 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     fn pass<H, O>(
         &mut self,
         sys: &H,
-        hit: EventHit<N, H::Guard>,
+        hit: EventHit<D, H::Guard>,
         note: H::Note,
         obs: &mut O,
     ) -> Result<Option<Found>, HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         self.passes += 1;
         // `values` holds the exact guard values at the event; at the step's end, the guard's
@@ -252,10 +257,10 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             self.end_values[hit.index] = value;
         }
         obs.on_transition(TransitionRecord {
+            y_after: hit.y.clone(),
             hit,
             from: self.mode,
             kind: TransitionKind::Pass,
-            y_after: hit.y,
             note,
         });
         self.search(sys, Search::Resume)
@@ -265,13 +270,13 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     /// A step without event: samples, observer, projection.
     fn finish_step<H, O>(&mut self, sys: &H, obs: &mut O) -> Result<(), HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         let t1 = self.it.t();
         self.emit_samples(sys, t1, obs)?;
         self.report_step(sys, obs, t1, None)?;
-        let mut y = *self.it.y();
+        let mut y = self.it.y().clone();
         if sys.project(self.mode, t1, &mut y) {
             let m = InMode {
                 sys,
@@ -287,17 +292,18 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
 
     /// The located crossing as an event: exact time, state from the dense output, derivative
     /// and guard value there.
-    fn event_hit<H: HybridSystem<N, Mode = Md>>(
+    fn event_hit<H: HybridSystem<D, Mode = Md>>(
         &mut self,
         sys: &H,
         found: Found,
-    ) -> Result<EventHit<N, H::Guard>, HybridError<Md>> {
+    ) -> Result<EventHit<D, H::Guard>, HybridError<Md>> {
         let m = InMode {
             sys,
             mode: self.mode,
         };
-        let mut y = [0.0; N];
-        let mut dy = [0.0; N];
+        let dim = self.it.dim();
+        let mut y = dim.zeros();
+        let mut dy = dim.zeros();
         self.it
             .interpolate(&m, found.t, &mut y)
             .map_err(|e| self.solve_err(e))?;
@@ -321,16 +327,16 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     fn transition<H, O>(
         &mut self,
         sys: &H,
-        hit: EventHit<N, H::Guard>,
-        (to, kind, mut y_after, note): (Md, TransitionKind<Md>, [f64; N], H::Note),
+        hit: EventHit<D, H::Guard>,
+        (to, kind, mut y_after, note): (Md, TransitionKind<Md>, Vector<D>, H::Note),
         obs: &mut O,
     ) -> Result<(), HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         let from = self.mode;
-        if let Some(component) = y_after.iter().position(|v| !v.is_finite()) {
+        if let Some(component) = y_after.as_ref().iter().position(|v| !v.is_finite()) {
             return Err(self.solve_err(SolveError::TransitionState {
                 t: hit.t,
                 component,
@@ -347,18 +353,19 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         };
         // The observer hears of the transition before the next segment starts, so that a
         // restart that fails there still follows the decision that led to it.
+        let t = hit.t;
         obs.on_transition(TransitionRecord {
             hit,
             from,
             kind,
-            y_after,
+            y_after: y_after.clone(),
             note,
         });
-        self.start_segment(sys, hit.t, &y_after, quiet)
+        self.start_segment(sys, t, &y_after, quiet)
     }
 
     /// One accepted step, then the search for the earliest admitted guard crossing in it.
-    fn advance<H: HybridSystem<N, Mode = Md>>(
+    fn advance<H: HybridSystem<D, Mode = Md>>(
         &mut self,
         sys: &H,
         t_end: f64,
@@ -383,7 +390,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     }
 
     /// The search for the earliest admitted guard crossing in the last accepted step.
-    fn search<H: HybridSystem<N, Mode = Md>>(
+    fn search<H: HybridSystem<D, Mode = Md>>(
         &mut self,
         sys: &H,
         search: Search,
@@ -393,13 +400,14 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             mode: self.mode,
         };
         let (t0, t1) = (self.it.t_prev(), self.it.t());
+        let dim = self.it.dim();
         let it = &mut *self.it;
         let inputs = &self.inputs;
-        let mut y = [0.0; N];
-        let mut dy = [0.0; N];
+        let mut y = dim.zeros();
+        let mut dy = dim.zeros();
         // Estimates fill only the declared inputs: a guard that reads anything else sees NaN.
-        let mut y_est = [f64::NAN; N];
-        let mut dy_est = [f64::NAN; N];
+        let mut y_est = dim.filled(f64::NAN);
+        let mut dy_est = dim.filled(f64::NAN);
         let probe_at = |t: f64, probe: Probe, out: &mut [f64]| {
             let (y, dy) = match probe {
                 Probe::Exact => {
@@ -437,11 +445,11 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
 
     /// Starts a segment in the current mode at `(t, y)`: fresh integrator, guards armed
     /// (`quiet`: the guard whose departure from zero must not fire).
-    fn start_segment<H: HybridSystem<N, Mode = Md>>(
+    fn start_segment<H: HybridSystem<D, Mode = Md>>(
         &mut self,
         sys: &H,
         t: f64,
-        y: &[f64; N],
+        y: &Vector<D>,
         quiet: Quiet,
     ) -> Result<(), HybridError<Md>> {
         let m = InMode {
@@ -452,13 +460,14 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         self.it
             .restart_with_step(&m, t, y, first_step)
             .map_err(|e| self.solve_err(e))?;
-        self.inputs = sys.guard_inputs(self.mode);
+        self.inputs =
+            (sys.guard_inputs(self.mode)).unwrap_or_else(|| GuardInputs::all(self.it.dim()));
         let specs = sys.guards(self.mode);
         self.values.clear();
         self.values.resize(specs.len(), 0.0);
         self.end_values.clear();
         self.end_values.resize(specs.len(), 0.0);
-        let (y, f) = (*self.it.y(), *self.it.f());
+        let (y, f) = (self.it.y().clone(), self.it.f().clone());
         self.guards_at(sys, t, &y, &f)?;
         self.tracker
             .start(specs.iter().map(|s| s.direction), &self.values, quiet);
@@ -466,11 +475,11 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     }
 
     /// After a projection: the guard values at the new end state become the reference.
-    fn rebase_guards<H: HybridSystem<N, Mode = Md>>(
+    fn rebase_guards<H: HybridSystem<D, Mode = Md>>(
         &mut self,
         sys: &H,
     ) -> Result<(), HybridError<Md>> {
-        let (t, y, f) = (self.it.t(), *self.it.y(), *self.it.f());
+        let (t, y, f) = (self.it.t(), self.it.y().clone(), self.it.f().clone());
         self.guards_at(sys, t, &y, &f)?;
         let specs = sys.guards(self.mode);
         self.tracker
@@ -479,12 +488,12 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     }
 
     /// Evaluates all guards of the current mode into `self.values`.
-    fn guards_at<H: HybridSystem<N, Mode = Md>>(
+    fn guards_at<H: HybridSystem<D, Mode = Md>>(
         &mut self,
         sys: &H,
         t: f64,
-        y: &[f64; N],
-        dy: &[f64; N],
+        y: &Vector<D>,
+        dy: &Vector<D>,
     ) -> Result<(), HybridError<Md>> {
         self.it.stats_mut().guard_evals += 1;
         let r = sys
@@ -497,8 +506,8 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
     /// Delivers the samples due up to and including `t_hi`.
     fn emit_samples<H, O>(&mut self, sys: &H, t_hi: f64, obs: &mut O) -> Result<(), HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         let Some(rate) = self.opts.sample_rate else {
             return Ok(());
@@ -507,7 +516,8 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             sys,
             mode: self.mode,
         };
-        let mut y = [0.0; N];
+        let dim = self.it.dim();
+        let mut y = dim.zeros();
         loop {
             let ts = self.t_first + self.next_sample as f64 / rate;
             if ts > t_hi {
@@ -534,11 +544,11 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         sys: &H,
         obs: &mut O,
         t1: f64,
-        y1: Option<&[f64; N]>,
+        y1: Option<&Vector<D>>,
     ) -> Result<(), HybridError<Md>>
     where
-        H: HybridSystem<N, Mode = Md>,
-        O: Observer<N, Md, H::Guard, H::Note>,
+        H: HybridSystem<D, Mode = Md>,
+        O: Observer<D, Md, H::Guard, H::Note>,
     {
         if obs.wants_dense() {
             let m = InMode {
@@ -557,7 +567,7 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
             y1: y1.unwrap_or(it.y()),
             f0: it.f_prev(),
             dense: if obs.wants_dense() {
-                dense.as_ref().map(|d| d as &dyn Interpolant<N>)
+                dense.as_ref().map(|d| d as &dyn Interpolant<D>)
             } else {
                 None
             },
@@ -566,10 +576,10 @@ impl<S: Stepper<N>, const N: usize, Md: Copy + PartialEq + Debug> Run<'_, S, N, 
         Ok(())
     }
 
-    fn outcome<R>(&self, stop: StopReason<R>) -> HybridOutcome<N, Md, R> {
+    fn outcome<R>(&self, stop: StopReason<R>) -> HybridOutcome<D, Md, R> {
         HybridOutcome {
             t: self.it.t(),
-            y: *self.it.y(),
+            y: self.it.y().clone(),
             mode: self.mode,
             stop,
             stats: *self.it.stats(),

@@ -7,6 +7,7 @@
 //! physical reason. Declaring the vector's components as a group gives all of them the
 //! vector's magnitude as the relative part of their scale, which does not depend on the frame.
 
+use crate::dim::{Const, Dim};
 use crate::error::{GroupProblem, InputError};
 use std::ops::Range;
 
@@ -45,23 +46,30 @@ impl From<Range<usize>> for ComponentGroup {
 ///
 /// Groups are added only through [`VectorGroups::push`], which checks them, so a value always
 /// holds non-empty, in-range, disjoint groups; there can be at most `N` of them, which is the
-/// storage reserved (no allocation, and the tolerance stays `Copy`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct VectorGroups<const N: usize> {
-    slots: [ComponentGroup; N],
+/// storage reserved (for a [`crate::Const`] size, an array: no allocation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct VectorGroups<D: Dim> {
+    slots: D::Array<ComponentGroup>,
     len: usize,
 }
 
-impl<const N: usize> Default for VectorGroups<N> {
+impl<const N: usize> Copy for VectorGroups<Const<N>> {}
+
+impl<const N: usize> Default for VectorGroups<Const<N>> {
     fn default() -> Self {
-        VectorGroups {
-            slots: [ComponentGroup { start: 0, end: 0 }; N],
-            len: 0,
-        }
+        Self::none(Const)
     }
 }
 
-impl<const N: usize> VectorGroups<N> {
+impl<D: Dim> VectorGroups<D> {
+    /// No group, in a vector of size `dim`.
+    pub fn none(dim: D) -> Self {
+        VectorGroups {
+            slots: dim.filled(ComponentGroup { start: 0, end: 0 }),
+            len: 0,
+        }
+    }
+
     /// Adds the components `range` as the next group. A group that is empty, reaches past
     /// the last component or shares a component with an earlier group is refused with an
     /// [`InputError::ComponentGroup`] naming it (its position in the order of declaration)
@@ -77,8 +85,9 @@ impl<const N: usize> VectorGroups<N> {
         if group.start >= group.end {
             return Err(fail(GroupProblem::Empty));
         }
-        if group.end > N {
-            return Err(fail(GroupProblem::OutOfRange { dim: N }));
+        let dim = self.slots.as_ref().len();
+        if group.end > dim {
+            return Err(fail(GroupProblem::OutOfRange { dim }));
         }
         if let Some(other) = self
             .iter()
@@ -99,16 +108,17 @@ impl<const N: usize> VectorGroups<N> {
 
     /// The groups, in the order declared.
     pub fn iter(&self) -> impl Iterator<Item = ComponentGroup> + '_ {
-        self.slots[..self.len].iter().copied()
+        self.slots.as_ref()[..self.len].iter().copied()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dim::Const;
 
     /// Declares `groups` in order; the first refusal.
-    fn declare(groups: &[Range<usize>]) -> Result<VectorGroups<6>, InputError> {
+    fn declare(groups: &[Range<usize>]) -> Result<VectorGroups<Const<6>>, InputError> {
         let mut out = VectorGroups::default();
         for g in groups {
             out.push(g.clone())?;

@@ -3,6 +3,7 @@
 //! slope is the method's, not the controller's.
 
 use crate::common::{dist, Forced, Kepler};
+use model_runtime::Const;
 use model_runtime::{
     integrate, Dop853, Dopri5, Integrator, Model, Observer, Rk4, Rodas4, StepOptions, StepView,
     Stepper, Tolerance,
@@ -19,7 +20,7 @@ fn fixed(h: f64) -> StepOptions {
 }
 
 /// Global error at `t_end` with `n` equal steps.
-fn global_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, n: usize, t_end: f64) -> f64 {
+fn global_error<S: Stepper<Const<3>>>(make: &impl Fn(f64) -> S, n: usize, t_end: f64) -> f64 {
     let h = t_end / n as f64;
     let sol = integrate(
         &Forced,
@@ -67,7 +68,12 @@ fn assert_order(name: &str, errors: &[f64], order: f64) {
     }
 }
 
-fn check_global<S: Stepper<3>>(make: impl Fn(f64) -> S, ns: &[usize], t_end: f64, order: f64) {
+fn check_global<S: Stepper<Const<3>>>(
+    make: impl Fn(f64) -> S,
+    ns: &[usize],
+    t_end: f64,
+    order: f64,
+) {
     let errors: Vec<f64> = ns.iter().map(|&n| global_error(&make, n, t_end)).collect();
     println!(
         "{}: errors {errors:.3?} slopes {:?}",
@@ -101,7 +107,7 @@ fn rk4_is_fourth_order() {
 const T0: f64 = 0.3;
 
 /// An integrator that has taken one step of size `h` from `T0` on the exact solution.
-fn one_step<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> Integrator<S, 3> {
+fn one_step<S: Stepper<Const<3>>>(make: &impl Fn(f64) -> S, h: f64) -> Integrator<S, Const<3>> {
     let mut it = Integrator::new(make(h), Tolerance::scalar(LOOSE, LOOSE), fixed(h)).unwrap();
     it.restart(&Forced, T0, &Forced::exact(T0)).unwrap();
     it.step(&Forced, T0 + h).unwrap();
@@ -109,7 +115,7 @@ fn one_step<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> Integrator<S, 3>
 }
 
 /// Max interpolation error over interior points of one step of size `h` from `T0`.
-fn dense_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
+fn dense_error<S: Stepper<Const<3>>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
     let (t0, mut it) = (T0, one_step(make, h));
     let mut worst: f64 = 0.0;
     for k in 1..10 {
@@ -121,7 +127,7 @@ fn dense_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
     worst
 }
 
-fn check_dense<S: Stepper<3>>(make: impl Fn(f64) -> S, hs: &[f64]) {
+fn check_dense<S: Stepper<Const<3>>>(make: impl Fn(f64) -> S, hs: &[f64]) {
     let errors: Vec<f64> = hs.iter().map(|&h| dense_error(&make, h)).collect();
     println!(
         "{} dense: errors {errors:.3?} slopes {:?}",
@@ -142,7 +148,7 @@ fn dense_outputs_have_their_orders() {
 
 /// Max error of the interpolant's derivative against the exact `f` over interior points of
 /// one step of size `h`.
-fn dense_derivative_error<S: Stepper<3>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
+fn dense_derivative_error<S: Stepper<Const<3>>>(make: &impl Fn(f64) -> S, h: f64) -> f64 {
     let (t0, mut it) = (T0, one_step(make, h));
     let mut worst: f64 = 0.0;
     for k in 0..=10 {
@@ -163,37 +169,41 @@ fn dense_derivatives_follow_the_solution() {
     let hs = [0.2, 0.1, 0.05, 0.025];
     let errors: Vec<f64> = hs
         .iter()
-        .map(|&h| dense_derivative_error(&|_| Dopri5::<3>::new(), h))
+        .map(|&h| dense_derivative_error(&|_| Dopri5::<Const<3>>::new(), h))
         .collect();
     println!("DOPRI5 dense derivative: errors {errors:?}");
     assert_order(
         "DOPRI5 derivative",
         &errors,
-        Dopri5::<3>::DENSE_ORDER as f64,
+        Dopri5::<Const<3>>::DENSE_ORDER as f64,
     );
     let errors: Vec<f64> = [0.4, 0.2, 0.1]
         .iter()
-        .map(|&h| dense_derivative_error(&|_| Dop853::<3>::new(), h))
+        .map(|&h| dense_derivative_error(&|_| Dop853::<Const<3>>::new(), h))
         .collect();
     println!("DOP853 dense derivative: errors {errors:?}");
     assert_order(
         "DOP853 derivative",
         &errors,
-        Dop853::<3>::DENSE_ORDER as f64,
+        Dop853::<Const<3>>::DENSE_ORDER as f64,
     );
     // The others differentiate their interpolant by a central difference: the derivative
     // keeps the interpolant's order where the interpolant's own error dominates.
     let rodas: Vec<f64> = [0.2, 0.1, 0.05]
         .iter()
-        .map(|&h| dense_derivative_error(&|_| Rodas4::<3>::new(), h))
+        .map(|&h| dense_derivative_error(&|_| Rodas4::<Const<3>>::new(), h))
         .collect();
     let rk4: Vec<f64> = [0.2, 0.1, 0.05]
         .iter()
-        .map(|&h| dense_derivative_error(&Rk4::<3>::new, h))
+        .map(|&h| dense_derivative_error(&Rk4::<Const<3>>::new, h))
         .collect();
     println!("Rodas4 {rodas:?}, RK4 {rk4:?}");
-    assert_order("Rodas4 derivative", &rodas, Rodas4::<3>::DENSE_ORDER as f64);
-    assert_order("RK4 derivative", &rk4, Rk4::<3>::DENSE_ORDER as f64);
+    assert_order(
+        "Rodas4 derivative",
+        &rodas,
+        Rodas4::<Const<3>>::DENSE_ORDER as f64,
+    );
+    assert_order("RK4 derivative", &rk4, Rk4::<Const<3>>::DENSE_ORDER as f64);
 }
 
 /// Checks every accepted step's interpolant at interior points against the exact orbit.
@@ -204,11 +214,11 @@ struct DenseChecker {
     steps: u64,
 }
 
-impl Observer<4, (), ()> for DenseChecker {
+impl Observer<Const<4>, (), ()> for DenseChecker {
     fn wants_dense(&self) -> bool {
         true
     }
-    fn on_step(&mut self, s: &StepView<'_, 4, ()>) {
+    fn on_step(&mut self, s: &StepView<'_, Const<4>, ()>) {
         let dense = s.dense.expect("dense output requested");
         self.steps += 1;
         self.worst_end = self.worst_end.max(dist(s.y1, &Kepler::exact(self.e, s.t1)));
@@ -223,7 +233,7 @@ impl Observer<4, (), ()> for DenseChecker {
 
 /// A one-mode hybrid system without guards, to stream steps to an observer.
 struct Plain<M>(M);
-impl<M: model_runtime::Model<4>> model_runtime::HybridSystem<4> for Plain<M> {
+impl<M: model_runtime::Model<4>> model_runtime::HybridSystem<Const<4>> for Plain<M> {
     type Mode = ();
     type Guard = ();
     type Stop = ();
@@ -253,8 +263,8 @@ impl<M: model_runtime::Model<4>> model_runtime::HybridSystem<4> for Plain<M> {
     fn on_event(
         &mut self,
         _: (),
-        _: &model_runtime::EventHit<4, ()>,
-    ) -> Result<model_runtime::Transition<4, (), ()>, model_runtime::EvalError> {
+        _: &model_runtime::EventHit<Const<4>, ()>,
+    ) -> Result<model_runtime::Transition<Const<4>, (), ()>, model_runtime::EvalError> {
         Ok(model_runtime::Transition::Stop(()))
     }
 }
@@ -309,7 +319,7 @@ fn dop853_dense_output_matches_the_exact_orbit_inside_every_step() {
 
 /// Drives a stepper by hand: one step of size `h` from `t0`, then its interpolant at both ends
 /// and at interior points, checked against the step's own end points and the exact solution.
-fn interpolant_ends<S: Stepper<3>>(mut stepper: S, h: f64) {
+fn interpolant_ends<S: Stepper<Const<3>>>(mut stepper: S, h: f64) {
     use model_runtime::{Stats, StepEnd, StepStart};
     let t0 = 0.7;
     let y0 = Forced::exact(t0);

@@ -2,13 +2,14 @@
 
 use crate::common::ball::{Ball, BallGuard, Flights, Impact, G, RESTITUTION};
 use crate::common::{dist, stop, up_crossings, ClockGuards, Harmonic, Kepler, OneGuard};
+use model_runtime::Const;
 use model_runtime::{
     ChatterLimit, Crossed, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError,
     HybridOptions, HybridSolver, HybridSystem, InteriorChecks, Observer, Recorder, Rk4, Rodas4,
     Sample, Stepper, StopReason, Tolerance, Transition, TransitionKind,
 };
 
-fn bounce<S: Stepper<2>>(stepper: S) {
+fn bounce<S: Stepper<Const<2>>>(stepper: S) {
     let expected = Flights::of(&Ball::dropped(), 1.0, 0.0).impact_times(10);
     let t_end = expected[9] + 0.05;
     let options = HybridOptions {
@@ -120,7 +121,7 @@ const UP: [GuardSpec<()>; 1] = [GuardSpec {
     id: (),
     direction: Direction::Up,
 }];
-impl HybridSystem<1> for Relay {
+impl HybridSystem<Const<1>> for Relay {
     type Mode = Side;
     type Guard = ();
     type Stop = ();
@@ -150,8 +151,8 @@ impl HybridSystem<1> for Relay {
     fn on_event(
         &mut self,
         m: Side,
-        hit: &EventHit<1, ()>,
-    ) -> Result<Transition<1, Side, ()>, EvalError> {
+        hit: &EventHit<Const<1>, ()>,
+    ) -> Result<Transition<Const<1>, Side, ()>, EvalError> {
         let to = if m == Side::Positive {
             Side::Negative
         } else {
@@ -293,7 +294,7 @@ fn sign_change_and_back_is_seen_only_with_interior_checks() {
 /// A spring `x'' = -x` whose guard reads the acceleration from `dy`: `-x - 0.9999` is
 /// positive only for a short while around `x = -1` (t = π), a sign change and back inside one
 /// step.
-fn spring() -> impl HybridSystem<2, Mode = (), Guard = (), Stop = ()> {
+fn spring() -> impl HybridSystem<Const<2>, Mode = (), Guard = (), Stop = ()> {
     OneGuard {
         model: Harmonic,
         guard: |_: &[f64; 2], dy: &[f64; 2]| dy[1] - 0.9999,
@@ -358,12 +359,12 @@ struct Counter {
     steps: u64,
     samples: u64,
 }
-impl Observer<2, (), BallGuard, Impact> for Counter {
-    fn on_step(&mut self, s: &model_runtime::StepView<'_, 2, ()>) {
+impl Observer<Const<2>, (), BallGuard, Impact> for Counter {
+    fn on_step(&mut self, s: &model_runtime::StepView<'_, Const<2>, ()>) {
         assert!(s.t1 > s.t0 && s.dense.is_none());
         self.steps += 1;
     }
-    fn on_sample(&mut self, _: &Sample<'_, 2, ()>) {
+    fn on_sample(&mut self, _: &Sample<'_, Const<2>, ()>) {
         self.samples += 1;
     }
 }

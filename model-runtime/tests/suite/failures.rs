@@ -2,12 +2,13 @@
 
 use crate::common;
 use crate::common::{Blowup, Forced, Fragile, Harmonic};
+use model_runtime::Const;
 use model_runtime::{
     integrate, ChatterLimit, Dop853, Dopri5, EvalError, HybridOptions, HybridSolver, InputError,
     Rk4, Rodas4, SolveError, StepOptions, Stepper, Tolerance,
 };
 
-fn blowup<S: Stepper<1>>(stepper: S) {
+fn blowup<S: Stepper<Const<1>>>(stepper: S) {
     let err = integrate(
         &Blowup,
         stepper,
@@ -124,7 +125,7 @@ fn step_budget_is_a_typed_error() {
 
 #[test]
 fn bad_inputs_are_named() {
-    let run = |tol: Tolerance<3>, opts: StepOptions, y0: [f64; 3], t_end: f64| {
+    let run = |tol: Tolerance<Const<3>>, opts: StepOptions, y0: [f64; 3], t_end: f64| {
         integrate(&Forced, Dopri5::new(), tol, opts, 0.0, &y0, t_end).unwrap_err()
     };
     let ok_tol = Tolerance::scalar(1e-6, 1e-9);
@@ -160,7 +161,7 @@ fn bad_inputs_are_named() {
         SolveError::InvalidInput(InputError::StepSize { h }) if h == -1.0
     ));
     assert!(matches!(
-        HybridSolver::<_, 3>::new(
+        HybridSolver::<_, Const<3>>::new(
             Dopri5::new(),
             ok_tol,
             HybridOptions {
@@ -171,7 +172,7 @@ fn bad_inputs_are_named() {
         Err(InputError::SampleRate { .. })
     ));
     assert!(matches!(
-        HybridSolver::<_, 3>::new(
+        HybridSolver::<_, Const<3>>::new(
             Dopri5::new(),
             ok_tol,
             HybridOptions {

@@ -2,6 +2,7 @@
 //! a wrong declaration costs exact evaluations but never changes an event.
 
 use crate::common::Forced;
+use model_runtime::Const;
 
 use model_runtime::{
     Components, Direction, Dop853, Dopri5, EvalError, EventHit, GuardInputs, GuardSpec,
@@ -11,7 +12,7 @@ use model_runtime::{
 use std::cell::Cell;
 
 /// The guard reads `x` and `v'`: `x + v'/2 - 0.2 = cos(t)/2 - 0.2` on the forced oscillator.
-const READS: GuardInputs<3> = GuardInputs::of(&[0], &[1]);
+const READS: GuardInputs<Const<3>> = GuardInputs::of(&[0], &[1]);
 
 const UP: [GuardSpec<()>; 1] = [GuardSpec {
     id: (),
@@ -20,7 +21,7 @@ const UP: [GuardSpec<()>; 1] = [GuardSpec {
 
 /// [`Forced`] with that guard, restarting in place at each crossing, declaring `inputs`.
 struct Declared {
-    inputs: GuardInputs<3>,
+    inputs: GuardInputs<Const<3>>,
     /// Guard evaluations that saw NaN in every undeclared component and in no declared one.
     masked_calls: Cell<u64>,
     /// Guard evaluations that saw NaN in a component they read.
@@ -29,7 +30,7 @@ struct Declared {
 }
 
 impl Declared {
-    fn new(inputs: GuardInputs<3>) -> Self {
+    fn new(inputs: GuardInputs<Const<3>>) -> Self {
         Declared {
             inputs,
             masked_calls: Cell::new(0),
@@ -39,7 +40,7 @@ impl Declared {
     }
 }
 
-impl HybridSystem<3> for Declared {
+impl HybridSystem<Const<3>> for Declared {
     type Mode = ();
     type Guard = ();
     type Stop = ();
@@ -50,8 +51,8 @@ impl HybridSystem<3> for Declared {
     fn guards(&self, _: ()) -> &[GuardSpec<()>] {
         &UP
     }
-    fn guard_inputs(&self, _: ()) -> GuardInputs<3> {
-        self.inputs
+    fn guard_inputs(&self, _: ()) -> Option<GuardInputs<Const<3>>> {
+        Some(self.inputs)
     }
     fn guard_values(
         &self,
@@ -61,11 +62,12 @@ impl HybridSystem<3> for Declared {
         dy: &[f64; 3],
         g: &mut [f64],
     ) -> Result<(), EvalError> {
-        let nan_where = |v: &[f64; 3], which: &Components<3>, inside: bool| {
+        let nan_where = |v: &[f64; 3], which: &Components<Const<3>>, inside: bool| {
             (0..3).all(|i| which.contains(i) != inside || v[i].is_nan())
         };
-        let none_where =
-            |v: &[f64; 3], which: &Components<3>| which.indices().iter().all(|&i| !v[i].is_nan());
+        let none_where = |v: &[f64; 3], which: &Components<Const<3>>| {
+            which.indices().iter().all(|&i| !v[i].is_nan())
+        };
         let inputs = self.inputs;
         if nan_where(y, &inputs.state, false)
             && nan_where(dy, &inputs.rates, false)
@@ -83,8 +85,8 @@ impl HybridSystem<3> for Declared {
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<3, ()>,
-    ) -> Result<Transition<3, (), ()>, EvalError> {
+        hit: &EventHit<Const<3>, ()>,
+    ) -> Result<Transition<Const<3>, (), ()>, EvalError> {
         self.events.push(hit.t);
         Ok(Transition::Continue { y: hit.y, note: () })
     }
@@ -101,7 +103,7 @@ struct Run {
     nan_reads: u64,
 }
 
-fn run<S: Stepper<3>>(stepper: S, inputs: GuardInputs<3>) -> Run {
+fn run<S: Stepper<Const<3>>>(stepper: S, inputs: GuardInputs<Const<3>>) -> Run {
     let options = HybridOptions {
         guard_checks: InteriorChecks::Screened(16),
         ..HybridOptions::default()
@@ -121,7 +123,7 @@ fn run<S: Stepper<3>>(stepper: S, inputs: GuardInputs<3>) -> Run {
     }
 }
 
-fn declarations_change_only_the_cost<S: Stepper<3>>(make: impl Fn() -> S) {
+fn declarations_change_only_the_cost<S: Stepper<Const<3>>>(make: impl Fn() -> S) {
     let all = run(make(), GuardInputs::ALL);
     let exact = run(make(), READS);
     // Reads `x` and `v'`, declares only `v'`.
@@ -168,7 +170,7 @@ fn every_stepper_screens_with_the_declared_inputs_only() {
     declarations_change_only_the_cost(|| Rk4::new(0.01));
 }
 
-const SETS: [Components<3>; 4] = [
+const SETS: [Components<Const<3>>; 4] = [
     Components::ALL,
     Components::NONE,
     Components::of(&[1]),
@@ -176,7 +178,7 @@ const SETS: [Components<3>; 4] = [
 ];
 
 /// `full` in the components of `set`, NaN elsewhere, as bits.
-fn chosen(full: &[f64; 3], set: &Components<3>) -> [u64; 3] {
+fn chosen(full: &[f64; 3], set: &Components<Const<3>>) -> [u64; 3] {
     std::array::from_fn(|i| {
         if set.contains(i) {
             full[i].to_bits()
@@ -188,7 +190,7 @@ fn chosen(full: &[f64; 3], set: &Components<3>) -> [u64; 3] {
 
 /// A partial interpolation gives the full one's bits in the chosen components and leaves the
 /// others untouched, for every stepper (each its own fast path or the default).
-fn partial_is_full_where_chosen<S: Stepper<3>>(mut stepper: S, h: f64) {
+fn partial_is_full_where_chosen<S: Stepper<Const<3>>>(mut stepper: S, h: f64) {
     let t0 = 0.3;
     let y0 = Forced::exact(t0);
     let (mut f0, mut y1, mut f1) = ([0.0; 3], [0.0; 3], [0.0; 3]);
@@ -265,12 +267,12 @@ fn partial_interpolation_is_the_full_one_in_the_chosen_components() {
 
 #[test]
 fn component_sets_hold_what_they_were_given() {
-    let set = Components::<5>::of(&[3, 1, 3]);
+    let set = Components::<Const<5>>::of(&[3, 1, 3]);
     assert_eq!(set.indices(), &[1, 3]);
     assert!(set.contains(1) && set.contains(3) && !set.contains(0) && !set.contains(7));
     assert_eq!(set.union(Components::of(&[0])).indices(), &[0, 1, 3]);
-    assert!(Components::<5>::ALL.is_all() && !set.is_all());
-    assert_eq!(Components::<5>::NONE.indices(), &[] as &[usize]);
+    assert!(Components::<Const<5>>::ALL.is_all() && !set.is_all());
+    assert_eq!(Components::<Const<5>>::NONE.indices(), &[] as &[usize]);
     let mut to = [f64::NAN; 5];
     set.copy(&[1.0, 2.0, 3.0, 4.0, 5.0], &mut to);
     assert!(to[0].is_nan() && to[2].is_nan() && to[4].is_nan());

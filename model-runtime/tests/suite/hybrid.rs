@@ -2,6 +2,7 @@
 
 use crate::common;
 use crate::common::OneGuard;
+use model_runtime::Const;
 
 use model_runtime::{
     Crossed, Direction, Dopri5, EvalError, EventHit, GuardSpec, HybridError, HybridOptions,
@@ -10,7 +11,7 @@ use model_runtime::{
 };
 
 /// DP5 at rtol = atol = 1e-8 with default options: the solver most tests here need.
-fn dp5<const N: usize>() -> HybridSolver<Dopri5<N>, N> {
+fn dp5<const N: usize>() -> HybridSolver<Dopri5<Const<N>>, Const<N>> {
     HybridSolver::new(
         Dopri5::new(),
         Tolerance::scalar(1e-8, 1e-8),
@@ -44,7 +45,7 @@ const SLIDE: [GuardSpec<Why>; 1] = [GuardSpec {
     id: Why::Stopped,
     direction: Direction::Down,
 }];
-impl HybridSystem<2> for StickSlip {
+impl HybridSystem<Const<2>> for StickSlip {
     type Mode = Phase;
     type Guard = Why;
     type Stop = (Phase, f64);
@@ -80,8 +81,8 @@ impl HybridSystem<2> for StickSlip {
     fn on_event(
         &mut self,
         m: Phase,
-        hit: &EventHit<2, Why>,
-    ) -> Result<Transition<2, Phase, (Phase, f64)>, EvalError> {
+        hit: &EventHit<Const<2>, Why>,
+    ) -> Result<Transition<Const<2>, Phase, (Phase, f64)>, EvalError> {
         if self.fail_on_event {
             return Err(EvalError::NonFinite {
                 model: "stick_slip",
@@ -100,13 +101,13 @@ impl HybridSystem<2> for StickSlip {
     }
 }
 
-fn stick_slip<S: Stepper<2>>(
-    stepper: S,
-    a: f64,
-) -> (
-    model_runtime::HybridOutcome<2, Phase, (Phase, f64)>,
-    Recorder<2, Phase, Why>,
-) {
+/// The outcome of a stick-slip run and what it recorded.
+type StickSlipRun = (
+    model_runtime::HybridOutcome<Const<2>, Phase, (Phase, f64)>,
+    Recorder<Const<2>, Phase, Why>,
+);
+
+fn stick_slip<S: Stepper<Const<2>>>(stepper: S, a: f64) -> StickSlipRun {
     let mut solver = HybridSolver::new(
         stepper,
         Tolerance::scalar(1e-10, 1e-12),
@@ -200,7 +201,7 @@ struct Circle {
     project: bool,
     bad_guard: bool,
 }
-impl HybridSystem<2> for Circle {
+impl HybridSystem<Const<2>> for Circle {
     type Mode = ();
     type Guard = ();
     type Stop = ();
@@ -230,7 +231,11 @@ impl HybridSystem<2> for Circle {
         };
         Ok(())
     }
-    fn on_event(&mut self, _: (), _: &EventHit<2, ()>) -> Result<Transition<2, (), ()>, EvalError> {
+    fn on_event(
+        &mut self,
+        _: (),
+        _: &EventHit<Const<2>, ()>,
+    ) -> Result<Transition<Const<2>, (), ()>, EvalError> {
         Ok(Transition::Stop(()))
     }
     fn project(&self, _: (), _t: f64, y: &mut [f64; 2]) -> bool {
@@ -304,7 +309,7 @@ fn a_non_finite_guard_is_a_typed_error_naming_the_mode() {
 }
 
 /// `y' = 1`, singular beyond `y = 2`, with a stop guard at `y = 1.9`.
-fn cliff() -> impl HybridSystem<1, Mode = (), Guard = (), Stop = ()> {
+fn cliff() -> impl HybridSystem<Const<1>, Mode = (), Guard = (), Stop = ()> {
     OneGuard {
         model: common::Fragile,
         guard: |y: &[f64; 1], _: &[f64; 1]| y[0] - 1.9,
@@ -332,11 +337,11 @@ fn a_step_overshooting_into_a_singular_region_is_retried_and_the_guard_found() {
 }
 
 /// `y' = 1` whose transition map at `y = 1` returns a NaN state.
-fn broken() -> impl HybridSystem<1, Mode = (), Guard = (), Stop = ()> {
+fn broken() -> impl HybridSystem<Const<1>, Mode = (), Guard = (), Stop = ()> {
     OneGuard {
         model: common::Ramp,
         guard: |y: &[f64; 1], _: &[f64; 1]| y[0] - 1.0,
-        on_event: |_: &EventHit<1, ()>| Transition::Continue {
+        on_event: |_: &EventHit<Const<1>, ()>| Transition::Continue {
             y: [f64::NAN],
             note: (),
         },
@@ -368,7 +373,7 @@ fn a_non_finite_state_from_the_transition_map_is_named() {
 
 /// The stick–slip toy with a first-step hint for sliding segments.
 struct Hinted(StickSlip);
-impl HybridSystem<2> for Hinted {
+impl HybridSystem<Const<2>> for Hinted {
     type Mode = Phase;
     type Guard = Why;
     type Stop = (Phase, f64);
@@ -392,8 +397,8 @@ impl HybridSystem<2> for Hinted {
     fn on_event(
         &mut self,
         m: Phase,
-        hit: &EventHit<2, Why>,
-    ) -> Result<Transition<2, Phase, (Phase, f64)>, EvalError> {
+        hit: &EventHit<Const<2>, Why>,
+    ) -> Result<Transition<Const<2>, Phase, (Phase, f64)>, EvalError> {
         self.0.on_event(m, hit)
     }
     fn first_step(&self, m: Phase, _t: f64, _y: &[f64; 2]) -> Option<f64> {
@@ -407,14 +412,14 @@ struct FirstSteps {
     expect_first: bool,
     first: Vec<(Phase, f64)>,
 }
-impl model_runtime::Observer<2, Phase, Why> for FirstSteps {
-    fn on_step(&mut self, s: &model_runtime::StepView<'_, 2, Phase>) {
+impl model_runtime::Observer<Const<2>, Phase, Why> for FirstSteps {
+    fn on_step(&mut self, s: &model_runtime::StepView<'_, Const<2>, Phase>) {
         if self.expect_first {
             self.first.push((s.mode, s.t1 - s.t0));
             self.expect_first = false;
         }
     }
-    fn on_transition(&mut self, _: model_runtime::TransitionRecord<2, Phase, Why>) {
+    fn on_transition(&mut self, _: model_runtime::TransitionRecord<Const<2>, Phase, Why>) {
         self.expect_first = true;
     }
 }

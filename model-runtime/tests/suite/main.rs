@@ -12,6 +12,7 @@ mod norm;
 mod notes;
 mod passes;
 mod properties;
+mod sizes;
 mod stiff;
 mod switched;
 mod switched_regularised;

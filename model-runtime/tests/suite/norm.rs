@@ -3,6 +3,7 @@
 //! and the count of the component that limits each step.
 
 use crate::common::info;
+use model_runtime::Const;
 use model_runtime::{
     integrate, Dop853, Dopri5, EvalError, GroupProblem, InputError, Model, ModelInfo, Rk4, Rodas4,
     Solution, StepOptions, Stepper, Tolerance,
@@ -57,7 +58,7 @@ proptest! {
         atol in prop::array::uniform5(1e-14..1e-6f64),
         i in 0..5usize,
     ) {
-        let plain = Tolerance::per_component(rtol, atol);
+        let plain = Tolerance::<Const<5>>::per_component(rtol, atol);
         let grouped = plain.with_group(i..i + 1).unwrap();
         prop_assert_eq!(grouped.scales(&y0, &y1), plain.scales(&y0, &y1));
         for k in 0..5 {
@@ -74,7 +75,7 @@ proptest! {
         q in prop::array::uniform4(-1.0..1.0f64),
     ) {
         prop_assume!(q.iter().map(|v| v * v).sum::<f64>() > 1e-2);
-        let tol = Tolerance::<5>::scalar(1e-6, 1e-9).with_group(1..4).unwrap();
+        let tol = Tolerance::<Const<5>>::scalar(1e-6, 1e-9).with_group(1..4).unwrap();
         let r = rotation(q);
         let before = tol.norm(&err, &y0, &y1).norm;
         let after = tol
@@ -95,9 +96,9 @@ fn a_rotated_vector_changes_the_per_component_norm() {
     let half = std::f64::consts::PI / 8.0;
     let turn = |v: &[f64; 3]| rotated(&rotation([half.cos(), 0.0, half.sin(), 0.0]), v, 0);
     let (rtol, atol) = (1e-8, 1e-10);
-    let plain = Tolerance::<3>::scalar(rtol, atol);
+    let plain = Tolerance::<Const<3>>::scalar(rtol, atol);
     let grouped = plain.with_group(0..3).unwrap();
-    let norm = |tol: &Tolerance<3>, e: &[f64; 3], y: &[f64; 3]| tol.norm(e, y, y).norm;
+    let norm = |tol: &Tolerance<Const<3>>, e: &[f64; 3], y: &[f64; 3]| tol.norm(e, y, y).norm;
     let (p0, p1) = (
         norm(&plain, &err, &omega),
         norm(&plain, &turn(&err), &turn(&omega)),
@@ -119,7 +120,7 @@ fn a_rotated_vector_changes_the_per_component_norm() {
 
 #[test]
 fn an_unusable_group_is_refused_by_name() {
-    let tol = Tolerance::<4>::scalar(1e-6, 1e-9);
+    let tol = Tolerance::<Const<4>>::scalar(1e-6, 1e-9);
     assert_eq!(
         tol.with_group(0..2).and_then(|t| t.with_group(1..4)),
         Err(InputError::ComponentGroup {
@@ -157,7 +158,7 @@ impl Model<2> for SlowAndFast {
 }
 
 /// The slow-and-fast system over 3 s from (1, 0).
-fn slow_and_fast<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> Solution<2> {
+fn slow_and_fast<S: Stepper<Const<2>>>(stepper: S, tol: Tolerance<Const<2>>) -> Solution<Const<2>> {
     integrate(
         &SlowAndFast,
         stepper,
@@ -170,7 +171,7 @@ fn slow_and_fast<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> Solution<2> {
     .unwrap()
 }
 
-fn limiting_counts<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> (u64, u64, u64) {
+fn limiting_counts<S: Stepper<Const<2>>>(stepper: S, tol: Tolerance<Const<2>>) -> (u64, u64, u64) {
     let sol = slow_and_fast(stepper, tol);
     let l = sol.stats.limiting;
     (sol.stats.steps, l.get(1), l.total())
@@ -178,7 +179,7 @@ fn limiting_counts<S: Stepper<2>>(stepper: S, tol: Tolerance<2>) -> (u64, u64, u
 
 #[test]
 fn every_adaptive_method_counts_the_limiting_component_on_request() {
-    let tol = Tolerance::<2>::scalar(1e-8, 1e-10);
+    let tol = Tolerance::<Const<2>>::scalar(1e-8, 1e-10);
     let tracked = tol.tracking_limiting();
     let runs = [
         ("DOPRI5", limiting_counts(Dopri5::new(), tracked)),

@@ -3,6 +3,7 @@
 //! ahead of a restart that fails.
 
 use crate::common::ball::{Ball, BallGuard, Flights, Impact};
+use model_runtime::Const;
 use model_runtime::{
     Clocked, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridError, HybridOptions,
     HybridSolver, HybridSystem, PhysicalTime, Recorder, Regularised, SolveError, StopReason,
@@ -27,7 +28,7 @@ fn impact(k: u32) -> (f64, f64) {
 
 /// Every record carries the note its transition map produced for that event, in order.
 fn check_notes(
-    records: &[model_runtime::TransitionRecord<2, (), BallGuard, Impact>],
+    records: &[model_runtime::TransitionRecord<Const<2>, (), BallGuard, Impact>],
     expected: u32,
 ) {
     assert_eq!(records.len(), expected as usize);
@@ -100,7 +101,7 @@ const AT_ONE: [GuardSpec<()>; 1] = [GuardSpec {
     direction: Direction::Up,
 }];
 
-impl HybridSystem<1> for Doomed {
+impl HybridSystem<Const<1>> for Doomed {
     type Mode = Leg;
     type Guard = ();
     type Stop = ();
@@ -135,8 +136,8 @@ impl HybridSystem<1> for Doomed {
     fn on_event(
         &mut self,
         _: Leg,
-        hit: &EventHit<1, ()>,
-    ) -> Result<Transition<1, Leg, (), &'static str>, EvalError> {
+        hit: &EventHit<Const<1>, ()>,
+    ) -> Result<Transition<Const<1>, Leg, (), &'static str>, EvalError> {
         Ok(Transition::Switch {
             to: Leg::Broken,
             y: hit.y,

@@ -2,6 +2,7 @@
 //! run: the steps, samples and final state are bit for bit those of the run without them.
 
 use crate::common::log::RunLog;
+use model_runtime::Const;
 use model_runtime::{
     ChatterLimit, Clocked, Crossed, Direction, Dop853, EvalError, EventHit, GuardSpec,
     HybridOptions, HybridOutcome, HybridSolver, HybridSystem, InteriorChecks, PhysicalTime,
@@ -47,7 +48,7 @@ impl Watched {
     }
 }
 
-impl HybridSystem<2> for Watched {
+impl HybridSystem<Const<2>> for Watched {
     type Mode = ();
     type Guard = usize;
     type Stop = usize;
@@ -75,8 +76,8 @@ impl HybridSystem<2> for Watched {
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<2, usize>,
-    ) -> Result<Transition<2, (), usize>, EvalError> {
+        hit: &EventHit<Const<2>, usize>,
+    ) -> Result<Transition<Const<2>, (), usize>, EvalError> {
         Ok(match self.watches[hit.index].2 {
             Action::Pass => Transition::Pass { note: () },
             Action::Stop => Transition::Stop(hit.guard),
@@ -95,7 +96,7 @@ fn passing_watches() -> Vec<Watch> {
 }
 
 type Log = RunLog<2, (), usize, ()>;
-type Outcome = HybridOutcome<2, (), usize>;
+type Outcome = HybridOutcome<Const<2>, (), usize>;
 
 /// DOP853 at 1e-10 with 10 samples per unit and the given interior checks, to `t_end`; a
 /// chattering limit of one transition per unit time that passes must not trip.

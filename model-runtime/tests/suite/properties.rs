@@ -3,13 +3,14 @@
 
 use crate::common::ball::{Ball, Flights};
 use crate::common::{dist, ClockGuards, Forced};
+use model_runtime::Const;
 use model_runtime::{
     integrate, Direction, Dop853, Dopri5, EvalError, EventHit, GuardSpec, HybridOptions,
     HybridSolver, HybridSystem, Recorder, StepOptions, Stepper, Tolerance, Transition,
 };
 use proptest::prelude::*;
 
-fn check_ball<S: Stepper<2>>(
+fn check_ball<S: Stepper<Const<2>>>(
     stepper: S,
     h0: f64,
     v0: f64,
@@ -89,7 +90,7 @@ const BOTH: [GuardSpec<()>; 1] = [GuardSpec {
     id: (),
     direction: Direction::Both,
 }];
-impl HybridSystem<2> for Level {
+impl HybridSystem<Const<2>> for Level {
     type Mode = ();
     type Guard = ();
     type Stop = ();
@@ -115,8 +116,8 @@ impl HybridSystem<2> for Level {
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<2, ()>,
-    ) -> Result<Transition<2, (), ()>, EvalError> {
+        hit: &EventHit<Const<2>, ()>,
+    ) -> Result<Transition<Const<2>, (), ()>, EvalError> {
         Ok(Transition::Continue { y: hit.y, note: () })
     }
 }
@@ -138,7 +139,11 @@ fn level_times(phase: f64, level: f64, t_end: f64) -> Vec<f64> {
     times
 }
 
-fn check_levels<S: Stepper<2>>(stepper: S, phase: f64, level: f64) -> Result<(), TestCaseError> {
+fn check_levels<S: Stepper<Const<2>>>(
+    stepper: S,
+    phase: f64,
+    level: f64,
+) -> Result<(), TestCaseError> {
     let t_end = 20.0;
     let expected = level_times(phase, level, t_end);
     let mut solver = HybridSolver::new(

@@ -3,6 +3,7 @@
 
 use crate::common::ball::{Ball, Flights, G};
 use crate::common::log::RunLog;
+use model_runtime::Const;
 use model_runtime::{
     AccumulationAction, AccumulationRule, Direction, Dop853, EvalError, EventAction, EventDecl,
     EventId, GraphError, HybridError, HybridOptions, HybridOutcome, HybridSolver, ModeDecl,
@@ -80,7 +81,7 @@ impl SwitchedBall {
     }
 }
 
-impl SwitchedModel<2> for SwitchedBall {
+impl SwitchedModel<Const<2>> for SwitchedBall {
     fn graph(&self) -> &ModeGraph {
         &self.graph
     }
@@ -134,11 +135,11 @@ impl SwitchedModel<2> for SwitchedBall {
 }
 
 type Log = RunLog<2, ModeId, EventId, SwitchedNote>;
-type Outcome = HybridOutcome<2, ModeId, SwitchedStop>;
+type Outcome = HybridOutcome<Const<2>, ModeId, SwitchedStop>;
 
 /// DOP853 at rtol 1e-10, atol 1e-12, 100 samples per second, from `(H0, 0)` in `flying` to 10;
 /// `ball` is a [`SwitchedBall`], owned or borrowed.
-fn drop(ball: impl SwitchedModel<2>) -> (Result<Outcome, HybridError<ModeId>>, Log) {
+fn drop(ball: impl SwitchedModel<Const<2>>) -> (Result<Outcome, HybridError<ModeId>>, Log) {
     let options = HybridOptions {
         sample_rate: Some(100.0),
         ..HybridOptions::default()

@@ -3,6 +3,7 @@
 
 use crate::common::ball::{Ball, Flights, G};
 use crate::common::log::RunLog;
+use model_runtime::Const;
 use model_runtime::{
     AccumulationRule, Clocked, Direction, Dop853, EvalError, EventAction, EventDecl, EventId,
     HybridOptions, HybridSolver, ModeDecl, ModeGraph, ModeId, PhysicalTime, Regularised,
@@ -18,7 +19,7 @@ struct SlowNearTheFloor {
     graph: ModeGraph,
 }
 
-impl SwitchedModel<2> for SlowNearTheFloor {
+impl SwitchedModel<Const<2>> for SlowNearTheFloor {
     fn graph(&self) -> &ModeGraph {
         &self.graph
     }

@@ -8,6 +8,7 @@ use crate::hybrid::onset::OnsetError;
 use crate::hybrid::StopReason;
 use crate::modes::layout::{ALPHA, U_X, U_Y, V_C};
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
+use model_runtime::Const;
 use model_runtime::{EvalError, EventHit, Model, Transition};
 
 /// The longest bridge (s). A bridge moves the state along a constant derivative, so it is exact
@@ -117,7 +118,7 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskSystem<'_, R, S> {
     /// The slip reached the stick threshold: bridge it to its exact zero.
     pub(super) fn bridge_to_stop(
         &mut self,
-        hit: &EventHit<DIM, DiskGuard>,
+        hit: &EventHit<Const<DIM>, DiskGuard>,
     ) -> Result<DiskTransition, EvalError> {
         let (y, dy) = (&hit.y, &hit.dy);
         let duration = match self.models.chart {

@@ -18,26 +18,28 @@
 
 use crate::modes::layout::{ALPHA, OMEGA_Y, OMEGA_Z, PSI, THETA, U_X, U_Y, V_C, V_X, V_Y, V_Z};
 use crate::modes::{SlipChart, DIM};
+use model_runtime::Const;
 use model_runtime::GuardInputs;
 
 use super::Phase;
 
 /// The floor guard, in every phase with contact.
-const FLOOR: GuardInputs<DIM> = GuardInputs::of(&[THETA], &[]);
+const FLOOR: GuardInputs<Const<DIM>> = GuardInputs::of(&[THETA], &[]);
 /// Rolling in still air: the contact force from the centre's acceleration.
-const ROLLING: GuardInputs<DIM> = FLOOR.union(GuardInputs::of(&[], &[V_X, V_Y, V_Z]));
+const ROLLING: GuardInputs<Const<DIM>> = FLOOR.union(GuardInputs::of(&[], &[V_X, V_Y, V_Z]));
 /// Rolling with air: the centre's normal velocity too.
-const ROLLING_AIR: GuardInputs<DIM> = ROLLING.union(GuardInputs::of(&[PSI, V_X, V_Y, V_Z], &[]));
+const ROLLING_AIR: GuardInputs<Const<DIM>> =
+    ROLLING.union(GuardInputs::of(&[PSI, V_X, V_Y, V_Z], &[]));
 /// Sliding in still air, either chart: the normal force from `V̇_Z`.
-const SLIDING: GuardInputs<DIM> = FLOOR.union(GuardInputs::of(&[], &[V_Z]));
+const SLIDING: GuardInputs<Const<DIM>> = FLOOR.union(GuardInputs::of(&[], &[V_Z]));
 /// Sliding with air, either chart: the centre's velocity is rebuilt from the no-slip velocity.
-const SLIDING_AIR: GuardInputs<DIM> =
+const SLIDING_AIR: GuardInputs<Const<DIM>> =
     SLIDING.union(GuardInputs::of(&[PSI, OMEGA_Y, OMEGA_Z, V_Z], &[]));
 /// The bridge's guard reads the time only.
-const BRIDGE: GuardInputs<DIM> = GuardInputs::of(&[], &[]);
+const BRIDGE: GuardInputs<Const<DIM>> = GuardInputs::of(&[], &[]);
 
 /// The slip components the stick guard reads in `chart`.
-const fn slip_speed(chart: SlipChart) -> GuardInputs<DIM> {
+const fn slip_speed(chart: SlipChart) -> GuardInputs<Const<DIM>> {
     match chart {
         SlipChart::Cartesian => GuardInputs::of(&[U_X, U_Y], &[]),
         SlipChart::Polar => GuardInputs::of(&[V_C], &[]),
@@ -45,7 +47,7 @@ const fn slip_speed(chart: SlipChart) -> GuardInputs<DIM> {
 }
 
 /// The full slip vector of `chart`, which the air's share reads.
-const fn slip_vector(chart: SlipChart) -> GuardInputs<DIM> {
+const fn slip_vector(chart: SlipChart) -> GuardInputs<Const<DIM>> {
     match chart {
         SlipChart::Cartesian => GuardInputs::of(&[U_X, U_Y], &[]),
         SlipChart::Polar => GuardInputs::of(&[V_C, ALPHA], &[]),
@@ -53,7 +55,11 @@ const fn slip_vector(chart: SlipChart) -> GuardInputs<DIM> {
 }
 
 /// What the guards of `phase` read, sliding in `chart`, `air` when the air force is on.
-pub(super) const fn guard_inputs(phase: Phase, chart: SlipChart, air: bool) -> GuardInputs<DIM> {
+pub(super) const fn guard_inputs(
+    phase: Phase,
+    chart: SlipChart,
+    air: bool,
+) -> GuardInputs<Const<DIM>> {
     match (phase, air) {
         (Phase::Rolling, false) => ROLLING,
         (Phase::Rolling, true) => ROLLING_AIR,
@@ -119,7 +125,9 @@ mod tests {
     ) -> Result<(), TestCaseError> {
         let system = DiskSystem::new(models, &DiskConfig::paper());
         for phase in PHASES {
-            let inputs = system.guard_inputs(phase);
+            let inputs = system
+                .guard_inputs(phase)
+                .expect("the disk declares its inputs");
             let full = values(&system, phase, y, dy);
             // (The bridge's end time is unset here, so its guard is infinite.)
             let contact = phase != Phase::Bridge;

@@ -2,6 +2,7 @@
 //! closed forms, switched models against closed forms, and every input error located.
 
 mod requests;
+mod sizes;
 mod smooth;
 mod switched;
 

@@ -4,7 +4,6 @@
 use crate::{compile, model, OSCILLATOR};
 use model_interpreted::{
     solve, EventRequest, LoadError, RequestError, SolveFailure, SolveRequest, ValueError,
-    MAX_STATES,
 };
 use model_runtime::Direction;
 
@@ -132,14 +131,4 @@ fn settings_are_input_errors() {
     ));
     let backwards = request_error(OSCILLATOR, SolveRequest::new(-1.0));
     assert!(matches!(&backwards, RequestError::Settings(text) if text.contains("[0, -1]")));
-    let states: Vec<String> = (0..=MAX_STATES).map(|i| format!("x{i}")).collect();
-    let many = format!(
-        "mod many {{ states {{ {} }} equations {{ {} }} }}",
-        states.join(", "),
-        (states.iter().map(|s| format!("der({s}) = 0;"))).collect::<String>()
-    );
-    assert!(matches!(
-        request_error(&many, SolveRequest::new(1.0)),
-        RequestError::TooManyStates { states: 33, .. }
-    ));
 }

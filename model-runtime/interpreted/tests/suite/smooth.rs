@@ -7,9 +7,9 @@ use equations::{DiskParams, InitialState};
 use model_interpreted::{solve, EventKind, EventRequest, SolveRequest, Stop};
 use model_runtime::{Direction, Method, Problem};
 
-/// The rolling disk from its own source file, interpreted and embedded, against the same
-/// model compiled by `model!`: the same steps (the scaled tolerances make the error norm the
-/// model's own) and the same trajectory.
+/// The rolling disk from its own source file, interpreted in its own 12 states (a run-time
+/// size), against the same model compiled by `model!` (a compile-time size): the same
+/// integrator code on both, so the same steps and the same trajectory.
 #[test]
 fn the_interpreted_disk_steps_like_the_compiled_one() {
     let text = include_str!("../../../../equations/src/models/box1_rolling.rs");

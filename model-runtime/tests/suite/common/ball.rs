@@ -1,6 +1,7 @@
 //! A ball bouncing on the ground: the hybrid system whose event times, speeds and notes have
 //! closed forms, shared by the event, property and note tests.
 
+use model_runtime::Const;
 use model_runtime::{Direction, EvalError, EventHit, GuardSpec, HybridSystem, Transition};
 
 /// Gravity of the ball tests (m/s²).
@@ -53,7 +54,7 @@ pub struct Impact {
     pub label: String,
 }
 
-impl HybridSystem<2> for Ball {
+impl HybridSystem<Const<2>> for Ball {
     type Mode = ();
     type Guard = BallGuard;
     type Stop = ();
@@ -89,8 +90,8 @@ impl HybridSystem<2> for Ball {
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<2, BallGuard>,
-    ) -> Result<Transition<2, (), (), Impact>, EvalError> {
+        hit: &EventHit<Const<2>, BallGuard>,
+    ) -> Result<Transition<Const<2>, (), (), Impact>, EvalError> {
         self.impacts += 1;
         Ok(Transition::Continue {
             y: [0.0, -self.e * hit.y[1]],

@@ -1,5 +1,6 @@
 //! An observer that keeps everything a run reports, to compare two runs output for output.
 
+use model_runtime::Const;
 use model_runtime::{Observer, Sample, StepView, TransitionRecord};
 
 /// Every step `(t0, t1, y0, y1)`, sample `(t, y)` and transition record of a run, in order.
@@ -9,7 +10,7 @@ pub struct RunLog<const N: usize, Md, G, Nt> {
     /// The samples.
     pub samples: Vec<(f64, [f64; N])>,
     /// The transitions and passes.
-    pub records: Vec<TransitionRecord<N, Md, G, Nt>>,
+    pub records: Vec<TransitionRecord<Const<N>, Md, G, Nt>>,
 }
 
 impl<const N: usize, Md, G, Nt> RunLog<N, Md, G, Nt> {
@@ -23,14 +24,14 @@ impl<const N: usize, Md, G, Nt> RunLog<N, Md, G, Nt> {
     }
 }
 
-impl<const N: usize, Md, G, Nt> Observer<N, Md, G, Nt> for RunLog<N, Md, G, Nt> {
-    fn on_step(&mut self, s: &StepView<'_, N, Md>) {
+impl<const N: usize, Md, G, Nt> Observer<Const<N>, Md, G, Nt> for RunLog<N, Md, G, Nt> {
+    fn on_step(&mut self, s: &StepView<'_, Const<N>, Md>) {
         self.steps.push((s.t0, s.t1, *s.y0, *s.y1));
     }
-    fn on_sample(&mut self, s: &Sample<'_, N, Md>) {
+    fn on_sample(&mut self, s: &Sample<'_, Const<N>, Md>) {
         self.samples.push((s.t, *s.y));
     }
-    fn on_transition(&mut self, r: TransitionRecord<N, Md, G, Nt>) {
+    fn on_transition(&mut self, r: TransitionRecord<Const<N>, Md, G, Nt>) {
         self.records.push(r);
     }
 }

@@ -4,6 +4,7 @@
 pub mod ball;
 pub mod log;
 
+use model_runtime::Const;
 use model_runtime::{
     Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, ModelInfo, OpCounts, Transition,
 };
@@ -202,15 +203,17 @@ pub struct OneGuard<M, G, E> {
 }
 
 /// The transition map of a [`OneGuard`] system of dimension `N`.
-pub type EventMap<const N: usize> = fn(&EventHit<N, ()>) -> Transition<N, (), ()>;
+pub type EventMap<const N: usize> = fn(&EventHit<Const<N>, ()>) -> Transition<Const<N>, (), ()>;
 
 /// Restarts in place: events that leave the solution unchanged.
-pub fn continue_in_place<const N: usize>(hit: &EventHit<N, ()>) -> Transition<N, (), ()> {
+pub fn continue_in_place<const N: usize>(
+    hit: &EventHit<Const<N>, ()>,
+) -> Transition<Const<N>, (), ()> {
     Transition::Continue { y: hit.y, note: () }
 }
 
 /// Stops the run.
-pub fn stop<const N: usize>(_: &EventHit<N, ()>) -> Transition<N, (), ()> {
+pub fn stop<const N: usize>(_: &EventHit<Const<N>, ()>) -> Transition<Const<N>, (), ()> {
     Transition::Stop(())
 }
 
@@ -232,11 +235,11 @@ const UP: [GuardSpec<()>; 1] = [GuardSpec {
     direction: Direction::Up,
 }];
 
-impl<M, G, E, const N: usize> HybridSystem<N> for OneGuard<M, G, E>
+impl<M, G, E, const N: usize> HybridSystem<Const<N>> for OneGuard<M, G, E>
 where
     M: Model<N>,
     G: Fn(&[f64; N], &[f64; N]) -> f64,
-    E: FnMut(&EventHit<N, ()>) -> Transition<N, (), ()>,
+    E: FnMut(&EventHit<Const<N>, ()>) -> Transition<Const<N>, (), ()>,
 {
     type Mode = ();
     type Guard = ();
@@ -262,8 +265,8 @@ where
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<N, ()>,
-    ) -> Result<Transition<N, (), ()>, EvalError> {
+        hit: &EventHit<Const<N>, ()>,
+    ) -> Result<Transition<Const<N>, (), ()>, EvalError> {
         Ok((self.on_event)(hit))
     }
 }
@@ -278,7 +281,7 @@ pub struct ClockGuards<G> {
     pub value: G,
 }
 
-impl<G: Fn(usize, f64) -> f64> HybridSystem<1> for ClockGuards<G> {
+impl<G: Fn(usize, f64) -> f64> HybridSystem<Const<1>> for ClockGuards<G> {
     type Mode = ();
     type Guard = usize;
     type Stop = usize;
@@ -306,8 +309,8 @@ impl<G: Fn(usize, f64) -> f64> HybridSystem<1> for ClockGuards<G> {
     fn on_event(
         &mut self,
         _: (),
-        hit: &EventHit<1, usize>,
-    ) -> Result<Transition<1, (), usize>, EvalError> {
+        hit: &EventHit<Const<1>, usize>,
+    ) -> Result<Transition<Const<1>, (), usize>, EvalError> {
         Ok(Transition::Stop(hit.guard))
     }
 }
