@@ -3,7 +3,7 @@
 //! `show` and `eval` take a disk model's name or a DSL file; `solve` takes a file. A mistake
 //! in the file, an unknown name in `--state`/`--set`, a malformed `--event` or a state where
 //! the model is singular is an input error (exit 2), and so is an unusable setting of `solve`
-//! (an empty time span, a sampling step or tolerance that is not positive, too many states);
+//! (an empty time span, a sampling step or tolerance that is not positive);
 //! a failed integration or an unwritable output is a failure (exit 1), and a run that a
 //! `:stop` event ended before `--t-end` exits with 3, as a scene stopped by its physics does.
 

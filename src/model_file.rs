@@ -39,7 +39,7 @@ pub enum ModelFileError {
     #[error(transparent)]
     Point(#[from] PointError),
     /// A setting of `model solve` is unusable (an empty or non-finite time span, a sampling
-    /// step, a tolerance, a model with too many states): an input error, found before any
+    /// step or a tolerance): an input error, found before any
     /// integration.
     #[error(transparent)]
     Setting(RequestError),
