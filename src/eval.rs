@@ -9,7 +9,7 @@
 use equations::{models, reference};
 use equations::{DiskParams, ParamError};
 use model_interpreted::NamedValues;
-use model_runtime::{EvalError, Readable, WithOutputs};
+use model_runtime::{EvalError, Name, Names, Readable, WithOutputs};
 
 use crate::model_show::ModelName;
 use crate::named_numbers::{parse_assignments, NamedNumbersError};
@@ -89,7 +89,7 @@ pub struct Evaluation {
     /// The mode evaluated.
     pub mode: Mode,
     /// The model that answered (its name in the DSL or the reference).
-    pub model: &'static str,
+    pub model: Name,
     /// `der(name)` for every state, keyed `der(name)` as `model eval` and the DSL write it.
     pub derivatives: NamedValues,
     /// Every output of the model, keyed by name.
@@ -218,7 +218,7 @@ fn run<M: WithOutputs<N, K>, const K: usize>(
     y: &[f64; N],
 ) -> Result<Evaluation, EvalCommandError> {
     let info = model.info();
-    let fail = |e: EvalError| to_command_error(mode, info.state_names, y, e);
+    let fail = |e: EvalError| to_command_error(mode, &info.state_names, y, e);
     let mut dy = [0.0; N];
     model.rhs(t, y, &mut dy).map_err(fail)?;
     let mut out = [0.0; K];
@@ -242,7 +242,7 @@ fn run<M: WithOutputs<N, K>, const K: usize>(
     }
     Ok(Evaluation {
         mode,
-        model: info.name,
+        model: info.name.clone(),
         derivatives: NamedValues(derivatives),
         outputs: NamedValues(outputs),
     })
@@ -250,24 +250,17 @@ fn run<M: WithOutputs<N, K>, const K: usize>(
 
 /// Names the state key behind a model error: the state named in the pivot (`sin(theta)` ->
 /// `theta`), else the one whose value is not finite, else the quantity itself.
-fn to_command_error(
-    mode: Mode,
-    names: &[&'static str],
-    y: &[f64; N],
-    e: EvalError,
-) -> EvalCommandError {
+fn to_command_error(mode: Mode, names: &Names, y: &[f64; N], e: EvalError) -> EvalCommandError {
     match &e {
         EvalError::SingularPivot { pivot, .. } => {
-            let named = names
-                .iter()
-                .enumerate()
+            let named = (names.iter().enumerate())
                 .filter(|(_, n)| mentions(pivot, n))
                 .max_by_key(|(_, n)| n.len());
             let (i, key) = match named {
                 Some((i, n)) => (i, n.to_string()),
                 None => {
                     let i = (0..N).find(|&i| !y[i].is_finite()).unwrap_or(0);
-                    (i, format!("{} (pivot `{pivot}`)", names[i]))
+                    (i, format!("{} (pivot `{pivot}`)", &names[i]))
                 }
             };
             EvalCommandError::Singular {

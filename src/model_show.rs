@@ -130,7 +130,7 @@ mod tests {
                 "der({state})"
             );
         }
-        for pivot in rolling::INFO.pivots {
+        for pivot in rolling::INFO.pivots.iter() {
             assert!(text.contains(&format!("`{pivot}`")), "{pivot}");
         }
         assert!(text.contains("der(theta) = Omega_y"));

@@ -79,16 +79,9 @@ fn time_per_eval<const N: usize>(
 /// Picks a variant's states out of full-model states, by name.
 fn restrict<const N: usize>(full: &ModelInfo, variant: &ModelInfo, y: &[f64; DIM]) -> [f64; N] {
     std::array::from_fn(|i| {
-        let j = full
-            .state_names
-            .iter()
-            .position(|n| *n == variant.state_names[i])
-            .unwrap_or_else(|| {
-                panic!(
-                    "variant state {} not in the full model",
-                    variant.state_names[i]
-                )
-            });
+        let name = &variant.state_names[i];
+        let j = (full.state_names.position(name))
+            .unwrap_or_else(|| panic!("variant state {name} not in the full model"));
         y[j]
     })
 }

@@ -206,15 +206,15 @@ fn info(info_name: &str, model: &CompiledModel) -> TokenStream {
     quote! {
         /// Names, sizes, operation counts, checked pivots and numerically solved blocks.
         pub static INFO: ::model_runtime::ModelInfo = ::model_runtime::ModelInfo {
-            name: #info_name,
-            state_names: &STATE_NAMES,
-            param_names: &PARAM_NAMES,
-            output_names: &OUTPUT_NAMES,
+            name: ::model_runtime::Name::Borrowed(#info_name),
+            state_names: ::model_runtime::Names::Static(&STATE_NAMES),
+            param_names: ::model_runtime::Names::Static(&PARAM_NAMES),
+            output_names: ::model_runtime::Names::Static(&OUTPUT_NAMES),
             rhs_ops: #rhs_ops,
             jacobian_ops: #jacobian_ops,
             outputs_ops: #outputs_ops,
-            pivots: &[#(#pivots),*],
-            numeric_blocks: &[#(#blocks),*],
+            pivots: ::model_runtime::Names::Static(&[#(#pivots),*]),
+            numeric_blocks: ::model_runtime::Names::Static(&[#(#blocks),*]),
         };
     }
 }

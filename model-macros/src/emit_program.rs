@@ -89,7 +89,8 @@ fn statement(out: &mut String, stmt: &Stmt) {
                 out,
                 "if !({value} != 0.0 && {value}.is_finite()){cancelled} {{ \
                  return ::core::result::Result::Err(::model_runtime::EvalError::SingularPivot {{ \
-                 model: MODEL_NAME, pivot: {text:?}, value: {value} }}); }}"
+                 model: ::model_runtime::Name::Borrowed(MODEL_NAME), \
+                 pivot: ::model_runtime::Name::Borrowed({text:?}), value: {value} }}); }}"
             )
         }
         Stmt::SolveBlock {

@@ -7,6 +7,7 @@
 //! A leaf of the crate: every other module reports through these types, and they depend on
 //! nothing else in it (a model's own failure, [`EvalError`], lives here for that reason).
 
+use crate::name::Name;
 use crate::readable::Readable;
 use std::fmt;
 
@@ -18,9 +19,9 @@ pub enum EvalError {
     /// sliding determinant).
     SingularPivot {
         /// The model's name.
-        model: &'static str,
+        model: Name,
         /// The pivot as the user wrote it, e.g. `sin(theta)`.
-        pivot: &'static str,
+        pivot: Name,
         /// Its value at the state (zero, infinite, NaN, or a remainder of cancellation small
         /// against the terms it was summed from).
         value: f64,
@@ -28,9 +29,9 @@ pub enum EvalError {
     /// A computed quantity is not finite (overflow, or a non-finite input).
     NonFinite {
         /// The model's name.
-        model: &'static str,
+        model: Name,
         /// The quantity's name (a state derivative as `der(x)`, or an output).
-        quantity: &'static str,
+        quantity: Name,
         /// Its value.
         value: f64,
     },

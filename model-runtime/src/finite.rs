@@ -14,7 +14,7 @@ use crate::error::EvalError;
 /// use model_runtime::{check_finite, EvalError};
 /// assert!(check_finite("m", &["der(x)", "der(v)"], &[1.0, 2.0]).is_ok());
 /// let error = check_finite("m", &["der(x)", "der(v)"], &[1.0, f64::NAN]).unwrap_err();
-/// assert!(matches!(error, EvalError::NonFinite { quantity: "der(v)", .. }));
+/// assert!(matches!(error, EvalError::NonFinite { quantity, .. } if quantity == "der(v)"));
 /// ```
 #[doc(hidden)]
 #[inline(always)]
@@ -26,8 +26,8 @@ pub fn check_finite(
     for (&quantity, value) in names.iter().zip(values) {
         if !value.is_finite() {
             return Err(EvalError::NonFinite {
-                model,
-                quantity,
+                model: model.into(),
+                quantity: quantity.into(),
                 value: *value,
             });
         }

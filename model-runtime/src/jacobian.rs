@@ -34,8 +34,8 @@ pub fn finite_difference_jacobian<D: Dim>(
             let entry = (fp[i] - fm[i]) / (2.0 * h);
             if !entry.is_finite() {
                 return Err(EvalError::NonFinite {
-                    model: FD_MODEL,
-                    quantity: "an entry of the Jacobian",
+                    model: FD_MODEL.into(),
+                    quantity: "an entry of the Jacobian".into(),
                     value: entry,
                 });
             }

@@ -67,15 +67,11 @@
 //!   [`ParseSettingError`].
 //!
 //! ```
-//! use model_runtime::{integrate, Dop853, EvalError, Model, ModelInfo, OpCounts, StepOptions, Tolerance};
+//! use model_runtime::{integrate, Dop853, EvalError, Model, ModelInfo, StepOptions, Tolerance};
 //!
 //! /// y' = -y.
 //! struct Decay;
-//! const ZERO: OpCounts = OpCounts { add: 0, mul: 0, div: 0, sqrt: 0, trig: 0, transcendental: 0 };
-//! static INFO: ModelInfo = ModelInfo {
-//!     name: "decay", state_names: &["y"], param_names: &[], output_names: &[],
-//!     rhs_ops: ZERO, jacobian_ops: ZERO, outputs_ops: ZERO, pivots: &[], numeric_blocks: &[],
-//! };
+//! static INFO: ModelInfo = ModelInfo::of("decay", &["y"], &[], &[]);
 //! impl Model<1> for Decay {
 //!     fn info(&self) -> &'static ModelInfo { &INFO }
 //!     fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
@@ -107,6 +103,7 @@ mod jacobian;
 mod linalg;
 mod lu;
 mod model;
+mod name;
 mod observer;
 mod readable;
 mod rk4;
@@ -140,6 +137,7 @@ pub use integrator::{integrate, DenseStep, Integrator, Solution};
 pub use jacobian::finite_difference_jacobian;
 pub use linalg::solve_block;
 pub use model::{Evaluation, Model, ModelInfo, OpCounts, System, SystemOutputs, WithOutputs};
+pub use name::{Name, Names};
 pub use observer::{
     Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
 };

@@ -36,8 +36,8 @@ pub fn solve_block<const N: usize>(
         let pivot = a[best][col];
         if !(pivot != 0.0 && pivot.is_finite()) {
             return Err(EvalError::SingularPivot {
-                model,
-                pivot: block,
+                model: model.into(),
+                pivot: block.into(),
                 value: pivot,
             });
         }
@@ -99,8 +99,8 @@ mod tests {
         assert_eq!(
             error,
             EvalError::SingularPivot {
-                model: "m",
-                pivot: "der(x), der(y)",
+                model: "m".into(),
+                pivot: "der(x), der(y)".into(),
                 value: 0.0
             }
         );

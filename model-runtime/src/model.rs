@@ -10,47 +10,21 @@
 use crate::dim::{Const, Dim, Vector};
 use crate::error::EvalError;
 use crate::jacobian::{finite_difference_jacobian, FD_MODEL};
+use crate::name::{Name, Names};
 use crate::stepper::Rhs;
-
-/// Operation counts of one emitted function, after common-subexpression elimination.
-///
-/// Counted on the straight-line code the compiler emits: every `+`/`-` is an add, every `*` a
-/// mul, every `/` a div; `sqrt`, the trigonometric functions (`sin cos tan atan2`) and the
-/// transcendental ones (`exp ln`, real powers) are counted apart because they cost far more.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct OpCounts {
-    /// Additions and subtractions (including negations).
-    pub add: u32,
-    /// Multiplications (integer powers count as the multiplications they expand to).
-    pub mul: u32,
-    /// Divisions.
-    pub div: u32,
-    /// Square roots.
-    pub sqrt: u32,
-    /// Trigonometric calls (`sin`, `cos`, `tan`, `atan2`); a shared `sin_cos` counts once.
-    pub trig: u32,
-    /// Other transcendental calls (`exp`, `ln`, `powf`, `abs` is not counted here).
-    pub transcendental: u32,
-}
-
-impl OpCounts {
-    /// All operations, weighted equally.
-    pub fn total(&self) -> u32 {
-        self.add + self.mul + self.div + self.sqrt + self.trig + self.transcendental
-    }
-}
+pub use model_ops::OpCounts;
 
 /// What a model says about itself: names, sizes and the cost of its emitted code.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct ModelInfo {
     /// The model's name (the module name in the DSL).
-    pub name: &'static str,
+    pub name: Name,
     /// State names, in index order.
-    pub state_names: &'static [&'static str],
+    pub state_names: Names,
     /// Parameter names, in index order.
-    pub param_names: &'static [&'static str],
+    pub param_names: Names,
     /// Output names, in index order.
-    pub output_names: &'static [&'static str],
+    pub output_names: Names,
     /// Operation counts of `rhs`.
     pub rhs_ops: OpCounts,
     /// Operation counts of `jacobian` (zero for hand-written models without one).
@@ -58,10 +32,47 @@ pub struct ModelInfo {
     /// Operation counts of `outputs`.
     pub outputs_ops: OpCounts,
     /// Pivots checked at run time, as they read in the user's terms (e.g. `sin(theta)`).
-    pub pivots: &'static [&'static str],
+    pub pivots: Names,
     /// Blocks the compiler solved numerically instead of symbolically (each named by its
     /// derivatives, e.g. `der(V_X), der(V_Y)`), because the symbolic solution would swell.
-    pub numeric_blocks: &'static [&'static str],
+    pub numeric_blocks: Names,
+}
+
+impl ModelInfo {
+    /// The info of a hand-written model: its names, no operation counts (it was not
+    /// compiled), no checked pivots and no numeric blocks.
+    ///
+    /// ```
+    /// use model_runtime::ModelInfo;
+    /// static INFO: ModelInfo = ModelInfo::of("ball", &["h", "v"], &["g"], &["energy"]);
+    /// assert_eq!(INFO.state_names.position("v"), Some(1));
+    /// ```
+    pub const fn of(
+        name: &'static str,
+        state_names: &'static [&'static str],
+        param_names: &'static [&'static str],
+        output_names: &'static [&'static str],
+    ) -> ModelInfo {
+        const NONE: OpCounts = OpCounts {
+            add: 0,
+            mul: 0,
+            div: 0,
+            sqrt: 0,
+            trig: 0,
+            transcendental: 0,
+        };
+        ModelInfo {
+            name: Name::Borrowed(name),
+            state_names: Names::Static(state_names),
+            param_names: Names::Static(param_names),
+            output_names: Names::Static(output_names),
+            rhs_ops: NONE,
+            jacobian_ops: NONE,
+            outputs_ops: NONE,
+            pivots: Names::EMPTY,
+            numeric_blocks: Names::EMPTY,
+        }
+    }
 }
 
 /// An explicit first-order system `dy/dt = f(t, y)` of any [`Dim`]: what every integrator
@@ -121,11 +132,11 @@ pub trait Model<const N: usize> {
             |e| match e {
                 // A non-finite entry is the model's, named as such.
                 EvalError::NonFinite {
-                    model: FD_MODEL,
+                    model,
                     quantity,
                     value,
-                } => EvalError::NonFinite {
-                    model: Model::info(self).name,
+                } if model == FD_MODEL => EvalError::NonFinite {
+                    model: Model::info(self).name.clone(),
                     quantity,
                     value,
                 },

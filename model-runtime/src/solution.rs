@@ -84,7 +84,7 @@ impl<D: Dim, const K: usize> Trajectory<D, K> {
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Trajectory {
-            info: *model.info(),
+            info: model.info().clone(),
             t,
             y,
             outputs,
@@ -97,10 +97,10 @@ impl<D: Dim, const K: usize> Trajectory<D, K> {
     /// The values of the state or output called `name` at the recorded times; `None` if the
     /// model has no such name.
     pub fn column(&self, name: &str) -> Option<Vec<f64>> {
-        if let Some(i) = self.info.state_names.iter().position(|n| *n == name) {
+        if let Some(i) = self.info.state_names.position(name) {
             return Some(self.y.iter().map(|y| y[i]).collect());
         }
-        let k = self.info.output_names.iter().position(|n| *n == name)?;
+        let k = self.info.output_names.position(name)?;
         Some(self.outputs.iter().map(|out| out[k]).collect())
     }
 
@@ -113,8 +113,8 @@ impl<D: Dim, const K: usize> Trajectory<D, K> {
     /// time, every number in Rust's shortest round-trip form.
     pub fn write_csv(&self, mut out: impl Write) -> io::Result<()> {
         let mut header = vec!["t"];
-        header.extend(self.info.state_names);
-        header.extend(self.info.output_names);
+        header.extend(self.info.state_names.iter());
+        header.extend(self.info.output_names.iter());
         writeln!(out, "{}", header.join(","))?;
         for ((t, y), outputs) in self.t.iter().zip(&self.y).zip(&self.outputs) {
             let mut row = vec![t.to_string()];
@@ -197,7 +197,7 @@ impl SolveFailure {
     }
 
     /// The state the failure is about, by name, when it is about one.
-    pub fn state(&self) -> Option<&'static str> {
+    pub fn state(&self) -> Option<&str> {
         let SolveFailure::Solve { error, info, .. } = self else {
             return None;
         };
@@ -208,7 +208,7 @@ impl SolveFailure {
             | SolveError::InvalidInput(InputError::InitialState { component, .. }) => *component,
             _ => return None,
         };
-        info.state_names.get(component).copied()
+        info.state_names.get(component)
     }
 }
 
@@ -221,7 +221,7 @@ impl fmt::Display for SolveFailure {
                 events,
             } => {
                 let state = self.state().unwrap_or("?");
-                let model = info.name;
+                let model = &info.name;
                 match error {
                     SolveError::StepSizeCollapse {
                         t,

@@ -114,15 +114,11 @@ impl std::fmt::Debug for Event {
 ///
 /// ```
 /// use model_runtime::{Event, Method, Output, Problem, Termination};
-/// use model_runtime::{Direction, EvalError, Model, ModelInfo, OpCounts, WithOutputs};
+/// use model_runtime::{Direction, EvalError, Model, ModelInfo, WithOutputs};
 ///
 /// /// A ball thrown upwards: y = (height, velocity); output: its energy per unit mass.
 /// struct Ball;
-/// const ZERO: OpCounts = OpCounts { add: 0, mul: 0, div: 0, sqrt: 0, trig: 0, transcendental: 0 };
-/// static INFO: ModelInfo = ModelInfo {
-///     name: "ball", state_names: &["h", "v"], param_names: &[], output_names: &["energy"],
-///     rhs_ops: ZERO, jacobian_ops: ZERO, outputs_ops: ZERO, pivots: &[], numeric_blocks: &[],
-/// };
+/// static INFO: ModelInfo = ModelInfo::of("ball", &["h", "v"], &[], &["energy"]);
 /// impl Model<2> for Ball {
 ///     fn info(&self) -> &'static ModelInfo { &INFO }
 ///     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) -> Result<(), EvalError> {
@@ -254,10 +250,11 @@ impl<'m, M: System<D>, D: Dim> Problem<'m, M, D> {
     where
         M: SystemOutputs<D, K>,
     {
-        let info = *self.model.info();
+        let info = self.model.info().clone();
         let names: Vec<String> = self.events.iter().map(|e| e.name.clone()).collect();
-        let fail =
-            |error: HybridError<()>| SolveFailure::from_hybrid(error, Box::new(info), &names);
+        let fail = |error: HybridError<()>| {
+            SolveFailure::from_hybrid(error, Box::new(info.clone()), &names)
+        };
         let (t0, t_end) = self.span;
         if let Output::Times(times) = &self.output {
             check_times(times, t0, t_end)?;

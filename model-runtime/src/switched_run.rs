@@ -85,8 +85,8 @@ impl<D: Dim> SwitchedRun<D> {
 /// A run that failed: why (with its modes named), and the work it did until then.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SwitchedFailure<D: Dim> {
-    /// What went wrong.
-    pub error: HybridError<String>,
+    /// What went wrong (boxed: a failure is rare, and the run's result stays small).
+    pub error: Box<HybridError<String>>,
     /// The events met before the failure, in time order.
     pub events: Vec<EventRecord<D>>,
     /// The steps accepted before the failure.
@@ -121,10 +121,10 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
     let graph = model.graph().clone();
     let start = graph.first();
     let input = |error: crate::error::InputError| SwitchedFailure {
-        error: HybridError::Solve {
+        error: Box::new(HybridError::Solve {
             mode: graph.mode_name(start).to_string(),
             error: error.into(),
-        },
+        }),
         events: Vec::new(),
         steps: 0,
     };
@@ -141,7 +141,7 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
         Ok(outcome) => outcome,
         Err(error) => {
             return Err(SwitchedFailure {
-                error: name_modes(&graph, error),
+                error: Box::new(name_modes(&graph, error)),
                 events: collector.events,
                 steps: collector.steps,
             })

@@ -158,9 +158,9 @@ pub enum PruneError {
     #[error("model `{model}` has a parameter `{name}` that the disk's parameters lack")]
     UnknownParam {
         /// The variant.
-        model: &'static str,
+        model: String,
         /// The parameter.
-        name: &'static str,
+        name: String,
     },
 }
 
@@ -171,15 +171,13 @@ fn variant_params<const P: usize>(
 ) -> Result<[f64; P], PruneError> {
     let values = params.to_array();
     let mut out = [0.0; P];
-    for (slot, &name) in out.iter_mut().zip(info.param_names) {
-        let i =
-            DiskParams::NAMES
-                .iter()
-                .position(|&n| n == name)
-                .ok_or(PruneError::UnknownParam {
-                    model: info.name,
-                    name,
-                })?;
+    for (slot, name) in out.iter_mut().zip(info.param_names.iter()) {
+        let i = (DiskParams::NAMES.iter().position(|&n| n == name)).ok_or_else(|| {
+            PruneError::UnknownParam {
+                model: info.name.to_string(),
+                name: name.to_string(),
+            }
+        })?;
         *slot = values[i];
     }
     Ok(out)

@@ -251,8 +251,8 @@ fn transition(
     let params = model.disk_params();
     let models = GeneratedModels::generated(params, SlipChart::Cartesian).map_err(|_| {
         EvalError::NonFinite {
-            model: "disk",
-            quantity: "a disk parameter (not finite and positive)",
+            model: "disk".into(),
+            quantity: "a disk parameter (not finite and positive)".into(),
             value: f64::NAN,
         }
     })?;

@@ -9,7 +9,7 @@
 
 use super::affine::{Affine, AffineVec, DIM};
 use crate::DiskParams;
-use model_runtime::EvalError;
+use model_runtime::{EvalError, Name, Names};
 use nalgebra::{Matrix3, Rotation3, SMatrix, SVector, Vector3};
 
 /// Indices shared by every chart: the position, the vertical velocity, the Euler angles and the
@@ -77,21 +77,21 @@ impl Body {
     pub fn check_chart(
         &self,
         model: &'static str,
-        state_names: &[&'static str],
+        state_names: &Names,
         y: &[f64; DIM],
     ) -> Result<(), EvalError> {
         if let Some(k) = y.iter().position(|v| !v.is_finite()) {
             return Err(EvalError::NonFinite {
-                model,
-                quantity: state_names[k],
+                model: model.into(),
+                quantity: state_names.name(k).unwrap_or(Name::Borrowed("a state")),
                 value: y[k],
             });
         }
         let s = y[idx::THETA].sin();
         if s == 0.0 || !s.is_finite() {
             return Err(EvalError::SingularPivot {
-                model,
-                pivot: "sin(theta)",
+                model: model.into(),
+                pivot: "sin(theta)".into(),
                 value: s,
             });
         }
@@ -216,8 +216,8 @@ pub(crate) fn solve_rows(
         let scale = row.lin.amax();
         if scale == 0.0 || !scale.is_finite() {
             return Err(EvalError::SingularPivot {
-                model,
-                pivot: "M(y)",
+                model: model.into(),
+                pivot: "M(y)".into(),
                 value: scale,
             });
         }
@@ -226,8 +226,8 @@ pub(crate) fn solve_rows(
     }
     let lu = m.lu();
     let mut x = lu.solve(&f).ok_or(EvalError::SingularPivot {
-        model,
-        pivot: "M(y)",
+        model: model.into(),
+        pivot: "M(y)".into(),
         value: 0.0,
     })?;
     // Iterative refinement makes the small components accurate relative to themselves, not
@@ -242,8 +242,8 @@ pub(crate) fn solve_rows(
     for (j, (out, v)) in dy.iter_mut().zip(x.iter()).enumerate() {
         if !v.is_finite() {
             return Err(EvalError::NonFinite {
-                model,
-                quantity: der_names[j],
+                model: model.into(),
+                quantity: der_names[j].into(),
                 value: *v,
             });
         }

@@ -74,9 +74,9 @@ fn check_outputs(
     out: &[f64],
 ) -> Result<(), EvalError> {
     match out.iter().zip(names).find(|(v, _)| !v.is_finite()) {
-        Some((value, quantity)) => Err(EvalError::NonFinite {
-            model,
-            quantity,
+        Some((value, &quantity)) => Err(EvalError::NonFinite {
+            model: model.into(),
+            quantity: quantity.into(),
             value: *value,
         }),
         None => Ok(()),

@@ -10,7 +10,7 @@ use super::affine::{Affine, AffineVec, DIM};
 use super::body::{idx, solve_rows, Body};
 use super::ZERO_OPS;
 use crate::{DiskParams, ParamError};
-use model_runtime::{EvalError, Model, ModelInfo, WithOutputs};
+use model_runtime::{EvalError, Model, ModelInfo, Name, Names, WithOutputs};
 use nalgebra::Vector3;
 
 /// State indices of the rolling model (the DSL's spelling).
@@ -110,15 +110,15 @@ const DER_NAMES: [&str; DIM] = [
 const NAME: &str = "rolling_reference";
 
 static INFO: ModelInfo = ModelInfo {
-    name: NAME,
-    state_names: &STATE_NAMES,
-    param_names: &DiskParams::NAMES,
-    output_names: &OUTPUT_NAMES,
+    name: Name::Borrowed(NAME),
+    state_names: Names::Static(&STATE_NAMES),
+    param_names: Names::Static(&DiskParams::NAMES),
+    output_names: Names::Static(&OUTPUT_NAMES),
     rhs_ops: ZERO_OPS,
     jacobian_ops: ZERO_OPS,
     outputs_ops: ZERO_OPS,
-    pivots: &["sin(theta)", "M(y)"],
-    numeric_blocks: &["all derivatives (12×12 LU)"],
+    pivots: Names::Static(&["sin(theta)", "M(y)"]),
+    numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
 };
 
 /// The rolling disk, assembled from the balance laws and solved numerically at each call.
@@ -149,7 +149,7 @@ impl RollingReference {
 
     fn assemble(&self, y: &[f64; DIM]) -> Result<Assembled, EvalError> {
         let body = Body::new(self.params, y);
-        body.check_chart(NAME, &STATE_NAMES, y)?;
+        body.check_chart(NAME, &INFO.state_names, y)?;
         let p = &self.params;
         let velocity = Vector3::new(y[state::V_X], y[state::V_Y], y[state::V_Z]);
         // The solve's unknowns 3–5 are the frame components of V̇ (rotated back to V̇_X, V̇_Y,

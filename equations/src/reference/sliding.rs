@@ -151,14 +151,14 @@ impl<C: SlipChart> SlidingReference<C> {
 
     fn assemble_at(&self, y: &[f64; DIM], slip: Slip) -> Result<Assembled, EvalError> {
         let body = Body::new(self.params, y);
-        body.check_chart(C::NAME, C::info().state_names, y)?;
+        body.check_chart(C::NAME, &C::info().state_names, y)?;
         let p = &self.params;
         let beta0 = formulas::beta0(p, y[idx::THETA], slip.alpha - y[idx::PSI]);
         let beta0_scale = p.A() + p.m * p.a * p.a * (1.0 + p.mu_d);
         if beta0.is_nan() || beta0.abs() <= 16.0 * f64::EPSILON * beta0_scale {
             return Err(EvalError::SingularPivot {
-                model: C::NAME,
-                pivot: "beta0",
+                model: C::NAME.into(),
+                pivot: "beta0".into(),
                 value: beta0,
             });
         }

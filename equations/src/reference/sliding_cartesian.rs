@@ -8,7 +8,7 @@ use super::affine::DIM;
 use super::sliding::{SlidingReference, Slip, SlipChart, SlipRateColumns};
 use super::ZERO_OPS;
 use crate::DiskParams;
-use model_runtime::{EvalError, ModelInfo, WithOutputs};
+use model_runtime::{EvalError, ModelInfo, Name, Names, WithOutputs};
 use nalgebra::Vector3;
 
 /// State indices of the Cartesian sliding model (the DSL's spelling).
@@ -97,15 +97,15 @@ pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = [
 ];
 
 static INFO: ModelInfo = ModelInfo {
-    name: Cartesian::NAME,
-    state_names: &STATE_NAMES,
-    param_names: &DiskParams::NAMES,
-    output_names: &OUTPUT_NAMES,
+    name: Name::Borrowed(Cartesian::NAME),
+    state_names: Names::Static(&STATE_NAMES),
+    param_names: Names::Static(&DiskParams::NAMES),
+    output_names: Names::Static(&OUTPUT_NAMES),
     rhs_ops: ZERO_OPS,
     jacobian_ops: ZERO_OPS,
     outputs_ops: ZERO_OPS,
-    pivots: &["sin(theta)", "beta0", "v_C", "M(y)"],
-    numeric_blocks: &["all derivatives (12×12 LU)"],
+    pivots: Names::Static(&["sin(theta)", "beta0", "v_C", "M(y)"]),
+    numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
 };
 
 /// The Cartesian chart `(u_X, u_Y)` of the slip velocity.
@@ -138,8 +138,8 @@ impl SlipChart for Cartesian {
         let speed = ux.hypot(uy);
         if speed == 0.0 || !speed.is_finite() {
             return Err(EvalError::SingularPivot {
-                model: Self::NAME,
-                pivot: "v_C",
+                model: Self::NAME.into(),
+                pivot: "v_C".into(),
                 value: speed,
             });
         }

@@ -7,7 +7,7 @@ use super::affine::DIM;
 use super::sliding::{SlidingReference, Slip, SlipChart, SlipRateColumns};
 use super::ZERO_OPS;
 use crate::DiskParams;
-use model_runtime::{EvalError, ModelInfo, WithOutputs};
+use model_runtime::{EvalError, ModelInfo, Name, Names, WithOutputs};
 
 /// State indices of the polar sliding model (the DSL's spelling).
 #[allow(non_upper_case_globals)]
@@ -89,15 +89,15 @@ pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = [
 ];
 
 static INFO: ModelInfo = ModelInfo {
-    name: Polar::NAME,
-    state_names: &STATE_NAMES,
-    param_names: &DiskParams::NAMES,
-    output_names: &OUTPUT_NAMES,
+    name: Name::Borrowed(Polar::NAME),
+    state_names: Names::Static(&STATE_NAMES),
+    param_names: Names::Static(&DiskParams::NAMES),
+    output_names: Names::Static(&OUTPUT_NAMES),
     rhs_ops: ZERO_OPS,
     jacobian_ops: ZERO_OPS,
     outputs_ops: ZERO_OPS,
-    pivots: &["sin(theta)", "beta0", "v_C", "M(y)"],
-    numeric_blocks: &["all derivatives (12×12 LU)"],
+    pivots: Names::Static(&["sin(theta)", "beta0", "v_C", "M(y)"]),
+    numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
 };
 
 /// The polar chart `(v_C, α)` of the slip velocity.
@@ -144,16 +144,16 @@ impl SlipChart for Polar {
     fn unknowns_to_derivatives(slip: &Slip, x: &mut [f64; DIM]) -> Result<(), EvalError> {
         if slip.speed == 0.0 || !slip.speed.is_finite() {
             return Err(EvalError::SingularPivot {
-                model: Self::NAME,
-                pivot: "v_C",
+                model: Self::NAME.into(),
+                pivot: "v_C".into(),
                 value: slip.speed,
             });
         }
         x[state::alpha] /= slip.speed;
         if !x[state::alpha].is_finite() {
             return Err(EvalError::NonFinite {
-                model: Self::NAME,
-                quantity: "der(alpha)",
+                model: Self::NAME.into(),
+                quantity: "der(alpha)".into(),
                 value: x[state::alpha],
             });
         }

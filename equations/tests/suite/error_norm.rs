@@ -16,7 +16,7 @@ const OMEGA: [&str; 3] = ["Omega_x", "Omega_y", "Omega_z"];
 
 /// The state names of a 12-state model, by layout index.
 fn full<M: Model<DIM>>(m: &M) -> Vec<&'static str> {
-    m.info().state_names.to_vec()
+    m.info().state_names.iter().collect()
 }
 
 /// The layout seen through a pruned model: its own state names at their slots, and
@@ -24,7 +24,7 @@ fn full<M: Model<DIM>>(m: &M) -> Vec<&'static str> {
 fn embedded<M: Variant<K>, const K: usize>(m: &Embedded<M, K>) -> Vec<&'static str> {
     let mut names = vec!["(frozen)"; DIM];
     for (k, &slot) in m.embedding().slots().iter().enumerate() {
-        names[slot] = m.info().state_names[k];
+        names[slot] = m.info().state_names.get(k).expect("a kept state");
     }
     names
 }

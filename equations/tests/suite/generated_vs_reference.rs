@@ -383,7 +383,7 @@ fn generated_code_stays_small() {
         );
         for dropped in ["X", "Y", "phi"] {
             assert!(
-                !pruned.state_names.contains(&dropped),
+                !pruned.state_names.contains(dropped),
                 "{}: {dropped}",
                 pruned.name
             );

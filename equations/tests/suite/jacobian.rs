@@ -75,8 +75,8 @@ fn jacobian_matches_differences<M: Model<12>>(
                     ratio <= 1.0,
                     "{}: d der({}) / d {} = {:e}, differences give {:e} at {y:?}",
                     model.info().name,
-                    model.info().state_names[i],
-                    model.info().state_names[j],
+                    &model.info().state_names[i],
+                    &model.info().state_names[j],
                     jac[i][j],
                     fd[i]
                 );

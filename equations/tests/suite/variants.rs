@@ -5,13 +5,10 @@ use crate::common;
 use crate::common::{scales, Agreement, Reach, Rng};
 use equations::models;
 use equations::DiskParams;
-use model_runtime::WithOutputs;
+use model_runtime::{Names, WithOutputs};
 
-fn index(names: &[&str], name: &str) -> usize {
-    names
-        .iter()
-        .position(|n| *n == name)
-        .unwrap_or_else(|| panic!("no `{name}` in {names:?}"))
+fn index(names: &Names, name: &str) -> usize {
+    (names.position(name)).unwrap_or_else(|| panic!("no `{name}` in {names:?}"))
 }
 
 /// Still-air parameters in the variants' order (`mu_a`, `w_z` fixed away).
@@ -44,23 +41,23 @@ fn variant_matches<F, V, const M: usize, const N: usize, const K: usize>(
     full.rhs(0.0, y, &mut dy).unwrap();
     let mut out = [0.0; M];
     full.outputs(0.0, y, &dy, &mut out).unwrap();
-    let yv: [f64; N] = std::array::from_fn(|i| y[index(fi.state_names, vi.state_names[i])]);
+    let yv: [f64; N] = std::array::from_fn(|i| y[index(&fi.state_names, &vi.state_names[i])]);
     let mut dyv = [0.0; N];
     variant.rhs(0.0, &yv, &mut dyv).unwrap();
     let mut outv = [0.0; K];
     variant.outputs(0.0, &yv, &dyv, &mut outv).unwrap();
     for (i, name) in vi.state_names.iter().enumerate() {
-        let j = index(fi.state_names, name);
+        let j = index(&fi.state_names, name);
         agreement.check(dyv[i], dy[j], row[j], || {
             format!("{}: der({name}) at {y:?}", vi.name)
         });
     }
     for (i, name) in vi.output_names.iter().enumerate() {
-        let j = index(fi.output_names, name);
-        let scale = match *name {
+        let j = index(&fi.output_names, name);
+        let scale = match name {
             "N" | "T" => force,
-            "nu" => force / out[index(fi.output_names, "N")].abs(),
-            _ => force / out[index(fi.output_names, "T")].abs(),
+            "nu" => force / out[index(&fi.output_names, "N")].abs(),
+            _ => force / out[index(&fi.output_names, "T")].abs(),
         };
         agreement.check(outv[i], out[j], scale, || {
             format!("{}: {name} at {y:?}", vi.name)
@@ -158,11 +155,11 @@ fn pruned_variants_drop_position_and_spin_angle() {
         &models::sliding_cartesian::pruned::INFO,
     ] {
         for kept in ["theta", "psi", "Omega_x", "Omega_y", "Omega_z"] {
-            assert!(info.state_names.contains(&kept), "{}: {kept}", info.name);
+            assert!(info.state_names.contains(kept), "{}: {kept}", info.name);
         }
         for dropped in ["X", "Y", "Z", "phi"] {
             assert!(
-                !info.state_names.contains(&dropped),
+                !info.state_names.contains(dropped),
                 "{}: {dropped}",
                 info.name
             );

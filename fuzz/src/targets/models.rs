@@ -192,7 +192,7 @@ impl Target for Models {
 fn by_name<const P: usize>(info: &model_runtime::ModelInfo, values: &Values) -> [f64; P] {
     let paper = DiskParams::paper().to_array();
     std::array::from_fn(|i| {
-        let name = info.param_names[i];
+        let name = &info.param_names[i];
         let k = DiskParams::NAMES.iter().position(|&n| n == name);
         values
             .get(name)
@@ -215,14 +215,18 @@ impl Evaluation<'_> {
         model: &impl WithOutputs<N, K>,
     ) -> Result<(), String> {
         let info = model.info();
-        let y: [f64; N] =
-            std::array::from_fn(|i| self.values.get(info.state_names[i]).copied().unwrap_or(0.0));
-        let name = info.name;
+        let y: [f64; N] = std::array::from_fn(|i| {
+            self.values
+                .get(&info.state_names[i])
+                .copied()
+                .unwrap_or(0.0)
+        });
+        let name = &info.name;
         let mut dy = [0.0; N];
         if let Some(wrong) = finite(model.rhs(self.t, &y, &mut dy), &dy) {
             return Err(format!(
                 "{name}: rhs is Ok with der({}) = {wrong}",
-                info.state_names[wrong_at(&dy)]
+                &info.state_names[wrong_at(&dy)]
             ));
         }
         let mut jac = [[0.0; N]; N];
@@ -233,7 +237,7 @@ impl Evaluation<'_> {
         if dy.iter().all(|v| v.is_finite()) {
             let mut out = [0.0; K];
             if let Some(wrong) = finite(model.outputs(self.t, &y, &dy, &mut out), &out) {
-                let at = info.output_names[wrong_at(&out)];
+                let at = &info.output_names[wrong_at(&out)];
                 return Err(format!("{name}: outputs are Ok with {at} = {wrong}"));
             }
         }
@@ -283,8 +287,8 @@ mod tests {
         assert!(finite(Ok(()), &[1.0, f64::NAN]).is_some_and(f64::is_nan));
         assert_eq!(finite(Ok(()), &[f64::INFINITY]), Some(f64::INFINITY));
         let refused = EvalError::NonFinite {
-            model: "m",
-            quantity: "der(x)",
+            model: "m".into(),
+            quantity: "der(x)".into(),
             value: f64::NAN,
         };
         assert_eq!(finite(Err(refused), &[f64::NAN]), None);

@@ -77,10 +77,9 @@ mod variant;
 pub use compile::compile;
 pub use eval::{EvalFailure, Inputs, Stores};
 pub use explain::{is_internal, latex_name};
+pub use model_ops::OpCounts;
 pub use options::{CompileOptions, PIVOT_TOLERANCE};
-pub use program::{
-    CompiledModel, Explanation, Node, Operand, Ops, Program, Stmt, SumCheck, Target,
-};
+pub use program::{CompiledModel, Explanation, Node, Operand, Program, Stmt, SumCheck, Target};
 pub use program_part::Reads;
 pub use spec::{
     Ast, BinOp, CmpOp, Condition, Diagnostic, EquationSpec, Func, ModelSpec, Named, NodeId,

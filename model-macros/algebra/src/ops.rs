@@ -3,24 +3,19 @@
 //! The counts are the contract for "fast": tests pin them exactly, so a change that makes the
 //! emitted code bigger fails a test instead of slipping through.
 
-use crate::program::{Node, Ops, Program, Stmt};
+use crate::program::{Node, Program, Stmt};
 use crate::spec::Func;
+use crate::OpCounts;
 
-impl Ops {
-    /// All operations, weighted equally.
-    pub fn total(&self) -> u32 {
-        self.add + self.mul + self.div + self.sqrt + self.trig + self.transcendental
-    }
-
-    fn call(&mut self, f: Func) {
-        match f {
-            Func::Sin | Func::Cos | Func::Tan | Func::Atan2 => self.trig += 1,
-            Func::Sqrt => self.sqrt += 1,
-            Func::Exp | Func::Ln => self.transcendental += 1,
-            // A comparison (two for `sign`, taken as one) costs what a subtraction does.
-            Func::Sign | Func::Min | Func::Max => self.add += 1,
-            Func::Abs => {}
-        }
+/// Counts a call of `f` in `ops`.
+fn count_call(ops: &mut OpCounts, f: Func) {
+    match f {
+        Func::Sin | Func::Cos | Func::Tan | Func::Atan2 => ops.trig += 1,
+        Func::Sqrt => ops.sqrt += 1,
+        Func::Exp | Func::Ln => ops.transcendental += 1,
+        // A comparison (two for `sign`, taken as one) costs what a subtraction does.
+        Func::Sign | Func::Min | Func::Max => ops.add += 1,
+        Func::Abs => {}
     }
 }
 
@@ -35,14 +30,14 @@ pub fn powi_muls(n: i32) -> u32 {
 
 /// Operations of Gaussian elimination with partial pivoting on an `n × n` system (one
 /// reciprocal per pivot; comparisons not counted).
-pub fn solve_block_ops(n: usize) -> Ops {
+pub fn solve_block_ops(n: usize) -> OpCounts {
     let n = n as u32;
     // Elimination: for each pivot k, rows below get a factor (1 mul by the reciprocal) and
     // n-k-1 matrix updates plus one rhs update (a mul and an add each). Back substitution:
     // row k needs n-k-1 products and sums, then one multiplication by the reciprocal.
-    let mut ops = Ops {
+    let mut ops = OpCounts {
         div: n,
-        ..Ops::default()
+        ..OpCounts::default()
     };
     for k in 0..n {
         let below = n - k - 1;
@@ -57,8 +52,8 @@ pub fn solve_block_ops(n: usize) -> Ops {
 impl Program {
     /// Operation counts of the program (a `SinCos` counts once, a `SolveBlock` as its
     /// elimination).
-    pub fn ops(&self) -> Ops {
-        let mut ops = Ops::default();
+    pub fn ops(&self) -> OpCounts {
+        let mut ops = OpCounts::default();
         for s in &self.stmts {
             match s {
                 Stmt::Let { node, .. } => match node {
@@ -73,17 +68,12 @@ impl Program {
                         }
                     }
                     Node::Powf(..) => ops.transcendental += 1,
-                    Node::Call(f, _) => ops.call(*f),
+                    Node::Call(f, _) => count_call(&mut ops, *f),
                     Node::Atan2(..) => ops.trig += 1,
                     Node::Select(..) => ops.add += 1,
                 },
                 Stmt::SinCos { .. } => ops.trig += 1,
-                Stmt::SolveBlock { n, .. } => {
-                    let b = solve_block_ops(*n);
-                    ops.add += b.add;
-                    ops.mul += b.mul;
-                    ops.div += b.div;
-                }
+                Stmt::SolveBlock { n, .. } => ops += solve_block_ops(*n),
                 // One multiplication per cancellation test (`|sum| <= tolerance * magnitude`).
                 Stmt::CheckPivot { sums, .. } => ops.mul += sums.len() as u32,
                 Stmt::Store { .. } => {}
@@ -145,9 +135,9 @@ mod tests {
         };
         assert_eq!(
             program.ops(),
-            Ops {
+            OpCounts {
                 add: 2,
-                ..Ops::default()
+                ..OpCounts::default()
             }
         );
     }

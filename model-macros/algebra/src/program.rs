@@ -134,24 +134,6 @@ pub enum Stmt {
     },
 }
 
-/// Operation counts of a program (mirrors `model_runtime::OpCounts`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Ops {
-    /// `+`, `-` and negation; also the comparisons of `sign`, `min`, `max` and `if` (one each:
-    /// a comparison costs what a subtraction does).
-    pub add: u32,
-    /// `*` (and the multiplications of `powi`).
-    pub mul: u32,
-    /// `/`.
-    pub div: u32,
-    /// `sqrt`.
-    pub sqrt: u32,
-    /// `sin cos tan atan2` (a `SinCos` counts once).
-    pub trig: u32,
-    /// `exp ln powf`.
-    pub transcendental: u32,
-}
-
 /// One emitted function's body.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Program {

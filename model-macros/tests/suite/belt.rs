@@ -129,7 +129,7 @@ fn the_mass_with_a_jump_is_a_checked_pivot() {
     let mut dy = [0.0; 2];
     match massless.rhs(0.0, &[-1.0, 0.0], &mut dy) {
         Err(EvalError::SingularPivot { pivot, value, .. }) => {
-            assert_eq!((pivot, value), ("if(x > xs, m + ma, m)", 0.0));
+            assert_eq!((&*pivot, value), ("if(x > xs, m + ma, m)", 0.0));
         }
         other => panic!("{other:?}"),
     }

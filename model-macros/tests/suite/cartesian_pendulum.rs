@@ -55,7 +55,7 @@ fn index_constants_and_info_follow_the_declaration() {
         cartesian_pendulum::PARAM_DEFAULTS,
         [Some(1.5), Some(0.7), Some(9.81)]
     );
-    let info = cartesian_pendulum::INFO;
+    let info = &cartesian_pendulum::INFO;
     assert_eq!(info.name, "cartesian_pendulum");
     assert!(!info.pivots.is_empty());
     assert!(info.rhs_ops.total() > 0 && info.jacobian_ops.total() > 0);

@@ -105,7 +105,7 @@ proptest! {
 #[test]
 fn the_forced_variant_solves_its_block_numerically() {
     assert!(dense_chain::INFO.numeric_blocks.is_empty());
-    let numeric = dense_chain_numeric::INFO;
+    let numeric = &dense_chain_numeric::INFO;
     assert_eq!(
         numeric.numeric_blocks.len(),
         1,

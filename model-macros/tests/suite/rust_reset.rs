@@ -151,8 +151,8 @@ fn bounce_below_4(
     let v = y[limited::state::v];
     if v.abs() > 4.0 {
         return Err(EvalError::NonFinite {
-            model: "limited",
-            quantity: "the impact speed (the law holds up to 4 m/s)",
+            model: "limited".into(),
+            quantity: "the impact speed (the law holds up to 4 m/s)".into(),
             value: v,
         });
     }
@@ -209,7 +209,7 @@ fn an_error_of_the_rust_function_ends_the_run_at_the_event() {
         10.0,
     )
     .expect_err("the law refuses 4.43 m/s");
-    let HybridError::Transition { t, source, .. } = &failure.error else {
+    let HybridError::Transition { t, source, .. } = &*failure.error else {
         panic!("{failure}")
     };
     assert!((t - (2.0f64 / 9.81).sqrt()).abs() < 1e-9, "{t}");
@@ -280,7 +280,7 @@ fn a_decision_for_a_mode_the_event_does_not_list_fails_the_run() {
         10.0,
     )
     .expect_err("resting is not listed");
-    let HybridError::Transition { source, .. } = &failure.error else {
+    let HybridError::Transition { source, .. } = &*failure.error else {
         panic!("{failure}")
     };
     assert_eq!(

@@ -6,13 +6,15 @@
 //! on fixed-size arrays). There is no padding and no limit on the number of states, and the
 //! tolerance is the request's own.
 //!
-//! The runtime's [`ModelInfo`] and [`EvalError`] name things with `'static` strings (a
-//! compiled model's are constants), so an interpreted model's names are leaked once per model
-//! solved.
+//! The runtime's [`ModelInfo`] and [`EvalError`] carry [`Name`]s, which a compiled model
+//! borrows from its constants and an interpreted one owns: its names live as long as the
+//! model being solved ([`Labels`]), so a long-lived process solving many models keeps none.
 
 use crate::error::{PointError, SolveFailure};
-use model_algebra::{CompiledModel, EvalFailure, Inputs, Ops};
-use model_runtime::{Dyn, EvalError, ModelInfo, OpCounts, Rhs, System, SystemOutputs, Tolerance};
+use model_algebra::{CompiledModel, EvalFailure, Inputs};
+use model_runtime::{
+    Dyn, EvalError, ModelInfo, Name, Names, Rhs, System, SystemOutputs, Tolerance,
+};
 
 /// The request's tolerance for the `n` states of a model.
 pub(crate) fn tolerance(n: usize, rtol: f64, atol: f64) -> Tolerance<Dyn> {
@@ -41,88 +43,67 @@ pub(crate) fn row(
     Ok(row)
 }
 
+/// What the runtime calls an interpreted model and its parts: its [`ModelInfo`] and the
+/// `der(x)` name of each state, owned (the model was read at run time), made once per model
+/// solved and dropped with it.
+pub(crate) struct Labels {
+    info: ModelInfo,
+    /// `der(x)` for each state, for `NonFinite` errors.
+    der_names: Vec<Name>,
+}
+
+impl Labels {
+    pub(crate) fn of(model: &CompiledModel) -> Self {
+        Labels {
+            info: ModelInfo {
+                name: Name::Owned(model.name.clone()),
+                state_names: model.states.iter().cloned().collect(),
+                param_names: model.params.iter().map(|(name, _)| name.clone()).collect(),
+                output_names: Names::EMPTY,
+                rhs_ops: model.rhs.ops(),
+                jacobian_ops: model.jacobian.ops(),
+                outputs_ops: model.outputs_program.ops(),
+                pivots: (model.pivots.iter().chain(&model.numeric_blocks))
+                    .cloned()
+                    .collect(),
+                numeric_blocks: Names::EMPTY,
+            },
+            der_names: (model.states.iter())
+                .map(|s| Name::Owned(format!("der({s})")))
+                .collect(),
+        }
+    }
+}
+
 /// A compiled model run by the interpreter, in its own number of states.
 pub(crate) struct Interpreted<'a> {
     model: &'a CompiledModel,
     params: &'a [f64],
-    /// The runtime's names for the model: leaked once per model solved, as a compiled
-    /// model's are `static`.
-    info: &'static ModelInfo,
-    /// `der(x)` for each state, for `NonFinite` errors.
-    der_names: &'static [&'static str],
-    /// The pivots and numeric blocks, for `SingularPivot` errors.
-    pivots: &'static [&'static str],
-}
-
-fn leak(text: String) -> &'static str {
-    Box::leak(text.into_boxed_str())
-}
-
-fn leak_all(texts: impl Iterator<Item = String>) -> &'static [&'static str] {
-    Box::leak(texts.map(leak).collect::<Vec<_>>().into_boxed_slice())
-}
-
-fn op_counts(ops: Ops) -> OpCounts {
-    OpCounts {
-        add: ops.add,
-        mul: ops.mul,
-        div: ops.div,
-        sqrt: ops.sqrt,
-        trig: ops.trig,
-        transcendental: ops.transcendental,
-    }
+    labels: &'a Labels,
 }
 
 impl<'a> Interpreted<'a> {
-    pub(crate) fn new(model: &'a CompiledModel, params: &'a [f64]) -> Self {
-        let pivots = leak_all(model.pivots.iter().chain(&model.numeric_blocks).cloned());
-        let info = Box::leak(Box::new(ModelInfo {
-            name: leak(model.name.clone()),
-            state_names: leak_all(model.states.iter().cloned()),
-            param_names: leak_all(model.params.iter().map(|(name, _)| name.clone())),
-            output_names: &[],
-            rhs_ops: op_counts(model.rhs.ops()),
-            jacobian_ops: op_counts(model.jacobian.ops()),
-            outputs_ops: op_counts(model.outputs_program.ops()),
-            pivots,
-            numeric_blocks: &[],
-        }));
+    /// `model` reading `params`, named by `labels` (made by [`Labels::of`] from `model`).
+    pub(crate) fn new(model: &'a CompiledModel, params: &'a [f64], labels: &'a Labels) -> Self {
         Interpreted {
             model,
             params,
-            info,
-            der_names: leak_all(model.states.iter().map(|s| format!("der({s})"))),
-            pivots,
-        }
-    }
-
-    /// The same model reading other parameter values (a switched model's discrete values,
-    /// which follow its parameters, change at events).
-    pub(crate) fn reading<'b>(&self, params: &'b [f64]) -> Interpreted<'b>
-    where
-        'a: 'b,
-    {
-        Interpreted {
-            model: self.model,
-            params,
-            info: self.info,
-            der_names: self.der_names,
-            pivots: self.pivots,
+            labels,
         }
     }
 
     /// An interpreter failure as the runtime's error, naming the pivot.
     pub(crate) fn error(&self, failure: EvalFailure) -> EvalError {
+        let model = self.labels.info.name.clone();
         match failure {
             EvalFailure::SingularPivot { text, value } => EvalError::SingularPivot {
-                model: self.info.name,
-                pivot: (self.pivots.iter().find(|p| **p == text).copied())
-                    .unwrap_or_else(|| leak(text)),
+                model,
+                pivot: Name::Owned(text),
                 value,
             },
             EvalFailure::BadOperand(operand) => EvalError::NonFinite {
-                model: self.info.name,
-                quantity: leak(format!("{operand:?} (a compiler bug)")),
+                model,
+                quantity: Name::Owned(format!("{operand:?} (a compiler bug)")),
                 value: f64::NAN,
             },
         }
@@ -134,8 +115,8 @@ impl Rhs<Dyn> for Interpreted<'_> {
         let der = (self.model.derivatives(t, y, self.params)).map_err(|e| self.error(e))?;
         if let Some(k) = der.iter().position(|v| !v.is_finite()) {
             return Err(EvalError::NonFinite {
-                model: self.info.name,
-                quantity: self.der_names[k],
+                model: self.labels.info.name.clone(),
+                quantity: self.labels.der_names[k].clone(),
                 value: der[k],
             });
         }
@@ -160,7 +141,7 @@ impl Rhs<Dyn> for Interpreted<'_> {
 
 impl System<Dyn> for Interpreted<'_> {
     fn info(&self) -> &ModelInfo {
-        self.info
+        &self.labels.info
     }
 
     fn dim(&self) -> Dyn {

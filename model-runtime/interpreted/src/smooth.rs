@@ -6,7 +6,7 @@
 //! function, and is evaluated by the interpreter there.
 
 use crate::error::{RequestError, RunFailure, SolveFailure};
-use crate::interpreted::{row, tolerance, Interpreted};
+use crate::interpreted::{row, tolerance, Interpreted, Labels};
 use crate::request::{Resolved, ResolvedEvent, SolveRequest, Watched};
 use crate::solution::{EventKind, Solution, SolvedEvent, Stop};
 use model_algebra::CompiledModel;
@@ -52,7 +52,8 @@ pub(crate) fn solve_smooth(
 ) -> Result<Solution, SolveFailure> {
     let n = model.states.len();
     let params = &resolved.params;
-    let interpreted = Interpreted::new(model, params);
+    let labels = Labels::of(model);
+    let interpreted = Interpreted::new(model, params, &labels);
     let output = match resolved.times {
         Some(times) => Output::Times(times),
         None => Output::Steps,

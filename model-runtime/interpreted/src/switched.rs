@@ -10,7 +10,7 @@
 //! sets.
 
 use crate::error::{RunFailure, SolveFailure};
-use crate::interpreted::{row, tolerance, Interpreted};
+use crate::interpreted::{row, tolerance, Interpreted, Labels};
 use crate::request::{Resolved, SolveRequest};
 use crate::smooth::columns;
 use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
@@ -60,7 +60,8 @@ struct InterpretedSwitched<'a> {
     /// The parameters, then the discrete values as they are now (the model's parameters,
     /// the discrete values' defaults the initial ones: what every mode's model reads).
     values: Vec<f64>,
-    modes: Vec<Interpreted<'a>>,
+    /// Each mode's names, in mode order.
+    labels: Vec<Labels>,
     graph: ModeGraph,
 }
 
@@ -70,8 +71,8 @@ impl<'a> InterpretedSwitched<'a> {
         Ok(InterpretedSwitched {
             model,
             values,
-            modes: (model.modes.iter())
-                .map(|mode| Interpreted::new(&mode.model, &[]))
+            labels: (model.modes.iter())
+                .map(|mode| Labels::of(&mode.model))
                 .collect(),
             graph: mode_graph(model)?,
         })
@@ -79,7 +80,11 @@ impl<'a> InterpretedSwitched<'a> {
 
     /// Mode `mode`'s model reading the values now.
     fn mode(&self, mode: usize) -> Interpreted<'_> {
-        self.modes[mode].reading(&self.values)
+        Interpreted::new(
+            &self.model.modes[mode].model,
+            &self.values,
+            &self.labels[mode],
+        )
     }
 
     fn inputs<'b>(&'b self, t: f64, y: &'b [f64], dy: &'b [f64]) -> Inputs<'b> {
@@ -120,8 +125,7 @@ impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         let guards = &self.model.modes[mode].guards;
-        let stores =
-            (guards.eval(&self.inputs(t, y, dy))).map_err(|e| self.modes[mode].error(e))?;
+        let stores = (guards.eval(&self.inputs(t, y, dy))).map_err(|e| self.mode(mode).error(e))?;
         values.copy_from_slice(&stores.outputs(values.len()));
         Ok(())
     }
@@ -143,7 +147,7 @@ impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
             _ => return Ok(()),
         };
         let stores =
-            (jump.program.eval(&self.inputs(t, y, dy))).map_err(|e| self.modes[mode].error(e))?;
+            (jump.program.eval(&self.inputs(t, y, dy))).map_err(|e| self.mode(mode).error(e))?;
         let n = self.model.states().len();
         let params = self.model.n_params();
         for (&slot, value) in jump.states.iter().zip(stores.outputs(jump.states.len())) {
@@ -294,7 +298,7 @@ fn mode_after(run: &SwitchedRun<Dyn>, k: usize) -> &str {
 /// A failed run in the model's words (modes by name, what resolves a chatter), with the work
 /// done until then.
 fn run_failure(failure: SwitchedFailure<Dyn>) -> SolveFailure {
-    let message = match &failure.error {
+    let message = match &*failure.error {
         HybridError::Chattering {
             t,
             transitions,

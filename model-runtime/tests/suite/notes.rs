@@ -113,8 +113,8 @@ impl HybridSystem<Const<1>> for Doomed {
                 Ok(())
             }
             Leg::Broken => Err(EvalError::NonFinite {
-                model: "doomed",
-                quantity: "der(y)",
+                model: "doomed".into(),
+                quantity: "der(y)".into(),
                 value: f64::INFINITY,
             }),
         }

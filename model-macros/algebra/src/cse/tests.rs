@@ -1,5 +1,5 @@
 use super::*;
-use crate::program::Ops;
+use crate::OpCounts;
 
 fn emit(pool: &mut Pool, roots: &[ExprId]) -> Program {
     let system = System::default();
@@ -30,10 +30,10 @@ fn sine_and_cosine_share_one_call() {
     assert_eq!(sincos, 1);
     assert_eq!(
         prog.ops(),
-        Ops {
+        OpCounts {
             mul: 1,
             trig: 1,
-            ..Ops::default()
+            ..OpCounts::default()
         }
     );
 }
@@ -58,11 +58,11 @@ fn integer_powers_and_shared_reciprocals() {
     // One reciprocal of x + y, two multiplications by it.
     assert_eq!(
         prog.ops(),
-        Ops {
+        OpCounts {
             add: 1,
             mul: 4,
             div: 1,
-            ..Ops::default()
+            ..OpCounts::default()
         },
         "{prog}"
     );
@@ -77,9 +77,9 @@ fn a_quotient_used_once_is_a_division() {
     let prog = emit(&mut p, &[e]);
     assert_eq!(
         prog.ops(),
-        Ops {
+        OpCounts {
             div: 1,
-            ..Ops::default()
+            ..OpCounts::default()
         }
     );
 }
@@ -98,10 +98,10 @@ fn common_factors_are_pulled_out_of_sums() {
     let prog = emit(&mut p, &[e]);
     assert_eq!(
         prog.ops(),
-        Ops {
+        OpCounts {
             add: 2,
             mul: 2,
-            ..Ops::default()
+            ..OpCounts::default()
         },
         "{prog}"
     );
@@ -117,9 +117,9 @@ fn equal_partial_products_are_computed_once() {
     // x0*x1 once, then one multiplication each.
     assert_eq!(
         prog.ops(),
-        Ops {
+        OpCounts {
             mul: 3,
-            ..Ops::default()
+            ..OpCounts::default()
         },
         "{prog}"
     );

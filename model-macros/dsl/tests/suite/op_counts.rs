@@ -5,11 +5,11 @@ use crate::common::model;
 use model_algebra::Inputs;
 use model_algebra::ModelSpec;
 use model_algebra::{compile, CompileOptions};
-use model_algebra::{Ops, Program};
+use model_algebra::{OpCounts, Program};
 
 /// `(add, mul, div, sqrt, trig, transcendental)`.
 fn counts(p: &Program) -> [u32; 6] {
-    let Ops {
+    let OpCounts {
         add,
         mul,
         div,

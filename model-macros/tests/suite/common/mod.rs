@@ -32,7 +32,7 @@ pub fn assert_jacobian_matches_differences<const N: usize>(
 ) {
     let mut jac = [[0.0; N]; N];
     model.jacobian(t, y, &mut jac).unwrap();
-    let names = model.info().state_names;
+    let names = &model.info().state_names;
     for j in 0..N {
         let h = 1e-6 * y[j].abs().max(1.0);
         let (mut yp, mut ym) = (*y, *y);
@@ -43,7 +43,7 @@ pub fn assert_jacobian_matches_differences<const N: usize>(
         model.rhs(t, &ym, &mut fm).unwrap();
         for i in 0..N {
             let difference = (fp[i] - fm[i]) / (2.0 * h);
-            let what = format!("d der({}) / d {}", names[i], names[j]);
+            let what = format!("d der({}) / d {}", &names[i], &names[j]);
             assert_close(jac[i][j], difference, 1e-6, &what);
         }
     }

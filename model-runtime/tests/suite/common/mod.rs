@@ -6,32 +6,12 @@ pub mod log;
 
 use model_runtime::Const;
 use model_runtime::{
-    Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, ModelInfo, OpCounts, Transition,
-};
-
-/// Hand-written test models report no generated operations.
-const NO_OPS: OpCounts = OpCounts {
-    add: 0,
-    mul: 0,
-    div: 0,
-    sqrt: 0,
-    trig: 0,
-    transcendental: 0,
+    Direction, EvalError, EventHit, GuardSpec, HybridSystem, Model, ModelInfo, Transition,
 };
 
 /// A `ModelInfo` for a hand-written test model.
 pub const fn info(name: &'static str, states: &'static [&'static str]) -> ModelInfo {
-    ModelInfo {
-        name,
-        state_names: states,
-        param_names: &[],
-        output_names: &[],
-        rhs_ops: NO_OPS,
-        jacobian_ops: NO_OPS,
-        outputs_ops: NO_OPS,
-        pivots: &[],
-        numeric_blocks: &[],
-    }
+    ModelInfo::of(name, states, &[], &[])
 }
 
 /// x' = v, v' = -x, z' = cos(t) z: an oscillator plus a non-autonomous component.
@@ -173,8 +153,8 @@ impl Model<1> for Fragile {
     fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) -> Result<(), EvalError> {
         if y[0] > 2.0 {
             return Err(EvalError::SingularPivot {
-                model: "fragile",
-                pivot: "2 - y",
+                model: "fragile".into(),
+                pivot: "2 - y".into(),
                 value: 2.0 - y[0],
             });
         }
