@@ -88,9 +88,8 @@ fn statement(out: &mut String, stmt: &Stmt) {
             writeln!(
                 out,
                 "if !({value} != 0.0 && {value}.is_finite()){cancelled} {{ \
-                 return ::core::result::Result::Err(::model_runtime::EvalError::SingularPivot {{ \
-                 model: ::model_runtime::Name::Borrowed(MODEL_NAME), \
-                 pivot: ::model_runtime::Name::Borrowed({text:?}), value: {value} }}); }}"
+                 return ::core::result::Result::Err(\
+                 ::model_runtime::EvalError::singular(MODEL_NAME, {text:?}, {value})); }}"
             )
         }
         Stmt::SolveBlock {

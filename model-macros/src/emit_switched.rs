@@ -380,11 +380,11 @@ pub fn emit_switched(
             }
             /// A mode index outside the graph: reported as a non-finite derivative of no state.
             fn unknown_mode() -> ::model_runtime::EvalError {
-                ::model_runtime::EvalError::NonFinite {
-                    model: ::model_runtime::Name::Borrowed(MODEL_NAME),
-                    quantity: ::model_runtime::Name::Borrowed("the mode index (out of range)"),
-                    value: f64::NAN,
-                }
+                ::model_runtime::EvalError::non_finite(
+                    MODEL_NAME,
+                    "the mode index (out of range)",
+                    f64::NAN,
+                )
             }
         }
     }

@@ -55,6 +55,28 @@ pub enum EvalError {
     },
 }
 
+impl EvalError {
+    /// A compiled model's singular pivot: its names are `static`.
+    #[cold]
+    pub fn singular(model: &'static str, pivot: &'static str, value: f64) -> Self {
+        EvalError::SingularPivot {
+            model: Name::Borrowed(model),
+            pivot: Name::Borrowed(pivot),
+            value,
+        }
+    }
+
+    /// A compiled model's non-finite quantity: its names are `static`.
+    #[cold]
+    pub fn non_finite(model: &'static str, quantity: &'static str, value: f64) -> Self {
+        EvalError::NonFinite {
+            model: Name::Borrowed(model),
+            quantity: Name::Borrowed(quantity),
+            value,
+        }
+    }
+}
+
 impl fmt::Display for EvalError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

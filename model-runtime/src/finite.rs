@@ -25,11 +25,7 @@ pub fn check_finite(
 ) -> Result<(), EvalError> {
     for (&quantity, value) in names.iter().zip(values) {
         if !value.is_finite() {
-            return Err(EvalError::NonFinite {
-                model: model.into(),
-                quantity: quantity.into(),
-                value: *value,
-            });
+            return Err(EvalError::non_finite(model, quantity, *value));
         }
     }
     Ok(())

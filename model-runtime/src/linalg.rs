@@ -35,11 +35,7 @@ pub fn solve_block<const N: usize>(
         }
         let pivot = a[best][col];
         if !(pivot != 0.0 && pivot.is_finite()) {
-            return Err(EvalError::SingularPivot {
-                model: model.into(),
-                pivot: block.into(),
-                value: pivot,
-            });
+            return Err(EvalError::singular(model, block, pivot));
         }
         a.swap(col, best);
         b.swap(col, best);

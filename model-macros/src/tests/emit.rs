@@ -163,9 +163,9 @@ fn each_statement_kind_is_translated() {
     let text = normalized(output);
     for expected in [
         "let (t0 , t1) = y [0] . sin_cos () ;",
-        "if ! (t0 != 0.0 && t0 . is_finite ()) { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"sin(a)\" , value : t0 }) ; }",
+        "if ! (t0 != 0.0 && t0 . is_finite ()) { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: singular (MODEL_NAME , \"sin(a)\" , t0)) ; }",
         "let t2 : f64 = t1 / t0 ;",
-        "if ! (t1 != 0.0 && t1 . is_finite ()) || t1 . abs () <= 1e-12_f64 * t2 { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: SingularPivot { model : MODEL_NAME , pivot : \"cos(a) - a\" , value : t1 }) ; }",
+        "if ! (t1 != 0.0 && t1 . is_finite ()) || t1 . abs () <= 1e-12_f64 * t2 { return :: core :: result :: Result :: Err (:: model_runtime :: EvalError :: singular (MODEL_NAME , \"cos(a) - a\" , t1)) ; }",
         "let t3 : f64 = (- 2.0_f64) . powi (3) ;",
         "let t4 : f64 = p [0] . sqrt () ;",
         "let [t5 , t6] = :: model_runtime :: solve_block ::< 2 > ([[t2 , 1.0_f64] , [1.0_f64 , t3]] , [t , t4] , MODEL_NAME , \"der(a), der(b)\") ?;",
@@ -178,7 +178,7 @@ fn each_statement_kind_is_translated() {
         "pub const a : usize = 0usize ;",
         "pub const PARAM_DEFAULTS : [:: core :: option :: Option < f64 > ; N_PARAMS] = [:: core :: option :: Option :: Some ((- 1.5_f64))] ;",
         "Model :: new ([(- 1.5_f64)])",
-        "pivots : & [\"sin(a)\"]",
+        "pivots : :: model_runtime :: Names :: Static (& [\"sin(a)\"])",
         "const DER_NAMES : [& str ; N_STATES] = [\"der(a)\" , \"der(b)\"] ;",
     ] {
         assert!(text.contains(expected), "missing `{expected}` in\n{text}");
