@@ -20,6 +20,6 @@ fn main() {
     let mut dy = [0.0; m::N_STATES];
     let _ = model.rhs(0.0, &y, &mut dy);
     let _ = model.evaluate(0.0, &y).map(|ev| m::Outputs::from(ev.outputs).energy);
-    let _ = (m::state::x, m::param::k, m::output::energy, m::INFO.name);
+    let _ = (m::state::x, m::param::k, m::output::energy, &m::INFO.name);
     let _ = m::undamped::Model::default().params[m::undamped::param::k];
 }
