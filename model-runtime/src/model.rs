@@ -53,22 +53,14 @@ impl ModelInfo {
         param_names: &'static [&'static str],
         output_names: &'static [&'static str],
     ) -> ModelInfo {
-        const NONE: OpCounts = OpCounts {
-            add: 0,
-            mul: 0,
-            div: 0,
-            sqrt: 0,
-            trig: 0,
-            transcendental: 0,
-        };
         ModelInfo {
             name: Name::Borrowed(name),
             state_names: Names::Static(state_names),
             param_names: Names::Static(param_names),
             output_names: Names::Static(output_names),
-            rhs_ops: NONE,
-            jacobian_ops: NONE,
-            outputs_ops: NONE,
+            rhs_ops: OpCounts::NONE,
+            jacobian_ops: OpCounts::NONE,
+            outputs_ops: OpCounts::NONE,
             pivots: Names::EMPTY,
             numeric_blocks: Names::EMPTY,
         }

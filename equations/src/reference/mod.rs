@@ -52,20 +52,32 @@ pub use sliding::{
 pub use sliding_cartesian::{Cartesian, SlidingCartesianReference};
 pub use sliding_polar::{Polar, SlidingPolarReference};
 
-use model_runtime::{EvalError, OpCounts};
+use crate::DiskParams;
+use model_runtime::{EvalError, ModelInfo, Name, Names, OpCounts};
 
 /// Number of states of every disk model.
 pub const N_STATES: usize = affine::DIM;
 
-/// Hand-written models have no emitted code to count.
-const ZERO_OPS: OpCounts = OpCounts {
-    add: 0,
-    mul: 0,
-    div: 0,
-    sqrt: 0,
-    trig: 0,
-    transcendental: 0,
-};
+/// A reference model's info: the disk's parameters, no emitted code to count, the pivots it
+/// checks, and one numeric block (the whole system, solved by LU at each call).
+const fn reference_info(
+    name: &'static str,
+    states: &'static [&'static str],
+    outputs: &'static [&'static str],
+    pivots: &'static [&'static str],
+) -> ModelInfo {
+    ModelInfo {
+        name: Name::Borrowed(name),
+        state_names: Names::Static(states),
+        param_names: Names::Static(&DiskParams::NAMES),
+        output_names: Names::Static(outputs),
+        rhs_ops: OpCounts::NONE,
+        jacobian_ops: OpCounts::NONE,
+        outputs_ops: OpCounts::NONE,
+        pivots: Names::Static(pivots),
+        numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
+    }
+}
 
 /// Rejects a non-finite output, naming it.
 fn check_outputs(

@@ -8,9 +8,9 @@
 
 use super::affine::{Affine, AffineVec, DIM};
 use super::body::{idx, solve_rows, Body};
-use super::ZERO_OPS;
+use super::reference_info;
 use crate::{DiskParams, ParamError};
-use model_runtime::{EvalError, Model, ModelInfo, Name, Names, WithOutputs};
+use model_runtime::{EvalError, Model, ModelInfo, WithOutputs};
 use nalgebra::Vector3;
 
 /// State indices of the rolling model (the DSL's spelling).
@@ -109,17 +109,7 @@ const DER_NAMES: [&str; DIM] = [
 
 const NAME: &str = "rolling_reference";
 
-static INFO: ModelInfo = ModelInfo {
-    name: Name::Borrowed(NAME),
-    state_names: Names::Static(&STATE_NAMES),
-    param_names: Names::Static(&DiskParams::NAMES),
-    output_names: Names::Static(&OUTPUT_NAMES),
-    rhs_ops: ZERO_OPS,
-    jacobian_ops: ZERO_OPS,
-    outputs_ops: ZERO_OPS,
-    pivots: Names::Static(&["sin(theta)", "M(y)"]),
-    numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
-};
+static INFO: ModelInfo = reference_info(NAME, &STATE_NAMES, &OUTPUT_NAMES, &["sin(theta)", "M(y)"]);
 
 /// The rolling disk, assembled from the balance laws and solved numerically at each call.
 #[derive(Clone, Copy, Debug, PartialEq)]

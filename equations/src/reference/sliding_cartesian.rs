@@ -5,10 +5,9 @@
 //! direction `u / |u|` is undefined at `u = 0`.
 
 use super::affine::DIM;
+use super::reference_info;
 use super::sliding::{SlidingReference, Slip, SlipChart, SlipRateColumns};
-use super::ZERO_OPS;
-use crate::DiskParams;
-use model_runtime::{EvalError, ModelInfo, Name, Names, WithOutputs};
+use model_runtime::{EvalError, ModelInfo, WithOutputs};
 use nalgebra::Vector3;
 
 /// State indices of the Cartesian sliding model (the DSL's spelling).
@@ -96,17 +95,12 @@ pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = [
     "vz_residual",
 ];
 
-static INFO: ModelInfo = ModelInfo {
-    name: Name::Borrowed(Cartesian::NAME),
-    state_names: Names::Static(&STATE_NAMES),
-    param_names: Names::Static(&DiskParams::NAMES),
-    output_names: Names::Static(&OUTPUT_NAMES),
-    rhs_ops: ZERO_OPS,
-    jacobian_ops: ZERO_OPS,
-    outputs_ops: ZERO_OPS,
-    pivots: Names::Static(&["sin(theta)", "beta0", "v_C", "M(y)"]),
-    numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
-};
+static INFO: ModelInfo = reference_info(
+    Cartesian::NAME,
+    &STATE_NAMES,
+    &OUTPUT_NAMES,
+    &["sin(theta)", "beta0", "v_C", "M(y)"],
+);
 
 /// The Cartesian chart `(u_X, u_Y)` of the slip velocity.
 #[derive(Clone, Copy, Debug)]

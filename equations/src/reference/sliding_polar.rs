@@ -4,10 +4,9 @@
 //! regular at `v_C = 0`; only the final `α̇ = w / v_C` is singular there, and reports it.
 
 use super::affine::DIM;
+use super::reference_info;
 use super::sliding::{SlidingReference, Slip, SlipChart, SlipRateColumns};
-use super::ZERO_OPS;
-use crate::DiskParams;
-use model_runtime::{EvalError, ModelInfo, Name, Names, WithOutputs};
+use model_runtime::{EvalError, ModelInfo, WithOutputs};
 
 /// State indices of the polar sliding model (the DSL's spelling).
 #[allow(non_upper_case_globals)]
@@ -88,17 +87,12 @@ pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = [
     "vz_residual",
 ];
 
-static INFO: ModelInfo = ModelInfo {
-    name: Name::Borrowed(Polar::NAME),
-    state_names: Names::Static(&STATE_NAMES),
-    param_names: Names::Static(&DiskParams::NAMES),
-    output_names: Names::Static(&OUTPUT_NAMES),
-    rhs_ops: ZERO_OPS,
-    jacobian_ops: ZERO_OPS,
-    outputs_ops: ZERO_OPS,
-    pivots: Names::Static(&["sin(theta)", "beta0", "v_C", "M(y)"]),
-    numeric_blocks: Names::Static(&["all derivatives (12×12 LU)"]),
-};
+static INFO: ModelInfo = reference_info(
+    Polar::NAME,
+    &STATE_NAMES,
+    &OUTPUT_NAMES,
+    &["sin(theta)", "beta0", "v_C", "M(y)"],
+);
 
 /// The polar chart `(v_C, α)` of the slip velocity.
 #[derive(Clone, Copy, Debug)]

@@ -35,6 +35,16 @@ pub struct OpCounts {
 }
 
 impl OpCounts {
+    /// No operations: a hand-written model has no emitted code to count.
+    pub const NONE: OpCounts = OpCounts {
+        add: 0,
+        mul: 0,
+        div: 0,
+        sqrt: 0,
+        trig: 0,
+        transcendental: 0,
+    };
+
     /// All operations, weighted equally.
     pub fn total(&self) -> u32 {
         self.add + self.mul + self.div + self.sqrt + self.trig + self.transcendental
