@@ -26,8 +26,6 @@ pub struct Work {
 pub struct Timings {
     /// The simulation, with the trajectory streamed to its file meanwhile.
     pub simulation_s: f64,
-    /// A second pass over the last second of a run that stopped early (0 otherwise).
-    pub replay_s: f64,
     /// Committing the trajectory and writing the events.
     pub outputs_s: f64,
     /// The summary's analysis.

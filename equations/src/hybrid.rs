@@ -64,6 +64,7 @@ pub mod switching;
 pub use switching::disk;
 mod switching_run;
 mod system;
+pub mod trailing;
 
 pub use embedded::{EmbedError, Embedded, Embedding, Variant};
 pub use extrema::{Extremum, ExtremumKind, Watched};
@@ -75,6 +76,7 @@ pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOns
 pub use run::simulate;
 pub use switching_run::{simulate_switched, SwitchedDiskRun, SwitchedEvent};
 pub use system::DiskGuard;
+pub use trailing::Trailing;
 
 use crate::issue::Issue;
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState};
@@ -237,6 +239,16 @@ pub trait DiskObserver {
     fn proceed(&mut self) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
+    /// How many seconds of the latest steps the run keeps for [`DiskObserver::on_trailing`]
+    /// (default: none). Keeping them copies each step's interpolant, and has the run build it
+    /// as [`DiskObserver::wants_extrema`] does (three model evaluations a step with DOP853).
+    fn keeps_trailing(&self) -> Option<f64> {
+        None
+    }
+    /// Once, when the run has ended (stopped or failed after its first step), with the steps
+    /// [`DiskObserver::keeps_trailing`] asked for, to sample where the run ended (module
+    /// [`trailing`]).
+    fn on_trailing(&mut self, _trailing: &Trailing<'_>) {}
 }
 
 impl DiskObserver for () {}

@@ -1,6 +1,7 @@
 //! Streaming output: a run hands every accepted step, dense sample, event and transition to an
 //! observer as it happens, so a long run never holds its trajectory in memory.
 
+use crate::dense::StoredInterpolant;
 use crate::dim::{Const, Dim, Vector};
 use crate::events::EventHit;
 use std::ops::ControlFlow;
@@ -20,6 +21,41 @@ pub trait Interpolant<D: Dim> {
         self.at(t, &mut out);
         out[i]
     }
+
+    /// The state at `t` as the run samples its grid there: [`Interpolant::at`], except in
+    /// regularised time, where a sample finds the clock's root from the step's ends (and
+    /// [`Interpolant::at`] by a faster iteration that agrees to a few ulps of the clock). A
+    /// sample taken later from a stored step ([`Interpolant::stored`]) is then the sample the
+    /// run took, bit for bit.
+    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
+        self.at(t, out)
+    }
+
+    /// An owned copy that outlives the step and evaluates to the same bits (module
+    /// [`crate::dense`]): it copies the method's coefficients, so ask only for the steps kept.
+    fn stored(&self) -> StoredInterpolant<D>;
+}
+
+impl<D: Dim, I: Interpolant<D> + ?Sized> Interpolant<D> for &I {
+    fn dim(&self) -> D {
+        (**self).dim()
+    }
+
+    fn at(&self, t: f64, out: &mut Vector<D>) {
+        (**self).at(t, out)
+    }
+
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        (**self).component_at(t, i)
+    }
+
+    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
+        (**self).sample_at(t, out)
+    }
+
+    fn stored(&self) -> StoredInterpolant<D> {
+        (**self).stored()
+    }
 }
 
 impl<S: crate::stepper::Stepper<D>, D: Dim> Interpolant<D>
@@ -35,6 +71,10 @@ impl<S: crate::stepper::Stepper<D>, D: Dim> Interpolant<D>
 
     fn component_at(&self, t: f64, i: usize) -> f64 {
         crate::integrator::DenseStep::component_at(self, t, i)
+    }
+
+    fn stored(&self) -> StoredInterpolant<D> {
+        StoredInterpolant::new(crate::integrator::DenseStep::to_owned_step(self))
     }
 }
 

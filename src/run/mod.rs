@@ -221,8 +221,8 @@ struct Simulated {
     timings: Timings,
 }
 
-/// The simulation of `scene` with the models of `choice`, the last second of an early stop
-/// sampled, and the work and drift filled in.
+/// The simulation of `scene` with the models of `choice` (in one pass: the last second of an
+/// early stop is sampled from the steps the run kept), and the work and drift filled in.
 fn simulate(
     scene: &Scene,
     choice: ModelChoice,
@@ -232,27 +232,18 @@ fn simulate(
     started: Instant,
 ) -> Result<Simulated, WriteError> {
     let plan = scene_plan(scene);
-    let recorded = record(scene, &choice, plan.clone(), interrupt, progress, file);
+    let recorded = record(scene, &choice, plan, interrupt, progress, file);
     let Recorded {
         mut data,
         outcome,
         file,
     } = recorded?;
-    let mut timings = Timings {
+    let timings = Timings {
         simulation_s: started.elapsed().as_secs_f64(),
         ..Timings::default()
     };
     let stop = data.stop.clone().expect("a recorded run has a stop");
     let ending = ending_of(&stop);
-    if ending != Ending::Interrupted && !plan.covers_last_second(stop.t) {
-        // The run stopped early: its last second was not known in advance. The simulation is
-        // deterministic, so a second pass sampling only that second records the same motion.
-        let replay = plan.last_second_before(stop.t);
-        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
-        let again = record(scene, &choice, replay, interrupt, &mut quiet, None)?;
-        data.last_second = again.data.last_second;
-        timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
-    }
     data.work.wall_s = timings.simulation_s;
     // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
     data.constraint_drift_max = outcome
@@ -336,6 +327,10 @@ impl simulation::Outlet for &mut Inline<'_> {
                 self.collector.extrema(batch);
                 Ok(())
             }
+            Message::LastSecond(samples) => {
+                self.collector.last_second(samples);
+                Ok(())
+            }
             Message::Done(_) => Ok(()),
         };
         match written {
@@ -368,6 +363,7 @@ fn collect(
             }
             Ok(Message::Event(e)) => collector.event(e),
             Ok(Message::Extrema(batch)) => collector.extrema(batch),
+            Ok(Message::LastSecond(samples)) => collector.last_second(samples),
             Ok(Message::Done(done)) => break Ended::of(*done, collector),
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => {

@@ -41,7 +41,8 @@ pub struct SamplePlan {
     pub rate: f64,
     /// Fine grid points per trajectory point.
     pub every: u64,
-    /// Whether the coarse grid is recorded at all (a replay of the last second is not).
+    /// Whether the coarse grid is recorded at all (the last second before an early stop,
+    /// sampled after the run, is not).
     pub coarse: bool,
     /// The first second (fine), if recorded.
     pub first: Option<Range<f64>>,
@@ -103,8 +104,9 @@ impl SamplePlan {
         }
     }
 
-    /// The plan of a replay that records only the last second before `t_stop` (for a run that
-    /// stopped before its end time, whose last second was not known in advance).
+    /// The plan that records only the last second before `t_stop`: a run that stopped before
+    /// its end time, whose last second was not known in advance, samples it from the steps it
+    /// kept.
     pub fn last_second_before(&self, t_stop: f64) -> SamplePlan {
         SamplePlan {
             coarse: false,
@@ -156,12 +158,6 @@ impl SamplePlan {
         } else {
             None
         }
-    }
-
-    /// Whether located extrema are kept: in a full run all of them, in a replay of the last
-    /// second none (the first pass, which ran through the same motion, kept them).
-    pub fn keeps_extrema(&self) -> bool {
-        self.coarse
     }
 
     /// Whether the sample at `t` belongs in the trajectory file: on its grid, or on the grid

@@ -16,13 +16,13 @@ use std::thread::Scope;
 use equations::record::{FrictionLaw, Sample, Stop};
 use equations::DIM;
 use equations::{
-    simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum, InitialState,
+    simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum, InitialState, Trailing,
     TransitionRecord,
 };
 use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
-use super::plan::SamplePlan;
+use super::plan::{SamplePlan, WINDOW};
 use crate::scene::Scene;
 use equations::record::forget_frozen;
 
@@ -35,6 +35,9 @@ pub enum Message {
     Event(TransitionRecord),
     /// Located extrema, in order.
     Extrema(Vec<Extremum>),
+    /// The finely sampled last second of a run that stopped before its plan's last window
+    /// (sampled, once the run had ended, from its kept steps).
+    LastSecond(Vec<Sample>),
     /// The run ended (boxed: an outcome holds a whole sample).
     Done(Box<Result<Outcome, Failure>>),
 }
@@ -127,6 +130,15 @@ struct ChannelObserver<'a, O> {
 }
 
 impl<O: Outlet> ChannelObserver<'_, O> {
+    /// The named record of the simulation's sample, frozen states blanked.
+    fn record(&self, sample: &DiskSample) -> Sample {
+        let mut s = Sample::of(sample, self.law);
+        if !self.frozen.is_empty() {
+            forget_frozen(&mut s, &self.frozen);
+        }
+        s
+    }
+
     fn send(&mut self, m: Message) {
         if self.open && !self.tx.deliver(m) {
             self.open = false;
@@ -151,10 +163,7 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     }
 
     fn on_sample(&mut self, sample: &DiskSample) {
-        let mut s = Sample::of(sample, self.law);
-        if !self.frozen.is_empty() {
-            forget_frozen(&mut s, &self.frozen);
-        }
+        let s = self.record(sample);
         self.batch.push(s);
         if self.batch.len() >= BATCH || s.t >= self.flush_at {
             self.flush_at = s.t + self.flush_every;
@@ -173,6 +182,29 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     fn on_transition(&mut self, record: &TransitionRecord) {
         self.flush();
         self.send(Message::Event(*record));
+    }
+
+    fn keeps_trailing(&self) -> Option<f64> {
+        Some(WINDOW)
+    }
+
+    /// A run that ended before its plan's last window gets the last second before its end
+    /// from the steps it kept (an interrupted run does not: it was not meant to end there).
+    fn on_trailing(&mut self, trailing: &Trailing<'_>) {
+        let Some((_, end)) = trailing.span() else {
+            return;
+        };
+        if self.interrupted || self.plan.covers_last_second(end) {
+            return;
+        }
+        let last = self.plan.last_second_before(end);
+        let samples = (trailing.grid(end - WINDOW))
+            .filter(|&t| last.wants(t))
+            .map_while(|t| trailing.sample(t)?.ok())
+            .map(|s| self.record(&s))
+            .collect();
+        self.flush();
+        self.send(Message::LastSecond(samples));
     }
 
     fn proceed(&mut self) -> ControlFlow<()> {

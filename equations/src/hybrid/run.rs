@@ -4,6 +4,7 @@
 use super::extrema::Scanner;
 use super::models::DiskModels;
 use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
+use super::trailing::{StepRing, Trailing};
 use super::{
     DiskObserver, DiskSample, RunOutcome, SimError, SimFailure, StopReason, TransitionRecord,
     Trigger,
@@ -149,6 +150,7 @@ where
         error: e.into(),
     };
     let tolerance = config.tolerance(models.chart).map_err(input_error)?;
+    let ring = observer_ring(observer);
     let mut adaptor = Adaptor {
         models,
         bridge,
@@ -157,6 +159,7 @@ where
         failure: None,
         scanner: Scanner::default(),
         work: WorkMeter::new(config.work, initial.t),
+        ring,
     };
     let (ended, work) = match config.time {
         TimeVariable::Physical => {
@@ -229,6 +232,14 @@ where
         stats: Box::new(work),
     };
     adaptor.end_segment();
+    if let Some(ring) = &adaptor.ring {
+        let sample = |t, phase, bridge, y: &[f64; DIM]| sample_at(models, bridge, t, phase, y);
+        adaptor.user.on_trailing(&Trailing {
+            ring,
+            sample_at: &sample,
+            grid: (initial.t, config.sample_rate),
+        });
+    }
     let failure = adaptor.failure.take();
     let over_budget = adaptor.work.exceeded();
     if let Ok(Ended {
@@ -307,6 +318,11 @@ pub(super) fn hybrid_options(config: &DiskConfig) -> HybridOptions {
         sample_rate: config.sample_rate,
         guard_checks: config.guard_checks,
     }
+}
+
+/// The ring of latest steps `observer` asks for, if any.
+fn observer_ring<O: DiskObserver>(observer: &O) -> Option<StepRing> {
+    observer.keeps_trailing().map(StepRing::new)
 }
 
 /// A run that ends where it starts, at `first`, before any step.
@@ -523,6 +539,8 @@ struct Adaptor<'a, R, S, O> {
     scanner: Scanner,
     /// Counts the steps against the run's work bound.
     work: WorkMeter,
+    /// The latest steps, when the user keeps them ([`DiskObserver::keeps_trailing`]).
+    ring: Option<StepRing>,
 }
 
 impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
@@ -543,7 +561,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
     }
 
     fn wants_dense(&self) -> bool {
-        self.user.wants_extrema()
+        self.user.wants_extrema() || self.ring.is_some()
     }
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {
@@ -566,6 +584,9 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
 
     fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Phase>) {
         self.work.step(step.t0, step.t1);
+        if let (Some(ring), Some(dense)) = (&mut self.ring, step.dense) {
+            ring.push(dense, (step.t0, step.t1), step.mode, self.bridge);
+        }
         if self.user.wants_extrema() {
             let user = &mut *self.user;
             self.scanner
