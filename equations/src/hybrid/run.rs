@@ -150,7 +150,7 @@ where
         error: e.into(),
     };
     let tolerance = config.tolerance(models.chart).map_err(input_error)?;
-    let ring = observer_ring(observer);
+    let ring = observer_ring(observer, (initial.t, config.sample_rate));
     let mut adaptor = Adaptor {
         models,
         bridge,
@@ -237,7 +237,6 @@ where
         adaptor.user.on_trailing(&Trailing {
             ring,
             sample_at: &sample,
-            grid: (initial.t, config.sample_rate),
         });
     }
     let failure = adaptor.failure.take();
@@ -320,9 +319,12 @@ pub(super) fn hybrid_options(config: &DiskConfig) -> HybridOptions {
     }
 }
 
-/// The ring of latest steps `observer` asks for, if any.
-fn observer_ring<O: DiskObserver>(observer: &O) -> Option<StepRing> {
-    observer.keeps_trailing().map(StepRing::new)
+/// The ring of latest steps `observer` asks for, if any, on the run's sample `grid` (origin,
+/// rate).
+fn observer_ring<O: DiskObserver>(observer: &O, grid: (f64, Option<f64>)) -> Option<StepRing> {
+    observer
+        .keeps_trailing()
+        .map(|span| StepRing::new(span, grid))
 }
 
 /// A run that ends where it starts, at `first`, before any step.

@@ -5,7 +5,8 @@
 //! a run that fails) would otherwise sample finely all the time or simulate the run twice.
 //! Instead, while the run goes, each accepted step's interpolant is copied
 //! ([`model_runtime::Interpolant::stored`]) into a ring that drops the steps older than the
-//! span asked for ([`super::DiskObserver::keeps_trailing`]); at the end the caller samples the
+//! span asked for ([`super::DiskObserver::keeps_trailing`]) and skips the steps that hold no
+//! point of the run's sample grid (so the ring stays small when the steps get short); at the end the caller samples the
 //! ring ([`Trailing::sample`]) on the run's own sample grid ([`Trailing::grid`]). A sample is
 //! taken from the step the run would have taken it from (the first kept step ending at or after
 //! its time, in that step's mode and with its bridge), so it is the sample the run would have
@@ -32,24 +33,43 @@ struct KeptStep {
     bridge: Option<Slip>,
 }
 
-/// The ring of the latest steps, at least `span` seconds of them.
+/// The ring of the latest steps, at least `span` seconds of them. With a sample grid, only
+/// the steps that hold one of its points are kept: at most `rate · span` (and a few) steps
+/// however short the steps get.
 #[derive(Clone, Debug)]
 pub(super) struct StepRing {
     span: f64,
+    /// The run's sample grid: its origin and rate.
+    grid: (f64, Option<f64>),
     steps: VecDeque<KeptStep>,
 }
 
+/// How far (in grid spacings) a step may miss a grid point and still be kept: a step whose
+/// end lies within round-off of a point is kept rather than judged by the last bit.
+const GRID_MARGIN: f64 = 1e-6;
+
 impl StepRing {
-    /// An empty ring keeping `span` seconds.
-    pub(super) fn new(span: f64) -> Self {
+    /// An empty ring keeping `span` seconds of a run sampled on `grid` (origin, rate).
+    pub(super) fn new(span: f64, grid: (f64, Option<f64>)) -> Self {
         StepRing {
             span,
+            grid,
             steps: VecDeque::new(),
         }
     }
 
-    /// Keeps the step `[t0, t1]` taken in `phase` (on a bridge from `bridge`), dropping the
-    /// steps that end more than the span before it.
+    /// Whether a point of the grid may lie in `[t0, t1]` (always, without a grid).
+    fn holds_grid_point(&self, t0: f64, t1: f64) -> bool {
+        let (origin, Some(rate)) = self.grid else {
+            return true;
+        };
+        let first = ((t0 - origin) * rate - GRID_MARGIN).ceil();
+        let last = ((t1 - origin) * rate + GRID_MARGIN).floor();
+        first <= last
+    }
+
+    /// Keeps the step `[t0, t1]` taken in `phase` (on a bridge from `bridge`) if it holds a
+    /// grid point, dropping the steps that end more than the span before it.
     pub(super) fn push(
         &mut self,
         dense: &dyn Interpolant<Const<DIM>>,
@@ -57,6 +77,9 @@ impl StepRing {
         phase: Phase,
         bridge: Option<Slip>,
     ) {
+        if !self.holds_grid_point(t0, t1) {
+            return;
+        }
         while self.steps.front().is_some_and(|s| s.t1 < t1 - self.span) {
             self.steps.pop_front();
         }
@@ -83,8 +106,6 @@ pub(super) type SampleAt<'a> =
 pub struct Trailing<'a> {
     pub(super) ring: &'a StepRing,
     pub(super) sample_at: &'a SampleAt<'a>,
-    /// The run's sample grid: its origin and rate (`None`: no grid).
-    pub(super) grid: (f64, Option<f64>),
 }
 
 impl Trailing<'_> {
@@ -103,7 +124,7 @@ impl Trailing<'_> {
     /// The times of the run's sample grid ([`crate::DiskConfig::sample_rate`], from the run's
     /// start) from `from` to the end of the kept steps, computed as the run computes them.
     pub fn grid(&self, from: f64) -> impl Iterator<Item = f64> + '_ {
-        let (t_first, rate) = self.grid;
+        let (t_first, rate) = self.ring.grid;
         let end = self.span().map_or(f64::NEG_INFINITY, |(_, t1)| t1);
         let rate = rate.filter(|_| end >= from);
         let first = rate.map_or(0, |r| ((from - t_first) * r).floor().max(0.0) as u64);
@@ -116,12 +137,12 @@ impl Trailing<'_> {
     }
 
     /// The disk at `t` as the run would have sampled it: from the first kept step that ends
-    /// at or after `t`. `None` if `t` lies outside the kept steps.
+    /// at or after `t`. `None` if `t` lies outside the kept steps (before them, after them,
+    /// or off the grid between two of them).
     pub fn sample(&self, t: f64) -> Option<Result<DiskSample, EvalError>> {
         let steps = &self.ring.steps;
-        let i = steps.partition_point(|s| s.t1 < t);
-        let step = steps.get(i)?;
-        if t < step.t0 && i == 0 {
+        let step = steps.get(steps.partition_point(|s| s.t1 < t))?;
+        if t < step.t0 {
             return None;
         }
         let mut y = [0.0; DIM];
