@@ -63,6 +63,9 @@ pub struct RunData {
     pub extrema: Vec<Extremum>,
     /// Why it ended (`None` while running).
     pub stop: Option<Stop>,
+    /// A failed run's last accepted state (the end of its last accepted step); `None` for a
+    /// run that ended by itself (its final state ends `samples`) or failed before a step.
+    pub last_state: Option<Sample>,
     /// Integrator work.
     pub work: Work,
     /// Largest constraint drift seen (SI units, before projection); `None` when the models

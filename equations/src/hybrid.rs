@@ -373,8 +373,8 @@ impl SimError {
     }
 }
 
-/// A run that failed, and the work it did until then: a failure that reports no work would
-/// hide what the run cost (and how far it got).
+/// A run that failed, the work it did until then and where it got: a failure that reports no
+/// work would hide what the run cost (and how far it got).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{error}")]
 pub struct SimFailure {
@@ -383,14 +383,18 @@ pub struct SimFailure {
     /// Integrator work until the failure (zero when the run failed before its first step);
     /// boxed, as the counters are large and a failure is rare.
     pub stats: Box<Stats>,
+    /// The disk at the end of the last accepted step (`None` before the first step, or where
+    /// the models cannot evaluate it); boxed, as for the work.
+    pub last: Option<Box<DiskSample>>,
 }
 
 impl From<SimError> for SimFailure {
-    /// A failure before any step: no work.
+    /// A failure before any step: no work, no state reached.
     fn from(error: SimError) -> Self {
         SimFailure {
             error,
             stats: Box::default(),
+            last: None,
         }
     }
 }

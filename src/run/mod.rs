@@ -34,7 +34,7 @@ use crate::record::{RunData, Timings};
 use crate::scene::Scene;
 use collect::Collector;
 use equations::record::Quantity;
-use equations::record::{Stop, StopKind};
+use equations::record::{Sample, Stop, StopKind};
 use equations::Mode;
 use model::ModelChoice;
 use plan::SamplePlan;
@@ -296,9 +296,11 @@ pub fn record(
         stop,
         steps,
         rhs_evals,
+        last_state,
     } = ended;
     let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
     data.stop = Some(stop);
+    data.last_state = last_state;
     // A failed run reports the work it did too.
     data.work.steps = steps;
     data.work.rhs_evals = rhs_evals;
@@ -370,22 +372,25 @@ fn collect(
                 let why = "the simulation thread died".to_string();
                 break Ended {
                     outcome: None,
-                    stop: abandoned(collector, why, None),
+                    stop: abandoned(collector, why, None, None),
                     steps: None,
                     rhs_evals: None,
+                    last_state: None,
                 };
             }
         }
     })
 }
 
-/// How the simulation ended: its outcome (`None` when it failed), the stop record, and the
-/// work it reported (`None` when it reported none: its thread died).
+/// How the simulation ended: its outcome (`None` when it failed), the stop record, the
+/// work it reported (`None` when it reported none: its thread died) and, when it failed, the
+/// last state it reached.
 struct Ended {
     outcome: Option<Outcome>,
     stop: Stop,
     steps: Option<u64>,
     rhs_evals: Option<u64>,
+    last_state: Option<Sample>,
 }
 
 impl Ended {
@@ -397,24 +402,37 @@ impl Ended {
                 steps: Some(o.steps),
                 rhs_evals: Some(o.rhs_evals),
                 outcome: Some(o),
+                last_state: None,
             },
             Err(failure) => Ended {
                 outcome: None,
-                stop: abandoned(collector, failure.message, failure.t),
+                stop: abandoned(
+                    collector,
+                    failure.message,
+                    failure.t,
+                    failure.last.as_deref(),
+                ),
                 steps: Some(failure.steps),
                 rhs_evals: Some(failure.rhs_evals),
+                last_state: failure.last.map(|s| *s),
             },
         }
     }
 }
 
-/// The stop of a run that failed without an outcome, dated at `t` (the failure's own time)
-/// or where the collector last heard of it, whichever is later.
-fn abandoned(c: &Collector, detail: String, t: Option<f64>) -> Stop {
+/// The stop of a run that failed without an outcome, dated at `t` (the failure's own time),
+/// at its last accepted state `last` or where the collector last heard of it, whichever is
+/// latest; in the mode of the latest of those it knows.
+fn abandoned(c: &Collector, detail: String, t: Option<f64>, last: Option<&Sample>) -> Stop {
     let heard = c.latest_t().unwrap_or(0.0);
+    let reached = last.map_or(heard, |s| s.t.max(heard));
+    let mode = (last.filter(|s| s.t >= heard).map(|s| s.mode))
+        .or(c.latest_mode())
+        .unwrap_or(Mode::Rolling);
     Stop::failed(
-        t.filter(|t| t.is_finite()).map_or(heard, |t| t.max(heard)),
-        c.latest_mode().unwrap_or(Mode::Rolling),
+        t.filter(|t| t.is_finite())
+            .map_or(reached, |t| t.max(reached)),
+        mode,
         detail,
     )
 }

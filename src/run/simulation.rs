@@ -53,6 +53,9 @@ pub struct Failure {
     pub rhs_evals: u64,
     /// When it failed (s), if the error says.
     pub t: Option<f64>,
+    /// The disk at the end of the last accepted step, if a step was accepted (boxed: a
+    /// failure is rare, the record large).
+    pub last: Option<Box<Sample>>,
 }
 
 impl Failure {
@@ -63,6 +66,7 @@ impl Failure {
             steps: 0,
             rhs_evals: 0,
             t: None,
+            last: None,
         }
     }
 }
@@ -228,13 +232,15 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
     type Output = Result<Outcome, Failure>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
-        simulate(models, self.config, self.initial, self.observer)
+        let result = simulate(models, self.config, self.initial, self.observer);
+        result
             .map(|o| outcome(&o, self.config, FrictionLaw::of(&models.params)))
             .map_err(|failure| Failure {
                 message: failure.to_string(),
                 steps: failure.stats.steps,
                 rhs_evals: failure.stats.rhs_evals,
                 t: failure.error.time(),
+                last: failure.last.map(|s| Box::new(self.observer.record(&s))),
             })
     }
 }

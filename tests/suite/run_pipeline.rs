@@ -87,7 +87,8 @@ fn a_scene_simulated_in_memory_is_the_run_written_to_files() {
 }
 
 /// A run that fails (here: out of its step budget) reports the work it did until then, in
-/// memory and in `summary.json`, where the steps used to be `null`.
+/// memory and in `summary.json`, where the steps used to be `null`, and the last state it
+/// reached: the end of its last accepted step, every state by its name.
 #[test]
 fn a_failed_run_reports_its_steps_and_evaluations() {
     let overrides = [Override::new("run", "t_end", 5.0)];
@@ -114,6 +115,35 @@ fn a_failed_run_reports_its_steps_and_evaluations() {
     let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
     let json: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(json["steps"].as_u64(), Some(steps));
+    // The last accepted state: before the failure, after the last sample kept, on the
+    // constraints of its mode (Z = a sin θ).
+    let last = s.last_state.expect("a failed run's last state");
+    let latest = report.data.samples.last().unwrap();
+    assert!(
+        last.t > 0.0 && last.t <= s.t_end && last.t >= latest.t,
+        "{} {} {}",
+        last.t,
+        s.t_end,
+        latest.t
+    );
+    assert_eq!(last.mode, latest.mode);
+    let a = scene.params.a;
+    assert!((last.state.z - a * last.state.theta.sin()).abs() < 1e-9);
+    let written = &json["last_state"];
+    assert_eq!(written["t"].as_f64(), Some(last.t));
+    assert_eq!(written["mode"].as_str(), Some(last.mode.name()));
+    let state = written["state"].as_object().unwrap();
+    let names: Vec<&str> = state.keys().map(String::as_str).collect();
+    let mut expected = equations::STATE_NAMES.to_vec();
+    expected.sort_unstable();
+    assert_eq!(names, expected);
+    assert_eq!(state["theta"].as_f64(), Some(last.state.theta));
+    assert_eq!(state["Omega_z"].as_f64(), Some(last.state.omega_z));
+    // A run that ends by itself writes no such key: its final state ends the trajectory.
+    let (dir, _) = short_run(0.2, Backend::Generated);
+    let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(json.get("last_state").is_none());
 }
 
 /// The paper's reading of the slip sign lifts the disk off the floor at t ≈ 18.16 s: the

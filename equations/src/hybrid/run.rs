@@ -160,6 +160,7 @@ where
         scanner: Scanner::default(),
         work: WorkMeter::new(config.work, initial.t),
         ring,
+        last: None,
     };
     let (ended, work) = match config.time {
         TimeVariable::Physical => {
@@ -226,10 +227,14 @@ where
             (result, solver.stats())
         }
     };
-    // Every failure from here on has the work done with it.
+    // Every failure from here on has the work done with it, and the last state reached.
+    let last = (adaptor.last.as_ref())
+        .and_then(|l| sample_at(models, l.bridge, l.t, l.phase, &l.y).ok())
+        .map(Box::new);
     let failed = |error: SimError| SimFailure {
         error,
         stats: Box::new(work),
+        last: last.clone(),
     };
     adaptor.end_segment();
     if let Some(ring) = &adaptor.ring {
@@ -543,6 +548,16 @@ struct Adaptor<'a, R, S, O> {
     work: WorkMeter,
     /// The latest steps, when the user keeps them ([`DiskObserver::keeps_trailing`]).
     ring: Option<StepRing>,
+    /// The end of the last accepted step (what a failed run reports of where it got).
+    last: Option<StepEnd>,
+}
+
+/// The end of an accepted step, with what a sample of it needs.
+struct StepEnd {
+    t: f64,
+    phase: Phase,
+    bridge: Option<Slip>,
+    y: [f64; DIM],
 }
 
 impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
@@ -589,6 +604,12 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
         if let (Some(ring), Some(dense)) = (&mut self.ring, step.dense) {
             ring.push(dense, (step.t0, step.t1), step.mode, self.bridge);
         }
+        self.last = Some(StepEnd {
+            t: step.t1,
+            phase: step.mode,
+            bridge: self.bridge,
+            y: *step.y1,
+        });
         if self.user.wants_extrema() {
             let user = &mut *self.user;
             self.scanner
