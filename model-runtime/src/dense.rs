@@ -1,8 +1,9 @@
-//! A step's interpolant that outlives the step: what an observer keeps when it wants to sample
+//! A step's interpolant ([`Interpolant`], what the drivers lend an observer), and one that
+//! outlives the step: what an observer keeps when it wants to sample
 //! a stretch of the run only after the run has decided where that stretch is (the last second
 //! before a stop nobody could foresee).
 //!
-//! While a run goes, an observer is lent the step's interpolant ([`crate::Interpolant`]), a
+//! While a run goes, an observer is lent the step's interpolant ([`Interpolant`]), a
 //! view into the stepper's buffers that the next step overwrites. [`Interpolant::stored`]
 //! copies what the view reads — the method's dense-output coefficients ([`DenseOutput`], the
 //! same code the stepper evaluates, so a stored step gives the same bits) and the step's ends
@@ -13,7 +14,58 @@ use std::fmt::Debug;
 use std::sync::Arc;
 
 use crate::dim::{Array, Dim, Vector};
-use crate::observer::Interpolant;
+
+/// Evaluation of the interpolant of one accepted step.
+pub trait Interpolant<D: Dim> {
+    /// The size of the states it interpolates.
+    fn dim(&self) -> D;
+
+    /// The interpolated state at `t` inside the step (clamped to it; end points exact).
+    fn at(&self, t: f64, out: &mut Vector<D>);
+
+    /// Component `i` of [`Interpolant::at`] alone (the same value; a root search on one
+    /// component need not interpolate the others).
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        let mut out = self.dim().zeros();
+        self.at(t, &mut out);
+        out[i]
+    }
+
+    /// The state at `t` as the run samples its grid there: [`Interpolant::at`], except in
+    /// regularised time, where a sample finds the clock's root from the step's ends (and
+    /// [`Interpolant::at`] by a faster iteration that agrees to a few ulps of the clock). A
+    /// sample taken later from a stored step ([`Interpolant::stored`]) is then the sample the
+    /// run took, bit for bit.
+    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
+        self.at(t, out)
+    }
+
+    /// An owned copy that outlives the step and evaluates to the same bits (module
+    /// [`crate::dense`]): it copies the method's coefficients, so ask only for the steps kept.
+    fn stored(&self) -> StoredInterpolant<D>;
+}
+
+impl<D: Dim, I: Interpolant<D> + ?Sized> Interpolant<D> for &I {
+    fn dim(&self) -> D {
+        (**self).dim()
+    }
+
+    fn at(&self, t: f64, out: &mut Vector<D>) {
+        (**self).at(t, out)
+    }
+
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        (**self).component_at(t, i)
+    }
+
+    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
+        (**self).sample_at(t, out)
+    }
+
+    fn stored(&self) -> StoredInterpolant<D> {
+        (**self).stored()
+    }
+}
 
 /// The coefficients of one step's interpolant in `θ ∈ [0, 1]`, apart from the method's stages:
 /// what [`crate::Stepper::interpolate`] evaluates. Each method keeps its dense output in one of

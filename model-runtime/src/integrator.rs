@@ -6,7 +6,7 @@
 //! gets the same rejection logic, end-time handling and collapse detection.
 
 use crate::control::{initial_step, min_step, Controller, StepOptions};
-use crate::dense::{place_in_step, OwnedStep};
+use crate::dense::{place_in_step, Interpolant, OwnedStep, StoredInterpolant};
 use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::{InputError, SolveError};
 use crate::stats::Stats;
@@ -467,6 +467,24 @@ impl<S: Stepper<D>, D: Dim> DenseStep<'_, S, D> {
             y1: self.y1.clone(),
             coefficients: self.stepper.dense_output().clone(),
         }
+    }
+}
+
+impl<S: Stepper<D>, D: Dim> Interpolant<D> for DenseStep<'_, S, D> {
+    fn dim(&self) -> D {
+        D::of(self.y0)
+    }
+
+    fn at(&self, t: f64, out: &mut Vector<D>) {
+        DenseStep::at(self, t, out)
+    }
+
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        DenseStep::component_at(self, t, i)
+    }
+
+    fn stored(&self) -> StoredInterpolant<D> {
+        StoredInterpolant::new(DenseStep::to_owned_step(self))
     }
 }
 

@@ -126,7 +126,7 @@ mod tolerance;
 
 pub use accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
 pub use control::{StepControl, StepOptions};
-pub use dense::{DenseOutput, StoredInterpolant};
+pub use dense::{DenseOutput, Interpolant, StoredInterpolant};
 pub use dim::{Array, Const, Dim, Dyn, Element, Matrix, Vector};
 pub use dop853::{Dop853, Dop853Dense};
 pub use dopri5::{Dopri5, Dopri5Dense};
@@ -144,9 +144,7 @@ pub use integrator::{integrate, DenseStep, Integrator, Solution};
 pub use jacobian::finite_difference_jacobian;
 pub use linalg::solve_block;
 pub use model::{Evaluation, Model, ModelInfo, OpCounts, System, SystemOutputs, WithOutputs};
-pub use observer::{
-    Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
-};
+pub use observer::{Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord};
 pub use readable::Readable;
 pub use rk4::{Rk4, Rk4Dense};
 pub use rodas4::{Rodas4, Rodas4Dense};

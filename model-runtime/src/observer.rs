@@ -1,82 +1,10 @@
 //! Streaming output: a run hands every accepted step, dense sample, event and transition to an
 //! observer as it happens, so a long run never holds its trajectory in memory.
 
-use crate::dense::StoredInterpolant;
+use crate::dense::Interpolant;
 use crate::dim::{Const, Dim, Vector};
 use crate::events::EventHit;
 use std::ops::ControlFlow;
-
-/// Evaluation of the interpolant of one accepted step.
-pub trait Interpolant<D: Dim> {
-    /// The size of the states it interpolates.
-    fn dim(&self) -> D;
-
-    /// The interpolated state at `t` inside the step (clamped to it; end points exact).
-    fn at(&self, t: f64, out: &mut Vector<D>);
-
-    /// Component `i` of [`Interpolant::at`] alone (the same value; a root search on one
-    /// component need not interpolate the others).
-    fn component_at(&self, t: f64, i: usize) -> f64 {
-        let mut out = self.dim().zeros();
-        self.at(t, &mut out);
-        out[i]
-    }
-
-    /// The state at `t` as the run samples its grid there: [`Interpolant::at`], except in
-    /// regularised time, where a sample finds the clock's root from the step's ends (and
-    /// [`Interpolant::at`] by a faster iteration that agrees to a few ulps of the clock). A
-    /// sample taken later from a stored step ([`Interpolant::stored`]) is then the sample the
-    /// run took, bit for bit.
-    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
-        self.at(t, out)
-    }
-
-    /// An owned copy that outlives the step and evaluates to the same bits (module
-    /// [`crate::dense`]): it copies the method's coefficients, so ask only for the steps kept.
-    fn stored(&self) -> StoredInterpolant<D>;
-}
-
-impl<D: Dim, I: Interpolant<D> + ?Sized> Interpolant<D> for &I {
-    fn dim(&self) -> D {
-        (**self).dim()
-    }
-
-    fn at(&self, t: f64, out: &mut Vector<D>) {
-        (**self).at(t, out)
-    }
-
-    fn component_at(&self, t: f64, i: usize) -> f64 {
-        (**self).component_at(t, i)
-    }
-
-    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
-        (**self).sample_at(t, out)
-    }
-
-    fn stored(&self) -> StoredInterpolant<D> {
-        (**self).stored()
-    }
-}
-
-impl<S: crate::stepper::Stepper<D>, D: Dim> Interpolant<D>
-    for crate::integrator::DenseStep<'_, S, D>
-{
-    fn dim(&self) -> D {
-        D::of(self.y0)
-    }
-
-    fn at(&self, t: f64, out: &mut Vector<D>) {
-        crate::integrator::DenseStep::at(self, t, out)
-    }
-
-    fn component_at(&self, t: f64, i: usize) -> f64 {
-        crate::integrator::DenseStep::component_at(self, t, i)
-    }
-
-    fn stored(&self) -> StoredInterpolant<D> {
-        StoredInterpolant::new(crate::integrator::DenseStep::to_owned_step(self))
-    }
-}
 
 /// One accepted step as an observer sees it. If an event cut the step short, `t1`/`y1` are the
 /// event time and state (the part of the step after the event is discarded); a step cut to

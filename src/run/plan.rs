@@ -117,8 +117,11 @@ impl SamplePlan {
         }
     }
 
-    /// Whether the last window of this plan covers the second before `t_stop`.
+    /// Whether the last window of this plan covers the second before `t_stop`. A stop past
+    /// the last window's end is at its end: a run in regularised time reaches its end time
+    /// on its clock, which may read a few ulps more.
     pub fn covers_last_second(&self, t_stop: f64) -> bool {
+        let t_stop = self.last.as_ref().map_or(t_stop, |w| t_stop.min(w.end));
         let before = (t_stop - WINDOW).max(self.t0);
         let within = |w: &Range<f64>| w.start <= before && t_stop <= w.end;
         self.last.as_ref().is_some_and(within) || self.first.as_ref().is_some_and(within)
@@ -247,6 +250,8 @@ mod tests {
         assert!(plan.covers_last_second(100.0));
         assert!(plan.covers_last_second(0.7), "a run shorter than a second");
         assert!(!plan.covers_last_second(18.2));
+        // The regularised clock ends an ulp or two past the end time.
+        assert!(plan.covers_last_second(100.00000000000011));
         let replay = plan.last_second_before(18.2);
         assert!(replay.covers_last_second(18.2));
         assert!(!replay.wants(10.0));

@@ -6,9 +6,9 @@
 //! Apart from the system so that each file holds one side of the transformation.
 
 use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
-use crate::dense::StoredInterpolant;
+use crate::dense::{Interpolant, StoredInterpolant};
 use crate::dim::Const;
-use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::root::find_crossing;
 
 /// An observer of `H` (in physical time) fed by a run of [`crate::Regularised`] (in `τ`).
