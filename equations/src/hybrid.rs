@@ -246,8 +246,8 @@ pub trait DiskObserver {
         None
     }
     /// Once, when the run has ended (stopped or failed after its first step), with the steps
-    /// [`DiskObserver::keeps_trailing`] asked for, to sample where the run ended (module
-    /// [`trailing`]).
+    /// [`DiskObserver::keeps_trailing`] asked for, to sample where the run ended
+    /// [`Trailing`]).
     fn on_trailing(&mut self, _trailing: &Trailing<'_>) {}
 }
 

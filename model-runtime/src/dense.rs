@@ -40,8 +40,9 @@ pub trait Interpolant<D: Dim> {
         self.at(t, out)
     }
 
-    /// An owned copy that outlives the step and evaluates to the same bits (module
-    /// [`crate::dense`]): it copies the method's coefficients, so ask only for the steps kept.
+    /// An owned copy that outlives the step and evaluates to the same bits
+    /// ([`StoredInterpolant`]): it copies the method's coefficients, so ask only for the steps
+    /// kept.
     fn stored(&self) -> StoredInterpolant<D>;
 }
 

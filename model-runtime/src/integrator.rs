@@ -459,7 +459,7 @@ impl<S: Stepper<D>, D: Dim> DenseStep<'_, S, D> {
         }
     }
 
-    /// The step with a copy of its method's coefficients (module [`crate::dense`]).
+    /// The step with a copy of its method's coefficients (for a stored interpolant).
     pub(crate) fn to_owned_step(&self) -> OwnedStep<S::Dense, D> {
         OwnedStep {
             t: (self.t0, self.t1),
