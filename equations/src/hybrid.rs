@@ -247,7 +247,7 @@ pub trait DiskObserver {
     }
     /// Once, when the run has ended (stopped or failed after its first step), with the steps
     /// [`DiskObserver::keeps_trailing`] asked for, to sample where the run ended
-    /// [`Trailing`]).
+    /// ([`Trailing`]).
     fn on_trailing(&mut self, _trailing: &Trailing<'_>) {}
 }
 
