@@ -26,8 +26,6 @@ pub struct Work {
 pub struct Timings {
     /// The simulation, with the trajectory streamed to its file meanwhile.
     pub simulation_s: f64,
-    /// A second pass over the last second of a run that stopped early (0 otherwise).
-    pub replay_s: f64,
     /// Committing the trajectory and writing the events.
     pub outputs_s: f64,
     /// The summary's analysis.
@@ -65,6 +63,9 @@ pub struct RunData {
     pub extrema: Vec<Extremum>,
     /// Why it ended (`None` while running).
     pub stop: Option<Stop>,
+    /// A failed run's last accepted state (the end of its last accepted step); `None` for a
+    /// run that ended by itself (its final state ends `samples`) or failed before a step.
+    pub last_state: Option<Sample>,
     /// Integrator work.
     pub work: Work,
     /// Largest constraint drift seen (SI units, before projection); `None` when the models

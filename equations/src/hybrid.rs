@@ -64,6 +64,7 @@ pub mod switching;
 pub use switching::disk;
 mod switching_run;
 mod system;
+pub mod trailing;
 
 pub use embedded::{EmbedError, Embedded, Embedding, Variant};
 pub use extrema::{Extremum, ExtremumKind, Watched};
@@ -75,6 +76,7 @@ pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOns
 pub use run::simulate;
 pub use switching_run::{simulate_switched, SwitchedDiskRun, SwitchedEvent};
 pub use system::DiskGuard;
+pub use trailing::Trailing;
 
 use crate::issue::Issue;
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState};
@@ -237,6 +239,16 @@ pub trait DiskObserver {
     fn proceed(&mut self) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
+    /// How many seconds of the latest steps the run keeps for [`DiskObserver::on_trailing`]
+    /// (default: none). Keeping them copies each step's interpolant, and has the run build it
+    /// as [`DiskObserver::wants_extrema`] does (three model evaluations a step with DOP853).
+    fn keeps_trailing(&self) -> Option<f64> {
+        None
+    }
+    /// Once, when the run has ended (stopped or failed after its first step), with the steps
+    /// [`DiskObserver::keeps_trailing`] asked for, to sample where the run ended
+    /// ([`Trailing`]).
+    fn on_trailing(&mut self, _trailing: &Trailing<'_>) {}
 }
 
 impl DiskObserver for () {}
@@ -361,8 +373,8 @@ impl SimError {
     }
 }
 
-/// A run that failed, and the work it did until then: a failure that reports no work would
-/// hide what the run cost (and how far it got).
+/// A run that failed, the work it did until then and where it got: a failure that reports no
+/// work would hide what the run cost (and how far it got).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{error}")]
 pub struct SimFailure {
@@ -371,14 +383,18 @@ pub struct SimFailure {
     /// Integrator work until the failure (zero when the run failed before its first step);
     /// boxed, as the counters are large and a failure is rare.
     pub stats: Box<Stats>,
+    /// The disk at the end of the last accepted step (`None` before the first step, or where
+    /// the models cannot evaluate it); boxed, as for the work.
+    pub last: Option<Box<DiskSample>>,
 }
 
 impl From<SimError> for SimFailure {
-    /// A failure before any step: no work.
+    /// A failure before any step: no work, no state reached.
     fn from(error: SimError) -> Self {
         SimFailure {
             error,
             stats: Box::default(),
+            last: None,
         }
     }
 }

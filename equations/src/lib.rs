@@ -60,8 +60,8 @@ pub use hybrid::{
     DiskObserver, DiskRecorder, DiskSample, EmbedError, Embedded, Embedding, Extremum,
     ExtremumKind, GeneratedModels, OnsetError, PruneError, Pruned, PrunedModels, ReferenceModels,
     RunOutcome, SimError, SimFailure, SlidingModel, SlipAcceleration, SlipOnset, StopReason,
-    SwitchedDiskRun, SwitchedEvent, TransitionRecord, Trigger, Variant, Watched, PROBE_SLIP_SPEED,
-    PRUNED_STATES,
+    SwitchedDiskRun, SwitchedEvent, Trailing, TransitionRecord, Trigger, Variant, Watched,
+    PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use issue::{Issue, Number, Rule};
 /// Where a step's interior is searched for guard crossings (re-exported from the runtime).

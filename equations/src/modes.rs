@@ -95,7 +95,7 @@ pub enum SlipChart {
 }
 
 /// The slip of the contact particle, in the paper's polar terms.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Slip {
     /// Slip speed `v_C` (m/s); negative only under [`crate::SlipSign::Paper`].
     pub speed: f64,

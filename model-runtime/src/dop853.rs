@@ -11,6 +11,7 @@
 // The coefficients are kept digit for digit as published.
 #![allow(clippy::excessive_precision)]
 
+use crate::dense::DenseOutput;
 use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::stats::Stats;
@@ -238,7 +239,14 @@ const DENSE: [[(usize, f64); 12]; 4] = [
 pub struct Dop853<D: Dim> {
     dim: D,
     k: [Vector<D>; 16],
-    cont: [Vector<D>; 8],
+    cont: Dop853Dense<D>,
+}
+
+/// DOP853's dense output of one step: the eight coefficient rows of its seventh-order
+/// interpolant ([`crate::DenseOutput`]).
+#[derive(Clone, Debug)]
+pub struct Dop853Dense<D: Dim> {
+    c: [Vector<D>; 8],
 }
 
 impl<const N: usize> Dop853<Const<N>> {
@@ -254,7 +262,9 @@ impl<D: Dim> Dop853<D> {
         Dop853 {
             dim,
             k: std::array::from_fn(|_| dim.zeros()),
-            cont: std::array::from_fn(|_| dim.zeros()),
+            cont: Dop853Dense {
+                c: std::array::from_fn(|_| dim.zeros()),
+            },
         }
     }
 }
@@ -295,6 +305,11 @@ impl<D: Dim> Stepper<D> for Dop853<D> {
     }
 
     const DENSE_ORDER: u32 = 7;
+    type Dense = Dop853Dense<D>;
+
+    fn dense_output(&self) -> &Dop853Dense<D> {
+        &self.cont
+    }
 
     fn attempt<F: Rhs<D>>(
         &mut self,
@@ -363,35 +378,35 @@ impl<D: Dim> Stepper<D> for Dop853<D> {
             let mut v = self.dim.zeros();
             sum::<D>(d, &self.k, &mut v);
             for i in 0..self.dim.size() {
-                self.cont[4 + row][i] = h * v[i];
+                self.cont.c[4 + row][i] = h * v[i];
             }
         }
         for i in 0..self.dim.size() {
             let ydiff = end_y[i] - start.y[i];
             let bspl = h * start.f[i] - ydiff;
-            self.cont[0][i] = start.y[i];
-            self.cont[1][i] = ydiff;
-            self.cont[2][i] = bspl;
-            self.cont[3][i] = ydiff - h * end_f[i] - bspl;
+            self.cont.c[0][i] = start.y[i];
+            self.cont.c[1][i] = ydiff;
+            self.cont.c[2][i] = bspl;
+            self.cont.c[3][i] = ydiff - h * end_f[i] - bspl;
         }
         Ok(())
     }
 
     fn interpolate(&self, s: f64, out: &mut Vector<D>) {
-        fill_all::<D>(out, |i| self.value(s, i));
+        fill_all::<D>(out, |i| self.cont.value_at(s, i));
     }
 
     /// Component by component: the unchosen ones cost nothing.
     fn interpolate_components(&self, s: f64, which: &Components<D>, out: &mut Vector<D>) {
-        which.fill(out, |i| self.value(s, i));
+        which.fill(out, |i| self.cont.value_at(s, i));
     }
 
     fn interpolate_component(&self, s: f64, i: usize) -> f64 {
-        self.value(s, i)
+        self.cont.value_at(s, i)
     }
 
     fn interpolate_derivative(&self, s: f64, h: f64, out: &mut Vector<D>) {
-        fill_all::<D>(out, |i| self.rate(s, h, i));
+        fill_all::<D>(out, |i| self.cont.rate(s, h, i));
     }
 
     /// Component by component, like the values.
@@ -402,16 +417,30 @@ impl<D: Dim> Stepper<D> for Dop853<D> {
         which: &Components<D>,
         out: &mut Vector<D>,
     ) {
-        which.fill(out, |i| self.rate(s, h, i));
+        which.fill(out, |i| self.cont.rate(s, h, i));
     }
 }
 
-impl<D: Dim> Dop853<D> {
+impl<D: Dim> DenseOutput<D> for Dop853Dense<D> {
+    fn dim(&self) -> D {
+        D::of(&self.c[0])
+    }
+
+    fn value(&self, theta: f64, out: &mut Vector<D>) {
+        fill_all::<D>(out, |i| self.value_at(theta, i));
+    }
+
+    fn component(&self, theta: f64, i: usize) -> f64 {
+        self.value_at(theta, i)
+    }
+}
+
+impl<D: Dim> Dop853Dense<D> {
     /// Component `i` of the seventh-order interpolant at `s`.
     #[inline(always)]
-    fn value(&self, s: f64, i: usize) -> f64 {
+    fn value_at(&self, s: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
-        let c = &self.cont;
+        let c = &self.c;
         c[0][i]
             + s * (c[1][i]
                 + s1 * (c[2][i]
@@ -420,12 +449,12 @@ impl<D: Dim> Dop853<D> {
     }
 
     /// Component `i` of the interpolant's exact derivative at `s` (step `h`): the product rule
-    /// through the nesting of [`Self::value`], innermost first (each level is
+    /// through the nesting of [`Self::value_at`], innermost first (each level is
     /// `a_k = c_k + w·a_{k+1}` with `w` alternating between `s` and `1 − s`).
     #[inline(always)]
     fn rate(&self, s: f64, h: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
-        let c = &self.cont;
+        let c = &self.c;
         let a6 = c[6][i] + s * c[7][i];
         let d6 = c[7][i];
         let a5 = c[5][i] + s1 * a6;

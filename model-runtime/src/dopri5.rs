@@ -4,6 +4,7 @@
 //! is reused as the next step's first (first same as last), so an accepted step costs six
 //! evaluations and its interpolant none.
 
+use crate::dense::DenseOutput;
 use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::stats::Stats;
@@ -64,7 +65,14 @@ const D: [(usize, f64); 6] = [
 pub struct Dopri5<D: Dim> {
     dim: D,
     k: [Vector<D>; 7],
-    cont: [Vector<D>; 5],
+    cont: Dopri5Dense<D>,
+}
+
+/// Dormand–Prince 5(4)'s dense output of one step: the five coefficient rows of its quartic
+/// interpolant ([`crate::DenseOutput`]).
+#[derive(Clone, Debug)]
+pub struct Dopri5Dense<D: Dim> {
+    c: [Vector<D>; 5],
 }
 
 impl<const N: usize> Dopri5<Const<N>> {
@@ -80,7 +88,9 @@ impl<D: Dim> Dopri5<D> {
         Dopri5 {
             dim,
             k: std::array::from_fn(|_| dim.zeros()),
-            cont: std::array::from_fn(|_| dim.zeros()),
+            cont: Dopri5Dense {
+                c: std::array::from_fn(|_| dim.zeros()),
+            },
         }
     }
 }
@@ -100,6 +110,11 @@ impl<D: Dim> Stepper<D> for Dopri5<D> {
     }
 
     const DENSE_ORDER: u32 = 4;
+    type Dense = Dopri5Dense<D>;
+
+    fn dense_output(&self) -> &Dopri5Dense<D> {
+        &self.cont
+    }
 
     fn attempt<F: Rhs<D>>(
         &mut self,
@@ -143,30 +158,30 @@ impl<D: Dim> Stepper<D> for Dopri5<D> {
         for i in 0..self.dim.size() {
             let ydiff = end_y[i] - start.y[i];
             let bspl = h * start.f[i] - ydiff;
-            self.cont[0][i] = start.y[i];
-            self.cont[1][i] = ydiff;
-            self.cont[2][i] = bspl;
-            self.cont[3][i] = ydiff - h * end_f[i] - bspl;
-            self.cont[4][i] = h * d[i];
+            self.cont.c[0][i] = start.y[i];
+            self.cont.c[1][i] = ydiff;
+            self.cont.c[2][i] = bspl;
+            self.cont.c[3][i] = ydiff - h * end_f[i] - bspl;
+            self.cont.c[4][i] = h * d[i];
         }
         Ok(())
     }
 
     fn interpolate(&self, s: f64, out: &mut Vector<D>) {
-        fill_all::<D>(out, |i| self.value(s, i));
+        fill_all::<D>(out, |i| self.cont.value_at(s, i));
     }
 
     fn interpolate_derivative(&self, s: f64, h: f64, out: &mut Vector<D>) {
-        fill_all::<D>(out, |i| self.rate(s, h, i));
+        fill_all::<D>(out, |i| self.cont.rate(s, h, i));
     }
 
     /// Component by component: the unchosen ones cost nothing.
     fn interpolate_components(&self, s: f64, which: &Components<D>, out: &mut Vector<D>) {
-        which.fill(out, |i| self.value(s, i));
+        which.fill(out, |i| self.cont.value_at(s, i));
     }
 
     fn interpolate_component(&self, s: f64, i: usize) -> f64 {
-        self.value(s, i)
+        self.cont.value_at(s, i)
     }
 
     fn interpolate_derivative_components(
@@ -176,16 +191,30 @@ impl<D: Dim> Stepper<D> for Dopri5<D> {
         which: &Components<D>,
         out: &mut Vector<D>,
     ) {
-        which.fill(out, |i| self.rate(s, h, i));
+        which.fill(out, |i| self.cont.rate(s, h, i));
     }
 }
 
-impl<D: Dim> Dopri5<D> {
+impl<D: Dim> DenseOutput<D> for Dopri5Dense<D> {
+    fn dim(&self) -> D {
+        D::of(&self.c[0])
+    }
+
+    fn value(&self, theta: f64, out: &mut Vector<D>) {
+        fill_all::<D>(out, |i| self.value_at(theta, i));
+    }
+
+    fn component(&self, theta: f64, i: usize) -> f64 {
+        self.value_at(theta, i)
+    }
+}
+
+impl<D: Dim> Dopri5Dense<D> {
     /// Component `i` of the quartic interpolant at `s`.
     #[inline(always)]
-    fn value(&self, s: f64, i: usize) -> f64 {
+    fn value_at(&self, s: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
-        let c = &self.cont;
+        let c = &self.c;
         c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])))
     }
 
@@ -194,7 +223,7 @@ impl<D: Dim> Dopri5<D> {
     #[inline(always)]
     fn rate(&self, s: f64, h: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
-        let c = &self.cont;
+        let c = &self.c;
         let q = c[3][i] + s1 * c[4][i];
         let r = c[2][i] + s * q;
         let dr = q - s * c[4][i];

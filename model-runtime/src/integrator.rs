@@ -6,6 +6,7 @@
 //! gets the same rejection logic, end-time handling and collapse detection.
 
 use crate::control::{initial_step, min_step, Controller, StepOptions};
+use crate::dense::{place_in_step, Interpolant, OwnedStep, StoredInterpolant};
 use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::{InputError, SolveError};
 use crate::stats::Stats;
@@ -442,26 +443,48 @@ pub struct DenseStep<'a, S, D: Dim> {
 impl<S: Stepper<D>, D: Dim> DenseStep<'_, S, D> {
     /// The interpolated state at `t ∈ [t0, t1]` (clamped; end points are exact).
     pub fn at(&self, t: f64, out: &mut Vector<D>) {
-        if t <= self.t0 {
-            out.assign(self.y0);
-        } else if t >= self.t1 {
-            out.assign(self.y1);
-        } else {
-            self.stepper
-                .interpolate((t - self.t0) / (self.t1 - self.t0), out);
+        match place_in_step(t, self.t0, self.t1) {
+            Ok(theta) => self.stepper.interpolate(theta, out),
+            Err(true) => out.assign(self.y1),
+            Err(false) => out.assign(self.y0),
         }
     }
 
     /// Component `i` of [`DenseStep::at`], interpolating that component only.
     pub fn component_at(&self, t: f64, i: usize) -> f64 {
-        if t <= self.t0 {
-            self.y0[i]
-        } else if t >= self.t1 {
-            self.y1[i]
-        } else {
-            self.stepper
-                .interpolate_component((t - self.t0) / (self.t1 - self.t0), i)
+        match place_in_step(t, self.t0, self.t1) {
+            Ok(theta) => self.stepper.interpolate_component(theta, i),
+            Err(true) => self.y1[i],
+            Err(false) => self.y0[i],
         }
+    }
+
+    /// The step with a copy of its method's coefficients (for a stored interpolant).
+    pub(crate) fn to_owned_step(&self) -> OwnedStep<S::Dense, D> {
+        OwnedStep {
+            t: (self.t0, self.t1),
+            y0: self.y0.clone(),
+            y1: self.y1.clone(),
+            coefficients: self.stepper.dense_output().clone(),
+        }
+    }
+}
+
+impl<S: Stepper<D>, D: Dim> Interpolant<D> for DenseStep<'_, S, D> {
+    fn dim(&self) -> D {
+        D::of(self.y0)
+    }
+
+    fn at(&self, t: f64, out: &mut Vector<D>) {
+        DenseStep::at(self, t, out)
+    }
+
+    fn component_at(&self, t: f64, i: usize) -> f64 {
+        DenseStep::component_at(self, t, i)
+    }
+
+    fn stored(&self) -> StoredInterpolant<D> {
+        StoredInterpolant::new(DenseStep::to_owned_step(self))
     }
 }
 

@@ -61,7 +61,9 @@
 //!   [`TimeScale`], [`Regularised`], [`ClockGuard`], [`Clocked`], and the observer adaptor
 //!   [`PhysicalTime`].
 //! * **Streaming output**: [`Observer`], [`StepView`], [`Sample`], [`Interpolant`],
-//!   [`TransitionRecord`], [`TransitionKind`], [`Recorder`].
+//!   [`TransitionRecord`], [`TransitionKind`], [`Recorder`]; a step's interpolant kept after
+//!   the step, [`StoredInterpolant`], from each method's [`DenseOutput`] ([`Dopri5Dense`],
+//!   [`Dop853Dense`], [`Rodas4Dense`], [`Rk4Dense`]).
 //! * **Work and failures**: [`Stats`], [`ComponentCounts`]; [`SolveError`], [`InputError`],
 //!   [`GroupProblem`]; reading settings spelled as words, [`parse_word`] and
 //!   [`ParseSettingError`].
@@ -91,6 +93,7 @@
 
 mod accumulation;
 mod control;
+mod dense;
 mod dim;
 mod dop853;
 mod dopri5;
@@ -120,9 +123,10 @@ mod tolerance;
 
 pub use accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
 pub use control::{StepControl, StepOptions};
+pub use dense::{DenseOutput, Interpolant, StoredInterpolant};
 pub use dim::{Array, Const, Dim, Dyn, Element, Matrix, Vector};
-pub use dop853::Dop853;
-pub use dopri5::Dopri5;
+pub use dop853::{Dop853, Dop853Dense};
+pub use dopri5::{Dopri5, Dopri5Dense};
 pub use error::{parse_word, EvalError, GroupProblem, InputError, ParseSettingError, SolveError};
 pub use events::{Crossed, Direction, EventHit, GuardInputs, GuardSpec, InteriorChecks};
 pub use finite::check_finite;
@@ -138,12 +142,10 @@ pub use jacobian::finite_difference_jacobian;
 pub use linalg::solve_block;
 pub use model::{Evaluation, Model, ModelInfo, OpCounts, System, SystemOutputs, WithOutputs};
 pub use name::{Name, Names};
-pub use observer::{
-    Interpolant, Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
-};
+pub use observer::{Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord};
 pub use readable::Readable;
-pub use rk4::Rk4;
-pub use rodas4::Rodas4;
+pub use rk4::{Rk4, Rk4Dense};
+pub use rodas4::{Rodas4, Rodas4Dense};
 pub use root::{converged_width, find_crossing, Crossing};
 pub use solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
 pub use solve::{Event, EventFunction, Method, Output, Problem};

@@ -1,42 +1,10 @@
 //! Streaming output: a run hands every accepted step, dense sample, event and transition to an
 //! observer as it happens, so a long run never holds its trajectory in memory.
 
+use crate::dense::Interpolant;
 use crate::dim::{Const, Dim, Vector};
 use crate::events::EventHit;
 use std::ops::ControlFlow;
-
-/// Evaluation of the interpolant of one accepted step.
-pub trait Interpolant<D: Dim> {
-    /// The size of the states it interpolates.
-    fn dim(&self) -> D;
-
-    /// The interpolated state at `t` inside the step (clamped to it; end points exact).
-    fn at(&self, t: f64, out: &mut Vector<D>);
-
-    /// Component `i` of [`Interpolant::at`] alone (the same value; a root search on one
-    /// component need not interpolate the others).
-    fn component_at(&self, t: f64, i: usize) -> f64 {
-        let mut out = self.dim().zeros();
-        self.at(t, &mut out);
-        out[i]
-    }
-}
-
-impl<S: crate::stepper::Stepper<D>, D: Dim> Interpolant<D>
-    for crate::integrator::DenseStep<'_, S, D>
-{
-    fn dim(&self) -> D {
-        D::of(self.y0)
-    }
-
-    fn at(&self, t: f64, out: &mut Vector<D>) {
-        crate::integrator::DenseStep::at(self, t, out)
-    }
-
-    fn component_at(&self, t: f64, i: usize) -> f64 {
-        crate::integrator::DenseStep::component_at(self, t, i)
-    }
-}
 
 /// One accepted step as an observer sees it. If an event cut the step short, `t1`/`y1` are the
 /// event time and state (the part of the step after the event is discarded); a step cut to

@@ -2,6 +2,7 @@
 //!
 //! No error control: useful as a simple, predictable baseline and for cross-checks.
 
+use crate::dense::DenseOutput;
 use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::stats::Stats;
@@ -13,11 +14,18 @@ use crate::tolerance::{ErrorEstimate, Tolerance};
 pub struct Rk4<D: Dim> {
     dim: D,
     h: f64,
+    dense: Rk4Dense<D>,
+}
+
+/// RK4's dense output of one step: the ends and slopes of its cubic Hermite interpolant
+/// ([`crate::DenseOutput`]).
+#[derive(Clone, Debug)]
+pub struct Rk4Dense<D: Dim> {
     y0: Vector<D>,
     y1: Vector<D>,
     f0: Vector<D>,
     f1: Vector<D>,
-    h_last: f64,
+    h: f64,
 }
 
 impl<const N: usize> Rk4<Const<N>> {
@@ -34,11 +42,13 @@ impl<D: Dim> Rk4<D> {
         Rk4 {
             dim,
             h,
-            y0: dim.zeros(),
-            y1: dim.zeros(),
-            f0: dim.zeros(),
-            f1: dim.zeros(),
-            h_last: 0.0,
+            dense: Rk4Dense {
+                y0: dim.zeros(),
+                y1: dim.zeros(),
+                f0: dim.zeros(),
+                f1: dim.zeros(),
+                h: 0.0,
+            },
         }
     }
 }
@@ -52,6 +62,11 @@ impl<D: Dim> Stepper<D> for Rk4<D> {
     }
 
     const DENSE_ORDER: u32 = 3;
+    type Dense = Rk4Dense<D>;
+
+    fn dense_output(&self) -> &Rk4Dense<D> {
+        &self.dense
+    }
 
     fn fixed_step(&self) -> Option<f64> {
         Some(self.h)
@@ -97,16 +112,27 @@ impl<D: Dim> Stepper<D> for Rk4<D> {
         h: f64,
         _stats: &mut Stats,
     ) -> Result<(), SolveError> {
-        self.y0.assign(start.y);
-        self.f0.assign(start.f);
-        self.y1.assign(end_y);
-        self.f1.assign(end_f);
-        self.h_last = h;
+        let d = &mut self.dense;
+        d.y0.assign(start.y);
+        d.f0.assign(start.f);
+        d.y1.assign(end_y);
+        d.f1.assign(end_f);
+        d.h = h;
         Ok(())
     }
 
     fn interpolate(&self, s: f64, out: &mut Vector<D>) {
-        hermite::<D>(s, self.h_last, &self.y0, &self.f0, &self.y1, &self.f1, out);
+        self.dense.value(s, out);
+    }
+}
+
+impl<D: Dim> DenseOutput<D> for Rk4Dense<D> {
+    fn dim(&self) -> D {
+        D::of(&self.y0)
+    }
+
+    fn value(&self, s: f64, out: &mut Vector<D>) {
+        hermite::<D>(s, self.h, &self.y0, &self.f0, &self.y1, &self.f1, out);
     }
 }
 

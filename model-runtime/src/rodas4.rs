@@ -9,6 +9,7 @@
 // The coefficients are kept digit for digit as published.
 #![allow(clippy::excessive_precision)]
 
+use crate::dense::DenseOutput;
 use crate::dim::{Const, Dim, Vector};
 use crate::error::SolveError;
 use crate::lu::Lu;
@@ -74,7 +75,14 @@ const D3: [f64; 5] = [
 pub struct Rodas4<D: Dim> {
     dim: D,
     k: [Vector<D>; 6],
-    cont: [Vector<D>; 4],
+    cont: Rodas4Dense<D>,
+}
+
+/// RODAS4's dense output of one step: the four coefficient rows of its cubic interpolant
+/// ([`crate::DenseOutput`]).
+#[derive(Clone, Debug)]
+pub struct Rodas4Dense<D: Dim> {
+    c: [Vector<D>; 4],
 }
 
 impl<const N: usize> Rodas4<Const<N>> {
@@ -90,7 +98,9 @@ impl<D: Dim> Rodas4<D> {
         Rodas4 {
             dim,
             k: std::array::from_fn(|_| dim.zeros()),
-            cont: std::array::from_fn(|_| dim.zeros()),
+            cont: Rodas4Dense {
+                c: std::array::from_fn(|_| dim.zeros()),
+            },
         }
     }
 }
@@ -110,6 +120,11 @@ impl<D: Dim> Stepper<D> for Rodas4<D> {
     }
 
     const DENSE_ORDER: u32 = 3;
+    type Dense = Rodas4Dense<D>;
+
+    fn dense_output(&self) -> &Rodas4Dense<D> {
+        &self.cont
+    }
 
     fn attempt<F: Rhs<D>>(
         &mut self,
@@ -216,18 +231,28 @@ impl<D: Dim> Stepper<D> for Rodas4<D> {
                 d2 += D2[j] * self.k[j][i];
                 d3 += D3[j] * self.k[j][i];
             }
-            self.cont[0][i] = start.y[i];
-            self.cont[1][i] = end_y[i];
-            self.cont[2][i] = d2;
-            self.cont[3][i] = d3;
+            self.cont.c[0][i] = start.y[i];
+            self.cont.c[1][i] = end_y[i];
+            self.cont.c[2][i] = d2;
+            self.cont.c[3][i] = d3;
         }
         Ok(())
     }
 
     fn interpolate(&self, s: f64, out: &mut Vector<D>) {
+        self.cont.value(s, out);
+    }
+}
+
+impl<D: Dim> DenseOutput<D> for Rodas4Dense<D> {
+    fn dim(&self) -> D {
+        D::of(&self.c[0])
+    }
+
+    fn value(&self, s: f64, out: &mut Vector<D>) {
         let s1 = 1.0 - s;
-        let c = &self.cont;
-        for i in 0..self.dim.size() {
+        let c = &self.c;
+        for i in 0..self.dim().size() {
             out[i] = c[0][i] * s1 + s * (c[1][i] + s1 * (c[2][i] + s * c[3][i]));
         }
     }

@@ -5,6 +5,7 @@
 //! accepted one; step-size control, end times, events and observers live in the driver. All
 //! buffers are fixed-size arrays inside the stepper, so stepping allocates nothing.
 
+use crate::dense::DenseOutput;
 use crate::dim::{Const, Dim, Matrix, Vector};
 use crate::error::{EvalError, SolveError};
 use crate::stats::Stats;
@@ -237,6 +238,12 @@ pub trait Stepper<D: Dim> {
     const ERROR_ORDER: u32;
     /// Order of the interpolant inside a step.
     const DENSE_ORDER: u32;
+    /// The coefficients of its interpolant over one step (what [`Stepper::interpolate`]
+    /// evaluates), which a caller may copy and keep ([`crate::StoredInterpolant`]).
+    type Dense: DenseOutput<D>;
+
+    /// The interpolant of the last prepared step ([`Stepper::prepare_dense`]).
+    fn dense_output(&self) -> &Self::Dense;
 
     /// The size of the states it steps.
     fn dim(&self) -> D;

@@ -51,6 +51,10 @@ pub struct Summary {
     pub steps: Option<u64>,
     /// Right-hand-side evaluations (`null` as for `steps`).
     pub rhs_evals: Option<u64>,
+    /// A failed run's last accepted state: time, mode, the states by name, slip, forces and
+    /// energy (the library's record). Written only for a failed run that took a step.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub last_state: Option<Sample>,
     /// Wall-clock time (s).
     pub wall_s: f64,
     /// Period of θ in the first simulated second (s).
@@ -223,6 +227,7 @@ impl Summary {
             model_reason: data.model.reason.clone(),
             start_mode: start_mode(data),
             stop_reason: data.stop.as_ref().map(|x| x.kind),
+            last_state: data.last_state,
             stop_detail: data
                 .stop
                 .as_ref()

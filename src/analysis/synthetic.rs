@@ -125,6 +125,7 @@ impl SyntheticRun {
                 kind: StopKind::EndTime,
                 detail: String::new(),
             }),
+            last_state: None,
             work: Work {
                 steps: Some(10),
                 rhs_evals: Some(100),

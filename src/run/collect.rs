@@ -60,11 +60,14 @@ impl Collector {
         self.data.events.push(e);
     }
 
-    /// Takes located extrema, if the plan keeps them ([`SamplePlan::keeps_extrema`]).
+    /// Takes located extrema.
     pub fn extrema(&mut self, batch: Vec<equations::Extremum>) {
-        if self.plan.keeps_extrema() {
-            self.data.extrema.extend(batch);
-        }
+        self.data.extrema.extend(batch);
+    }
+
+    /// Takes the last second of a run that ended before the plan's last window.
+    pub fn last_second(&mut self, samples: Vec<Sample>) {
+        self.data.last_second = samples;
     }
 
     /// Whether it writes the trajectory file as the samples arrive.

@@ -34,7 +34,7 @@ use crate::record::{RunData, Timings};
 use crate::scene::Scene;
 use collect::Collector;
 use equations::record::Quantity;
-use equations::record::{Stop, StopKind};
+use equations::record::{Sample, Stop, StopKind};
 use equations::Mode;
 use model::ModelChoice;
 use plan::SamplePlan;
@@ -221,8 +221,8 @@ struct Simulated {
     timings: Timings,
 }
 
-/// The simulation of `scene` with the models of `choice`, the last second of an early stop
-/// sampled, and the work and drift filled in.
+/// The simulation of `scene` with the models of `choice` (in one pass: the last second of an
+/// early stop is sampled from the steps the run kept), and the work and drift filled in.
 fn simulate(
     scene: &Scene,
     choice: ModelChoice,
@@ -232,27 +232,18 @@ fn simulate(
     started: Instant,
 ) -> Result<Simulated, WriteError> {
     let plan = scene_plan(scene);
-    let recorded = record(scene, &choice, plan.clone(), interrupt, progress, file);
+    let recorded = record(scene, &choice, plan, interrupt, progress, file);
     let Recorded {
         mut data,
         outcome,
         file,
     } = recorded?;
-    let mut timings = Timings {
+    let timings = Timings {
         simulation_s: started.elapsed().as_secs_f64(),
         ..Timings::default()
     };
     let stop = data.stop.clone().expect("a recorded run has a stop");
     let ending = ending_of(&stop);
-    if ending != Ending::Interrupted && !plan.covers_last_second(stop.t) {
-        // The run stopped early: its last second was not known in advance. The simulation is
-        // deterministic, so a second pass sampling only that second records the same motion.
-        let replay = plan.last_second_before(stop.t);
-        let mut quiet = Progress::new(ProgressStyle::Quiet, scene.file.settings.run.t_end);
-        let again = record(scene, &choice, replay, interrupt, &mut quiet, None)?;
-        data.last_second = again.data.last_second;
-        timings.replay_s = started.elapsed().as_secs_f64() - timings.simulation_s;
-    }
     data.work.wall_s = timings.simulation_s;
     // The drift includes `Z - a sin(theta)`: meaningless where Z is frozen.
     data.constraint_drift_max = outcome
@@ -305,9 +296,11 @@ pub fn record(
         stop,
         steps,
         rhs_evals,
+        last_state,
     } = ended;
     let (mut data, file) = collector.finish(outcome.as_ref().map(|o| o.last))?;
     data.stop = Some(stop);
+    data.last_state = last_state;
     // A failed run reports the work it did too.
     data.work.steps = steps;
     data.work.rhs_evals = rhs_evals;
@@ -334,6 +327,10 @@ impl simulation::Outlet for &mut Inline<'_> {
             }
             Message::Extrema(batch) => {
                 self.collector.extrema(batch);
+                Ok(())
+            }
+            Message::LastSecond(samples) => {
+                self.collector.last_second(samples);
                 Ok(())
             }
             Message::Done(_) => Ok(()),
@@ -368,28 +365,32 @@ fn collect(
             }
             Ok(Message::Event(e)) => collector.event(e),
             Ok(Message::Extrema(batch)) => collector.extrema(batch),
+            Ok(Message::LastSecond(samples)) => collector.last_second(samples),
             Ok(Message::Done(done)) => break Ended::of(*done, collector),
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => {
                 let why = "the simulation thread died".to_string();
                 break Ended {
                     outcome: None,
-                    stop: abandoned(collector, why, None),
+                    stop: abandoned(collector, why, None, None),
                     steps: None,
                     rhs_evals: None,
+                    last_state: None,
                 };
             }
         }
     })
 }
 
-/// How the simulation ended: its outcome (`None` when it failed), the stop record, and the
-/// work it reported (`None` when it reported none: its thread died).
+/// How the simulation ended: its outcome (`None` when it failed), the stop record, the
+/// work it reported (`None` when it reported none: its thread died) and, when it failed, the
+/// last state it reached.
 struct Ended {
     outcome: Option<Outcome>,
     stop: Stop,
     steps: Option<u64>,
     rhs_evals: Option<u64>,
+    last_state: Option<Sample>,
 }
 
 impl Ended {
@@ -401,24 +402,37 @@ impl Ended {
                 steps: Some(o.steps),
                 rhs_evals: Some(o.rhs_evals),
                 outcome: Some(o),
+                last_state: None,
             },
             Err(failure) => Ended {
                 outcome: None,
-                stop: abandoned(collector, failure.message, failure.t),
+                stop: abandoned(
+                    collector,
+                    failure.message,
+                    failure.t,
+                    failure.last.as_deref(),
+                ),
                 steps: Some(failure.steps),
                 rhs_evals: Some(failure.rhs_evals),
+                last_state: failure.last.map(|s| *s),
             },
         }
     }
 }
 
-/// The stop of a run that failed without an outcome, dated at `t` (the failure's own time)
-/// or where the collector last heard of it, whichever is later.
-fn abandoned(c: &Collector, detail: String, t: Option<f64>) -> Stop {
+/// The stop of a run that failed without an outcome, dated at `t` (the failure's own time),
+/// at its last accepted state `last` or where the collector last heard of it, whichever is
+/// latest; in the mode of the latest of those it knows.
+fn abandoned(c: &Collector, detail: String, t: Option<f64>, last: Option<&Sample>) -> Stop {
     let heard = c.latest_t().unwrap_or(0.0);
+    let reached = last.map_or(heard, |s| s.t.max(heard));
+    let mode = (last.filter(|s| s.t >= heard).map(|s| s.mode))
+        .or(c.latest_mode())
+        .unwrap_or(Mode::Rolling);
     Stop::failed(
-        t.filter(|t| t.is_finite()).map_or(heard, |t| t.max(heard)),
-        c.latest_mode().unwrap_or(Mode::Rolling),
+        t.filter(|t| t.is_finite())
+            .map_or(reached, |t| t.max(reached)),
+        mode,
         detail,
     )
 }

@@ -41,7 +41,8 @@ pub struct SamplePlan {
     pub rate: f64,
     /// Fine grid points per trajectory point.
     pub every: u64,
-    /// Whether the coarse grid is recorded at all (a replay of the last second is not).
+    /// Whether the coarse grid is recorded at all (the last second before an early stop,
+    /// sampled after the run, is not).
     pub coarse: bool,
     /// The first second (fine), if recorded.
     pub first: Option<Range<f64>>,
@@ -103,8 +104,9 @@ impl SamplePlan {
         }
     }
 
-    /// The plan of a replay that records only the last second before `t_stop` (for a run that
-    /// stopped before its end time, whose last second was not known in advance).
+    /// The plan that records only the last second before `t_stop`: a run that stopped before
+    /// its end time, whose last second was not known in advance, samples it from the steps it
+    /// kept.
     pub fn last_second_before(&self, t_stop: f64) -> SamplePlan {
         SamplePlan {
             coarse: false,
@@ -115,8 +117,11 @@ impl SamplePlan {
         }
     }
 
-    /// Whether the last window of this plan covers the second before `t_stop`.
+    /// Whether the last window of this plan covers the second before `t_stop`. A stop past
+    /// the last window's end is at its end: a run in regularised time reaches its end time
+    /// on its clock, which may read a few ulps more.
     pub fn covers_last_second(&self, t_stop: f64) -> bool {
+        let t_stop = self.last.as_ref().map_or(t_stop, |w| t_stop.min(w.end));
         let before = (t_stop - WINDOW).max(self.t0);
         let within = |w: &Range<f64>| w.start <= before && t_stop <= w.end;
         self.last.as_ref().is_some_and(within) || self.first.as_ref().is_some_and(within)
@@ -156,12 +161,6 @@ impl SamplePlan {
         } else {
             None
         }
-    }
-
-    /// Whether located extrema are kept: in a full run all of them, in a replay of the last
-    /// second none (the first pass, which ran through the same motion, kept them).
-    pub fn keeps_extrema(&self) -> bool {
-        self.coarse
     }
 
     /// Whether the sample at `t` belongs in the trajectory file: on its grid, or on the grid
@@ -251,6 +250,8 @@ mod tests {
         assert!(plan.covers_last_second(100.0));
         assert!(plan.covers_last_second(0.7), "a run shorter than a second");
         assert!(!plan.covers_last_second(18.2));
+        // The regularised clock ends an ulp or two past the end time.
+        assert!(plan.covers_last_second(100.00000000000011));
         let replay = plan.last_second_before(18.2);
         assert!(replay.covers_last_second(18.2));
         assert!(!replay.wants(10.0));

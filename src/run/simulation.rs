@@ -16,13 +16,13 @@ use std::thread::Scope;
 use equations::record::{FrictionLaw, Sample, Stop};
 use equations::DIM;
 use equations::{
-    simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum, InitialState,
+    simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum, InitialState, Trailing,
     TransitionRecord,
 };
 use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
-use super::plan::SamplePlan;
+use super::plan::{SamplePlan, WINDOW};
 use crate::scene::Scene;
 use equations::record::forget_frozen;
 
@@ -35,6 +35,9 @@ pub enum Message {
     Event(TransitionRecord),
     /// Located extrema, in order.
     Extrema(Vec<Extremum>),
+    /// The finely sampled last second of a run that stopped before its plan's last window
+    /// (sampled, once the run had ended, from its kept steps).
+    LastSecond(Vec<Sample>),
     /// The run ended (boxed: an outcome holds a whole sample).
     Done(Box<Result<Outcome, Failure>>),
 }
@@ -50,6 +53,9 @@ pub struct Failure {
     pub rhs_evals: u64,
     /// When it failed (s), if the error says.
     pub t: Option<f64>,
+    /// The disk at the end of the last accepted step, if a step was accepted (boxed: a
+    /// failure is rare, the record large).
+    pub last: Option<Box<Sample>>,
 }
 
 impl Failure {
@@ -60,6 +66,7 @@ impl Failure {
             steps: 0,
             rhs_evals: 0,
             t: None,
+            last: None,
         }
     }
 }
@@ -127,6 +134,15 @@ struct ChannelObserver<'a, O> {
 }
 
 impl<O: Outlet> ChannelObserver<'_, O> {
+    /// The named record of the simulation's sample, frozen states blanked.
+    fn record(&self, sample: &DiskSample) -> Sample {
+        let mut s = Sample::of(sample, self.law);
+        if !self.frozen.is_empty() {
+            forget_frozen(&mut s, &self.frozen);
+        }
+        s
+    }
+
     fn send(&mut self, m: Message) {
         if self.open && !self.tx.deliver(m) {
             self.open = false;
@@ -151,10 +167,7 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     }
 
     fn on_sample(&mut self, sample: &DiskSample) {
-        let mut s = Sample::of(sample, self.law);
-        if !self.frozen.is_empty() {
-            forget_frozen(&mut s, &self.frozen);
-        }
+        let s = self.record(sample);
         self.batch.push(s);
         if self.batch.len() >= BATCH || s.t >= self.flush_at {
             self.flush_at = s.t + self.flush_every;
@@ -173,6 +186,29 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
     fn on_transition(&mut self, record: &TransitionRecord) {
         self.flush();
         self.send(Message::Event(*record));
+    }
+
+    fn keeps_trailing(&self) -> Option<f64> {
+        Some(WINDOW)
+    }
+
+    /// A run that ended before its plan's last window gets the last second before its end
+    /// from the steps it kept (an interrupted run does not: it was not meant to end there).
+    fn on_trailing(&mut self, trailing: &Trailing<'_>) {
+        let Some((_, end)) = trailing.span() else {
+            return;
+        };
+        if self.interrupted || self.plan.covers_last_second(end) {
+            return;
+        }
+        let last = self.plan.last_second_before(end);
+        let samples = (trailing.grid(end - WINDOW))
+            .filter(|&t| last.wants(t))
+            .map_while(|t| trailing.sample(t)?.ok())
+            .map(|s| self.record(&s))
+            .collect();
+        self.flush();
+        self.send(Message::LastSecond(samples));
     }
 
     fn proceed(&mut self) -> ControlFlow<()> {
@@ -196,13 +232,15 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
     type Output = Result<Outcome, Failure>;
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
-        simulate(models, self.config, self.initial, self.observer)
+        let result = simulate(models, self.config, self.initial, self.observer);
+        result
             .map(|o| outcome(&o, self.config, FrictionLaw::of(&models.params)))
             .map_err(|failure| Failure {
                 message: failure.to_string(),
                 steps: failure.stats.steps,
                 rhs_evals: failure.stats.rhs_evals,
                 t: failure.error.time(),
+                last: failure.last.map(|s| Box::new(self.observer.record(&s))),
             })
     }
 }

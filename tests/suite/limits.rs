@@ -48,6 +48,15 @@ fn a_collapsing_step_size_meets_the_work_bound_said_by_its_key() {
             "{steps} vs {budget}"
         );
         assert!(summary["rhs_evals"].as_u64().unwrap() as f64 > steps);
+        // Where it got: the end of its last accepted step, by the state names.
+        let last = &summary["last_state"];
+        let t_last = last["t"].as_f64().unwrap();
+        assert!(t_last > 0.0 && t_last <= t_fail, "{t_last} {t_fail}");
+        let state = last["state"].as_object().unwrap();
+        assert_eq!(state.len(), 12, "{state:?}");
+        assert!(state
+            .values()
+            .all(|v| v.as_f64().is_some_and(f64::is_finite)));
         steps_at.push(steps);
         for name in ["trajectory.csv", "extrema.csv"] {
             let (header, rows) = csv(&out.join(name));

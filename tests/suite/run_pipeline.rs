@@ -87,7 +87,8 @@ fn a_scene_simulated_in_memory_is_the_run_written_to_files() {
 }
 
 /// A run that fails (here: out of its step budget) reports the work it did until then, in
-/// memory and in `summary.json`, where the steps used to be `null`.
+/// memory and in `summary.json`, where the steps used to be `null`, and the last state it
+/// reached: the end of its last accepted step, every state by its name.
 #[test]
 fn a_failed_run_reports_its_steps_and_evaluations() {
     let overrides = [Override::new("run", "t_end", 5.0)];
@@ -114,11 +115,40 @@ fn a_failed_run_reports_its_steps_and_evaluations() {
     let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
     let json: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(json["steps"].as_u64(), Some(steps));
+    // The last accepted state: before the failure, after the last sample kept, on the
+    // constraints of its mode (Z = a sin θ).
+    let last = s.last_state.expect("a failed run's last state");
+    let latest = report.data.samples.last().unwrap();
+    assert!(
+        last.t > 0.0 && last.t <= s.t_end && last.t >= latest.t,
+        "{} {} {}",
+        last.t,
+        s.t_end,
+        latest.t
+    );
+    assert_eq!(last.mode, latest.mode);
+    let a = scene.params.a;
+    assert!((last.state.z - a * last.state.theta.sin()).abs() < 1e-9);
+    let written = &json["last_state"];
+    assert_eq!(written["t"].as_f64(), Some(last.t));
+    assert_eq!(written["mode"].as_str(), Some(last.mode.name()));
+    let state = written["state"].as_object().unwrap();
+    let names: Vec<&str> = state.keys().map(String::as_str).collect();
+    let mut expected = equations::STATE_NAMES.to_vec();
+    expected.sort_unstable();
+    assert_eq!(names, expected);
+    assert_eq!(state["theta"].as_f64(), Some(last.state.theta));
+    assert_eq!(state["Omega_z"].as_f64(), Some(last.state.omega_z));
+    // A run that ends by itself writes no such key: its final state ends the trajectory.
+    let (dir, _) = short_run(0.2, Backend::Generated);
+    let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(json.get("last_state").is_none());
 }
 
 /// The paper's reading of the slip sign lifts the disk off the floor at t ≈ 18.16 s: the
-/// run stops long before its end time, so its last second was not sampled finely the first
-/// time; a replay samples it, and the trajectory still ends at the stop.
+/// run stops long before its end time, so its last second was not sampled finely while it
+/// ran; it is sampled from the steps the run kept, and the trajectory still ends at the stop.
 #[test]
 fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
     let overrides = [
@@ -129,7 +159,6 @@ fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
     let s = &report.summary;
     assert_eq!(s.stop_reason.map(StopKind::name), Some("contact_lost"));
     assert!((s.t_end - 18.159).abs() < 1e-3, "{}", s.t_end);
-    assert!(s.timings.replay_s > 0.0);
     // 20 kHz over the second before the stop; 1 kHz (every 20th) for the trajectory.
     assert!(
         (19_990..=20_001).contains(&s.samples.last_second),
@@ -139,6 +168,60 @@ fn a_run_that_stops_early_gets_its_last_second_sampled_finely() {
     assert_eq!(s.samples.first_second, 20_001);
     assert_eq!(s.samples.trajectory, 18_160 + 1);
     assert!(s.n_over_mg_max_last_s.is_some() && s.theta_period_last_s.is_some());
+}
+
+/// The last second a run samples from its kept steps is the one a second pass sampling only
+/// that second records (what the run did before): the same times, modes, states and forces,
+/// bit for bit, for a run that stops early (in regularised and in physical time) and for one
+/// that ends at its end time.
+#[test]
+fn the_kept_last_second_is_the_one_a_second_pass_samples() {
+    let early = [
+        Override::new("run", "t_end", 30.0),
+        Override::new("run", "slip_sign", "paper"),
+    ];
+    let physical = [
+        Override::new("run", "t_end", 30.0),
+        Override::new("run", "slip_sign", "paper"),
+        Override::new("solver", "time", "physical"),
+    ];
+    let to_the_end = [Override::new("run", "t_end", 2.5)];
+    for overrides in [&early[..], &physical, &to_the_end] {
+        let scene = load_scene("tangent-toy", overrides).unwrap();
+        let run = simulate_scene(&scene, Backend::Generated, &AtomicBool::new(false)).unwrap();
+        let stop = run.data.stop.clone().unwrap();
+        let replayed = replay_last_second(&scene, stop.t);
+        let kept = &run.data.last_second;
+        assert!(kept.len() > 19_000, "{}", kept.len());
+        assert_eq!(kept.len(), replayed.len(), "{overrides:?}");
+        for (a, b) in kept.iter().zip(&replayed) {
+            assert_eq!((a.t.to_bits(), a.mode), (b.t.to_bits(), b.mode));
+            let (ya, yb) = (a.state.to_array(), b.state.to_array());
+            let values = ya.into_iter().zip(yb).chain([
+                (a.forces.normal, b.forces.normal),
+                (a.forces.r_x, b.forces.r_x),
+                (a.forces.r_y, b.forces.r_y),
+                (a.energy, b.energy),
+                (a.slip.speed, b.slip.speed),
+            ]);
+            for (u, v) in values {
+                assert_eq!(u.to_bits(), v.to_bits(), "t = {}: {u} {v}", a.t);
+            }
+        }
+    }
+}
+
+/// The last second before `t_stop` of a second run of `scene` that samples only that second.
+fn replay_last_second(scene: &eulerdisk::Scene, t_stop: f64) -> Vec<equations::record::Sample> {
+    let run = &scene.file.settings.run;
+    let plan = eulerdisk::SamplePlan::new(0.0, run.t_end, run.sample_rate)
+        .with_windows(&scene.file.cli.output.windows)
+        .last_second_before(t_stop);
+    let choice = eulerdisk::choose(scene, Backend::Generated, false);
+    let mut quiet = eulerdisk::Progress::new(eulerdisk::ProgressStyle::Quiet, run.t_end);
+    let stop = AtomicBool::new(false);
+    let again = eulerdisk::record_run(scene, &choice, plan, &stop, &mut quiet, None).unwrap();
+    again.data.last_second
 }
 
 /// An interrupt stops the simulation itself, at its next step: the run reports the work done

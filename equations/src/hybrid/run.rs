@@ -4,6 +4,7 @@
 use super::extrema::Scanner;
 use super::models::DiskModels;
 use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
+use super::trailing::{StepRing, Trailing};
 use super::{
     DiskObserver, DiskSample, RunOutcome, SimError, SimFailure, StopReason, TransitionRecord,
     Trigger,
@@ -149,6 +150,7 @@ where
         error: e.into(),
     };
     let tolerance = config.tolerance(models.chart).map_err(input_error)?;
+    let ring = observer_ring(observer, (initial.t, config.sample_rate));
     let mut adaptor = Adaptor {
         models,
         bridge,
@@ -157,6 +159,8 @@ where
         failure: None,
         scanner: Scanner::default(),
         work: WorkMeter::new(config.work, initial.t),
+        ring,
+        last: None,
     };
     let (ended, work) = match config.time {
         TimeVariable::Physical => {
@@ -223,12 +227,23 @@ where
             (result, solver.stats())
         }
     };
-    // Every failure from here on has the work done with it.
+    // Every failure from here on has the work done with it, and the last state reached.
+    let last = (adaptor.last.as_ref())
+        .and_then(|l| sample_at(models, l.bridge, l.t, l.phase, &l.y).ok())
+        .map(Box::new);
     let failed = |error: SimError| SimFailure {
         error,
         stats: Box::new(work),
+        last: last.clone(),
     };
     adaptor.end_segment();
+    if let Some(ring) = &adaptor.ring {
+        let sample = |t, phase, bridge, y: &[f64; DIM]| sample_at(models, bridge, t, phase, y);
+        adaptor.user.on_trailing(&Trailing {
+            ring,
+            sample_at: &sample,
+        });
+    }
     let failure = adaptor.failure.take();
     let over_budget = adaptor.work.exceeded();
     if let Ok(Ended {
@@ -307,6 +322,14 @@ pub(super) fn hybrid_options(config: &DiskConfig) -> HybridOptions {
         sample_rate: config.sample_rate,
         guard_checks: config.guard_checks,
     }
+}
+
+/// The ring of latest steps `observer` asks for, if any, on the run's sample `grid` (origin,
+/// rate).
+fn observer_ring<O: DiskObserver>(observer: &O, grid: (f64, Option<f64>)) -> Option<StepRing> {
+    observer
+        .keeps_trailing()
+        .map(|span| StepRing::new(span, grid))
 }
 
 /// A run that ends where it starts, at `first`, before any step.
@@ -523,6 +546,18 @@ struct Adaptor<'a, R, S, O> {
     scanner: Scanner,
     /// Counts the steps against the run's work bound.
     work: WorkMeter,
+    /// The latest steps, when the user keeps them ([`DiskObserver::keeps_trailing`]).
+    ring: Option<StepRing>,
+    /// The end of the last accepted step (what a failed run reports of where it got).
+    last: Option<StepEnd>,
+}
+
+/// The end of an accepted step, with what a sample of it needs.
+struct StepEnd {
+    t: f64,
+    phase: Phase,
+    bridge: Option<Slip>,
+    y: [f64; DIM],
 }
 
 impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
@@ -543,7 +578,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
     }
 
     fn wants_dense(&self) -> bool {
-        self.user.wants_extrema()
+        self.user.wants_extrema() || self.ring.is_some()
     }
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {
@@ -566,6 +601,15 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
 
     fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Phase>) {
         self.work.step(step.t0, step.t1);
+        if let (Some(ring), Some(dense)) = (&mut self.ring, step.dense) {
+            ring.push(dense, (step.t0, step.t1), step.mode, self.bridge);
+        }
+        self.last = Some(StepEnd {
+            t: step.t1,
+            phase: step.mode,
+            bridge: self.bridge,
+            y: *step.y1,
+        });
         if self.user.wants_extrema() {
             let user = &mut *self.user;
             self.scanner

@@ -198,6 +198,7 @@ fn run<St: Stepper<Const<DIM>>, Sc: Stepper<Const<CLOCKED>>>(
         SimFailure {
             error: hybrid_error(error),
             stats,
+            last: None,
         }
     })?;
     let stopped_by = match stop {

@@ -10,20 +10,27 @@ use crate::modes::{Mode, Slip, DIM};
 use crate::params::DiskParams;
 use crate::start::STATE_NAMES;
 
-/// The disk's state in the rolling chart (the paper's rolling unknowns), SI units.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// The disk's state in the rolling chart (the paper's rolling unknowns), SI units. Written
+/// by the state names ([`STATE_NAMES`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct DiskState {
     /// Centre X (m).
+    #[serde(rename = "X")]
     pub x: f64,
     /// Centre Y (m).
+    #[serde(rename = "Y")]
     pub y: f64,
     /// Centre height Z (m).
+    #[serde(rename = "Z")]
     pub z: f64,
     /// Centre velocity X (m/s).
+    #[serde(rename = "V_X")]
     pub v_x: f64,
     /// Centre velocity Y (m/s).
+    #[serde(rename = "V_Y")]
     pub v_y: f64,
     /// Centre velocity Z (m/s).
+    #[serde(rename = "V_Z")]
     pub v_z: f64,
     /// Precession ψ (rad).
     pub psi: f64,
@@ -32,10 +39,13 @@ pub struct DiskState {
     /// Spin φ (rad).
     pub phi: f64,
     /// Ω_x (rad/s).
+    #[serde(rename = "Omega_x")]
     pub omega_x: f64,
     /// Ω_y (rad/s).
+    #[serde(rename = "Omega_y")]
     pub omega_y: f64,
     /// Ω_z (rad/s).
+    #[serde(rename = "Omega_z")]
     pub omega_z: f64,
 }
 
@@ -93,7 +103,7 @@ impl DiskState {
 }
 
 /// Contact forces of a sample, with the friction's magnitude and ratio.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct ContactForces {
     /// Normal force N (N).
     pub normal: f64,
@@ -108,7 +118,7 @@ pub struct ContactForces {
 }
 
 /// One instant of a run.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Sample {
     /// Time (s).
     pub t: f64,
@@ -186,6 +196,17 @@ impl FrictionLaw {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_state_is_written_by_the_state_names() {
+        let y: [f64; 12] = std::array::from_fn(|i| i as f64 + 0.5);
+        let written = toml::Value::try_from(DiskState::from_array(&y)).unwrap();
+        let table = written.as_table().unwrap();
+        assert_eq!(table.len(), STATE_NAMES.len());
+        for (i, name) in STATE_NAMES.iter().enumerate() {
+            assert_eq!(table[*name].as_float(), Some(y[i]), "{name}");
+        }
+    }
 
     #[test]
     fn array_round_trip_keeps_every_name_in_place() {

@@ -26,5 +26,6 @@ mod reference_vs_explicit;
 mod scene_settings;
 mod singular;
 mod switched_disk;
+mod trailing;
 mod trajectories;
 mod variants;

@@ -6,8 +6,9 @@
 //! Apart from the system so that each file holds one side of the transformation.
 
 use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
+use crate::dense::{Interpolant, StoredInterpolant};
 use crate::dim::Const;
-use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::root::find_crossing;
 
 /// An observer of `H` (in physical time) fed by a run of [`crate::Regularised`] (in `τ`).
@@ -63,19 +64,7 @@ where
             if !self.inner.wants_sample(ts) {
                 continue;
             }
-            let target = ts - self.t_seg;
-            let tau = if ts >= t1 {
-                step.t1
-            } else if ts <= t0 {
-                step.t0
-            } else {
-                let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
-                    Ok(dense.component_at(tau, N) - target)
-                };
-                find_crossing(step.t0, t0 - ts, step.t1, t1 - ts, -1.0, clock)
-                    .unwrap_or_else(|never| match never {})
-                    .t
-            };
+            let tau = grid_tau::<_, N, M>(dense, (step.t0, step.t1), (t0, t1), self.t_seg, ts);
             dense.at(tau, &mut z);
             self.inner.on_sample(&Sample {
                 t: ts,
@@ -85,7 +74,7 @@ where
         }
         let (y0, y1) = (head(step.y0), head(step.y1));
         let physical = match step.dense {
-            Some(dense) if self.inner.wants_dense() => Some(InPhysicalTime::<N, M> {
+            Some(dense) if self.inner.wants_dense() => Some(InPhysicalTime::<_, N, M> {
                 dense,
                 tau: (step.t0, step.t1),
                 clock: (step.y0[N], step.y1[N]),
@@ -131,10 +120,37 @@ where
     }
 }
 
-/// A step's dense output in `τ`, evaluated in physical time: each evaluation first finds the
-/// `τ` at which the clock reads `t` (the clock rises monotonically, `s > 0`), to a few ulps.
-struct InPhysicalTime<'a, const N: usize, const M: usize> {
-    dense: &'a dyn Interpolant<Const<M>>,
+/// The `τ` of a step (ends `tau` in `τ`, `t` in physical time, its segment starting at
+/// `t_seg`) at which the clock of `dense` reads the physical time `ts`: how a sample on the
+/// physical grid is placed, live or from a stored step.
+fn grid_tau<I: Interpolant<Const<M>> + ?Sized, const N: usize, const M: usize>(
+    dense: &I,
+    tau: (f64, f64),
+    (t0, t1): (f64, f64),
+    t_seg: f64,
+    ts: f64,
+) -> f64 {
+    let target = ts - t_seg;
+    if ts >= t1 {
+        tau.1
+    } else if ts <= t0 {
+        tau.0
+    } else {
+        let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
+            Ok(dense.component_at(tau, N) - target)
+        };
+        find_crossing(tau.0, t0 - ts, tau.1, t1 - ts, -1.0, clock)
+            .unwrap_or_else(|never| match never {})
+            .t
+    }
+}
+
+/// A step's dense output in `τ` (`I`: lent by the run, or stored), evaluated in physical time:
+/// each evaluation first finds the `τ` at which the clock reads `t` (the clock rises
+/// monotonically, `s > 0`), to a few ulps.
+#[derive(Clone)]
+struct InPhysicalTime<I, const N: usize, const M: usize> {
+    dense: I,
     /// The step's ends in `τ`.
     tau: (f64, f64),
     /// The clock at those ends.
@@ -143,7 +159,7 @@ struct InPhysicalTime<'a, const N: usize, const M: usize> {
     t_seg: f64,
 }
 
-impl<const N: usize, const M: usize> InPhysicalTime<'_, N, M> {
+impl<I: Interpolant<Const<M>>, const N: usize, const M: usize> InPhysicalTime<I, N, M> {
     fn tau_at(&self, t: f64) -> f64 {
         let target = t - self.t_seg;
         let (c0, c1) = self.clock;
@@ -180,7 +196,9 @@ impl<const N: usize, const M: usize> InPhysicalTime<'_, N, M> {
     }
 }
 
-impl<const N: usize, const M: usize> Interpolant<Const<N>> for InPhysicalTime<'_, N, M> {
+impl<I: Interpolant<Const<M>>, const N: usize, const M: usize> Interpolant<Const<N>>
+    for InPhysicalTime<I, N, M>
+{
     fn dim(&self) -> Const<N> {
         Const
     }
@@ -193,5 +211,22 @@ impl<const N: usize, const M: usize> Interpolant<Const<N>> for InPhysicalTime<'_
 
     fn component_at(&self, t: f64, i: usize) -> f64 {
         self.dense.component_at(self.tau_at(t), i)
+    }
+
+    fn sample_at(&self, t: f64, out: &mut [f64; N]) {
+        let ends = (self.t_seg + self.clock.0, self.t_seg + self.clock.1);
+        let tau = grid_tau::<_, N, M>(&self.dense, self.tau, ends, self.t_seg, t);
+        let mut z = [0.0; M];
+        self.dense.at(tau, &mut z);
+        *out = head(&z);
+    }
+
+    fn stored(&self) -> StoredInterpolant<Const<N>> {
+        StoredInterpolant::new(InPhysicalTime::<_, N, M> {
+            dense: self.dense.stored(),
+            tau: self.tau,
+            clock: self.clock,
+            t_seg: self.t_seg,
+        })
     }
 }

@@ -11,11 +11,12 @@ use super::chatter::RecentTransitions;
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
 };
+use crate::dense::Interpolant;
 use crate::dim::{Dim, Matrix, Vector};
 use crate::error::{at, EvalError, InputError, SolveError};
 use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
-use crate::observer::{Interpolant, Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, Stepper};
 use crate::tolerance::Tolerance;

@@ -14,5 +14,6 @@ mod passes;
 mod properties;
 mod sizes;
 mod stiff;
+mod stored;
 mod switched;
 mod switched_regularised;
