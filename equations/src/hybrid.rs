@@ -228,7 +228,7 @@ pub trait DiskObserver {
     /// A mode decision.
     fn on_transition(&mut self, _record: &TransitionRecord) {}
     /// Whether [`DiskObserver::on_extremum`] should be called: the run then scans every step's
-    /// dense output (module [`extrema`]: a few model evaluations per step). Default: no.
+    /// dense output ([`Extremum`]s: a few model evaluations per step). Default: no.
     fn wants_extrema(&self) -> bool {
         false
     }

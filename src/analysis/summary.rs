@@ -77,7 +77,7 @@ pub struct Summary {
     /// at some time of that second (a disk that rolls throughout has one).
     pub rolling_phases_per_s_last: Option<f64>,
     /// As `rolling_phases_per_s_last`, counting only phases that last at least
-    /// [`LONG_PHASE_S`] (the paper's "about 24 per second").
+    /// 1 ms (`LONG_PHASE_S`; the paper's "about 24 per second").
     pub rolling_phases_long_per_s_last: Option<f64>,
     /// Fraction of the last simulated second spent rolling.
     pub rolling_fraction_last: Option<f64>,
