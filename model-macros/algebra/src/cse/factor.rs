@@ -99,14 +99,16 @@ pub(super) fn factored(pool: &mut Pool, terms: &[ExprId]) -> Factored {
         pool,
         terms,
         pulled: HashSet::new(),
-        changed: false,
         work: 0,
     };
     let members: Vec<usize> = (0..factoring.terms.len()).collect();
-    let counts = factoring.count(&members);
-    let expr = factoring.group(members, counts);
+    let mut counts = factoring.count(&members);
+    // A sum with nothing to pull out (as every sum this builds) is left as it is, unbuilt.
+    let shared =
+        counts.most_shared().is_some() || !factoring.shared_coefficients(&members).is_empty();
+    let expr = shared.then(|| factoring.group(members, counts));
     Factored {
-        expr: factoring.changed.then_some(expr),
+        expr,
         work: factoring.work,
     }
 }
@@ -116,8 +118,6 @@ struct Factoring<'p> {
     terms: Vec<Term>,
     /// The factors pulled out on the way down to the group being factored (in all its terms).
     pulled: HashSet<ExprId>,
-    /// Whether anything was pulled out.
-    changed: bool,
     work: usize,
 }
 
@@ -146,7 +146,6 @@ impl Factoring<'_> {
         let mut rest = members;
         let mut parts = Vec::new();
         while let Some(f) = counts.most_shared() {
-            self.changed = true;
             self.work += rest.len();
             let (with, without): (Vec<usize>, Vec<usize>) = rest
                 .iter()
@@ -168,25 +167,22 @@ impl Factoring<'_> {
             counts = outer;
             rest = without;
         }
-        let scaled = self.coefficients(&mut rest, &mut parts);
+        self.coefficients(&mut rest, &mut parts);
         for t in rest {
             let product = self.product(t, 1.0);
             parts.push(product);
         }
-        if scaled {
-            // `c * (sum)` would be distributed again by the sum constructor; keep it apart.
-            self.pool.intern_sum(parts)
-        } else {
-            self.pool.add(&parts)
-        }
+        // The parts are as simple as the terms they come from, and distinct: the sum
+        // constructor would find nothing to collect (its search for `sin^2 + cos^2` costs the
+        // square of a term's factors), and it would distribute the `c` of `c * (sum)` again.
+        self.pool.intern_sum(parts)
     }
 
-    /// Pulls out each numeric coefficient shared (up to sign, other than one) by two or more
-    /// of `rest`, which share no factor: their sums scaled go to `parts`, the others stay in
-    /// `rest`. Returns whether any was pulled out.
-    fn coefficients(&mut self, rest: &mut Vec<usize>, parts: &mut Vec<ExprId>) -> bool {
+    /// The numeric coefficients shared (up to sign, other than one) by two or more of
+    /// `members`, each with the terms that have it, the most shared first.
+    fn shared_coefficients(&self, members: &[usize]) -> Vec<(u64, Vec<usize>)> {
         let mut by_magnitude: HashMap<u64, Vec<usize>> = HashMap::new();
-        for &t in rest.iter() {
+        for &t in members {
             let term = &self.terms[t];
             let c = term.coefficient;
             // Only a finite coefficient can be pulled out: `c / common` is exactly `±1` for a
@@ -201,13 +197,18 @@ impl Factoring<'_> {
             .into_iter()
             .filter(|(_, ts)| ts.len() >= 2)
             .collect();
-        // The most shared first, as each is pulled out (the order new nodes are made in).
+        // In the order they were pulled out one at a time (the order new nodes are made in).
         shared.sort_by_key(|(bits, ts)| (Reverse(ts.len()), *bits));
+        shared
+    }
+
+    /// Pulls out each shared coefficient of `rest`, whose terms share no factor: their sums
+    /// scaled go to `parts`, the others stay in `rest`.
+    fn coefficients(&mut self, rest: &mut Vec<usize>, parts: &mut Vec<ExprId>) {
         let mut taken = HashSet::new();
-        for (bits, members) in &shared {
-            self.changed = true;
+        for (bits, members) in self.shared_coefficients(rest) {
             taken.extend(members.iter().copied());
-            let magnitude = f64::from_bits(*bits);
+            let magnitude = f64::from_bits(bits);
             let negative = members
                 .iter()
                 .filter(|&&t| self.terms[t].coefficient < 0.0)
@@ -218,12 +219,11 @@ impl Factoring<'_> {
                 magnitude
             };
             let inner: Vec<ExprId> = members.iter().map(|&t| self.product(t, common)).collect();
-            let inner = self.pool.add(&inner);
+            let inner = self.pool.intern_sum(inner);
             let c = self.pool.num(common);
             parts.push(self.pool.intern(Node::Mul(vec![c, inner].into())));
         }
         rest.retain(|t| !taken.contains(t));
-        !shared.is_empty()
     }
 
     /// Term `t` divided by `divisor`, without the pulled factors.

@@ -21,6 +21,16 @@ fn compile(text: &str) -> Result<Vec<CompiledModel>, Vec<Located>> {
         .expect("no panic")
 }
 
+/// Held by the tests that allocate tens of megabytes, and by the one that measures this
+/// process's memory, so that it measures only its own (the tests of a binary run in parallel).
+static LARGE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn large() -> std::sync::MutexGuard<'static, ()> {
+    LARGE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 fn errors(text: &str) -> Vec<Located> {
     match compile(text) {
         Ok(_) => panic!("must be rejected: {text}"),
@@ -224,6 +234,7 @@ fn reading_model_after_model_keeps_no_text() {
     // 3,000 reads of a 20 kB text would keep 60 MB if every text stayed recorded.
     let padding = "// a comment that makes the text long enough to notice\n".repeat(400);
     let text = format!("{padding}mod m {{ states {{ x }} equations {{ der(x) = -kk*x; }} }}");
+    let _large = large();
     let read = move || {
         let before = resident();
         for _ in 0..3_000 {
@@ -243,6 +254,7 @@ fn decoupled_states_compile_in_linear_time() {
     // Each Jacobian column, and each block's pivot sampling, costs what its state touches:
     // 10,000 decoupled states took minutes when every one of them went through the whole
     // system (now about a second).
+    let _large = large();
     let n = 10_000;
     let states: Vec<String> = (0..n).map(|k| format!("x{k}")).collect();
     let equations: String = (0..n).map(|k| format!("der(x{k}) = -x{k}*x{k};")).collect();
@@ -277,6 +289,7 @@ fn a_deep_chain_under_der_compiles_to_its_chain_rule() {
     // `der(sin(sin(..(x)..)))` 200 deep: the product rule makes each Jacobian entry a
     // triangular sum of about n²/2 factors, which the factoring of common factors took n³ to
     // nest (seconds at this depth); its value is the chain rule's.
+    let _large = large();
     let n = 200;
     let chain = format!("{}x{}", "sin(".repeat(n), ")".repeat(n));
     let text =
