@@ -15,6 +15,7 @@ use crate::program::{Node as Op, Operand, Program, Stmt, Target};
 use crate::spec::Func;
 use crate::system::{Body, System};
 
+mod factor;
 mod pivots;
 
 /// A symbol with no definition and no input slot (a bug in the caller's selection).
@@ -249,98 +250,10 @@ impl<'a> Emitter<'a> {
         Ok(v)
     }
 
-    /// `Σ f·r_i + rest` as `f·Σ r_i + rest` for the factor `f` shared by the most terms (at
-    /// least two), or `None` if no factor is shared.
+    /// The sum of `terms` with its common factors and coefficients pulled out (see
+    /// [`factor`]), or `None` if its terms share none.
     fn factored(&mut self, terms: &[ExprId]) -> Option<ExprId> {
-        let split: Vec<(f64, Vec<ExprId>)> = terms
-            .iter()
-            .map(|&t| {
-                let (c, rest) = self.pool.split_coefficient(t);
-                let factors = match self.pool.node(rest) {
-                    Node::Mul(fs) => fs.to_vec(),
-                    Node::Const(_) => Vec::new(),
-                    _ => vec![rest],
-                };
-                (c, factors)
-            })
-            .collect();
-        let mut uses: HashMap<ExprId, usize> = HashMap::new();
-        for (_, factors) in &split {
-            for &f in factors {
-                *uses.entry(f).or_default() += 1;
-            }
-        }
-        let Some((&f, _)) = uses
-            .iter()
-            .filter(|(_, &n)| n >= 2)
-            .max_by_key(|(&f, &n)| (n, std::cmp::Reverse(f)))
-        else {
-            return self.factored_coefficient(&split, terms);
-        };
-        let mut inner = Vec::new();
-        let mut rest = Vec::new();
-        for ((c, factors), &t) in split.iter().zip(terms) {
-            if factors.contains(&f) {
-                let mut others: Vec<ExprId> = factors.iter().copied().filter(|&g| g != f).collect();
-                others.push(self.pool.num(*c));
-                inner.push(self.pool.mul(&others));
-            } else {
-                rest.push(t);
-            }
-        }
-        let inner = self.pool.add(&inner);
-        rest.push(self.pool.mul2(f, inner));
-        Some(self.pool.add(&rest))
-    }
-
-    /// `Σ c·r_i + rest` as `c·Σ r_i + rest` for the numeric coefficient (up to sign, other
-    /// than one) shared by the most terms.
-    fn factored_coefficient(
-        &mut self,
-        split: &[(f64, Vec<ExprId>)],
-        terms: &[ExprId],
-    ) -> Option<ExprId> {
-        let mut uses: HashMap<u64, (usize, usize)> = HashMap::new();
-        for (c, factors) in split {
-            // Only a finite coefficient can be pulled out: `c / common` is exactly `±1` for a
-            // finite one, but NaN for an infinite one (`1e308*10` folds to inf), and a NaN
-            // coefficient would be refactored again without end.
-            if c.abs() != 1.0 && c.is_finite() && !factors.is_empty() {
-                let entry = uses.entry(c.abs().to_bits()).or_default();
-                entry.0 += 1;
-                entry.1 += usize::from(*c < 0.0);
-            }
-        }
-        let (&bits, &(_, negative)) = uses
-            .iter()
-            .filter(|(_, &(n, _))| n >= 2)
-            .max_by_key(|(&bits, &(n, _))| (n, std::cmp::Reverse(bits)))?;
-        let magnitude = f64::from_bits(bits);
-        let common = if 2 * negative > uses[&bits].0 {
-            -magnitude
-        } else {
-            magnitude
-        };
-        let mut inner = Vec::new();
-        let mut rest = Vec::new();
-        for ((c, factors), &t) in split.iter().zip(terms) {
-            if c.abs() == magnitude && !factors.is_empty() {
-                let mut parts = factors.clone();
-                parts.push(self.pool.num(c / common));
-                inner.push(self.pool.mul(&parts));
-            } else {
-                rest.push(t);
-            }
-        }
-        let inner = self.pool.add(&inner);
-        let c = self.pool.num(common);
-        // `c * (sum)` would be distributed again by the sum constructor; keep it apart.
-        let scaled = self.pool.intern(Node::Mul(vec![c, inner].into()));
-        if rest.is_empty() {
-            return Some(scaled);
-        }
-        rest.push(scaled);
-        Some(self.pool.intern_sum(rest))
+        factor::factored(self.pool, terms).expr
     }
 
     /// A sum: common factors pulled out, then positive terms added and negative ones

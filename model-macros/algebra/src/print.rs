@@ -28,79 +28,76 @@ pub enum Notation {
 }
 
 impl Notation {
-    fn paren(self, text: &str) -> String {
+    fn open(self) -> &'static str {
         match self {
-            Notation::Dsl => format!("({text})"),
-            Notation::Latex => format!("\\left({text}\\right)"),
+            Notation::Dsl => "(",
+            Notation::Latex => "\\left(",
         }
     }
 
-    fn sqrt(self, text: &str) -> String {
+    fn close(self) -> &'static str {
         match self {
-            Notation::Dsl => format!("sqrt({text})"),
-            Notation::Latex => format!("\\sqrt{{{text}}}"),
+            Notation::Dsl => ")",
+            Notation::Latex => "\\right)",
         }
     }
 
-    fn power(self, base: &str, exponent: &str) -> String {
+    /// What separates the factors of a product.
+    fn times(self) -> &'static str {
         match self {
-            Notation::Dsl => format!("{base}^{exponent}"),
-            Notation::Latex => format!("{{{base}}}^{{{exponent}}}"),
+            Notation::Dsl => "*",
+            Notation::Latex => " ",
         }
     }
 
-    fn call(self, func: Func, args: &[String]) -> String {
+    /// The text before and after a square root's radicand.
+    fn sqrt(self) -> (&'static str, &'static str) {
         match self {
-            Notation::Dsl => format!("{}({})", func.name(), args.join(", ")),
-            Notation::Latex => {
-                let name = match func {
-                    Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln => {
-                        format!("\\{}", func.name())
-                    }
-                    Func::Sqrt => return self.sqrt(&args.join(", ")),
-                    Func::Abs => return format!("\\left|{}\\right|", args.join(", ")),
-                    Func::Atan2 | Func::Sign => format!("\\operatorname{{{}}}", func.name()),
-                    Func::Min | Func::Max => format!("\\{}", func.name()),
-                };
-                format!("{name}{}", self.paren(&args.join(", ")))
-            }
+            Notation::Dsl => ("sqrt(", ")"),
+            Notation::Latex => ("\\sqrt{", "}"),
         }
     }
 
-    /// `then` where `condition` holds, else `otherwise`.
-    fn select(self, condition: &str, then: &str, otherwise: &str) -> String {
+    /// The text before a power's base, between base and exponent, and after the exponent.
+    fn power(self) -> [&'static str; 3] {
         match self {
-            Notation::Dsl => format!("if({condition}, {then}, {otherwise})"),
-            Notation::Latex => format!(
-                "\\begin{{cases}} {then} & \\text{{if }} {condition} \\\\ {otherwise} & \\text{{otherwise}} \\end{{cases}}"
-            ),
+            Notation::Dsl => ["", "^", ""],
+            Notation::Latex => ["{", "}^{", "}"],
         }
     }
 
-    /// `num / den`, each a list of factors already printed.
-    fn quotient(self, num: &[String], den: &[String]) -> String {
-        let (times, group) = match self {
-            Notation::Dsl => ("*", Notation::Dsl),
-            Notation::Latex => (" ", Notation::Latex),
-        };
-        let top = num.join(times);
-        match (self, den.len()) {
-            (_, 0) => top,
-            (Notation::Dsl, 1) => format!("{top}/{}", den[0]),
-            (Notation::Dsl, _) => format!("{top}/{}", group.paren(&den.join(times))),
-            (Notation::Latex, _) => format!("\\frac{{{top}}}{{{}}}", den.join(times)),
+    /// The text before a call's arguments, and after them.
+    fn call(self, func: Func) -> (String, &'static str) {
+        match self {
+            Notation::Dsl => (format!("{}(", func.name()), ")"),
+            Notation::Latex => match func {
+                Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln => {
+                    (format!("\\{}\\left(", func.name()), "\\right)")
+                }
+                Func::Sqrt => ("\\sqrt{".into(), "}"),
+                Func::Abs => ("\\left|".into(), "\\right|"),
+                Func::Atan2 | Func::Sign => (
+                    format!("\\operatorname{{{}}}\\left(", func.name()),
+                    "\\right)",
+                ),
+                Func::Min | Func::Max => (format!("\\{}\\left(", func.name()), "\\right)"),
+            },
         }
     }
 }
 
 /// Prints `id` in DSL syntax; `name` spells each symbol.
 pub fn to_dsl(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> String {
-    print(Notation::Dsl, pool, id, name).0
+    let mut out = String::new();
+    Printer::new(Notation::Dsl, pool, name, &mut out).print(id);
+    out
 }
 
 /// Prints `id` as LaTeX math; `name` spells each symbol (in LaTeX, e.g. `\dot{\theta}`).
 pub fn to_latex(pool: &Pool, id: ExprId, name: &dyn Fn(Sym) -> String) -> String {
-    print(Notation::Latex, pool, id, name).0
+    let mut out = String::new();
+    Printer::new(Notation::Latex, pool, name, &mut out).print(id);
+    out
 }
 
 fn number(v: f64) -> String {
@@ -111,125 +108,278 @@ fn number(v: f64) -> String {
     }
 }
 
-fn wrap(notation: Notation, text: (String, Prec), at_least: Prec) -> String {
-    if text.1 >= at_least {
-        text.0
-    } else {
-        notation.paren(&text.0)
-    }
-}
-
 type Name<'a> = &'a dyn Fn(Sym) -> String;
 
-fn print(n: Notation, pool: &Pool, id: ExprId, name: Name) -> (String, Prec) {
-    match pool.node(id) {
-        Node::Const(bits) => {
-            let v = f64::from_bits(*bits);
-            let prec = if v < 0.0 { Prec::Unary } else { Prec::Atom };
-            (number(v), prec)
+/// One traversal writing into one text: each node's text is written once, where it goes, so
+/// printing costs the length of the text however deep the expression nests (returning each
+/// subexpression's text to be copied into its parent's cost the depth times the length).
+struct Printer<'a> {
+    n: Notation,
+    pool: &'a Pool,
+    name: Name<'a>,
+    out: &'a mut String,
+}
+
+impl<'a> Printer<'a> {
+    fn new(n: Notation, pool: &'a Pool, name: Name<'a>, out: &'a mut String) -> Self {
+        Printer { n, pool, name, out }
+    }
+
+    /// How tightly the printed form of `id` binds (known before it is printed, so that the
+    /// parentheses around it can be written first).
+    fn prec(&self, id: ExprId) -> Prec {
+        match self.pool.node(id) {
+            Node::Const(bits) if f64::from_bits(*bits) < 0.0 => Prec::Unary,
+            Node::Const(_) | Node::Sym(_) => Prec::Atom,
+            Node::Add(_) => Prec::Sum,
+            Node::Mul(_) if self.coefficient(id) < 0.0 => Prec::Unary,
+            Node::Mul(_) => Prec::Product,
+            Node::Pow([_, e]) => match self.pool.as_const(*e) {
+                Some(0.5) => Prec::Atom,
+                Some(v) if v < 0.0 => Prec::Product,
+                _ => Prec::Power,
+            },
+            Node::Call(..) | Node::Atan2(_) | Node::Select(_) => Prec::Atom,
         }
-        Node::Sym(s) => (name(*s), Prec::Atom),
-        Node::Add(ts) => {
-            let mut out = String::new();
-            for (k, &t) in ts.iter().enumerate() {
-                let (c, negated) = negated_term(n, pool, t, name);
-                match (k, negated) {
-                    (0, true) => out.push_str(&format!("-{}", c)),
-                    (0, false) => out.push_str(&c),
-                    (_, true) => out.push_str(&format!(" - {}", c)),
-                    (_, false) => out.push_str(&format!(" + {}", c)),
+    }
+
+    /// The numeric coefficient of a product (one if it has none).
+    fn coefficient(&self, id: ExprId) -> f64 {
+        match self.pool.node(id) {
+            Node::Mul(fs) => fs
+                .iter()
+                .rev()
+                .find_map(|&f| self.pool.as_const(f))
+                .unwrap_or(1.0),
+            _ => 1.0,
+        }
+    }
+
+    fn push(&mut self, text: &str) {
+        self.out.push_str(text);
+    }
+
+    /// `id`, in parentheses if it binds less tightly than `at_least`.
+    fn wrapped(&mut self, id: ExprId, at_least: Prec) {
+        if self.prec(id) >= at_least {
+            self.print(id);
+        } else {
+            self.push(self.n.open());
+            self.print(id);
+            self.push(self.n.close());
+        }
+    }
+
+    fn print(&mut self, id: ExprId) {
+        let (n, pool) = (self.n, self.pool);
+        match pool.node(id) {
+            Node::Const(bits) => self.push(&number(f64::from_bits(*bits))),
+            Node::Sym(s) => {
+                let text = (self.name)(*s);
+                self.push(&text);
+            }
+            Node::Add(ts) => {
+                for (k, &t) in ts.iter().enumerate() {
+                    let negated = self.negated(t);
+                    match (k, negated) {
+                        (0, true) => self.push("-"),
+                        (0, false) => {}
+                        (_, true) => self.push(" - "),
+                        (_, false) => self.push(" + "),
+                    }
+                    self.unsigned_term(t);
                 }
             }
-            (out, Prec::Sum)
-        }
-        Node::Mul(_) => {
-            let (text, negated) = product(n, pool, id, name);
-            if negated {
-                (format!("-{text}"), Prec::Unary)
-            } else {
-                (text, Prec::Product)
+            Node::Mul(_) => {
+                if self.coefficient(id) < 0.0 {
+                    self.push("-");
+                }
+                self.product(id);
             }
-        }
-        Node::Pow([b, e]) => {
-            let ev = pool.as_const(*e);
-            if ev == Some(0.5) {
-                return (n.sqrt(&print(n, pool, *b, name).0), Prec::Atom);
+            Node::Pow([b, e]) => {
+                let ev = pool.as_const(*e);
+                if ev == Some(0.5) {
+                    let (open, close) = n.sqrt();
+                    self.push(open);
+                    self.print(*b);
+                    self.push(close);
+                    return;
+                }
+                if ev.is_some_and(|v| v < 0.0) {
+                    self.product(id);
+                    return;
+                }
+                let [open, between, close] = n.power();
+                self.push(open);
+                self.wrapped(*b, Prec::Atom);
+                self.push(between);
+                match n {
+                    // LaTeX braces the exponent: no parentheses needed.
+                    Notation::Latex => self.print(*e),
+                    Notation::Dsl => self.wrapped(*e, Prec::Power),
+                }
+                self.push(close);
             }
-            if ev.is_some_and(|v| v < 0.0) {
-                let (text, _) = product(n, pool, id, name);
-                return (text, Prec::Product);
+            Node::Call(f, [a]) => self.call(*f, &[*a]),
+            Node::Atan2([y, x]) => self.call(Func::Atan2, &[*y, *x]),
+            Node::Select([l, r, a, b]) => {
+                if let Some((f, x, y)) = pool.as_min_max(id) {
+                    return self.call(f, &[x, y]);
+                }
+                match n {
+                    Notation::Dsl => {
+                        self.push("if(");
+                        self.print(*l);
+                        self.push(" > ");
+                        self.print(*r);
+                        self.push(", ");
+                        self.print(*a);
+                        self.push(", ");
+                        self.print(*b);
+                        self.push(")");
+                    }
+                    Notation::Latex => {
+                        self.push("\\begin{cases} ");
+                        self.print(*a);
+                        self.push(" & \\text{if } ");
+                        self.print(*l);
+                        self.push(" > ");
+                        self.print(*r);
+                        self.push(" \\\\ ");
+                        self.print(*b);
+                        self.push(" & \\text{otherwise} \\end{cases}");
+                    }
+                }
             }
-            let base = wrap(n, print(n, pool, *b, name), Prec::Atom);
-            let exp = match n {
-                // LaTeX braces the exponent: no parentheses needed.
-                Notation::Latex => print(n, pool, *e, name).0,
-                Notation::Dsl => wrap(n, print(n, pool, *e, name), Prec::Power),
-            };
-            (n.power(&base, &exp), Prec::Power)
-        }
-        Node::Call(f, [a]) => (n.call(*f, &[print(n, pool, *a, name).0]), Prec::Atom),
-        Node::Atan2([y, x]) => (
-            n.call(
-                Func::Atan2,
-                &[print(n, pool, *y, name).0, print(n, pool, *x, name).0],
-            ),
-            Prec::Atom,
-        ),
-        Node::Select([l, r, a, b]) => {
-            let text = |e: &ExprId| print(n, pool, *e, name).0;
-            if let Some((f, x, y)) = pool.as_min_max(id) {
-                return (n.call(f, &[text(&x), text(&y)]), Prec::Atom);
-            }
-            let condition = format!("{} > {}", text(l), text(r));
-            (n.select(&condition, &text(a), &text(b)), Prec::Atom)
         }
     }
-}
 
-/// A term of a sum printed without its sign, and whether it was negative.
-fn negated_term(n: Notation, pool: &Pool, t: ExprId, name: Name) -> (String, bool) {
-    match pool.node(t) {
-        Node::Const(bits) if f64::from_bits(*bits) < 0.0 => (number(-f64::from_bits(*bits)), true),
-        Node::Mul(_) => product(n, pool, t, name),
-        _ => (wrap(n, print(n, pool, t, name), Prec::Product), false),
-    }
-}
-
-/// A product (or a lone negative power) as `c*a*b/(d*e)`, without its sign.
-fn product(n: Notation, pool: &Pool, id: ExprId, name: Name) -> (String, bool) {
-    let factors: Vec<ExprId> = match pool.node(id) {
-        Node::Mul(fs) => fs.to_vec(),
-        _ => vec![id],
-    };
-    let mut coefficient = 1.0;
-    let mut num: Vec<String> = Vec::new();
-    let mut den: Vec<String> = Vec::new();
-    for f in factors {
-        if let Some(c) = pool.as_const(f) {
-            coefficient = c;
-            continue;
+    fn call(&mut self, f: Func, args: &[ExprId]) {
+        let (open, close) = self.n.call(f);
+        self.push(&open);
+        for (k, &a) in args.iter().enumerate() {
+            if k > 0 {
+                self.push(", ");
+            }
+            self.print(a);
         }
-        if let Node::Pow([b, e]) = pool.node(f) {
-            if let Some(ev) = pool.as_const(*e).filter(|v| *v < 0.0) {
-                let base = wrap(n, print(n, pool, *b, name), Prec::Atom);
-                let text = match (ev, integer_exponent(-ev)) {
-                    (_, Some(1)) => base,
-                    (_, Some(k)) => n.power(&base, &k.to_string()),
-                    (-0.5, _) => n.sqrt(&print(n, pool, *b, name).0),
-                    (v, None) => n.power(&base, &number(-v)),
-                };
-                den.push(text);
+        self.push(close);
+    }
+
+    /// Whether a term of a sum is printed with a minus sign.
+    fn negated(&self, t: ExprId) -> bool {
+        match self.pool.node(t) {
+            Node::Const(bits) => f64::from_bits(*bits) < 0.0,
+            Node::Mul(_) => self.coefficient(t) < 0.0,
+            _ => false,
+        }
+    }
+
+    /// A term of a sum without its sign.
+    fn unsigned_term(&mut self, t: ExprId) {
+        match self.pool.node(t) {
+            Node::Const(bits) if f64::from_bits(*bits) < 0.0 => {
+                self.push(&number(-f64::from_bits(*bits)))
+            }
+            Node::Mul(_) => self.product(t),
+            _ => self.wrapped(t, Prec::Product),
+        }
+    }
+
+    /// A product (or a lone negative power) as `c*a*b/(d*e)`, without its sign.
+    fn product(&mut self, id: ExprId) {
+        let (n, pool) = (self.n, self.pool);
+        let factors: &[ExprId] = match pool.node(id) {
+            Node::Mul(fs) => fs,
+            _ => std::slice::from_ref(&id),
+        };
+        let mut coefficient = 1.0;
+        let mut num: Vec<ExprId> = Vec::new();
+        // Each divisor: its base and the magnitude of its exponent.
+        let mut den: Vec<(ExprId, f64)> = Vec::new();
+        for &f in factors {
+            if let Some(c) = pool.as_const(f) {
+                coefficient = c;
                 continue;
             }
+            if let Node::Pow([b, e]) = pool.node(f) {
+                if let Some(ev) = pool.as_const(*e).filter(|v| *v < 0.0) {
+                    den.push((*b, -ev));
+                    continue;
+                }
+            }
+            num.push(f);
         }
-        num.push(wrap(n, print(n, pool, f, name), Prec::Unary));
+        let magnitude = coefficient.abs();
+        let times = n.times();
+        let mut first = true;
+        let mut top = |p: &mut Self, write: &mut dyn FnMut(&mut Self)| {
+            if !first {
+                p.push(times);
+            }
+            first = false;
+            write(p);
+        };
+        if n == Notation::Latex && !den.is_empty() {
+            self.push("\\frac{");
+        }
+        if magnitude != 1.0 || num.is_empty() {
+            top(self, &mut |p| p.push(&number(magnitude)));
+        }
+        for &f in &num {
+            top(self, &mut |p| p.wrapped(f, Prec::Unary));
+        }
+        match (n, den.len()) {
+            (_, 0) => {}
+            (Notation::Dsl, 1) => {
+                self.push("/");
+                self.divisor(den[0]);
+            }
+            (Notation::Dsl, _) => {
+                self.push("/(");
+                self.divisors(&den);
+                self.push(")");
+            }
+            (Notation::Latex, _) => {
+                self.push("}{");
+                self.divisors(&den);
+                self.push("}");
+            }
+        }
     }
-    let negated = coefficient < 0.0;
-    let magnitude = coefficient.abs();
-    if magnitude != 1.0 || num.is_empty() {
-        num.insert(0, number(magnitude));
+
+    fn divisors(&mut self, den: &[(ExprId, f64)]) {
+        for (k, &d) in den.iter().enumerate() {
+            if k > 0 {
+                self.push(self.n.times());
+            }
+            self.divisor(d);
+        }
     }
-    (n.quotient(&num, &den), negated)
+
+    /// `base^exponent`, a divisor of a product.
+    fn divisor(&mut self, (base, exponent): (ExprId, f64)) {
+        match integer_exponent(exponent) {
+            Some(1) => self.wrapped(base, Prec::Atom),
+            Some(k) => self.raised(base, &k.to_string()),
+            None if exponent == 0.5 => {
+                let (open, close) = self.n.sqrt();
+                self.push(open);
+                self.print(base);
+                self.push(close);
+            }
+            None => self.raised(base, &number(exponent)),
+        }
+    }
+
+    fn raised(&mut self, base: ExprId, exponent: &str) {
+        let [open, between, close] = self.n.power();
+        self.push(open);
+        self.wrapped(base, Prec::Atom);
+        self.push(between);
+        self.push(exponent);
+        self.push(close);
+    }
 }
 
 #[cfg(test)]

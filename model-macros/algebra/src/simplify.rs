@@ -122,21 +122,25 @@ impl Pool {
 
     /// Replaces `c*M*sin(u)^2 + c*M*cos(u)^2` by `c*M`, repeatedly; returns the constant the
     /// pairs without any other factor add up to.
+    ///
+    /// The terms are matched by `u`, `c` and a hash of `M` that is the hash of the term's
+    /// factors less the squared one's (a sum of the factors' hashes), so a term costs its
+    /// factors once, not once per squared sine or cosine among them; a match is then compared
+    /// factor by factor.
     fn pythagoras(&mut self, order: &mut Vec<ExprId>, coeffs: &mut HashMap<ExprId, f64>) -> f64 {
         let mut constant = 0.0;
         loop {
-            // Key: (u, other factors, coefficient bits, which function) -> rest.
-            let mut seen: HashMap<(ExprId, Vec<ExprId>, u64), (Func, ExprId)> = HashMap::new();
+            let mut seen: HashMap<SquareKey, Vec<Square>> = HashMap::new();
             let mut found = None;
             'outer: for &rest in order.iter() {
                 let c = coeffs[&rest];
                 if c == 0.0 {
                     continue;
                 }
-                let factors: Vec<ExprId> = match self.node(rest) {
-                    Node::Mul(fs) => fs.to_vec(),
-                    _ => vec![rest],
-                };
+                let factors = self.factors_of(rest);
+                let whole = factors
+                    .iter()
+                    .fold(0u64, |h, &f| h.wrapping_add(factor_hash(f)));
                 for (k, &f) in factors.iter().enumerate() {
                     let Node::Pow([base, e]) = self.node(f) else {
                         continue;
@@ -148,19 +152,17 @@ impl Pool {
                         continue;
                     };
                     let (func, u) = (*func, *u);
-                    let mut others = factors.clone();
-                    others.remove(k);
-                    let key = (u, others.clone(), c.to_bits());
-                    match seen.get(&key) {
-                        Some(&(other_func, other_rest)) if other_func != func => {
+                    let key = (u, c.to_bits(), whole.wrapping_sub(factor_hash(f)));
+                    let candidates = seen.entry(key).or_default();
+                    for &(other_func, other_rest, other_k) in candidates.iter() {
+                        let other = self.factors_of(other_rest);
+                        if other_func != func && without(&other, other_k).eq(without(&factors, k)) {
+                            let others: Vec<ExprId> = without(&factors, k).collect();
                             found = Some((rest, other_rest, others, c));
                             break 'outer;
                         }
-                        Some(_) => {}
-                        None => {
-                            seen.insert(key, (func, rest));
-                        }
                     }
+                    candidates.push((func, rest, k));
                 }
             }
             let Some((a, b, others, c)) = found else {
@@ -179,6 +181,14 @@ impl Pool {
                 });
                 *entry += c * mc;
             }
+        }
+    }
+
+    /// The factors of a product, or the expression itself as the one factor.
+    fn factors_of(&self, id: ExprId) -> Vec<ExprId> {
+        match self.node(id) {
+            Node::Mul(fs) => fs.to_vec(),
+            _ => vec![id],
         }
     }
 
@@ -319,6 +329,32 @@ impl Pool {
         }
         self.intern(Node::Atan2([y, x]))
     }
+}
+
+/// `(u, coefficient bits, hash of the other factors)` of a term `c*M*sin(u)^2`.
+type SquareKey = (ExprId, u64, u64);
+
+/// A term seen with a squared sine or cosine: the function, the term (less its coefficient),
+/// and the position of the squared factor among its factors.
+type Square = (Func, ExprId, usize);
+
+/// A factor's share of the hash of a product: the product's hash is the (wrapping) sum of its
+/// factors' shares, so a product less one factor hashes without being built.
+fn factor_hash(f: ExprId) -> u64 {
+    // SplitMix64's finaliser: neighbouring ids get unrelated shares.
+    let mut z = u64::from(f.0).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// `factors` without the one at position `k`.
+fn without(factors: &[ExprId], k: usize) -> impl Iterator<Item = ExprId> + '_ {
+    factors
+        .iter()
+        .enumerate()
+        .filter(move |&(i, _)| i != k)
+        .map(|(_, &f)| f)
 }
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
 use super::*;
+use crate::eval::Inputs;
 use crate::OpCounts;
 
 fn emit(pool: &mut Pool, roots: &[ExprId]) -> Program {
@@ -141,4 +142,90 @@ fn an_infinite_coefficient_is_not_pulled_out() {
     let difference = p.add(&[a, c]);
     let prog = emit(&mut p, &[sum, difference]);
     assert!(prog.ops().add >= 2, "{prog}");
+}
+
+/// The sum the product rule makes of the Jacobian of a chain `n` deep, `s_0 = x`,
+/// `s_{k+1} = sin(s_k)`: `Σ_k sin(s_k) / cos(s_k)^2 · Π_{j>k} 1/cos(s_j)`, with the factors
+/// it holds (about n²/2).
+fn chain_sum(p: &mut Pool, n: usize) -> (ExprId, usize) {
+    let mut s = vec![p.sym(Sym::State(0))];
+    for k in 0..n {
+        let next = p.call(Func::Sin, s[k]);
+        s.push(next);
+    }
+    let cos: Vec<ExprId> = s[..n].iter().map(|&u| p.call(Func::Cos, u)).collect();
+    let mut terms = Vec::new();
+    let mut size = 0;
+    for k in 0..n {
+        let mut factors = vec![s[k + 1], p.powf(cos[k], -2.0)];
+        for &c in &cos[k + 1..] {
+            factors.push(p.powf(c, -1.0));
+        }
+        size += factors.len();
+        terms.push(p.mul(&factors));
+    }
+    (p.add(&terms), size)
+}
+
+/// The value of [`chain_sum`] at `x`, term by term.
+fn chain_sum_value(n: usize, x: f64) -> f64 {
+    let mut s = vec![x];
+    for k in 0..n {
+        s.push(s[k].sin());
+    }
+    (0..n)
+        .map(|k| {
+            let tail: f64 = s[k + 1..n].iter().map(|u| 1.0 / u.cos()).product();
+            s[k].sin() / s[k].cos().powi(2) * tail
+        })
+        .sum()
+}
+
+fn factoring_work(n: usize) -> (usize, usize) {
+    let mut p = Pool::new();
+    let (sum, size) = chain_sum(&mut p, n);
+    let Node::Add(terms) = p.node(sum).clone() else {
+        panic!("a sum")
+    };
+    let factored = factor::factored(&mut p, &terms);
+    assert!(factored.expr.is_some());
+    (factored.work, size)
+}
+
+#[test]
+fn factoring_a_chains_jacobian_costs_the_size_of_its_sum() {
+    // Factoring one level at a time counted every remaining term again at each of the n
+    // levels of the nest: n³ (8x from n = 100 to 200). The work now follows the sum's size
+    // (4x), whatever the depth of its nest.
+    let (small, small_size) = factoring_work(100);
+    let (large, large_size) = factoring_work(200);
+    assert_eq!((small_size, large_size), (5150, 20300));
+    for (work, size) in [(small, small_size), (large, large_size)] {
+        assert!(work <= 3 * size, "{work} for {size} factors");
+    }
+    let growth = large as f64 / small as f64;
+    assert!((3.5..4.5).contains(&growth), "{small} -> {large}");
+}
+
+#[test]
+fn a_chains_jacobian_is_emitted_as_a_nest_and_keeps_its_value() {
+    let n = 200;
+    let mut p = Pool::new();
+    let (sum, _) = chain_sum(&mut p, n);
+    let prog = emit(&mut p, &[sum]);
+    // One sine and cosine, one division, and a multiplication and an addition per level.
+    let ops = prog.ops();
+    assert!(ops.total() <= 6 * n as u32, "{ops:?}");
+    for x in [0.3, -1.1, 2.0] {
+        let stores = prog
+            .eval(&Inputs {
+                t: 0.0,
+                states: &[x],
+                params: &[],
+                ders: &[],
+            })
+            .unwrap();
+        let (got, want) = (stores.outputs(1)[0], chain_sum_value(n, x));
+        assert!((got - want).abs() <= 1e-12 * want.abs(), "{got} vs {want}");
+    }
 }

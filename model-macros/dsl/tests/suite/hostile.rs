@@ -21,6 +21,16 @@ fn compile(text: &str) -> Result<Vec<CompiledModel>, Vec<Located>> {
         .expect("no panic")
 }
 
+/// Held by the tests that allocate tens of megabytes, and by the one that measures this
+/// process's memory, so that it measures only its own (the tests of a binary run in parallel).
+static LARGE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn large() -> std::sync::MutexGuard<'static, ()> {
+    LARGE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 fn errors(text: &str) -> Vec<Located> {
     match compile(text) {
         Ok(_) => panic!("must be rejected: {text}"),
@@ -224,6 +234,7 @@ fn reading_model_after_model_keeps_no_text() {
     // 3,000 reads of a 20 kB text would keep 60 MB if every text stayed recorded.
     let padding = "// a comment that makes the text long enough to notice\n".repeat(400);
     let text = format!("{padding}mod m {{ states {{ x }} equations {{ der(x) = -kk*x; }} }}");
+    let _large = large();
     let read = move || {
         let before = resident();
         for _ in 0..3_000 {
@@ -243,6 +254,7 @@ fn decoupled_states_compile_in_linear_time() {
     // Each Jacobian column, and each block's pivot sampling, costs what its state touches:
     // 10,000 decoupled states took minutes when every one of them went through the whole
     // system (now about a second).
+    let _large = large();
     let n = 10_000;
     let states: Vec<String> = (0..n).map(|k| format!("x{k}")).collect();
     let equations: String = (0..n).map(|k| format!("der(x{k}) = -x{k}*x{k};")).collect();
@@ -255,4 +267,55 @@ fn decoupled_states_compile_in_linear_time() {
     assert_eq!(models[0].states.len(), n);
     let seconds = started.elapsed().as_secs_f64();
     assert!(seconds < 30.0, "{seconds} s");
+}
+
+/// The derivatives of `der(s_n) = -y*x; der(y) = x` with `s_0 = x`, `s_{k+1} = sin(s_k)`, and
+/// the first row of their Jacobian, by the chain rule: with `P = Π_{k<n} cos(s_k)`,
+/// `der(x) = -x y / P`, `∂/∂x = -y/P · (1 + x Σ_k tan(s_k) Π_{j<k} cos(s_j))`, `∂/∂y = -x/P`.
+fn chain_closed_form(n: usize, x: f64, y: f64) -> (f64, [f64; 2]) {
+    let mut s = x;
+    let (mut product, mut sum) = (1.0, 0.0);
+    for _ in 0..n {
+        sum += s.tan() * product;
+        product *= s.cos();
+        s = s.sin();
+    }
+    let der = -x * y / product;
+    (der, [-y / product * (1.0 + x * sum), -x / product])
+}
+
+#[test]
+fn a_deep_chain_under_der_compiles_to_its_chain_rule() {
+    // `der(sin(sin(..(x)..)))` 200 deep: the product rule makes each Jacobian entry a
+    // triangular sum of about n²/2 factors, which the factoring of common factors took n³ to
+    // nest (seconds at this depth); its value is the chain rule's.
+    let _large = large();
+    let n = 200;
+    let chain = format!("{}x{}", "sin(".repeat(n), ")".repeat(n));
+    let text =
+        format!("mod m {{ states {{ x, y }} equations {{ der({chain}) = -y*x; der(y) = x; }} }}");
+    let model = compile(&text).unwrap().remove(0);
+    // Linear code: a few operations per level of the chain.
+    assert!(model.jacobian.ops().total() <= 12 * n as u32);
+    for (x, y) in [(0.3, 0.5), (-0.7, 2.0), (1.2, -0.4)] {
+        let (der, row) = chain_closed_form(n, x, y);
+        let got = model.derivatives(0.0, &[x, y], &[]).unwrap();
+        assert!(
+            (got[0] - der).abs() <= 1e-12 * der.abs(),
+            "{} vs {der}",
+            got[0]
+        );
+        assert_eq!(got[1], x);
+        let inputs = model_algebra::Inputs {
+            t: 0.0,
+            states: &[x, y],
+            params: &[],
+            ders: &[],
+        };
+        let jacobian = model.jacobian.eval(&inputs).unwrap().jacobian(2);
+        for (got, want) in jacobian[0].iter().zip(row) {
+            assert!((got - want).abs() <= 1e-12 * want.abs(), "{got} vs {want}");
+        }
+        assert_eq!(jacobian[1], [1.0, 0.0]);
+    }
 }
