@@ -55,6 +55,7 @@
 //! assert_eq!(out.stop.name(), "end time");
 //! ```
 
+mod drive;
 pub mod embedded;
 pub mod extrema;
 pub mod models;
@@ -318,6 +319,17 @@ pub enum SimError {
         /// The model's error.
         source: EvalError,
     },
+    /// A model failed where the run's output is evaluated (a sample, the end of a step): the
+    /// run ends there, although its integration had not failed.
+    #[error("model failed evaluating the output at t = {t} (in {mode}): {source}")]
+    Output {
+        /// Mode in force.
+        mode: Mode,
+        /// Time (s).
+        t: f64,
+        /// The model's error.
+        source: EvalError,
+    },
     /// The driver's own chattering backstop fired (the disk's limit should fire first).
     #[error("chattering at t = {t}: {transitions} driver transitions in the window")]
     DriverChattering {
@@ -344,16 +356,10 @@ impl SimError {
     /// The disk's error for the driver's `error`, its modes named by the contact mode
     /// `mode_of` gives (the one conversion of a driver error, for every runner of the disk).
     pub(crate) fn from_driver<Md>(error: HybridError<Md>, mode_of: impl Fn(Md) -> Mode) -> Self {
-        match error {
-            HybridError::Solve { mode, error } => SimError::Solve {
-                mode: mode_of(mode),
-                error,
-            },
-            HybridError::Transition { mode, t, source } => SimError::Transition {
-                mode: mode_of(mode),
-                t,
-                source,
-            },
+        match error.map_mode(mode_of) {
+            HybridError::Solve { mode, error } => SimError::Solve { mode, error },
+            HybridError::Transition { mode, t, source } => SimError::Transition { mode, t, source },
+            HybridError::Observer { mode, t, source } => SimError::Output { mode, t, source },
             HybridError::Chattering { t, transitions, .. } => {
                 SimError::DriverChattering { t, transitions }
             }
@@ -366,6 +372,7 @@ impl SimError {
             SimError::Params(_) | SimError::Invalid { .. } => None,
             SimError::Solve { error, .. } => error.time(),
             SimError::Transition { t, .. }
+            | SimError::Output { t, .. }
             | SimError::DriverChattering { t, .. }
             | SimError::Onset { t, .. } => Some(*t),
             SimError::WorkBound(over) => Some(over.t),

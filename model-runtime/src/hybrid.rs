@@ -309,6 +309,50 @@ pub enum HybridError<Md> {
         /// The modes involved, in order of first appearance in the window.
         modes: Vec<Md>,
     },
+    /// The observer could not take the run's output: the model failed where it evaluated it
+    /// ([`crate::ObserverError`]).
+    Observer {
+        /// The mode in force.
+        mode: Md,
+        /// Where the observer evaluated the model, in its own time variable.
+        t: f64,
+        /// The model's explanation.
+        source: EvalError,
+    },
+}
+
+impl<Md> HybridError<Md> {
+    /// The same error with its modes converted by `f` (named, say, or mapped to the modes of
+    /// the system a run was built from).
+    pub fn map_mode<M2>(self, f: impl Fn(Md) -> M2) -> HybridError<M2> {
+        match self {
+            HybridError::Solve { mode, error } => HybridError::Solve {
+                mode: f(mode),
+                error,
+            },
+            HybridError::Transition { mode, t, source } => HybridError::Transition {
+                mode: f(mode),
+                t,
+                source,
+            },
+            HybridError::Chattering {
+                t,
+                transitions,
+                window,
+                modes,
+            } => HybridError::Chattering {
+                t,
+                transitions,
+                window,
+                modes: modes.into_iter().map(f).collect(),
+            },
+            HybridError::Observer { mode, t, source } => HybridError::Observer {
+                mode: f(mode),
+                t,
+                source,
+            },
+        }
+    }
 }
 
 impl<Md: Debug> fmt::Display for HybridError<Md> {
@@ -329,6 +373,9 @@ impl<Md: Debug> fmt::Display for HybridError<Md> {
                  between modes {modes:?}",
                 window = Readable(*window)
             ),
+            HybridError::Observer { mode, t, source } => {
+                write!(f, "output in mode {mode:?} at t = {t}: {source}")
+            }
         }
     }
 }

@@ -43,7 +43,8 @@
 //! * **One model, one call**: [`Problem`] with [`Method`], [`Output`], [`Event`]
 //!   ([`EventFunction`]) gives a [`Trajectory`] ([`LocatedEvent`], [`Termination`],
 //!   [`SolveFailure`]); [`integrate`] gives a [`Solution`]; [`Integrator`] and [`DenseStep`] are
-//!   the loop underneath.
+//!   the loop underneath; [`WithStepper`] runs one generic body with the stepper a [`Method`]
+//!   names.
 //! * **Guards and events**: [`GuardSpec`], [`Direction`], [`Crossed`], [`EventHit`],
 //!   [`GuardInputs`], [`InteriorChecks`]; the bracketing root finder [`find_crossing`]
 //!   ([`Crossing`], [`converged_width`]).
@@ -58,10 +59,11 @@
 //!   one call from such a model to its named events and samples, [`run_switched`]
 //!   ([`SwitchedRun`], [`EventRecord`], [`Fired`], [`SwitchedFailure`], [`name_modes`]).
 //! * **Regularised time** (a hybrid system integrated in `τ` with `dt = s dτ`):
-//!   [`TimeScale`], [`Regularised`], [`ClockGuard`], [`Clocked`], and the observer adaptor
-//!   [`PhysicalTime`].
+//!   [`TimeScale`], [`Regularised`] (which also reads a run's outcome and failure back in
+//!   physical terms), [`ClockGuard`], [`Clocked`], and the observer adaptor [`PhysicalTime`].
 //! * **Streaming output**: [`Observer`], [`StepView`], [`Sample`], [`Interpolant`],
-//!   [`TransitionRecord`], [`TransitionKind`], [`Recorder`]; a step's interpolant kept after
+//!   [`TransitionRecord`], [`TransitionKind`], [`Recorder`]; an observer's failure, which
+//!   ends the run like any other ([`Observed`], [`ObserverError`]); a step's interpolant kept after
 //!   the step, [`StoredInterpolant`], from each method's [`DenseOutput`] ([`Dopri5Dense`],
 //!   [`Dop853Dense`], [`Rodas4Dense`], [`Rk4Dense`]).
 //! * **Work and failures**: [`Stats`], [`ComponentCounts`]; [`SolveError`], [`InputError`],
@@ -142,13 +144,15 @@ pub use jacobian::finite_difference_jacobian;
 pub use linalg::solve_block;
 pub use model::{Evaluation, Model, ModelInfo, OpCounts, System, SystemOutputs, WithOutputs};
 pub use name::{Name, Names};
-pub use observer::{Observer, Recorder, Sample, StepView, TransitionKind, TransitionRecord};
+pub use observer::{
+    Observed, Observer, ObserverError, Recorder, Sample, StepView, TransitionKind, TransitionRecord,
+};
 pub use readable::Readable;
 pub use rk4::{Rk4, Rk4Dense};
 pub use rodas4::{Rodas4, Rodas4Dense};
 pub use root::{converged_width, find_crossing, Crossing};
 pub use solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
-pub use solve::{Event, EventFunction, Method, Output, Problem};
+pub use solve::{Event, EventFunction, Method, Output, Problem, WithStepper};
 pub use stats::{ComponentCounts, Stats};
 pub use stepper::{Components, Rhs, StepEnd, StepStart, Stepper};
 pub use switched::graph::{

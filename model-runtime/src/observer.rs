@@ -3,8 +3,25 @@
 
 use crate::dense::Interpolant;
 use crate::dim::{Const, Dim, Vector};
+use crate::error::EvalError;
 use crate::events::EventHit;
 use std::ops::ControlFlow;
+
+/// Why an observer could not take a run's output: the model failed where the observer
+/// evaluated it (a force at a sample, say). The run ends there with
+/// [`crate::HybridError::Observer`], carrying this time and error; the work done until then
+/// is in [`crate::HybridSolver::stats`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObserverError {
+    /// Where the observer evaluated the model, in its own time variable (physical time for an
+    /// observer behind [`crate::PhysicalTime`]).
+    pub t: f64,
+    /// The model's error.
+    pub source: EvalError,
+}
+
+/// What an observer's hook returns: `Err` ends the run ([`ObserverError`]).
+pub type Observed = Result<(), ObserverError>;
 
 /// One accepted step as an observer sees it. If an event cut the step short, `t1`/`y1` are the
 /// event time and state (the part of the step after the event is discarded); a step cut to
@@ -72,6 +89,12 @@ impl<const N: usize, Md: Copy, G: Copy, Nt: Copy> Copy for TransitionRecord<Cons
 
 /// Receives a run's output as it is produced. Every method has an empty default. `Nt` is the
 /// system's [`crate::HybridSystem::Note`].
+///
+/// A hook that cannot take what it is handed (the model failed where the observer evaluated
+/// it) returns an [`ObserverError`]: the run ends there with [`crate::HybridError::Observer`],
+/// so a failure travels the way every other failure does, with the run's work counted to that
+/// point. Stopping for any other reason (an interrupt, a closed output) is
+/// [`Observer::proceed`]'s, and ends the run as a stop, not a failure.
 pub trait Observer<D: Dim, Md, G, Nt = ()> {
     /// Whether [`StepView::dense`] should be provided (building it may cost extra evaluations,
     /// e.g. three per step for DOP853).
@@ -79,7 +102,9 @@ pub trait Observer<D: Dim, Md, G, Nt = ()> {
         false
     }
     /// An accepted step.
-    fn on_step(&mut self, _step: &StepView<'_, D, Md>) {}
+    fn on_step(&mut self, _step: &StepView<'_, D, Md>) -> Observed {
+        Ok(())
+    }
     /// Whether the sample due at `t` is wanted (default: every one). Asked before the state
     /// is interpolated, so an observer that needs the grid only in places (a coarse grid for
     /// a file and a fine one in a window, say) pays nothing for the samples it declines.
@@ -87,7 +112,9 @@ pub trait Observer<D: Dim, Md, G, Nt = ()> {
         true
     }
     /// A dense sample at a requested time.
-    fn on_sample(&mut self, _sample: &Sample<'_, D, Md>) {}
+    fn on_sample(&mut self, _sample: &Sample<'_, D, Md>) -> Observed {
+        Ok(())
+    }
     /// Asked after every accepted step and every transition: [`ControlFlow::Break`] ends the
     /// run there, with everything delivered so far (an interrupt, a time budget, a state the
     /// caller forbids). The default never stops.
@@ -96,7 +123,9 @@ pub trait Observer<D: Dim, Md, G, Nt = ()> {
     }
     /// A transition, handed over by value (the event that caused it and the system's note are
     /// in the record). Called before the next segment starts.
-    fn on_transition(&mut self, _record: TransitionRecord<D, Md, G, Nt>) {}
+    fn on_transition(&mut self, _record: TransitionRecord<D, Md, G, Nt>) -> Observed {
+        Ok(())
+    }
 }
 
 /// The observer that ignores everything.
@@ -126,13 +155,16 @@ impl<D: Dim, Md, G, Nt> Recorder<D, Md, G, Nt> {
 }
 
 impl<D: Dim, Md: Copy, G, Nt> Observer<D, Md, G, Nt> for Recorder<D, Md, G, Nt> {
-    fn on_step(&mut self, _step: &StepView<'_, D, Md>) {
+    fn on_step(&mut self, _step: &StepView<'_, D, Md>) -> Observed {
         self.steps += 1;
+        Ok(())
     }
-    fn on_sample(&mut self, s: &Sample<'_, D, Md>) {
+    fn on_sample(&mut self, s: &Sample<'_, D, Md>) -> Observed {
         self.samples.push((s.t, s.mode, s.y.clone()));
+        Ok(())
     }
-    fn on_transition(&mut self, r: TransitionRecord<D, Md, G, Nt>) {
+    fn on_transition(&mut self, r: TransitionRecord<D, Md, G, Nt>) -> Observed {
         self.transitions.push(r);
+        Ok(())
     }
 }

@@ -175,7 +175,9 @@ impl SolveFailure {
     ) -> Self {
         let error = match error {
             HybridError::Solve { error, .. } => error,
-            HybridError::Transition { t, source, .. } => SolveError::Eval { t, source },
+            HybridError::Transition { t, source, .. } | HybridError::Observer { t, source, .. } => {
+                SolveError::Eval { t, source }
+            }
             HybridError::Chattering {
                 t,
                 transitions,

@@ -16,7 +16,7 @@ use crate::events::{Direction, EventHit, GuardSpec, InteriorChecks};
 use crate::hybrid::run::HybridSolver;
 use crate::hybrid::{HybridError, HybridOptions, HybridSystem, StopReason, Transition};
 use crate::model::{System, SystemOutputs};
-use crate::observer::{Observer, StepView};
+use crate::observer::{Observed, Observer, StepView};
 use crate::rk4::Rk4;
 use crate::rodas4::Rodas4;
 use crate::solution::{LocatedEvent, SolveFailure, Termination, Trajectory};
@@ -38,6 +38,28 @@ pub enum Method {
         /// The step size.
         h: f64,
     },
+}
+
+/// A computation that runs with a stepper of whichever [`Method`] is chosen: the stepper's
+/// type is fixed inside [`Method::with_stepper`], so one generic body serves every method
+/// (and every state size) with no dispatch per step.
+pub trait WithStepper<D: Dim> {
+    /// What the computation gives.
+    type Output;
+    /// Runs it with `stepper`.
+    fn run<S: Stepper<D>>(self, stepper: S) -> Self::Output;
+}
+
+impl Method {
+    /// Runs `task` with a fresh stepper of this method for states of size `dim`.
+    pub fn with_stepper<D: Dim, T: WithStepper<D>>(self, dim: D, task: T) -> T::Output {
+        match self {
+            Method::Dopri5 => task.run(Dopri5::new_in(dim)),
+            Method::Dop853 => task.run(Dop853::new_in(dim)),
+            Method::Rodas4 => task.run(Rodas4::new_in(dim)),
+            Method::Rk4 { h } => task.run(Rk4::new_in(dim, h)),
+        }
+    }
 }
 
 /// Where the trajectory is recorded.
@@ -234,13 +256,8 @@ impl<'m, M: System<D>, D: Dim> Problem<'m, M, D> {
     where
         M: SystemOutputs<D, K>,
     {
-        let dim = self.model.dim();
-        match self.method {
-            Method::Dopri5 => self.solve_with(Dopri5::new_in(dim)),
-            Method::Dop853 => self.solve_with(Dop853::new_in(dim)),
-            Method::Rodas4 => self.solve_with(Rodas4::new_in(dim)),
-            Method::Rk4 { h } => self.solve_with(Rk4::new_in(dim, h)),
-        }
+        let (method, dim) = (self.method, self.model.dim());
+        method.with_stepper(dim, Solving::<_, _, K>(self))
     }
 
     fn solve_with<S: Stepper<D>, const K: usize>(
@@ -423,12 +440,22 @@ impl<'o, D: Dim> Record<'o, D> {
     }
 }
 
+/// A [`Problem`] waiting for its stepper, with the size of its outputs.
+struct Solving<'m, M, D: Dim, const K: usize>(Problem<'m, M, D>);
+
+impl<M: SystemOutputs<D, K>, D: Dim, const K: usize> WithStepper<D> for Solving<'_, M, D, K> {
+    type Output = Result<Trajectory<D, K>, SolveFailure>;
+    fn run<S: Stepper<D>>(self, stepper: S) -> Self::Output {
+        self.0.solve_with(stepper)
+    }
+}
+
 impl<D: Dim> Observer<D, (), usize> for Record<'_, D> {
     fn wants_dense(&self) -> bool {
         matches!(self.output, Output::Times(_))
     }
 
-    fn on_step(&mut self, step: &StepView<'_, D, ()>) {
+    fn on_step(&mut self, step: &StepView<'_, D, ()>) -> Observed {
         match self.output {
             Output::Steps => self.push(step.t1, step.y1.clone()),
             Output::Times(times) => {
@@ -446,5 +473,6 @@ impl<D: Dim> Observer<D, (), usize> for Record<'_, D> {
                 }
             }
         }
+        Ok(())
     }
 }

@@ -11,7 +11,7 @@ use crate::accumulation::AccumulationRule;
 use crate::dim::{Dim, Vector};
 use crate::hybrid::run::HybridSolver;
 use crate::hybrid::{HybridError, HybridOptions, StopReason};
-use crate::observer::{Observer, Sample, StepView, TransitionRecord};
+use crate::observer::{Observed, Observer, Sample, StepView, TransitionRecord};
 use crate::stats::Stats;
 use crate::stepper::Stepper;
 use crate::switched::graph::{EventId, ModeGraph, ModeId};
@@ -182,29 +182,7 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
 
 /// A hybrid error with its modes named.
 pub fn name_modes(graph: &ModeGraph, error: HybridError<ModeId>) -> HybridError<String> {
-    let name = |mode: ModeId| graph.mode_name(mode).to_string();
-    match error {
-        HybridError::Solve { mode, error } => HybridError::Solve {
-            mode: name(mode),
-            error,
-        },
-        HybridError::Transition { mode, t, source } => HybridError::Transition {
-            mode: name(mode),
-            t,
-            source,
-        },
-        HybridError::Chattering {
-            t,
-            transitions,
-            window,
-            modes,
-        } => HybridError::Chattering {
-            t,
-            transitions,
-            window,
-            modes: modes.into_iter().map(name).collect(),
-        },
-    }
+    error.map_mode(|mode| graph.mode_name(mode).to_string())
 }
 
 struct Collector<'g, D: Dim> {
@@ -216,10 +194,10 @@ struct Collector<'g, D: Dim> {
 }
 
 impl<D: Dim> Observer<D, ModeId, EventId, SwitchedNote> for Collector<'_, D> {
-    fn on_step(&mut self, step: &StepView<'_, D, ModeId>) {
+    fn on_step(&mut self, step: &StepView<'_, D, ModeId>) -> Observed {
         self.steps += 1;
         if !self.every_step {
-            return;
+            return Ok(());
         }
         let mode = self.graph.mode_name(step.mode);
         if self.samples.last().is_none_or(|(t, ..)| *t < step.t0) {
@@ -228,14 +206,19 @@ impl<D: Dim> Observer<D, ModeId, EventId, SwitchedNote> for Collector<'_, D> {
         }
         self.samples
             .push((step.t1, mode.to_string(), step.y1.clone()));
+        Ok(())
     }
 
-    fn on_sample(&mut self, sample: &Sample<'_, D, ModeId>) {
+    fn on_sample(&mut self, sample: &Sample<'_, D, ModeId>) -> Observed {
         let mode = self.graph.mode_name(sample.mode).to_string();
         self.samples.push((sample.t, mode, sample.y.clone()));
+        Ok(())
     }
 
-    fn on_transition(&mut self, record: TransitionRecord<D, ModeId, EventId, SwitchedNote>) {
+    fn on_transition(
+        &mut self,
+        record: TransitionRecord<D, ModeId, EventId, SwitchedNote>,
+    ) -> Observed {
         let (event, fired, t) = match record.note {
             SwitchedNote::Recorded(event) => (event, Fired::Recorded, record.hit.t),
             SwitchedNote::Reset(event) => (event, Fired::Reset, record.hit.t),
@@ -252,5 +235,6 @@ impl<D: Dim> Observer<D, ModeId, EventId, SwitchedNote> for Collector<'_, D> {
             y: record.hit.y,
             y_after: record.y_after,
         });
+        Ok(())
     }
 }

@@ -1,6 +1,15 @@
-//! One simulation from start to stop: checking the inputs, deciding the initial mode, choosing
-//! the integrator, and turning the driver's raw phase states into disk samples for the caller.
+//! One simulation from start to stop: checking the inputs, deciding the initial mode, driving
+//! the disk's system, and turning the driver's raw phase states into disk samples for the
+//! caller.
+//!
+//! A run goes in four stages, each one function: `begin` decides where the driver starts (or
+//! that the run ends before a step); `drive` (module `drive`) integrates in the configured time
+//! variable, with the `Adaptor` turning the driver's phases into disk output and failing, as
+//! the driver's observer, where the models cannot evaluate that output; `Adaptor::close` hands
+//! out what the run's end owes the observer; `conclude` turns the driver's outcome into the
+//! disk's, converting each error once.
 
+use super::drive::{drive, Drive, Driven, Failed, Start};
 use super::extrema::Scanner;
 use super::models::DiskModels;
 use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
@@ -10,16 +19,12 @@ use super::{
     Trigger,
 };
 use crate::config::{AllowedModes, DiskConfig};
-use crate::modes::{ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
-use crate::settings::{Integrator, TimeVariable};
+use crate::modes::{ContactForce, Mode, PhysicalState, Slip, DIM};
 use crate::start::InitialState;
-use crate::work::WorkMeter;
-use model_runtime::ChatterLimit as DriverChatter;
-use model_runtime::Const;
+use crate::work::{WorkExceeded, WorkMeter};
 use model_runtime::{
-    Clocked, Dop853, Dopri5, EvalError, HybridError, HybridOptions, HybridSolver, InputError,
-    LimitingComponent, Model, Observer, PhysicalTime, Regularised, Rk4, Rodas4, Sample,
-    StepOptions, StepView, Stepper, Tolerance,
+    Const, EvalError, HybridOutcome, Model, Observed, Observer, ObserverError, Sample, Stats,
+    StepView,
 };
 
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
@@ -41,39 +46,46 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     observer: &mut O,
 ) -> Result<RunOutcome, SimFailure> {
     validate(models, config, initial)?;
-    match config.integrator {
-        Integrator::Dopri5 => run_with(
-            Dopri5::new(),
-            Dopri5::new(),
-            models,
-            config,
-            initial,
-            observer,
-        ),
-        Integrator::Dop853 => run_with(
-            Dop853::new(),
-            Dop853::new(),
-            models,
-            config,
-            initial,
-            observer,
-        ),
-        Integrator::Rodas4 => run_with(
-            Rodas4::new(),
-            Rodas4::new(),
-            models,
-            config,
-            initial,
-            observer,
-        ),
-        Integrator::Rk4 { h } => {
-            run_with(Rk4::new(h), Rk4::new(h), models, config, initial, observer)
-        }
-    }
+    let mut system = DiskSystem::new(models, config);
+    let mut gate = Gate {
+        allowed: config.allowed,
+        forbidden: None,
+    };
+    let entry = match begin(&mut system, models, config, initial, &mut gate, observer)? {
+        Begun::Running(entry) => entry,
+        Begun::Stopped(outcome) => return Ok(*outcome),
+    };
+    let tolerance = config
+        .tolerance(models.chart)
+        .map_err(|e| SimError::Solve {
+            mode: entry.phase.mode(),
+            error: e.into(),
+        })?;
+    let how = Drive {
+        config,
+        tolerance,
+        sample_rate: config.sample_rate,
+    };
+    let start = Start {
+        t: initial.t,
+        mode: entry.phase,
+        y: entry.y,
+    };
+    let ring = observer_ring(observer, (initial.t, config.sample_rate));
+    let mut adaptor = Adaptor {
+        models,
+        bridge: entry.bridge,
+        user: observer,
+        gate,
+        scanner: Scanner::default(),
+        work: WorkMeter::new(config.work, initial.t),
+        ring,
+        last: None,
+    };
+    let driven = drive(how, &mut system, &PHASES, start, &mut adaptor);
+    let closing = adaptor.close(&driven);
+    conclude(models, &system, driven, closing)
 }
-
-/// The clocked state's dimension in [`TimeVariable::Regularised`] runs.
-const CLOCKED: usize = DIM + 1;
 
 /// The disk's modes, for the clocked system's guard lists.
 const PHASES: [Phase; 3] = [Phase::Rolling, Phase::Sliding, Phase::Bridge];
@@ -93,207 +105,89 @@ pub(super) fn validate<R, S>(
     }
 }
 
-fn run_with<St, Sc, R, S, O>(
-    stepper: St,
-    clocked_stepper: Sc,
+/// How a run begins: where the driver starts, or an end before the first step.
+enum Begun {
+    /// The driver starts here.
+    Running(Entry),
+    /// The run ended where it started: a mode not allowed, or a floor that would have to pull.
+    Stopped(Box<RunOutcome>),
+}
+
+/// The first stage: the initial mode decided (and told to the observer and the gate), the
+/// start sampled, and the ends before any step.
+fn begin<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
+    system: &mut DiskSystem<'_, R, S>,
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
+    gate: &mut Gate,
     observer: &mut O,
-) -> Result<RunOutcome, SimFailure>
-where
-    St: Stepper<Const<DIM>>,
-    Sc: Stepper<Const<CLOCKED>>,
-    R: Model<DIM>,
-    S: Model<DIM>,
-    O: DiskObserver,
-{
-    let mut system = DiskSystem::new(models, config);
-    let (start, decision) = initial_phase(&mut system, models, config, initial)?;
-    let mut gate = Gate {
-        allowed: config.allowed,
-        forbidden: None,
-    };
-    gate.admit(initial.t, start.phase.mode());
+) -> Result<Begun, SimError> {
+    let (entry, decision) = initial_phase(system, models, config, initial)?;
+    gate.admit(initial.t, entry.phase.mode());
     if let Some(record) = decision {
         gate.forward(&record, observer);
     }
-    let Entry {
-        phase,
-        y: y0,
-        bridge,
-    } = start;
-    let first = sample_at(models, bridge, initial.t, phase, &y0).map_err(|source| {
-        SimError::Transition {
-            mode: phase.mode(),
-            t: initial.t,
-            source,
-        }
-    })?;
-    if let Some((t, mode)) = gate.forbidden {
-        return Ok(stopped_at_start(
-            StopReason::ModeNotAllowed { t, mode },
-            first,
-        ));
-    }
-    if first.force.normal <= 0.0 || first.force.normal.is_nan() {
+    let t = initial.t;
+    let mode = entry.phase.mode();
+    let first = sample_at(models, entry.bridge, t, entry.phase, &entry.y)
+        .map_err(|source| SimError::Transition { mode, t, source })?;
+    let stop = match gate.forbidden {
+        Some((t, mode)) => StopReason::ModeNotAllowed { t, mode },
         // The floor would have to pull: the disk leaves it at once.
-        let stop = StopReason::ContactLost {
-            t: initial.t,
-            mode: phase.mode(),
-        };
-        return Ok(stopped_at_start(stop, first));
-    }
-    let options = hybrid_options(config);
-    let input_error = |e: InputError| SimError::Solve {
-        mode: phase.mode(),
-        error: e.into(),
-    };
-    let tolerance = config.tolerance(models.chart).map_err(input_error)?;
-    let ring = observer_ring(observer, (initial.t, config.sample_rate));
-    let mut adaptor = Adaptor {
-        models,
-        bridge,
-        user: observer,
-        gate: &mut gate,
-        failure: None,
-        scanner: Scanner::default(),
-        work: WorkMeter::new(config.work, initial.t),
-        ring,
-        last: None,
-    };
-    let (ended, work) = match config.time {
-        TimeVariable::Physical => {
-            let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input_error)?;
-            let result = solver
-                .run(
-                    &mut system,
-                    phase,
-                    initial.t,
-                    &y0,
-                    config.t_end,
-                    &mut adaptor,
-                )
-                .map(|out| Ended {
-                    t: out.t,
-                    y: out.y,
-                    phase: out.mode,
-                    stop: out.stop,
-                    stats: out.stats,
-                });
-            (result, solver.stats())
+        None if first.force.normal <= 0.0 || first.force.normal.is_nan() => {
+            StopReason::ContactLost { t, mode }
         }
-        TimeVariable::Regularised => {
-            let mut clocked =
-                Regularised::<_, DIM, CLOCKED>::new(&mut system, &PHASES, initial.t, config.t_end);
-            // The clock is held to the states' tolerances (in seconds): the same cost per
-            // step and, on the paper's scene, the same phase accuracy as a run in physical
-            // time. A clock held 1000 times tighter makes the transition times 400 times more
-            // accurate for 1.4 times the work (BENCHMARKS.md §3).
-            let tolerance = clocked.tolerance(&tolerance, (config.rtol, config.atol));
-            // The driver samples in its own variable; the clocked observer samples in t.
-            let options = HybridOptions {
-                sample_rate: None,
-                ..options
-            };
-            let mut solver =
-                HybridSolver::new(clocked_stepper, tolerance, options).map_err(input_error)?;
-            let mut physical =
-                PhysicalTime::<_, DIM, CLOCKED>::new(&mut adaptor, initial.t, config.sample_rate);
-            let z0 = Regularised::<DiskSystem<R, S>, DIM, CLOCKED>::start(&y0);
-            let result = solver.run(&mut clocked, phase, initial.t, &z0, f64::MAX, &mut physical);
-            let at = clocked.latest_time();
-            let result = result
-                .map(|out| Ended {
-                    t: match out.stop {
-                        model_runtime::StopReason::User(Clocked::EndTime) => config.t_end,
-                        _ => clocked.time_of(&out.y),
-                    },
-                    y: Regularised::<DiskSystem<R, S>, DIM, CLOCKED>::state_of(&out.y),
-                    phase: out.mode,
-                    stop: match out.stop {
-                        model_runtime::StopReason::EndTime
-                        | model_runtime::StopReason::User(Clocked::EndTime) => {
-                            model_runtime::StopReason::EndTime
-                        }
-                        model_runtime::StopReason::User(Clocked::Inner(halted)) => {
-                            model_runtime::StopReason::User(halted)
-                        }
-                        model_runtime::StopReason::Observer => model_runtime::StopReason::Observer,
-                    },
-                    stats: out.stats,
-                })
-                .map_err(|e| in_physical_time(e, at));
-            (result, solver.stats())
+        None => return Ok(Begun::Running(entry)),
+    };
+    Ok(Begun::Stopped(Box::new(RunOutcome {
+        stop,
+        last: first,
+        transitions: 0,
+        stats: Default::default(),
+        max_drift: Default::default(),
+    })))
+}
+
+/// The last stage: the driver's outcome as the disk's, or its failure with the work done and
+/// the last state reached.
+fn conclude<R: Model<DIM>, S: Model<DIM>>(
+    models: &DiskModels<R, S>,
+    system: &DiskSystem<'_, R, S>,
+    driven: Driven<Phase, Halted>,
+    closing: Closing,
+) -> Result<RunOutcome, SimFailure> {
+    let out = match driven {
+        Ok(out) => out,
+        Err(Failed { error, stats }) => {
+            let error = SimError::from_driver(error, Phase::mode);
+            return Err(closing.failure(error, stats));
         }
     };
-    // Every failure from here on has the work done with it, and the last state reached.
-    let last = (adaptor.last.as_ref())
-        .and_then(|l| sample_at(models, l.bridge, l.t, l.phase, &l.y).ok())
-        .map(Box::new);
-    let failed = |error: SimError| SimFailure {
-        error,
-        stats: Box::new(work),
-        last: last.clone(),
-    };
-    adaptor.end_segment();
-    if let Some(ring) = &adaptor.ring {
-        let sample = |t, phase, bridge, y: &[f64; DIM]| sample_at(models, bridge, t, phase, y);
-        adaptor.user.on_trailing(&Trailing {
-            ring,
-            sample_at: &sample,
-        });
-    }
-    let failure = adaptor.failure.take();
-    let over_budget = adaptor.work.exceeded();
-    if let Ok(Ended {
-        stop:
-            model_runtime::StopReason::User(Halted {
-                decision: Some(record),
-                ..
-            }),
-        ..
-    }) = &ended
-    {
-        // The decision just before a stop: no segment followed it to carry it. A stop on a
-        // bridge is sampled in the direction just decided, where the run found it must stop.
-        adaptor.gate.forward(record, adaptor.user);
-        if let Some(direction) = record.slip_direction {
-            adaptor.bridge = Some(Slip {
-                speed: 0.0,
-                direction,
-            });
-        }
-    }
-    let bridge = adaptor.bridge;
-    let out = ended.map_err(|e| failed(SimError::from_driver(e, Phase::mode)))?;
-    if let Some((t, phase, source)) = failure {
-        return Err(failed(SimError::Transition {
-            mode: phase.mode(),
-            t,
-            source,
-        }));
-    }
-    if let Some(over) = over_budget {
-        return Err(failed(SimError::WorkBound(over)));
+    if let Some(over) = closing.over_budget {
+        return Err(closing.failure(SimError::WorkBound(over), Box::new(out.stats)));
     }
     let stop = match out.stop {
         model_runtime::StopReason::EndTime => StopReason::EndTime,
-        model_runtime::StopReason::Observer => match gate.forbidden {
+        model_runtime::StopReason::Observer => match closing.forbidden {
             Some((t, mode)) => StopReason::ModeNotAllowed { t, mode },
             None => StopReason::Requested { t: out.t },
         },
         model_runtime::StopReason::User(Halted { halt, .. }) => match halt {
             Halt::Stop(reason) => reason,
-            Halt::Onset { t, source } => return Err(failed(SimError::Onset { t, source })),
+            Halt::Onset { t, source } => {
+                return Err(closing.failure(SimError::Onset { t, source }, Box::new(out.stats)))
+            }
         },
     };
-    let last = sample_at(models, bridge, out.t, out.phase, &out.y).map_err(|source| {
-        failed(SimError::Transition {
-            mode: out.phase.mode(),
+    let mode = out.mode.mode();
+    let last = sample_at(models, closing.bridge, out.t, out.mode, &out.y).map_err(|source| {
+        let error = SimError::Transition {
+            mode,
             t: out.t,
             source,
-        })
+        };
+        closing.failure(error, Box::new(out.stats))
     })?;
     Ok(RunOutcome {
         stop,
@@ -304,93 +198,12 @@ where
     })
 }
 
-/// The driver's options for a run under `config` (the hand-written and the switched disk
-/// alike).
-pub(super) fn hybrid_options(config: &DiskConfig) -> HybridOptions {
-    HybridOptions {
-        step: StepOptions {
-            max_steps: config.max_steps,
-            control: config.step_control,
-            ..StepOptions::default()
-        },
-        // A backstop only: the disk counts its own decisions (each may take three driver
-        // transitions through bridges) and stops with a named reason first.
-        chatter: DriverChatter {
-            max_transitions: 3 * config.chatter.max_transitions + 3,
-            window: config.chatter.window,
-        },
-        sample_rate: config.sample_rate,
-        guard_checks: config.guard_checks,
-    }
-}
-
 /// The ring of latest steps `observer` asks for, if any, on the run's sample `grid` (origin,
 /// rate).
 fn observer_ring<O: DiskObserver>(observer: &O, grid: (f64, Option<f64>)) -> Option<StepRing> {
     observer
         .keeps_trailing()
         .map(|span| StepRing::new(span, grid))
-}
-
-/// A run that ends where it starts, at `first`, before any step.
-fn stopped_at_start(stop: StopReason, first: DiskSample) -> RunOutcome {
-    RunOutcome {
-        stop,
-        last: first,
-        transitions: 0,
-        stats: Default::default(),
-        max_drift: Default::default(),
-    }
-}
-
-/// Where the driver left a run, in physical time and the disk's own state.
-struct Ended {
-    t: f64,
-    y: [f64; DIM],
-    phase: Phase,
-    stop: model_runtime::StopReason<Halted>,
-    stats: model_runtime::Stats,
-}
-
-/// A failure of a regularised run dated in physical time (`t`, the latest the clocked system
-/// saw) instead of the integration variable.
-pub(super) fn in_physical_time<Md>(e: HybridError<Md>, t: f64) -> HybridError<Md> {
-    match e {
-        HybridError::Solve { mode, error } => HybridError::Solve {
-            mode,
-            error: error.at_time(t),
-        },
-        HybridError::Transition { mode, source, .. } => HybridError::Transition { mode, t, source },
-        HybridError::Chattering {
-            transitions,
-            window,
-            modes,
-            ..
-        } => HybridError::Chattering {
-            t,
-            transitions,
-            window,
-            modes,
-        },
-    }
-}
-
-impl DiskConfig {
-    /// The error norm of a run sliding in `chart`: the tolerances, the vector groups of
-    /// [`DiskConfig::error_norm`], and whether the limiting component is counted.
-    pub fn tolerance(&self, chart: SlipChart) -> Result<Tolerance<Const<DIM>>, InputError> {
-        let tol = self
-            .error_norm
-            .groups(chart)
-            .iter()
-            .try_fold(Tolerance::scalar(self.rtol, self.atol), |tol, g| {
-                tol.with_group(g.clone())
-            })?;
-        Ok(match self.limiting_component {
-            LimitingComponent::Untracked => tol,
-            LimitingComponent::Tracked => tol.tracking_limiting(),
-        })
-    }
 }
 
 /// Where the driver starts (see [`simulate`]), and the initial mode decision if one was made.
@@ -438,7 +251,7 @@ pub(super) fn initial_phase<R: Model<DIM>, S: Model<DIM>>(
         Ok(entry) => Ok((entry, decision)),
         Err(Halt::Onset { t, source }) => Err(SimError::Onset { t, source }),
         // Sliding would need the floor to pull: start on the bridge at zero slip in the
-        // direction decided, where `run_with` sees N <= 0 in the first sample and stops at once.
+        // direction decided, where `begin` sees N <= 0 in the first sample and stops at once.
         Err(Halt::Stop(_)) => {
             let direction = decision
                 .and_then(|d| d.slip_direction)
@@ -539,9 +352,7 @@ struct Adaptor<'a, R, S, O> {
     /// The slip the current bridge started from (from the note of the transition into it).
     bridge: Option<Slip>,
     user: &'a mut O,
-    gate: &'a mut Gate,
-    /// The first model failure while sampling (reported after the run).
-    failure: Option<(f64, Phase, EvalError)>,
+    gate: Gate,
     /// Locates extrema, when the user asks for them.
     scanner: Scanner,
     /// Counts the steps against the run's work bound.
@@ -560,12 +371,87 @@ struct StepEnd {
     y: [f64; DIM],
 }
 
+/// What the adaptor knows at a run's end that the driver's outcome does not.
+struct Closing {
+    /// The slip the bridge in force started from (a stop on a bridge is sampled with it).
+    bridge: Option<Slip>,
+    /// The first decision for a mode not allowed: why the adaptor stopped the run, if it did.
+    forbidden: Option<(f64, Mode)>,
+    /// The work bound, if the run went over it (the adaptor stopped the run there).
+    over_budget: Option<WorkExceeded>,
+    /// The disk at the end of the last accepted step (`None` before the first step, or where
+    /// the models cannot evaluate it).
+    last: Option<Box<DiskSample>>,
+}
+
+impl Closing {
+    /// A failure of the run with `stats` of work done, and where it got.
+    fn failure(&self, error: SimError, stats: Box<Stats>) -> SimFailure {
+        SimFailure {
+            error,
+            stats,
+            last: self.last.clone(),
+        }
+    }
+}
+
 impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
     /// Ends the scanned segment (a transition or the end of the run).
     fn end_segment(&mut self) {
         if self.user.wants_extrema() {
             let user = &mut *self.user;
             self.scanner.end_segment(&mut |e| user.on_extremum(&e));
+        }
+    }
+
+    /// The disk sample at `(t, y)` in `phase` (with the bridge in force), or the observer's
+    /// failure there.
+    fn sample(&self, t: f64, phase: Phase, y: &[f64; DIM]) -> Result<DiskSample, ObserverError> {
+        sample_at(self.models, self.bridge, t, phase, y)
+            .map_err(|source| ObserverError { t, source })
+    }
+
+    /// The third stage, once the driver has returned `driven`: the last scanned segment ends,
+    /// the kept steps go to the observer, and a decision made at the stop (no segment
+    /// followed to carry it) is told; what is left for the outcome comes back.
+    fn close(mut self, driven: &Driven<Phase, Halted>) -> Closing {
+        let last = (self.last.as_ref())
+            .and_then(|l| sample_at(self.models, l.bridge, l.t, l.phase, &l.y).ok())
+            .map(Box::new);
+        self.end_segment();
+        if let Some(ring) = &self.ring {
+            let models = self.models;
+            let sample = |t, phase, bridge, y: &[f64; DIM]| sample_at(models, bridge, t, phase, y);
+            self.user.on_trailing(&Trailing {
+                ring,
+                sample_at: &sample,
+            });
+        }
+        let over_budget = self.work.exceeded();
+        if let Ok(HybridOutcome {
+            stop:
+                model_runtime::StopReason::User(Halted {
+                    decision: Some(record),
+                    ..
+                }),
+            ..
+        }) = driven
+        {
+            // A stop on a bridge is sampled in the direction just decided, where the run
+            // found it must stop.
+            self.gate.forward(record, self.user);
+            if let Some(direction) = record.slip_direction {
+                self.bridge = Some(Slip {
+                    speed: 0.0,
+                    direction,
+                });
+            }
+        }
+        Closing {
+            bridge: self.bridge,
+            forbidden: self.gate.forbidden,
+            over_budget,
+            last,
         }
     }
 }
@@ -588,18 +474,13 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
         self.user.proceed()
     }
 
-    fn on_sample(&mut self, s: &Sample<'_, Const<DIM>, Phase>) {
-        match sample_at(self.models, self.bridge, s.t, s.mode, s.y) {
-            Ok(sample) => self.user.on_sample(&sample),
-            Err(e) => {
-                if self.failure.is_none() {
-                    self.failure = Some((s.t, s.mode, e));
-                }
-            }
-        }
+    fn on_sample(&mut self, s: &Sample<'_, Const<DIM>, Phase>) -> Observed {
+        let sample = self.sample(s.t, s.mode, s.y)?;
+        self.user.on_sample(&sample);
+        Ok(())
     }
 
-    fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Phase>) {
+    fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Phase>) -> Observed {
         self.work.step(step.t0, step.t1);
         if let (Some(ring), Some(dense)) = (&mut self.ring, step.dense) {
             ring.push(dense, (step.t0, step.t1), step.mode, self.bridge);
@@ -615,23 +496,17 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
             self.scanner
                 .step(self.models, step.mode, step, &mut |e| user.on_extremum(&e));
         }
-        if !self.user.wants_steps() {
-            return;
+        if self.user.wants_steps() {
+            let sample = self.sample(step.t1, step.mode, step.y1)?;
+            self.user.on_step(&sample);
         }
-        match sample_at(self.models, self.bridge, step.t1, step.mode, step.y1) {
-            Ok(sample) => self.user.on_step(&sample),
-            Err(e) => {
-                if self.failure.is_none() {
-                    self.failure = Some((step.t1, step.mode, e));
-                }
-            }
-        }
+        Ok(())
     }
 
     fn on_transition(
         &mut self,
         record: model_runtime::TransitionRecord<Const<DIM>, Phase, super::DiskGuard, DiskNote>,
-    ) {
+    ) -> Observed {
         if !matches!(record.kind, model_runtime::TransitionKind::Pass) {
             self.end_segment();
         }
@@ -642,5 +517,6 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
         if let Some(decision) = decision {
             self.gate.forward(&decision, self.user);
         }
+        Ok(())
     }
 }

@@ -2,7 +2,8 @@
 //! start as the hand-written run, reporting its events and its mode decisions: what the
 //! tests and the bench hold against [`super::simulate`].
 
-use super::run::{hybrid_options, in_physical_time, initial_phase, validate};
+use super::drive::{drive, Drive, Failed, Start};
+use super::run::{initial_phase, validate};
 use super::switching::disk;
 use super::system::{DiskSystem, Phase};
 use super::{GeneratedModels, SimError, SimFailure};
@@ -10,13 +11,12 @@ use crate::config::DiskConfig;
 use crate::issue::{Issue, Rule};
 use crate::modes::{SlipChart, DIM};
 use crate::params::DiskParams;
-use crate::settings::{Integrator, TimeVariable};
+use crate::settings::Integrator;
 use crate::start::InitialState;
-use model_runtime::Const;
 use model_runtime::{
-    AccumulationRule, Clocked, Dop853, Dopri5, EventId, HybridError, HybridSolver, InputError,
-    ModeGraph, ModeId, Observer, PhysicalTime, Regularised, Stats, Stepper, StopReason, Switched,
-    SwitchedModel, SwitchedNote, TransitionKind, TransitionRecord,
+    AccumulationRule, Const, EventId, HybridError, InputError, ModeGraph, ModeId, Observed,
+    Observer, Stats, StopReason, Switched, SwitchedModel, SwitchedNote, TransitionKind,
+    TransitionRecord,
 };
 
 /// One event of a switched run: where it fired and where the run went on.
@@ -108,8 +108,7 @@ pub fn simulate_switched(
         return Err(unsupported("run.slip_sign", sign, "physical"));
     }
     match config.integrator {
-        Integrator::Dop853 => run(Dop853::new(), Dop853::new(), &models, config, initial),
-        Integrator::Dopri5 => run(Dopri5::new(), Dopri5::new(), &models, config, initial),
+        Integrator::Dop853 | Integrator::Dopri5 => run(&models, config, initial),
         other => Err(unsupported(
             "solver.integrator",
             format!("{other:?}"),
@@ -118,12 +117,7 @@ pub fn simulate_switched(
     }
 }
 
-/// The clocked state's dimension in regularised time.
-const CLOCKED: usize = DIM + 1;
-
-fn run<St: Stepper<Const<DIM>>, Sc: Stepper<Const<CLOCKED>>>(
-    stepper: St,
-    clocked_stepper: Sc,
+fn run(
     models: &GeneratedModels,
     config: &DiskConfig,
     initial: &InitialState,
@@ -136,97 +130,56 @@ fn run<St: Stepper<Const<DIM>>, Sc: Stepper<Const<CLOCKED>>>(
         Phase::Sliding => disk::mode::sliding,
         Phase::Bridge => model.hold(&hand_written.bridge),
     };
-    let mut system = Switched::new(model, AccumulationRule::default()).map_err(input_error)?;
-    let first = (system.model().graph().ids())
-        .nth(mode)
-        .expect("the switched disk's modes are its graph's");
-    let options = hybrid_options(config);
-    let tolerance = config
-        .tolerance(SlipChart::Cartesian)
-        .map_err(input_error)?;
+    let refused = |error: InputError| {
+        SimFailure::from(SimError::Solve {
+            mode: start.phase.mode(),
+            error: error.into(),
+        })
+    };
+    let mut system = Switched::new(model, AccumulationRule::default()).map_err(refused)?;
+    let graph = system.model().graph().clone();
+    let modes: Vec<ModeId> = graph.ids().collect();
+    let tolerance = config.tolerance(SlipChart::Cartesian).map_err(refused)?;
     let mut collector = Collector {
-        graph: system.model().graph().clone(),
+        graph,
         events: Vec::new(),
-        steps: 0,
     };
-    let (t0, y0, t_end) = (initial.t, start.y, config.t_end);
-    let result = match config.time {
-        TimeVariable::Physical => {
-            let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input_error)?;
-            let out = solver.run(&mut system, first, t0, &y0, t_end, &mut collector);
-            out.map(|out| {
-                let stop = match out.stop {
-                    StopReason::User(stop) => StopReason::User(Some(stop)),
-                    StopReason::EndTime => StopReason::EndTime,
-                    StopReason::Observer => StopReason::Observer,
-                };
-                (out.t, stop, out.stats)
-            })
-        }
-        TimeVariable::Regularised => {
-            let modes: Vec<ModeId> = system.model().graph().ids().collect();
-            let mut clocked = Regularised::<_, DIM, CLOCKED>::new(&mut system, &modes, t0, t_end);
-            let tolerance = clocked.tolerance(&tolerance, (config.rtol, config.atol));
-            let options = model_runtime::HybridOptions {
-                sample_rate: None,
-                ..options
-            };
-            let mut solver =
-                HybridSolver::new(clocked_stepper, tolerance, options).map_err(input_error)?;
-            let mut physical = PhysicalTime::<_, DIM, CLOCKED>::new(&mut collector, t0, None);
-            let z0 = Regularised::<Switched<disk::Model>, DIM, CLOCKED>::start(&y0);
-            let out = solver.run(&mut clocked, first, t0, &z0, f64::MAX, &mut physical);
-            let at = clocked.latest_time();
-            let out = out.map_err(|e| in_physical_time(e, at));
-            out.map(|out| {
-                let stop = match out.stop {
-                    StopReason::User(Clocked::Inner(stop)) => StopReason::User(Some(stop)),
-                    StopReason::User(Clocked::EndTime) => StopReason::User(None),
-                    StopReason::EndTime => StopReason::EndTime,
-                    StopReason::Observer => StopReason::Observer,
-                };
-                let t = match stop {
-                    StopReason::User(None) => t_end,
-                    _ => clocked.time_of(&out.y),
-                };
-                (t, stop, out.stats)
-            })
-        }
+    // The collector takes events only: no samples to interpolate.
+    let how = Drive {
+        config,
+        tolerance,
+        sample_rate: None,
     };
-    let (t, stop, stats) = result.map_err(|error| {
-        let stats = Box::new(collector.stats());
-        SimFailure {
+    let start = Start {
+        t: initial.t,
+        mode: modes[mode],
+        y: start.y,
+    };
+    let out = drive(how, &mut system, &modes, start, &mut collector).map_err(
+        |Failed { error, stats }| SimFailure {
             error: hybrid_error(error),
             stats,
             last: None,
-        }
-    })?;
-    let stopped_by = match stop {
-        StopReason::User(Some(stop)) => {
-            let event = stop.event();
-            let (mode, name) = collector.names(event);
+        },
+    )?;
+    let stopped_by = match out.stop {
+        StopReason::User(stop) => {
+            let (mode, name) = collector.names(stop.event());
             collector.events.push(SwitchedEvent {
-                t,
+                t: out.t,
                 mode,
                 event: name.clone(),
                 next: None,
             });
             Some(name)
         }
-        _ => None,
+        StopReason::EndTime | StopReason::Observer => None,
     };
     Ok(SwitchedDiskRun {
         events: collector.events,
-        t,
+        t: out.t,
         stopped_by,
-        stats,
-    })
-}
-
-fn input_error(error: InputError) -> SimFailure {
-    SimFailure::from(SimError::Solve {
-        mode: crate::Mode::Rolling,
-        error: error.into(),
+        stats: out.stats,
     })
 }
 
@@ -238,11 +191,10 @@ fn hybrid_error(error: HybridError<ModeId>) -> SimError {
     })
 }
 
-/// Collects the events and counts the steps.
+/// Collects the events.
 struct Collector {
     graph: ModeGraph,
     events: Vec<SwitchedEvent>,
-    steps: u64,
 }
 
 impl Collector {
@@ -251,24 +203,13 @@ impl Collector {
         let mode = self.graph.mode(event.mode);
         (mode.name.clone(), mode.events[event.event].name.clone())
     }
-
-    fn stats(&self) -> Stats {
-        Stats {
-            steps: self.steps,
-            ..Stats::default()
-        }
-    }
 }
 
 impl Observer<Const<DIM>, ModeId, EventId, SwitchedNote> for Collector {
-    fn on_step(&mut self, _step: &model_runtime::StepView<'_, Const<DIM>, ModeId>) {
-        self.steps += 1;
-    }
-
     fn on_transition(
         &mut self,
         record: TransitionRecord<Const<DIM>, ModeId, EventId, SwitchedNote>,
-    ) {
+    ) -> Observed {
         let (mode, event) = self.names(record.hit.guard);
         let next = match record.kind {
             TransitionKind::Switch { to } => self.graph.mode_name(to).to_string(),
@@ -280,5 +221,6 @@ impl Observer<Const<DIM>, ModeId, EventId, SwitchedNote> for Collector {
             event,
             next: Some(next),
         });
+        Ok(())
     }
 }

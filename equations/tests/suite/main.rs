@@ -20,6 +20,7 @@ mod linear_stability;
 mod located_extrema;
 mod misprint;
 mod normal_force;
+mod output_failure;
 mod paper_scene;
 mod pruned_run;
 mod reference_vs_explicit;

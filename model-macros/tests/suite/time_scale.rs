@@ -31,8 +31,12 @@ model_macros::model! {
 struct Impacts(Vec<f64>);
 
 impl Observer<Const<2>, ModeId, EventId, SwitchedNote> for Impacts {
-    fn on_transition(&mut self, record: TransitionRecord<Const<2>, ModeId, EventId, SwitchedNote>) {
+    fn on_transition(
+        &mut self,
+        record: TransitionRecord<Const<2>, ModeId, EventId, SwitchedNote>,
+    ) -> model_runtime::Observed {
         self.0.push(record.hit.t);
+        Ok(())
     }
 }
 

@@ -8,7 +8,7 @@
 use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
 use crate::dense::{Interpolant, StoredInterpolant};
 use crate::dim::Const;
-use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{Observed, Observer, Sample, StepView, TransitionKind, TransitionRecord};
 use crate::root::find_crossing;
 
 /// An observer of `H` (in physical time) fed by a run of [`crate::Regularised`] (in `τ`).
@@ -50,7 +50,7 @@ where
         self.rate.is_some() || self.inner.wants_dense()
     }
 
-    fn on_step(&mut self, step: &StepView<'_, Const<M>, Md>) {
+    fn on_step(&mut self, step: &StepView<'_, Const<M>, Md>) -> Observed {
         let (t0, t1) = (self.t_seg + step.y0[N], self.t_seg + step.y1[N]);
         // Round-off in the located end of a run leaves its clock an ulp or so short of a
         // sample due exactly there.
@@ -70,7 +70,7 @@ where
                 t: ts,
                 mode: step.mode,
                 y: &head(&z),
-            });
+            })?;
         }
         let (y0, y1) = (head(step.y0), head(step.y1));
         let physical = match step.dense {
@@ -90,12 +90,15 @@ where
             y1: &y1,
             f0: &physical_rate(step.f0),
             dense: physical.as_ref().map(|d| d as &dyn Interpolant<Const<N>>),
-        });
+        })
     }
 
-    fn on_transition(&mut self, record: TransitionRecord<Const<M>, Md, ClockGuard<G>, Nt>) {
+    fn on_transition(
+        &mut self,
+        record: TransitionRecord<Const<M>, Md, ClockGuard<G>, Nt>,
+    ) -> Observed {
         let ClockGuard::Inner(guard) = record.hit.guard else {
-            return;
+            return Ok(());
         };
         let t = self.t_seg + record.hit.y[N];
         // A pass restarts nothing: the clock keeps counting from the same segment start.
@@ -112,7 +115,7 @@ where
             },
             y_after: head(&record.y_after),
             note: record.note,
-        });
+        })
     }
 
     fn proceed(&mut self) -> std::ops::ControlFlow<()> {

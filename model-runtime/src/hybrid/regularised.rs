@@ -24,7 +24,7 @@
 //! roots of the clock), steps and transitions with physical times and derivatives. The
 //! driver's own sampling must stay off (its grid would be in `τ`).
 
-use super::{HybridSystem, Transition};
+use super::{HybridError, HybridOutcome, HybridSystem, StopReason, Transition};
 use crate::dim::Const;
 use crate::error::EvalError;
 use crate::events::{Direction, EventHit, GuardInputs, GuardSpec};
@@ -228,6 +228,54 @@ impl<'a, H: TimeScale<N>, const N: usize, const M: usize> Regularised<'a, H, N, 
     /// failure's time in physical terms (the driver dates it in `τ`).
     pub fn latest_time(&self) -> f64 {
         self.latest.get()
+    }
+
+    /// A run's outcome in physical terms: where it ended in physical time (the end time
+    /// exactly when the clock's guard ended it) and state, and why, the clock's end being
+    /// [`StopReason::EndTime`] and the inner system's stops its own.
+    pub fn physical_outcome(
+        &self,
+        out: HybridOutcome<Const<M>, H::Mode, Clocked<H::Stop>>,
+    ) -> HybridOutcome<Const<N>, H::Mode, H::Stop> {
+        let (t, stop) = match out.stop {
+            StopReason::User(Clocked::EndTime) => (self.t_end, StopReason::EndTime),
+            StopReason::User(Clocked::Inner(stop)) => {
+                (self.time_of(&out.y), StopReason::User(stop))
+            }
+            StopReason::EndTime => (self.time_of(&out.y), StopReason::EndTime),
+            StopReason::Observer => (self.time_of(&out.y), StopReason::Observer),
+        };
+        HybridOutcome {
+            t,
+            y: head(&out.y),
+            mode: out.mode,
+            stop,
+            stats: out.stats,
+            transitions: out.transitions,
+            passes: out.passes,
+        }
+    }
+
+    /// A run's failure dated in physical time: the driver dates its own failures in `τ`, so
+    /// they get the physical time of the latest evaluation ([`Regularised::latest_time`]); an
+    /// observer's failure keeps the time the observer gave it (physical, behind
+    /// [`crate::PhysicalTime`]).
+    pub fn physical_error(&self, error: HybridError<H::Mode>) -> HybridError<H::Mode> {
+        let at = self.latest_time();
+        match error {
+            HybridError::Solve { mode, error } => HybridError::Solve {
+                mode,
+                error: error.at_time(at),
+            },
+            mut other => {
+                if let HybridError::Transition { t, .. } | HybridError::Chattering { t, .. } =
+                    &mut other
+                {
+                    *t = at;
+                }
+                other
+            }
+        }
     }
 
     /// Tolerances for the clocked state: `tol` for the states (its vector groups kept), and
@@ -476,6 +524,108 @@ mod tests {
         );
     }
 
+    /// Refuses the sample at `at` (in its own time), keeping every other one.
+    struct Refuses {
+        at: f64,
+        seen: Vec<f64>,
+    }
+    impl Observer<Const<1>, (), &'static str> for Refuses {
+        fn on_sample(&mut self, s: &Sample<'_, Const<1>, ()>) -> crate::observer::Observed {
+            if s.t == self.at {
+                let source = EvalError::non_finite("refuses", "y", s.y[0]);
+                return Err(crate::observer::ObserverError { t: s.t, source });
+            }
+            self.seen.push(s.t);
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn an_observer_that_fails_ends_the_run_there_in_either_time() {
+        let options = HybridOptions {
+            sample_rate: Some(8.0),
+            ..HybridOptions::default()
+        };
+        // Physical time: the driver's own samples.
+        let mut refuses = Refuses {
+            at: 0.5,
+            seen: Vec::new(),
+        };
+        let mut solver = HybridSolver::new(Dop853::new(), tol(), options).unwrap();
+        let error = solver
+            .run(&mut Root, (), 0.0, &[1.0], 0.75, &mut refuses)
+            .unwrap_err();
+        let HybridError::Observer { t, source, .. } = &error else {
+            panic!("{error:?}")
+        };
+        assert_eq!(*t, 0.5);
+        assert!(matches!(source, EvalError::NonFinite { .. }), "{source:?}");
+        assert_eq!(refuses.seen, [0.0, 0.125, 0.25, 0.375]);
+        let physical_steps = solver.stats().steps;
+        assert!(physical_steps > 0);
+        // Regularised time: the samples come from `PhysicalTime`, and the failure keeps the
+        // physical time the observer gave it.
+        let mut refuses = Refuses {
+            at: 0.5,
+            seen: Vec::new(),
+        };
+        let mut sys = Root;
+        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
+        let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
+        let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+        let mut observer = PhysicalTime::<_, 1, 2>::new(&mut refuses, 0.0, Some(8.0));
+        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
+        let error = solver
+            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut observer)
+            .unwrap_err();
+        let error = clocked.physical_error(error);
+        assert!(
+            matches!(error, HybridError::Observer { t, .. } if t == 0.5),
+            "{error:?}"
+        );
+        assert_eq!(refuses.seen, [0.0, 0.125, 0.25, 0.375]);
+        assert!(solver.stats().steps > 0);
+        // The run ended at the failure, not at its end time: fewer steps than the whole run.
+        let (whole, ..) = clocked_run(0.75, 8.0);
+        assert!(solver.stats().steps < whole.stats.steps);
+    }
+
+    #[test]
+    fn a_clocked_outcome_reads_in_physical_terms() {
+        let mut sys = Root;
+        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
+        let clock_tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
+        let mut solver =
+            HybridSolver::new(Dop853::new(), clock_tol, HybridOptions::default()).unwrap();
+        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
+        let out = solver
+            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut ())
+            .unwrap();
+        let (steps, z) = (out.stats.steps, out.y);
+        let physical = clocked.physical_outcome(out);
+        // The clock's guard ended it: the end time exactly, as the end time.
+        assert_eq!(physical.stop, StopReason::EndTime);
+        assert_eq!(physical.t, 0.75);
+        assert_eq!(physical.y, [z[0]]);
+        assert!((physical.y[0] - 0.5).abs() < 1e-9, "{}", physical.y[0]);
+        assert_eq!(physical.stats.steps, steps);
+        // The inner system's stop keeps its own reason and time.
+        let mut sys = Root;
+        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 10.0);
+        let clock_tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
+        let mut solver =
+            HybridSolver::new(Dop853::new(), clock_tol, HybridOptions::default()).unwrap();
+        let out = solver
+            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut ())
+            .unwrap();
+        let physical = clocked.physical_outcome(out);
+        let StopReason::User(t_hit) = physical.stop else {
+            panic!("{:?}", physical.stop)
+        };
+        assert_eq!(physical.t, t_hit);
+        assert!((physical.y[0] - Y_STOP).abs() < 1e-12, "{}", physical.y[0]);
+    }
+
     #[test]
     fn samples_and_the_end_time_are_in_physical_time() {
         let (out, t, seen) = clocked_run(0.75, 8.0);
@@ -497,7 +647,10 @@ mod tests {
             fn wants_dense(&self) -> bool {
                 true
             }
-            fn on_step(&mut self, step: &crate::observer::StepView<'_, Const<1>, ()>) {
+            fn on_step(
+                &mut self,
+                step: &crate::observer::StepView<'_, Const<1>, ()>,
+            ) -> crate::observer::Observed {
                 let dense = step.dense.expect("asked for");
                 for k in 0..=4 {
                     let t = step.t0 + (step.t1 - step.t0) * k as f64 / 4.0;
@@ -505,6 +658,7 @@ mod tests {
                     self.1 = self.1.max(err);
                 }
                 self.0 += 1;
+                Ok(())
             }
         }
         let mut sys = Root;
@@ -529,8 +683,9 @@ mod tests {
             fn wants_sample(&self, t: f64) -> bool {
                 (t * 4.0).round() as i64 % 2 == 0
             }
-            fn on_sample(&mut self, s: &Sample<'_, Const<1>, ()>) {
+            fn on_sample(&mut self, s: &Sample<'_, Const<1>, ()>) -> crate::observer::Observed {
                 self.0.push(s.t);
+                Ok(())
             }
         }
         let mut even = Even(Vec::new());

@@ -16,7 +16,9 @@ use crate::dim::{Dim, Matrix, Vector};
 use crate::error::{at, EvalError, InputError, SolveError};
 use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
-use crate::observer::{Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{
+    Observer, ObserverError, Sample, StepView, TransitionKind, TransitionRecord,
+};
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, Stepper};
 use crate::tolerance::Tolerance;
@@ -152,6 +154,15 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         }
     }
 
+    /// The run's failure for an observer's (in the mode in force when it was handed output).
+    fn observer_err(&self, ObserverError { t, source }: ObserverError) -> HybridError<Md> {
+        HybridError::Observer {
+            mode: self.mode,
+            t,
+            source,
+        }
+    }
+
     pub(super) fn go<H, O>(
         &mut self,
         sys: &mut H,
@@ -263,7 +274,8 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
             from: self.mode,
             kind: TransitionKind::Pass,
             note,
-        });
+        })
+        .map_err(|e| self.observer_err(e))?;
         self.search(sys, Search::Resume)
             .map_err(|e| self.solve_err(e))
     }
@@ -361,7 +373,12 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
             kind,
             y_after: y_after.clone(),
             note,
-        });
+        })
+        .map_err(|ObserverError { t, source }| HybridError::Observer {
+            mode: from,
+            t,
+            source,
+        })?;
         self.start_segment(sys, t, &y_after, quiet)
     }
 
@@ -535,7 +552,8 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
                 t: ts,
                 mode: self.mode,
                 y: &y,
-            });
+            })
+            .map_err(|e| self.observer_err(e))?;
         }
     }
 
@@ -573,8 +591,7 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
                 None
             },
         };
-        obs.on_step(&view);
-        Ok(())
+        obs.on_step(&view).map_err(|e| self.observer_err(e))
     }
 
     fn outcome<R>(&self, stop: StopReason<R>) -> HybridOutcome<D, Md, R> {

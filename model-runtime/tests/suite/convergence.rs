@@ -218,7 +218,7 @@ impl Observer<Const<4>, (), ()> for DenseChecker {
     fn wants_dense(&self) -> bool {
         true
     }
-    fn on_step(&mut self, s: &StepView<'_, Const<4>, ()>) {
+    fn on_step(&mut self, s: &StepView<'_, Const<4>, ()>) -> model_runtime::Observed {
         let dense = s.dense.expect("dense output requested");
         self.steps += 1;
         self.worst_end = self.worst_end.max(dist(s.y1, &Kepler::exact(self.e, s.t1)));
@@ -228,6 +228,7 @@ impl Observer<Const<4>, (), ()> for DenseChecker {
             dense.at(t, &mut y);
             self.worst_interior = self.worst_interior.max(dist(&y, &Kepler::exact(self.e, t)));
         }
+        Ok(())
     }
 }
 

@@ -360,12 +360,17 @@ struct Counter {
     samples: u64,
 }
 impl Observer<Const<2>, (), BallGuard, Impact> for Counter {
-    fn on_step(&mut self, s: &model_runtime::StepView<'_, Const<2>, ()>) {
+    fn on_step(
+        &mut self,
+        s: &model_runtime::StepView<'_, Const<2>, ()>,
+    ) -> model_runtime::Observed {
         assert!(s.t1 > s.t0 && s.dense.is_none());
         self.steps += 1;
+        Ok(())
     }
-    fn on_sample(&mut self, _: &Sample<'_, Const<2>, ()>) {
+    fn on_sample(&mut self, _: &Sample<'_, Const<2>, ()>) -> model_runtime::Observed {
         self.samples += 1;
+        Ok(())
     }
 }
 

@@ -410,14 +410,22 @@ struct FirstSteps {
     first: Vec<(Phase, f64)>,
 }
 impl model_runtime::Observer<Const<2>, Phase, Why> for FirstSteps {
-    fn on_step(&mut self, s: &model_runtime::StepView<'_, Const<2>, Phase>) {
+    fn on_step(
+        &mut self,
+        s: &model_runtime::StepView<'_, Const<2>, Phase>,
+    ) -> model_runtime::Observed {
         if self.expect_first {
             self.first.push((s.mode, s.t1 - s.t0));
             self.expect_first = false;
         }
+        Ok(())
     }
-    fn on_transition(&mut self, _: model_runtime::TransitionRecord<Const<2>, Phase, Why>) {
+    fn on_transition(
+        &mut self,
+        _: model_runtime::TransitionRecord<Const<2>, Phase, Why>,
+    ) -> model_runtime::Observed {
         self.expect_first = true;
+        Ok(())
     }
 }
 

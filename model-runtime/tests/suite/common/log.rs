@@ -25,13 +25,19 @@ impl<const N: usize, Md, G, Nt> RunLog<N, Md, G, Nt> {
 }
 
 impl<const N: usize, Md, G, Nt> Observer<Const<N>, Md, G, Nt> for RunLog<N, Md, G, Nt> {
-    fn on_step(&mut self, s: &StepView<'_, Const<N>, Md>) {
+    fn on_step(&mut self, s: &StepView<'_, Const<N>, Md>) -> model_runtime::Observed {
         self.steps.push((s.t0, s.t1, *s.y0, *s.y1));
+        Ok(())
     }
-    fn on_sample(&mut self, s: &Sample<'_, Const<N>, Md>) {
+    fn on_sample(&mut self, s: &Sample<'_, Const<N>, Md>) -> model_runtime::Observed {
         self.samples.push((s.t, *s.y));
+        Ok(())
     }
-    fn on_transition(&mut self, r: TransitionRecord<Const<N>, Md, G, Nt>) {
+    fn on_transition(
+        &mut self,
+        r: TransitionRecord<Const<N>, Md, G, Nt>,
+    ) -> model_runtime::Observed {
         self.records.push(r);
+        Ok(())
     }
 }
