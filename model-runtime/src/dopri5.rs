@@ -116,6 +116,10 @@ impl<D: Dim> Stepper<D> for Dopri5<D> {
         &self.cont
     }
 
+    // The hints on `attempt` and `prepare_dense` keep them inlined into the integrator's
+    // step: left to the optimiser, the choice follows how the crates are cut into codegen
+    // units, and a change far from here once cost the DP5 run 4 % more instructions.
+    #[inline]
     fn attempt<F: Rhs<D>>(
         &mut self,
         sys: &F,
@@ -144,6 +148,7 @@ impl<D: Dim> Stepper<D> for Dopri5<D> {
         Ok(tol.norm(&err, start.y, end.y))
     }
 
+    #[inline]
     fn prepare_dense<F: Rhs<D>>(
         &mut self,
         _sys: &F,
