@@ -39,7 +39,7 @@ fn crate_sources(root: &Path) -> Vec<PathBuf> {
 }
 
 /// Every `.rs` file under `dir`.
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+pub(crate) fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap().flatten() {
         let path = entry.path();
         if path.is_dir() {
@@ -67,7 +67,7 @@ fn module_of(src: &Path, file: &Path) -> ModPath {
 }
 
 /// The text with comments, string and character literals blanked out.
-fn code_only(text: &str) -> String {
+pub(crate) fn code_only(text: &str) -> String {
     let b: Vec<char> = text.chars().collect();
     let mut out = String::with_capacity(text.len());
     let mut i = 0;
@@ -163,7 +163,7 @@ fn ident_before(b: &[char], i: usize) -> bool {
 }
 
 /// The text without `#[cfg(test)]` items (test modules may use anything).
-fn without_test_items(code: &str) -> String {
+pub(crate) fn without_test_items(code: &str) -> String {
     let mut out = String::new();
     let mut rest = code;
     while let Some(at) = rest.find("#[cfg(test)]") {
@@ -202,7 +202,7 @@ fn without_test_items(code: &str) -> String {
 }
 
 /// Splits code into identifier, `::` and single-character tokens.
-fn tokens(code: &str) -> Vec<String> {
+pub(crate) fn tokens(code: &str) -> Vec<String> {
     let chars: Vec<char> = code.chars().collect();
     let mut out = Vec::new();
     let mut i = 0;

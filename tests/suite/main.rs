@@ -1,6 +1,7 @@
 //! Every integration test of the command line in one test binary, one module per former file: one
 //! link instead of one per file, which is most of a cold `cargo test`.
 
+mod architecture;
 mod cli_eval;
 mod cli_model;
 mod cli_run;
