@@ -82,6 +82,7 @@ where
             }),
             _ => None,
         };
+        let f1 = step.f1.map(physical_rate::<N, M>);
         self.inner.on_step(&StepView {
             mode: step.mode,
             t0,
@@ -89,6 +90,7 @@ where
             y0: &y0,
             y1: &y1,
             f0: &physical_rate(step.f0),
+            f1: f1.as_ref(),
             dense: physical.as_ref().map(|d| d as &dyn Interpolant<Const<N>>),
         })
     }
