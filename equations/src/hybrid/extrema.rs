@@ -15,13 +15,13 @@
 //!   above (below) its neighbour within the segment is reported as a maximum (minimum) too;
 //! * the slip speed, while sliding, as N (only interior extrema: it is continuous).
 //!
-//! What a step costs is what the scan reads beyond the integration. The ends' rates are the
+//! What a step costs is what the scan reads beyond the integration. The end's rate is the
 //! integrator's own (the last stage of a step is the derivative at its end), so N there costs
-//! no model evaluation; a hair is the end's state moved along that rate (one evaluation each,
-//! no interpolation). The values and slopes at the two ends fit a cubic (Hermite's); where it
-//! is monotone with its slope nowhere below [`MARGIN`] of the chord's, the interior points
-//! are skipped — they would have shown the same monotone sequence (see [`turns`]). Only the
-//! other steps, about one in six on the paper's scene, are interpolated and evaluated inside.
+//! no model evaluation; the hairs are read on the interpolant (one evaluation each). The values
+//! and slopes at the two ends fit a cubic (Hermite's); where both end slopes are within
+//! [`MARGIN`] of the chord's and the cubic's slope nowhere falls below that fraction of it, the
+//! step is resolved as a monotone stretch and the interior points are skipped (see [`turns`]).
+//! Only the other steps, about a third on the paper's scene, are read inside.
 //!
 //! A pair of extrema of N or v_C less than two thirds of a step apart can be missed (farther
 //! apart, never, where the interior points are read: see [`bracketed`]); so can a pair so
@@ -30,9 +30,9 @@
 //! them inside one gap between scan points is missed (Ω_y has the same sign at the gap's
 //! ends); a pair with a point between them is found.
 //!
-//! Bridges (about 1e-9 s at zero slip) are not scanned. The cost is two model evaluations per
-//! step, two more with two interpolations in the steps that turn, and about twenty per
-//! extremum; a run that does not ask pays nothing.
+//! Bridges (about 1e-9 s at zero slip) are not scanned. The cost is two interpolations and two
+//! model evaluations per step (one more at a segment's start), two more of each in the steps
+//! that may turn, and about twenty per extremum; a run that does not ask pays nothing.
 
 mod brent;
 #[cfg(test)]
@@ -54,9 +54,9 @@ pub const INTERIOR: usize = 2;
 pub const EDGE: f64 = 1e-4;
 /// Brent's refinement stops when the bracket is this fraction of its starting width.
 pub const X_TOL: f64 = 1e-7;
-/// The interior points of a step are skipped only where the cubic through the ends' values
-/// and slopes keeps its slope, everywhere in the step, at least this fraction of the chord's
-/// (and of its sign).
+/// The interior points of a step are skipped only where both end slopes are within this
+/// fraction of the chord's slope of it, and the cubic through the ends' values and slopes keeps
+/// its slope, everywhere in the step, at least this fraction of the chord's.
 pub const MARGIN: f64 = 0.5;
 
 /// A quantity whose extrema are located.
@@ -244,9 +244,13 @@ fn end_rate<R: Model<DIM>, S: Model<DIM>>(
 }
 
 /// Whether a quantity whose values at a step's ends and a hair inside them are `v`
-/// (`[start, hair, hair, end]`) may turn inside the step: unless the cubic through the end
-/// values with the hairs' slopes is monotone, its slope everywhere at least [`MARGIN`] of the
-/// chord's. NaN (a model that failed, the slip while rolling) rules nothing out.
+/// (`[start, hair, hair, end]`) may turn inside the step: unless the step is a resolved
+/// monotone stretch, both hair slopes within [`MARGIN`] of the chord's slope and the cubic
+/// through the end values with those slopes monotone, its slope everywhere at least
+/// [`MARGIN`] of the chord's. Where the end slopes differ from the chord's by more, the step
+/// is curved enough that a turn the cubic does not show is possible (the paper's scene has
+/// one, a ripple of 1e-3 N within 3e-9 s near a stick). NaN (a model that failed, the slip
+/// while rolling) rules nothing out.
 ///
 /// In the step's unit `s ∈ [0, 1]` the cubic's slope is the quadratic with `q(0) = a`,
 /// `q(1) = b` and mean `Δ = v₃ − v₀`; its smallest value on `[0, 1]` is at an end or at its
