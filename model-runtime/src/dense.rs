@@ -31,10 +31,11 @@ pub trait Interpolant<D: Dim> {
         out[i]
     }
 
-    /// The state at `t` as the run samples its grid there: [`Interpolant::at`] (in regularised
-    /// time both find the clock's root from the step's ends by the same iteration). A sample
-    /// taken later from a stored step ([`Interpolant::stored`]) is then the sample the run
-    /// took, bit for bit.
+    /// The state at `t` as the run samples its grid there: [`Interpolant::at`], except in
+    /// regularised time, where a sample finds the clock's root from the step's ends (and
+    /// [`Interpolant::at`] by a faster iteration that agrees to a few ulps of the clock). A
+    /// sample taken later from a stored step ([`Interpolant::stored`]) is then the sample the
+    /// run took, bit for bit.
     fn sample_at(&self, t: f64, out: &mut Vector<D>) {
         self.at(t, out)
     }

@@ -39,9 +39,6 @@ pub struct StepView<'a, D: Dim, Md> {
     pub y1: &'a Vector<D>,
     /// Derivative at the start.
     pub f0: &'a Vector<D>,
-    /// Derivative at the end, when the integrator has it (its last stage, which the next step
-    /// starts from): absent when an event cut the step short.
-    pub f1: Option<&'a Vector<D>>,
     /// The step's interpolant: present when [`Observer::wants_dense`] returns true.
     pub dense: Option<&'a dyn Interpolant<D>>,
 }

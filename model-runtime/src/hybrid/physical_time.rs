@@ -82,7 +82,6 @@ where
             }),
             _ => None,
         };
-        let f1 = step.f1.map(physical_rate::<N, M>);
         self.inner.on_step(&StepView {
             mode: step.mode,
             t0,
@@ -90,7 +89,6 @@ where
             y0: &y0,
             y1: &y1,
             f0: &physical_rate(step.f0),
-            f1: f1.as_ref(),
             dense: physical.as_ref().map(|d| d as &dyn Interpolant<Const<N>>),
         })
     }
@@ -135,54 +133,24 @@ fn grid_tau<I: Interpolant<Const<M>> + ?Sized, const N: usize, const M: usize>(
     t_seg: f64,
     ts: f64,
 ) -> f64 {
+    let target = ts - t_seg;
     if ts >= t1 {
         tau.1
     } else if ts <= t0 {
         tau.0
     } else {
-        clock_root::<_, N, M>(dense, (tau.0, t0 - ts), (tau.1, t1 - ts), ts - t_seg, ts)
+        let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
+            Ok(dense.component_at(tau, N) - target)
+        };
+        find_crossing(tau.0, t0 - ts, tau.1, t1 - ts, -1.0, clock)
+            .unwrap_or_else(|never| match never {})
+            .t
     }
-}
-
-/// The `τ` between `lo` and `hi` (each `τ` with the clock's excess over `target` there, below
-/// and above zero) at which the clock of `dense` reads `target`, the physical time `t` less
-/// the segment's start. The clock is nearly linear over a step: secant steps from the chord
-/// converge in two or three interpolations of the one component, to a few ulps of `t`; the
-/// bracketing finder takes over if they stall. A pure function of the step and `t`, so a
-/// stored step places a sample where the run placed it, bit for bit.
-fn clock_root<I: Interpolant<Const<M>> + ?Sized, const N: usize, const M: usize>(
-    dense: &I,
-    mut lo: (f64, f64),
-    mut hi: (f64, f64),
-    target: f64,
-    t: f64,
-) -> f64 {
-    for _ in 0..4 {
-        let tau = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
-        if !(tau > lo.0 && tau < hi.0) {
-            break;
-        }
-        let f = dense.component_at(tau, N) - target;
-        if f.abs() <= 4.0 * f64::EPSILON * t.abs() {
-            return tau;
-        }
-        if f < 0.0 {
-            lo = (tau, f);
-        } else {
-            hi = (tau, f);
-        }
-    }
-    let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
-        Ok(dense.component_at(tau, N) - target)
-    };
-    find_crossing(lo.0, lo.1, hi.0, hi.1, -1.0, clock)
-        .unwrap_or_else(|never| match never {})
-        .t
 }
 
 /// A step's dense output in `τ` (`I`: lent by the run, or stored), evaluated in physical time:
-/// each evaluation first finds the `τ` at which the clock reads `t` ([`clock_root`]; the clock
-/// rises monotonically, `s > 0`), to a few ulps.
+/// each evaluation first finds the `τ` at which the clock reads `t` (the clock rises
+/// monotonically, `s > 0`), to a few ulps.
 #[derive(Clone)]
 struct InPhysicalTime<I, const N: usize, const M: usize> {
     dense: I,
@@ -204,13 +172,30 @@ impl<I: Interpolant<Const<M>>, const N: usize, const M: usize> InPhysicalTime<I,
         if target >= c1 {
             return self.tau.1;
         }
-        clock_root::<_, N, M>(
-            &self.dense,
-            (self.tau.0, c0 - target),
-            (self.tau.1, c1 - target),
-            target,
-            t,
-        )
+        // The clock is nearly linear over a step: secant steps from the chord converge in a
+        // few evaluations; the bracketing finder takes over if they stall.
+        let (mut lo, mut hi) = ((self.tau.0, c0 - target), (self.tau.1, c1 - target));
+        for _ in 0..4 {
+            let tau = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
+            if !(tau > lo.0 && tau < hi.0) {
+                break;
+            }
+            let f = self.dense.component_at(tau, N) - target;
+            if f.abs() <= 4.0 * f64::EPSILON * t.abs() {
+                return tau;
+            }
+            if f < 0.0 {
+                lo = (tau, f);
+            } else {
+                hi = (tau, f);
+            }
+        }
+        let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
+            Ok(self.dense.component_at(tau, N) - target)
+        };
+        find_crossing(lo.0, lo.1, hi.0, hi.1, -1.0, clock)
+            .unwrap_or_else(|never| match never {})
+            .t
     }
 }
 
@@ -246,59 +231,5 @@ impl<I: Interpolant<Const<M>>, const N: usize, const M: usize> Interpolant<Const
             clock: self.clock,
             t_seg: self.t_seg,
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A step in `τ ∈ [0, 1.5]`: a state `sin τ` and a clock `τ + 0.2 τ²` (rate 1 to 1.6).
-    #[derive(Clone)]
-    struct Curve;
-
-    impl Interpolant<Const<2>> for Curve {
-        fn dim(&self) -> Const<2> {
-            Const
-        }
-        fn at(&self, tau: f64, out: &mut [f64; 2]) {
-            *out = [tau.sin(), tau + 0.2 * tau * tau];
-        }
-        fn stored(&self) -> StoredInterpolant<Const<2>> {
-            StoredInterpolant::new(self.clone())
-        }
-    }
-
-    #[test]
-    fn samples_are_placed_where_the_bracketing_finder_places_them() {
-        let (tau, t_seg) = ((0.0, 1.5), 40.0);
-        let (t0, t1) = (t_seg, t_seg + 1.5 + 0.2 * 1.5 * 1.5);
-        for k in 1..1000 {
-            let ts = t0 + (t1 - t0) * k as f64 / 1000.0;
-            let placed = grid_tau::<_, 1, 2>(&Curve, tau, (t0, t1), t_seg, ts);
-            let clock = |tau: f64| -> Result<f64, std::convert::Infallible> {
-                Ok(Curve.component_at(tau, 1) - (ts - t_seg))
-            };
-            let bracketed = find_crossing(tau.0, t0 - ts, tau.1, t1 - ts, -1.0, clock)
-                .unwrap_or_else(|never| match never {})
-                .t;
-            assert!(
-                (placed - bracketed).abs() <= 1e-12,
-                "{ts}: {placed} {bracketed}"
-            );
-            let read = t_seg + Curve.component_at(placed, 1);
-            assert!(
-                (read - ts).abs() <= 8.0 * f64::EPSILON * ts,
-                "{ts}: clock reads {read}"
-            );
-            // The interpolated physical time agrees with the sample's placement.
-            let physical = InPhysicalTime::<_, 1, 2> {
-                dense: Curve,
-                tau,
-                clock: (0.0, t1 - t_seg),
-                t_seg,
-            };
-            assert_eq!(physical.tau_at(ts).to_bits(), placed.to_bits());
-        }
     }
 }

@@ -585,7 +585,6 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
             y0: it.y_prev(),
             y1: y1.unwrap_or(it.y()),
             f0: it.f_prev(),
-            f1: if y1.is_none() { Some(it.f()) } else { None },
             dense: if obs.wants_dense() {
                 dense.as_ref().map(|d| d as &dyn Interpolant<D>)
             } else {
