@@ -67,6 +67,14 @@ impl Located {
             .filter(move |e| e.quantity == q && e.kind == kind && e.t >= t0 && e.t <= t1)
     }
 
+    /// Every extremum of `q` (maxima and minima) within `[t0, t1]`, in time order; at a mode
+    /// switch N's value before it comes first.
+    pub fn all_of(&self, q: Watched, t0: f64, t1: f64) -> impl Iterator<Item = &Extremum> + '_ {
+        self.list
+            .iter()
+            .filter(move |e| e.quantity == q && e.t >= t0 && e.t <= t1)
+    }
+
     /// The largest maximum (or smallest minimum) of `q` within `[t0, t1]`.
     pub fn extreme(&self, q: Watched, kind: ExtremumKind, t0: f64, t1: f64) -> Option<f64> {
         let values = self.of(q, kind, t0, t1).map(|e| e.value);

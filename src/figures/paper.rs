@@ -4,8 +4,10 @@
 //! and the last simulated second, sampled finely) and the whole run (per-oscillation
 //! envelopes, so 100 s of a 150 s⁻¹ oscillation stay readable). Heights and envelopes come
 //! from the extrema the run located on the dense output ([`Located`]), not from samples, so
-//! they do not change with the sampling rate; curves are drawn through the samples, and the
-//! force peaks are marked at their located heights. A run without located extrema (a
+//! they do not change with the sampling rate; curves of θ, N and the slip speed are drawn
+//! through the samples with the located extrema merged in by time (a force peak lasts
+//! milliseconds: at any sampling rate the samples alone fall short of it, and a curve would
+//! not reach the dots that mark it), and the force peaks are marked at their located heights. A run without located extrema (a
 //! synthetic one) draws its envelopes from the samples. Every time axis spans the
 //! time its figure covers, and a figure that has nothing to show on a scene (no nutation, no
 //! sliding, a run shorter than a second) says why in the picture.
@@ -98,6 +100,39 @@ fn points(samples: &[Sample], f: impl Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
     samples.iter().map(|s| (s.t, f(s))).collect()
 }
 
+/// The curve of `q` (its value read off a sample by `f`) over `samples`, with the located
+/// extrema of `q` inside their span merged in by time: it passes through every located peak
+/// and trough, so its own maxima are the located ones whatever the sampling rate.
+fn through_located(
+    located: &Located,
+    q: Watched,
+    samples: &[Sample],
+    f: impl Fn(&Sample) -> f64,
+) -> Vec<(f64, f64)> {
+    let sampled = points(samples, f);
+    match (samples.first(), samples.last()) {
+        (Some(a), Some(b)) => {
+            merge_by_time(sampled, located.all_of(q, a.t, b.t).map(|e| (e.t, e.value)))
+        }
+        _ => sampled,
+    }
+}
+
+/// The points of `a` and `b` (each in time order) in time order; a point of `b` at the time
+/// of one of `a` follows it.
+fn merge_by_time(a: Vec<(f64, f64)>, b: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+    let mut b = b.peekable();
+    let mut out = Vec::with_capacity(a.len() + b.size_hint().0);
+    for p in a {
+        while let Some(e) = b.next_if(|e| e.0 < p.0) {
+            out.push(e);
+        }
+        out.push(p);
+    }
+    out.extend(b);
+    out
+}
+
 /// Per-oscillation extremes of `f` over the whole run: cycles bounded by the minima of θ
 /// (upward zero crossings of θ̇).
 fn per_cycle(samples: &[Sample], f: impl Fn(&Sample) -> f64) -> Vec<CycleExtremes> {
@@ -184,6 +219,10 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
     let whole = time_range_label(t_start, t_end);
     let after_one = time_range_label(t_start + 1.0, t_end);
     let chart = Chart::over_time;
+    let theta_curve =
+        |s: &[Sample]| through_located(&located, Watched::Theta, s, |x| x.state.theta);
+    let normal_curve =
+        |s: &[Sample]| through_located(&located, Watched::NormalForce, s, |x| x.forces.normal / mg);
     let mut charts = Vec::new();
     for w in windows(data) {
         let s = w.samples;
@@ -195,7 +234,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
             &format!("fig01{}_theta", w.panel),
             format!("Fig. 1{}: inclination θ, {}", w.panel, w.label),
             "θ (rad)",
-            vec![Line::new("θ", points(s, |x| x.state.theta), colors::BLUE)],
+            vec![Line::new("θ", theta_curve(s), colors::BLUE)],
         )));
         charts.push(window(chart(
             &format!("fig03{}_theta_dot", w.panel),
@@ -221,12 +260,16 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
             &format!("fig06{}_slip_speed", w.panel),
             format!("Fig. 6{}: slip speed v_C, {}", w.panel, w.label),
             "v_C (m/s)",
-            vec![Line::new("v_C", points(s, |x| x.slip.speed), colors::BLUE)],
+            vec![Line::new(
+                "v_C",
+                through_located(&located, Watched::SlipSpeed, s, |x| x.slip.speed),
+                colors::BLUE,
+            )],
         )));
         // θ first, so that the force spikes are drawn over it.
         let mut lines = vec![
-            Line::new("θ", points(s, |x| x.state.theta), colors::BLUE).right(),
-            Line::new("N/mg", points(s, |x| x.forces.normal / mg), colors::RED),
+            Line::new("θ", theta_curve(s), colors::BLUE).right(),
+            Line::new("N/mg", normal_curve(s), colors::RED),
         ];
         lines.extend(peak_marks(&located, w.span()));
         let mut fig8 = window(chart(
@@ -375,6 +418,11 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
                     after_1s
                         .iter()
                         .map(|x| (x.state.theta, x.forces.normal / mg))
+                        .chain(
+                            located
+                                .all_of(Watched::NormalForce, t_start + 1.0, t_end)
+                                .map(|e| (e.theta, e.value)),
+                        )
                         .collect(),
                     colors::BLUE,
                 )
@@ -428,11 +476,7 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
             (format!("peaks every {p:.4} s"), omega + paper)
         },
     );
-    let mut lines = vec![Line::new(
-        rate,
-        points(last.samples, |x| x.forces.normal / mg),
-        colors::RED,
-    )];
+    let mut lines = vec![Line::new(rate, normal_curve(last.samples), colors::RED)];
     lines.extend(peak_marks(&located, last.span()));
     let mut fig10 = chart(
         "fig10_normal_force_last_second",

@@ -101,3 +101,78 @@ fn a_disk_that_rolls_throughout_has_one_rolling_phase() {
     assert_eq!(s.rolling_phases_long_per_s_last, Some(1.0));
     assert_eq!(s.rolling_fraction_last, Some(1.0));
 }
+
+/// The curves of θ and N/mg in the window figures (Fig. 1, 8 and 10) pass through the located
+/// extrema, at a coarse and at a fine sampling rate: each located extremum in a window is a
+/// point of its curve, and each peak of the curve is a located maximum (the samples alone, at
+/// 20 kHz, fall short of the force peaks by a factor up to ten).
+#[test]
+fn the_figures_curves_reach_the_located_extrema() {
+    use equations::{ExtremumKind, Watched};
+    use eulerdisk::{paper_charts, simulate_scene, Backend};
+    for rate in [50.0, 2000.0] {
+        let overrides = [
+            Override::new("run", "sample_rate", rate),
+            Override::new("run", "t_end", 2.5),
+        ];
+        let scene = load_scene("tangent-toy", &overrides).unwrap();
+        let run = simulate_scene(&scene, Backend::Generated, &AtomicBool::new(false)).unwrap();
+        let data = &run.data;
+        let mg = scene.params.weight();
+        let charts = paper_charts(data, &scene.params, true);
+        for (stem, label, q, scale) in [
+            ("fig01a_theta", "θ", Watched::Theta, 1.0),
+            ("fig01b_theta", "θ", Watched::Theta, 1.0),
+            ("fig08a_normal_force", "N/mg", Watched::NormalForce, mg),
+            ("fig08b_normal_force", "N/mg", Watched::NormalForce, mg),
+            (
+                "fig10_normal_force_last_second",
+                "N/mg",
+                Watched::NormalForce,
+                mg,
+            ),
+        ] {
+            let chart = charts.iter().find(|c| c.stem == stem).unwrap();
+            let curve = &chart
+                .lines
+                .iter()
+                .find(|l| l.label.starts_with(label))
+                .unwrap_or_else(|| panic!("{stem}: no line {label}"))
+                .points;
+            let (t0, t1) = (curve[0].0, curve[curve.len() - 1].0);
+            let located: Vec<(f64, f64)> = data
+                .extrema
+                .iter()
+                .filter(|e| e.quantity == q && e.t >= t0 && e.t <= t1)
+                .map(|e| (e.t, e.value / scale))
+                .collect();
+            assert!(located.len() > 3, "{stem} at {rate}/s: {located:?}");
+            for e in &located {
+                assert!(
+                    curve.contains(e),
+                    "{stem} at {rate}/s: {e:?} not on the curve"
+                );
+            }
+            // Every peak of the curve (a point above the one before it and not below the one
+            // after) is a located maximum.
+            let maxima: Vec<(f64, f64)> = data
+                .extrema
+                .iter()
+                .filter(|e| e.quantity == q && e.kind == ExtremumKind::Max)
+                .map(|e| (e.t, e.value / scale))
+                .collect();
+            let peaks: Vec<&(f64, f64)> = curve
+                .windows(3)
+                .filter(|w| w[1].1 > w[0].1 && w[1].1 >= w[2].1)
+                .map(|w| &w[1])
+                .collect();
+            assert!(!peaks.is_empty(), "{stem} at {rate}/s");
+            for peak in peaks {
+                assert!(
+                    maxima.contains(peak),
+                    "{stem} at {rate}/s: the curve peaks at {peak:?}, no located maximum"
+                );
+            }
+        }
+    }
+}
