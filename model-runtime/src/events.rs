@@ -121,14 +121,19 @@ pub struct EventHit<D: Dim, G> {
 
 impl<const N: usize, G: Copy> Copy for EventHit<Const<N>, G> {}
 
-/// Which guards' departures from zero are quiet at a segment start.
+/// How a segment's start reads its guards (see [`GuardSpec`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Quiet {
-    /// None: after a switch.
+    /// After a switch: a guard that holds fires at once, a departure from zero in a
+    /// direction the filter admits fires.
     None,
-    /// The guard that fired: after a restart in the same mode.
+    /// After a restart in the same mode: as after a switch, and the guard that fired is on
+    /// its surface, its departure deciding.
     Guard(usize),
-    /// All: at the start of a run.
+    /// At the start of a run: a guard that holds fires at once; departures from zero are
+    /// quiet.
+    Start,
+    /// After a projection: nothing fires; the values become the reference signs.
     All,
 }
 

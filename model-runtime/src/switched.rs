@@ -482,6 +482,11 @@ impl<D: Dim, M: SwitchedModel<D>> HybridSystem<D> for Switched<M> {
         self.model.guard_inputs(mode.index())
     }
 
+    /// A model's guard that holds where a mode starts fires there (the model language's rule).
+    fn fires_on_entry(&self) -> bool {
+        true
+    }
+
     fn first_step(&self, mode: ModeId, t: f64, y: &Vector<D>) -> Option<f64> {
         self.model.first_step(mode.index(), t, y)
     }
