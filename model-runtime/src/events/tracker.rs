@@ -271,45 +271,63 @@ impl GuardTracker {
 
     /// The departures of the guards pending at a segment's start (exactly zero there, or the
     /// guard whose event restarted the mode), read from the guards' values just after the
-    /// start of its first step `[t0, t1]`: a departure that fires is an event at `t0`; any
-    /// other becomes the guard's reference sign, with that probe point as its last check
-    /// point, so that a return through the surface later in the same step is a crossing,
-    /// located after the excursion's turning point. The probe is at `t0 + h 2^-12`, early
-    /// enough to see the departure of an excursion much shorter than the step; a guard still
-    /// exactly zero there is probed further in, and one zero at every probe stays pending.
+    /// start of its first step `[t0, t1]`, at probes `t0 + h 2^-k` from the nearest out: a
+    /// guard with a holding side departed to its other side if any probe finds it there (the
+    /// nearest ones may still be in the rounding of its surface, the farther ones past a
+    /// short excursion), and into its holding side if every nonzero probe finds it there; a
+    /// guard that fires either way departs to the side of its nearest nonzero probe. A
+    /// departure that fires is an event at `t0`; any other becomes the guard's reference
+    /// sign, with the probe that showed it as its last check point, so that a return through
+    /// the surface later in the same step is a crossing, located after the excursion's
+    /// turning point. A guard zero at every probe stays pending.
     fn probe<E>(
         &mut self,
         t0: f64,
         t1: f64,
         eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
     ) -> Result<Option<Found>, E> {
-        const PROBES: [f64; 3] = [1.0 / 4096.0, 1.0 / 64.0, 0.5];
-        for fraction in PROBES {
-            let td = t0 + (t1 - t0) * fraction;
+        const PROBES: [i32; 5] = [-30, -24, -18, -12, -6];
+        let n = self.len();
+        let pending: Vec<usize> = (0..n).filter(|&i| self.reference[i] == 0.0).collect();
+        // Per pending guard: the first probe on its non-holding side (or, for `==`, its
+        // first nonzero one), and the last nonzero one.
+        let mut away: Vec<Option<(f64, f64)>> = vec![None; pending.len()];
+        let mut last: Vec<Option<(f64, f64)>> = vec![None; pending.len()];
+        for k in PROBES {
+            let td = t0 + (t1 - t0) * 2f64.powi(k);
             if td <= t0 || td >= t1 {
                 continue;
             }
             eval(td, Probe::Exact, &mut self.scratch)?;
-            for i in 0..self.len() {
+            for (j, &i) in pending.iter().enumerate() {
                 let v = self.scratch[i];
-                if self.reference[i] != 0.0 || v == 0.0 {
+                if v == 0.0 || away[j].is_some() {
                     continue;
                 }
-                if let Some(direction) = self.departure(i, v) {
-                    return Ok(Some(Found {
-                        index: i,
-                        t: t0,
-                        before: t0,
-                        direction,
-                    }));
+                last[j] = Some((td, v));
+                if self.holding[i] == 0.0 || sign(v) != self.holding[i] {
+                    away[j] = Some((td, v));
                 }
-                self.settle(i, v);
-                self.lo_values[i] = v;
-                self.lo_at[i] = td;
             }
-            if !self.reference.contains(&0.0) {
+            if away.iter().all(Option::is_some) {
                 break;
             }
+        }
+        for (j, &i) in pending.iter().enumerate() {
+            let Some((td, v)) = away[j].or(last[j]) else {
+                continue;
+            };
+            if let Some(direction) = self.departure(i, v) {
+                return Ok(Some(Found {
+                    index: i,
+                    t: t0,
+                    before: t0,
+                    direction,
+                }));
+            }
+            self.settle(i, v);
+            self.lo_values[i] = v;
+            self.lo_at[i] = td;
         }
         Ok(None)
     }
