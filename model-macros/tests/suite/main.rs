@@ -8,8 +8,6 @@ mod common;
 mod dense_chain;
 mod guard_inputs;
 mod held;
-mod oracle_compiled;
-mod oracle_models;
 mod rotating_hoop;
 mod rust_reset;
 mod solve;

@@ -496,8 +496,12 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         let (y, f) = (self.it.y().clone(), self.it.f().clone());
         self.guards_at(sys, t, &y, &f)?;
         let entry = sys.fires_on_entry();
-        self.tracker
-            .start(specs.iter().map(|s| s.direction), &self.values, quiet, entry);
+        self.tracker.start(
+            specs.iter().map(|s| s.direction),
+            &self.values,
+            quiet,
+            entry,
+        );
         Ok(())
     }
 
@@ -509,8 +513,12 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         let (t, y, f) = (self.it.t(), self.it.y().clone(), self.it.f().clone());
         self.guards_at(sys, t, &y, &f)?;
         let specs = sys.guards(self.mode);
-        self.tracker
-            .start(specs.iter().map(|s| s.direction), &self.values, Quiet::All, false);
+        self.tracker.start(
+            specs.iter().map(|s| s.direction),
+            &self.values,
+            Quiet::All,
+            false,
+        );
         Ok(())
     }
 

@@ -33,7 +33,9 @@ fn first_root(t0: f64, f: impl Fn(f64) -> f64) -> f64 {
 
 /// The column `name` of `solved`'s rows.
 fn column(solved: &Solution, name: &str) -> Vec<f64> {
-    solved.column(name).unwrap_or_else(|| panic!("no column {name}"))
+    solved
+        .column(name)
+        .unwrap_or_else(|| panic!("no column {name}"))
 }
 
 /// `request` with this method and tolerances.
@@ -122,7 +124,10 @@ fn the_ball_on_a_moving_floor_never_falls_through_and_rides_it() {
                 assert!(impacts.len() > reference.len(), "{case}");
                 let tol = if rtol < 1e-10 { 1e-8 } else { 1e-4 };
                 for (k, (got, want)) in impacts.iter().zip(&reference).enumerate() {
-                    assert!((got - want).abs() < tol, "{case}: impact {k}: {got} vs {want}");
+                    assert!(
+                        (got - want).abs() < tol,
+                        "{case}: impact {k}: {got} vs {want}"
+                    );
                 }
                 // Then the accumulation, and the ride to the end on the floor.
                 let [acc] = &solved.accumulations[..] else {
@@ -167,7 +172,10 @@ fn an_idle_extra_state_changes_no_bounce_of_the_ball() {
         "equations { der(h) = 0; der(v) = 0; }",
         "equations { der(h) = 0; der(v) = 0; der(x) = u; der(u) = 0; }",
     );
-    assert!(text.contains("der(x) = u") && text.contains("x = 5"), "{text}");
+    assert!(
+        text.contains("der(x) = u") && text.contains("x = 5"),
+        "{text}"
+    );
     let file = compile("idle_ball.dsl", &text);
     let (g, e, h0) = (9.81f64, 0.8f64, 1.0f64);
     let v1 = (2.0 * g * h0).sqrt();
@@ -180,14 +188,21 @@ fn an_idle_extra_state_changes_no_bounce_of_the_ball() {
         let [acc] = &solved.accumulations[..] else {
             panic!("{method:?}: {:?}", solved.accumulations)
         };
-        assert!((acc.t - t_inf).abs() < 1e-5, "{method:?}: {} vs {t_inf}", acc.t);
+        assert!(
+            (acc.t - t_inf).abs() < 1e-5,
+            "{method:?}: {} vs {t_inf}",
+            acc.t
+        );
         let mut expected = (2.0 * h0 / g).sqrt();
         for (k, impact) in (solved.events.iter())
             .filter(|e| e.kind == EventKind::Crossing)
             .take(20)
             .enumerate()
         {
-            assert!((impact.t() - expected).abs() < 1e-6, "{method:?}: impact {k}");
+            assert!(
+                (impact.t() - expected).abs() < 1e-6,
+                "{method:?}: impact {k}"
+            );
             expected += 2.0 * e.powi(k as i32 + 1) * v1 / g;
         }
         assert_eq!(column(&solved, "x").last(), Some(&5.0));
@@ -251,7 +266,10 @@ fn a_ball_bouncing_down_a_slope_finds_every_impact() {
         let impacts: Vec<f64> = solved.events.iter().map(|e| e.t()).collect();
         assert!(impacts.len() >= reference.len(), "{method:?}");
         for (k, (got, want)) in impacts.iter().zip(&reference).enumerate() {
-            assert!((got - want).abs() < 1e-4, "{method:?}: impact {k}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < 1e-4,
+                "{method:?}: impact {k}: {got} vs {want}"
+            );
         }
         // The bounces accumulate (no rule says what follows): the run stops there, named.
         assert_eq!(
@@ -411,13 +429,21 @@ fn the_shipped_rocking_block_comes_to_stand_at_the_default_tolerances() {
             let solved = solve(model(&file), &with(method, rtol, atol, 10.0))
                 .unwrap_or_else(|e| panic!("{case}: {e}"));
             assert_eq!(solved.stop, Stop::EndTime, "{case}");
-            assert!(solved.events.len() < 1000, "{case}: {}", solved.events.len());
+            assert!(
+                solved.events.len() < 1000,
+                "{case}: {}",
+                solved.events.len()
+            );
             let [acc] = &solved.accumulations[..] else {
                 panic!("{case}: {:?}", solved.accumulations)
             };
             assert_eq!(acc.continued_in.as_deref(), Some("standing"));
-            assert!((acc.t - reference.t).abs() < 1e-3, "{case}: {} vs {}", acc.t, reference.t);
+            assert!(
+                (acc.t - reference.t).abs() < 1e-3,
+                "{case}: {} vs {}",
+                acc.t,
+                reference.t
+            );
         }
     }
 }
-

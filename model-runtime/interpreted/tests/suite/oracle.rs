@@ -87,13 +87,15 @@ fn compare(model: &Model) -> Verdict {
         (_, Ok(s)) => {
             // An accumulation the interpreter declared after the last compared event: the
             // reference stops comparing once events come closer than it resolves.
-            let close = extra.is_some_and(|e| {
-                events.last().is_some_and(|last| e.1 - last.t < RESOLVED)
-            });
+            let close =
+                extra.is_some_and(|e| events.last().is_some_and(|last| e.1 - last.t < RESOLVED));
             if close {
                 Verdict::AgreeUntil("events closer than the fixed step resolves")
             } else {
-                failed(format!("end {:?} (next {extra:?}), reference {end:?}", s.stop))
+                failed(format!(
+                    "end {:?} (next {extra:?}), reference {end:?}",
+                    s.stop
+                ))
             }
         }
         (_, Err(e)) => failed(format!("failed: {e}; reference {end:?}")),
@@ -155,54 +157,4 @@ fn oracle_campaign() {
         println!("seed {seed}: {what}");
     }
     assert!(tally.disagree.is_empty());
-}
-
-/// The seeds of the random models that `model!` compiles in the equation compiler's tests
-/// (`model-macros/tests/suite/oracle_models.rs`, written from them by
-/// `cargo test -p model-interpreted --test suite write_compiled_oracle_models -- --ignored`).
-const COMPILED_SEEDS: [u64; 6] = [0, 1, 2, 3, 4, 5];
-
-/// The text of the compiled models' file.
-fn compiled_models() -> String {
-    let mut s = String::from(
-        "//! Random models of the oracle, compiled by `model!`: written by\n\
-         //! `cargo test -p model-interpreted --test suite write_compiled_oracle_models -- --ignored`\n\
-         //! from the generator in `model-runtime/interpreted/tests/suite/oracle/generate.rs`; do not\n\
-         //! edit (a test there checks that this file is what the generator writes).\n\n",
-    );
-    s += &format!("/// The seeds, in order.\npub const SEEDS: [u64; {}] = {COMPILED_SEEDS:?};\n", COMPILED_SEEDS.len());
-    for seed in COMPILED_SEEDS {
-        let text = Model::random(seed).text().replace("mod rnd {", &format!("pub mod rnd_{seed} {{"));
-        s += &format!("\nmodel_macros::model! {{\n{text}}}\n");
-    }
-    s += "\n/// Runs the compiled model of seed `seed` (one of [`SEEDS`]) to `t_end`.\n\
-          pub fn run(seed: u64, t_end: f64) -> model_runtime::SwitchedRun<model_runtime::Const<2>> {\n    \
-          let tolerance = model_runtime::Tolerance::scalar(1e-11, 1e-13);\n    \
-          let options = model_runtime::HybridOptions::default();\n    \
-          let stepper = model_runtime::Dop853::new();\n    \
-          let run = match seed {\n";
-    for seed in COMPILED_SEEDS {
-        s += &format!(
-            "        {seed} => model_runtime::run_switched(rnd_{seed}::Model::default(), stepper, tolerance, options, (0.0, rnd_{seed}::INITIAL), t_end),\n"
-        );
-    }
-    s += "        _ => panic!(\"no compiled model of seed {seed}\"),\n    };\n    \
-          run.unwrap_or_else(|e| panic!(\"seed {seed}: {e}\"))\n}\n";
-    s
-}
-
-#[test]
-#[ignore = "writes the compiled models' file"]
-fn write_compiled_oracle_models() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../model-macros/tests/suite/oracle_models.rs"
-    );
-    std::fs::write(path, compiled_models()).unwrap();
-}
-
-#[test]
-fn the_compiled_models_file_is_the_generators() {
-    let file = include_str!("../../../../model-macros/tests/suite/oracle_models.rs");
-    assert!(file == compiled_models(), "rewrite it: see `COMPILED_SEEDS`");
 }

@@ -49,9 +49,17 @@ pub fn run(model: &Model, t_end: f64) -> (Vec<RefEvent>, RefEnd) {
     loop {
         let fired = segment(model, mode, t, y, start, t_end);
         let Some(hit) = fired else {
-            return (events, RefEnd::EndTime(last_state(model, mode, t, y, t_end)));
+            return (
+                events,
+                RefEnd::EndTime(last_state(model, mode, t, y, t_end)),
+            );
         };
-        let Segment { index, t: te, y: ye, unresolved } = hit;
+        let Segment {
+            index,
+            t: te,
+            y: ye,
+            unresolved,
+        } = hit;
         if let Some(why) = unresolved {
             return (events, RefEnd::Unresolved(why));
         }
@@ -59,7 +67,10 @@ pub fn run(model: &Model, t_end: f64) -> (Vec<RefEvent>, RefEnd) {
         if let Some(prev) = events.last() {
             let dt = te - prev.t;
             if dt > 0.0 && dt < RESOLVED {
-                return (events, RefEnd::Unresolved("events closer than the fixed step resolves"));
+                return (
+                    events,
+                    RefEnd::Unresolved("events closer than the fixed step resolves"),
+                );
             }
             same_time = if dt == 0.0 { same_time + 1 } else { 0 };
             if same_time > 100 {
