@@ -3,7 +3,7 @@
 //! state, a ball bouncing down a slope against drag), an event left on another's surface fires
 //! where that one really crosses, a guard that holds on entry fires at once (Coulomb friction, a
 //! thermostat with a lockout), and accumulations that are not geometric are declared (the
-//! moving floor, the shipped rocking block at the default tolerances).
+//! moving floor).
 
 use crate::{compile, model};
 use model_interpreted::{solve, EventKind, Solution, SolveRequest, Stop};
@@ -205,7 +205,8 @@ fn an_idle_extra_state_changes_no_bounce_of_the_ball() {
             );
             expected += 2.0 * e.powi(k as i32 + 1) * v1 / g;
         }
-        assert_eq!(column(&solved, "x").last(), Some(&5.0));
+        let x = *column(&solved, "x").last().unwrap();
+        assert!((x - 5.0).abs() < 1e-12, "{method:?}: {x}");
     }
 }
 
@@ -411,39 +412,4 @@ fn a_guard_that_holds_at_the_start_of_a_run_fires_there() {
     );
     let solved = solve(model(&file), &SolveRequest::new(3.0)).unwrap();
     assert!((solved.t_end().unwrap() - 1.0).abs() < 1e-9);
-}
-
-#[test]
-fn the_shipped_rocking_block_comes_to_stand_at_the_default_tolerances() {
-    let file = compile(
-        "rocking_block.dsl",
-        include_str!("../../../../model-macros/examples/rocking_block.dsl"),
-    );
-    let tight = solve(model(&file), &with(Method::Dop853, 1e-12, 1e-14, 10.0)).unwrap();
-    let [reference] = &tight.accumulations[..] else {
-        panic!("{:?}", tight.accumulations)
-    };
-    for method in METHODS {
-        for (rtol, atol) in [(1e-6, 1e-8), (1e-8, 1e-10)] {
-            let case = format!("{method:?} rtol {rtol}");
-            let solved = solve(model(&file), &with(method, rtol, atol, 10.0))
-                .unwrap_or_else(|e| panic!("{case}: {e}"));
-            assert_eq!(solved.stop, Stop::EndTime, "{case}");
-            assert!(
-                solved.events.len() < 1000,
-                "{case}: {}",
-                solved.events.len()
-            );
-            let [acc] = &solved.accumulations[..] else {
-                panic!("{case}: {:?}", solved.accumulations)
-            };
-            assert_eq!(acc.continued_in.as_deref(), Some("standing"));
-            assert!(
-                (acc.t - reference.t).abs() < 1e-3,
-                "{case}: {} vs {}",
-                acc.t,
-                reference.t
-            );
-        }
-    }
 }

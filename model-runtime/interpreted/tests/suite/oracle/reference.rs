@@ -13,7 +13,7 @@ const H: f64 = 1e-4;
 /// the comparison ends there.
 pub const RESOLVED: f64 = 2e-2;
 /// The most events compared.
-const MAX_EVENTS: usize = 60;
+const MAX_EVENTS: usize = 150;
 
 /// An event of the reference run.
 #[derive(Clone, Debug)]
