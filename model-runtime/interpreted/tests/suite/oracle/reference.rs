@@ -207,9 +207,9 @@ fn segment(
         departs[q] = false;
     }
     // What holds where the segment starts fires there, the first listed first.
-    for i in 0..n {
+    for (i, &r) in reference.iter().enumerate() {
         let h = holding(model, mode, i);
-        if h != 0.0 && reference[i] == h {
+        if h != 0.0 && r == h {
             return Some(Segment {
                 index: i,
                 t: t0,
@@ -270,10 +270,10 @@ fn segment(
                 unresolved,
             });
         }
-        for i in 0..n {
+        for (i, r) in reference.iter_mut().enumerate() {
             let g1 = guard(model, mode, i, t + h, y1);
             if g1 != 0.0 {
-                reference[i] = sign(g1);
+                *r = sign(g1);
             }
         }
         (t, y) = (t + h, y1);
