@@ -167,6 +167,17 @@ pub enum SolveError {
         /// The value returned.
         value: f64,
     },
+    /// A guard of the current mode was found on the side where it holds without having fired
+    /// (and without one of the exceptions [`crate::GuardSpec`] names): the driver's invariant,
+    /// violated. The run ends here rather than go on past a crossing it did not locate.
+    GuardHolds {
+        /// The end of the step where it was found.
+        t: f64,
+        /// Index of the guard in its mode's guard list.
+        guard: usize,
+        /// Its value there.
+        value: f64,
+    },
     /// A transition map returned a state with a component that is not finite.
     TransitionState {
         /// The event time.
@@ -189,6 +200,7 @@ impl SolveError {
             | SolveError::MaxSteps { t, .. }
             | SolveError::SingularIterationMatrix { t, .. }
             | SolveError::GuardNotFinite { t, .. }
+            | SolveError::GuardHolds { t, .. }
             | SolveError::TransitionState { t, .. } => Some(*t),
             SolveError::InvalidInput(_) => None,
         }
@@ -203,6 +215,7 @@ impl SolveError {
             | SolveError::MaxSteps { t, .. }
             | SolveError::SingularIterationMatrix { t, .. }
             | SolveError::GuardNotFinite { t, .. }
+            | SolveError::GuardHolds { t, .. }
             | SolveError::TransitionState { t, .. } => *t = t_new,
             SolveError::InvalidInput(_) => {}
         }
@@ -329,6 +342,11 @@ impl fmt::Display for SolveError {
             SolveError::GuardNotFinite { t, guard, value } => {
                 write!(f, "guard {guard} is not finite at t = {t}: {value}")
             }
+            SolveError::GuardHolds { t, guard, value } => write!(
+                f,
+                "guard {guard} holds at t = {t} (value {value}) without having fired: a crossing \
+                 was not located"
+            ),
             SolveError::TransitionState {
                 t,
                 component,

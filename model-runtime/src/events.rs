@@ -33,7 +33,9 @@ pub(crate) enum Probe {
 /// A guard is a scalar function `g(t, y, dy)` of the current mode. The driver evaluates all
 /// guards of the mode at the start of a segment and after every accepted step (where `dy` is
 /// already known), and tracks for each guard a *reference sign*: the sign of its last nonzero
-/// value.
+/// value. A guard with filter [`Direction::Down`] *holds* where `g <= 0`, one with
+/// [`Direction::Up`] where `g >= 0`: the side its admitted crossings lead to. A
+/// [`Direction::Both`] guard has no such side.
 ///
 /// * **Crossing.** A guard with reference sign `-` crosses *up* in a step when its value at the
 ///   step end is `>= 0`; with reference sign `+` it crosses *down* when the value is `<= 0`.
@@ -42,22 +44,41 @@ pub(crate) enum Probe {
 /// * **Direction filter.** [`Direction::Up`] guards fire only on up-crossings,
 ///   [`Direction::Down`] only on down-crossings, [`Direction::Both`] on either. A filtered
 ///   crossing fires nothing but still updates the reference sign.
-/// * **Re-arming after a transition.** A guard exactly zero at the start of a segment
-///   (typically because the transition put the state on that guard's surface) does not fire
-///   there: it has no reference sign until it moves away from zero, and its first nonzero value
-///   at a later check point decides what happens:
-///   - if it left zero in a direction its filter *admits*, the new mode was entered on its own
-///     switching surface heading out through it: that departure is an event, reported at the
-///     last check point where the guard was still zero (normally the segment start, with the
-///     exact start state). This is how an immediate switch back (or a sliding-mode relay that
-///     must chatter) becomes visible instead of silently continuing in an inconsistent mode;
-///   - otherwise the value becomes the reference sign and nothing fires.
-///
-///   Exceptions, where a departure is *quiet* (never fires; the guard fires again only after a
-///   later genuine crossing): after [`crate::Transition::Continue`], the guard that
-///   just fired (a reset such as a bounce leaves the state on the surface and moves on; that
-///   is not a new event); and at the start of a run, every guard (no transition led there: a
-///   run may well start on a surface, e.g. an orbit started at its periapsis).
+/// * **A guard on its surface where a segment starts** (exactly zero after a switch, or the
+///   guard whose event restarted the mode, whatever rounding left in its value) takes its
+///   reference from its *departure*: its value just after the start, probed on the first
+///   step's dense output at `t0 + h/4096` (further in if it is still exactly zero there).
+///   - A departure in a direction the filter admits is an event at the segment's start: the
+///     new mode was entered on its own switching surface heading out through it (an immediate
+///     switch back, a sliding-mode relay that must chatter), visible instead of silently
+///     continuing in an inconsistent mode. The guard that restarted its mode is the exception:
+///     it has fired, and moves on from whichever side it leaves to.
+///   - Otherwise the departure's side becomes the reference, with the probe as the guard's
+///     last check point: an excursion that leaves the surface and comes back through it within
+///     the same step (a bounce whose next flight is shorter than the step after it) is a
+///     crossing, located between the probe and the step's end, after the excursion's turning
+///     point, at the time of the return.
+///   
+///   At the start of a run departures are quiet (never fire; no transition led there: a run
+///   may well start on a surface, an orbit at its periapsis), and a guard still exactly zero
+///   at every probe stays pending until its first nonzero value.
+/// * **A guard that holds on entry.** For a system whose [`crate::HybridSystem::fires_on_entry`]
+///   is true (every [`crate::Switched`] model, so every model of the model language), a guard
+///   that holds strictly (not on its surface) where a segment starts fires there at once, at
+///   the segment's start, in the direction that leads to its holding side: an instantaneous
+///   transition, as in a hybrid automaton. This holds at the start of a run as well as after a
+///   switch or a restart (for the guards other than the one that restarted the mode); the first
+///   such guard in priority order fires first. A model whose modes keep enabling each other
+///   ends with [`crate::HybridError::Chattering`], never a loop. Other systems (the default)
+///   take such a guard's side as its reference: it fires after it has left and crossed back.
+/// * **The invariant.** After every accepted step in which nothing fired, no guard of the
+///   current mode is on its holding side without having fired. The exceptions, where a guard
+///   holds legitimately: one that fired and passed ([`crate::Transition::Pass`]) or restarted
+///   its mode; one that left its surface at the start of a run; one that holds after a
+///   projection ([`crate::HybridSystem::project`]: a projection that pushes a guard across zero
+///   is not an event); and, for systems that do not fire on entry, one that held where its
+///   segment started. A violation ends the run with [`crate::SolveError::GuardHolds`] naming
+///   the guard, never a silent continuation.
 /// * **Exact location.** A crossing is located on the step's dense output by a bracketing root
 ///   finder ([`crate::find_crossing`]) to a few ulps of `t`. The reported time is the first point found
 ///   on the *far* side of the crossing (or exactly on zero), so the event state is already
@@ -75,10 +96,13 @@ pub(crate) enum Probe {
 ///   after a pass are reported no earlier than it (a tie located a few ulps before it is
 ///   reported at its time), and every pass consumes one guard's crossing, so a step holds
 ///   finitely many.
-/// * **Limitation: a sign change and back inside one step** is invisible at the step ends. Set
+/// * **Interior checks.** Away from a segment's start, a guard is compared at the step ends:
+///   a guard that changes sign and changes back inside one ordinary step leaves no trace
+///   there (it is on the same side at both ends, so the invariant holds too). Where a model
+///   can do that (a thin obstacle, an oscillation faster than the steps), set
 ///   [`crate::HybridOptions::guard_checks`] to sample the guards at interior points of
-///   each step on the dense output ([`InteriorChecks`]); a double crossing between two samples
-///   still goes unseen. [`InteriorChecks::Screened`] samples cost no model evaluation: the
+///   each step on the dense output ([`InteriorChecks`]). [`InteriorChecks::Screened`] samples
+///   cost no model evaluation: the
 ///   guards see the interpolant and its derivative, and only a sample that shows an admitted
 ///   crossing (or a non-finite value) is evaluated exactly, so estimates can trigger a check
 ///   but never decide an event or move a reference sign. An estimate interpolates only the
@@ -86,9 +110,7 @@ pub(crate) enum Probe {
 ///   others, so a guard that reads an undeclared one gets a non-finite estimate: an exact
 ///   check, never a wrong answer. Most steps need only two estimates:
 ///   with the exact end values they fit a cubic per guard, and when every cubic keeps its sign
-///   with a margin, the other sample points are skipped. The same holds for an excursion shorter than a step right after a
-///   `Continue` (e.g. the ever shorter flights of a bouncing ball near its accumulation
-///   point): the quiet guard's first nonzero value is already back on the near side.
+///   with a margin, the other sample points are skipped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct GuardSpec<G> {
     /// The user's name for the guard (typically a fieldless enum).
@@ -121,14 +143,19 @@ pub struct EventHit<D: Dim, G> {
 
 impl<const N: usize, G: Copy> Copy for EventHit<Const<N>, G> {}
 
-/// Which guards' departures from zero are quiet at a segment start.
+/// How a segment's start reads its guards (see [`GuardSpec`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Quiet {
-    /// None: after a switch.
+    /// After a switch: a guard that holds fires at once, a departure from zero in a
+    /// direction the filter admits fires.
     None,
-    /// The guard that fired: after a restart in the same mode.
+    /// After a restart in the same mode: as after a switch, and the guard that fired is on
+    /// its surface, its departure deciding.
     Guard(usize),
-    /// All: at the start of a run.
+    /// At the start of a run: a guard that holds fires at once; departures from zero are
+    /// quiet.
+    Start,
+    /// After a projection: nothing fires; the values become the reference signs.
     All,
 }
 

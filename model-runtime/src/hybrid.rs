@@ -153,6 +153,16 @@ pub trait HybridSystem<D: Dim> {
         None
     }
 
+    /// Whether a guard that already holds where a segment starts (on the side its admitted
+    /// crossings lead to, not on its surface) fires there at once: an instantaneous
+    /// transition, as in a hybrid automaton (see "A guard that holds on entry" at
+    /// [`crate::GuardSpec`]). The default, `false`, takes such a guard's side as its
+    /// reference: it fires only after it has left that side and crossed back. [`crate::Switched`]
+    /// models (the model language's) say `true`.
+    fn fires_on_entry(&self) -> bool {
+        false
+    }
+
     /// Optionally moves `y` back onto the constraints of `mode`; returns whether it changed
     /// `y`. Called after every accepted step (a change costs one evaluation of `f` and resets
     /// the guards' reference signs to the projected state) and on the state a transition

@@ -255,6 +255,12 @@ impl fmt::Display for SolveFailure {
                         "model `{model}`: event `{}` is not finite at t = {t}: {value}",
                         events.get(*guard).map_or("?", String::as_str)
                     ),
+                    SolveError::GuardHolds { t, guard, value } => write!(
+                        f,
+                        "model `{model}`: event `{}` holds at t = {t} (guard value {value}) \
+                         without having fired: a crossing was not located",
+                        events.get(*guard).map_or("?", String::as_str)
+                    ),
                     other => write!(f, "model `{model}`: {other}"),
                 }
             }

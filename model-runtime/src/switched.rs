@@ -32,9 +32,10 @@
 //! restarts by one event to an [`AccumulationDetector`]: "successive" means the same event of
 //! the same mode with no transition in between (events that only pass do not interrupt; any
 //! other transition, or a restart by another event, starts the history afresh). When the
-//! detector's [`AccumulationRule`] declares an accumulation (the latest intervals shrink at a
-//! steady ratio `r < 1` and the remaining time `d_last r / (1 - r)` extrapolated from them is
-//! at most the rule's `tail`), the firing that showed it does not apply its ordinary reset:
+//! detector's [`AccumulationRule`] declares an accumulation (the latest intervals all shrink
+//! and the remaining time, extrapolated from a steady ratio or bounded by the slowest of
+//! wobbling ones, is at most the rule's `tail`), the firing that showed it does not apply its
+//! ordinary reset:
 //!
 //! * with an [`AccumulationAction`], the model's accumulation reset is applied instead and
 //!   the run continues in the action's mode, at the firing's time; the note
@@ -44,8 +45,12 @@
 //! * without one, the run ends with [`SwitchedStop::Accumulation`]: a normal end with a
 //!   reason, not a chattering error and not a step-size collapse.
 //!
-//! An accumulation the rule does not recognise (intervals not shrinking steadily) is not
-//! declared; if it truly accumulates, the driver's [`crate::ChatterLimit`] ends it.
+//! An accumulation the rule does not recognise (an interval that grows among ones that
+//! shrink) is not declared; if it truly accumulates, the driver's [`crate::ChatterLimit`] ends
+//! it.
+//!
+//! A guard of a [`Switched`] model that holds where its mode is entered fires at once
+//! ([`HybridSystem::fires_on_entry`]; see [`crate::GuardSpec`]).
 
 pub(crate) mod graph;
 pub(crate) mod outcome;
@@ -480,6 +485,11 @@ impl<D: Dim, M: SwitchedModel<D>> HybridSystem<D> for Switched<M> {
 
     fn guard_inputs(&self, mode: ModeId) -> Option<GuardInputs<D>> {
         self.model.guard_inputs(mode.index())
+    }
+
+    /// A model's guard that holds where a mode starts fires there (the model language's rule).
+    fn fires_on_entry(&self) -> bool {
+        true
     }
 
     fn first_step(&self, mode: ModeId, t: f64, y: &Vector<D>) -> Option<f64> {

@@ -60,7 +60,8 @@ pub struct SwitchedRun<D: Dim> {
     /// `(t, mode name, state)` at every sample (`options.sample_rate`), or at every step end
     /// (and the start) when no rate is set.
     pub samples: Vec<(f64, String, Vector<D>)>,
-    /// Final time.
+    /// Final time: where the run ended, the time of the terminal event's record (for an
+    /// accumulation without a rule, its accumulation point).
     pub t: f64,
     /// Final state.
     pub y: Vector<D>,
@@ -149,11 +150,17 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
     };
     let mut events = collector.events;
     let samples = collector.samples;
+    // One time per event: a run stopped by an accumulation ends at the accumulation point its
+    // event is reported at (the state is the last firing's, within the rule's tail of it).
+    let mut t_final = outcome.t;
     let stopped_by = match outcome.stop {
         StopReason::User(stop) => {
             let (fired, t) = match stop {
                 SwitchedStop::Event { t, .. } => (Fired::Stopped, t),
-                SwitchedStop::Accumulation { t_inf, .. } => (Fired::AccumulatedStop, t_inf),
+                SwitchedStop::Accumulation { t_inf, .. } => {
+                    t_final = t_inf;
+                    (Fired::AccumulatedStop, t_inf)
+                }
             };
             let event = stop.event();
             let name = graph.mode(event.mode).events[event.event].name.clone();
@@ -172,7 +179,7 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
     Ok(SwitchedRun {
         events,
         samples,
-        t: outcome.t,
+        t: t_final,
         y: outcome.y,
         mode: graph.mode_name(outcome.mode).to_string(),
         stopped_by,

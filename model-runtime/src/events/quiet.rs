@@ -82,7 +82,7 @@ mod tests {
             for direction in [Direction::Up, Direction::Down, Direction::Both] {
                 for fires in [false, true] {
                     let mut tr = GuardTracker::default();
-                    tr.start([direction].into_iter(), &[reference], Quiet::None);
+                    tr.start([direction].into_iter(), &[reference], Quiet::None, true);
                     tr.departure_fires[0] = fires;
                     let range = QuietRange::of(reference, direction, fires);
                     for v in values {

@@ -35,6 +35,20 @@ pub(crate) struct GuardTracker {
     /// Per guard, the values that cannot fire it against its current reference sign
     /// ([`QuietRange`]), kept in step with `reference`.
     quiet: Vec<QuietRange>,
+    /// Per guard, the sign of the side where it holds (where its admitted crossings lead):
+    /// `+1` for [`Direction::Up`], `-1` for [`Direction::Down`], `0` for [`Direction::Both`].
+    holding: Vec<f64>,
+    /// Per guard, whether it may be on its holding side without having fired: the named
+    /// exceptions of [`super::GuardSpec`] (a departure from zero at the run's start or after
+    /// a projection, a guard that passed).
+    exempt: Vec<bool>,
+    /// Per guard, whether it holds where the segment starts and is still to fire there.
+    enters: Vec<bool>,
+    /// Whether the guards that are pending (exactly zero) at the next scan take their
+    /// departure from a probe just after the step's start (see [`GuardTracker::probe`]).
+    fresh: bool,
+    /// A guard found on its holding side without having fired: the invariant's violation.
+    violation: Option<usize>,
     /// Guard values at the last check point (for a guard that passed since: at the pass).
     lo_values: Vec<f64>,
     /// The times of `lo_values`.
@@ -48,27 +62,50 @@ pub(crate) struct GuardTracker {
 }
 
 impl GuardTracker {
-    /// Starts a segment with these guards and their values at the start; the departures from
-    /// zero of the `quiet` guards never fire (see [`super::GuardSpec`]).
+    /// Starts a segment with these guards and their values at the start; `quiet` says which
+    /// guards are on their own surface and how the others' values are read, `entry` whether
+    /// a guard that holds there fires at once (see [`super::GuardSpec`]).
     pub(crate) fn start(
         &mut self,
         directions: impl Iterator<Item = Direction>,
         values: &[f64],
         quiet: Quiet,
+        entry: bool,
     ) {
+        let n = values.len();
         self.directions.clear();
         self.directions.extend(directions);
+        self.holding.clear();
+        self.holding
+            .extend(self.directions.iter().map(|&d| holding_sign(d)));
         self.reference.clear();
         self.reference.extend(values.iter().map(|&v| sign(v)));
+        // The guard that just fired is on its surface, whatever rounding left in its value:
+        // its departure decides.
+        if let Quiet::Guard(q) = quiet {
+            self.reference[q] = 0.0;
+        }
+        let departures_fire = !matches!(quiet, Quiet::Start | Quiet::All);
         self.departure_fires.clear();
-        self.departure_fires
-            .extend((0..values.len()).map(|i| match quiet {
-                Quiet::None => true,
-                Quiet::Guard(q) => q != i,
-                Quiet::All => false,
-            }));
+        self.departure_fires.resize(n, departures_fire);
+        self.exempt.clear();
+        self.exempt.resize(n, !departures_fire);
+        if let Quiet::Guard(q) = quiet {
+            // It has fired: on whichever side it leaves to, it moves on from there.
+            self.departure_fires[q] = false;
+            self.exempt[q] = true;
+        }
+        self.enters.clear();
+        self.enters.extend((0..n).map(|i| {
+            entry
+                && !matches!(quiet, Quiet::All)
+                && self.holding[i] != 0.0
+                && self.reference[i] == self.holding[i]
+        }));
+        self.fresh = true;
+        self.violation = None;
         self.quiet.clear();
-        self.quiet.extend((0..values.len()).map(|i| {
+        self.quiet.extend((0..n).map(|i| {
             QuietRange::of(
                 self.reference[i],
                 self.directions[i],
@@ -78,13 +115,20 @@ impl GuardTracker {
         self.lo_values.clear();
         self.lo_values.extend_from_slice(values);
         self.lo_at.clear();
-        self.lo_at.resize(values.len(), 0.0);
+        self.lo_at.resize(n, 0.0);
         self.scratch.clear();
-        self.scratch.resize(values.len(), 0.0);
+        self.scratch.resize(n, 0.0);
         self.at_best.clear();
-        self.at_best.resize(values.len(), 0.0);
+        self.at_best.resize(n, 0.0);
         self.at_third.clear();
-        self.at_third.resize(values.len(), 0.0);
+        self.at_third.resize(n, 0.0);
+    }
+
+    /// A guard found on its holding side without having fired, and without one of the
+    /// exceptions of [`super::GuardSpec`]: the driver's invariant, violated (checked after
+    /// every accepted step that found no event).
+    pub(crate) fn violation(&self) -> Option<usize> {
+        self.violation
     }
 
     /// Records that the event last found, guard `index` at `t` with exact value `value` there,
@@ -92,6 +136,8 @@ impl GuardTracker {
     pub(crate) fn pass(&mut self, index: usize, t: f64, value: f64) {
         self.reference[index] = sign(value);
         self.departure_fires[index] = false;
+        self.exempt[index] = true;
+        self.enters[index] = false;
         self.quiet[index] = QuietRange::of(self.reference[index], self.directions[index], false);
         self.lo_values[index] = value;
         self.lo_at[index] = t;
@@ -155,6 +201,24 @@ impl GuardTracker {
             screened,
             ..
         } = self.walk;
+        if self.fresh {
+            // The segment's first step: first what holds where it starts, then the departures.
+            if let Some(index) = self.enters.iter().position(|&e| e) {
+                self.enters[index] = false;
+                return Ok(Some(Found {
+                    index,
+                    t: t0,
+                    before: t0,
+                    direction: crossed_to(self.holding[index]),
+                }));
+            }
+            self.fresh = false;
+            if self.reference.contains(&0.0) {
+                if let Some(found) = self.probe(t0, t1, &mut eval)? {
+                    return Ok(Some(found));
+                }
+            }
+        }
         while self.walk.k <= points + 1 {
             let (k, lo) = (self.walk.k, self.walk.lo);
             let tk = if k == points + 1 {
@@ -194,12 +258,7 @@ impl GuardTracker {
             for i in 0..n {
                 let v = self.scratch[i];
                 if v != 0.0 && sign(v) != self.reference[i] {
-                    self.reference[i] = sign(v);
-                    self.quiet[i] = QuietRange::of(
-                        self.reference[i],
-                        self.directions[i],
-                        self.departure_fires[i],
-                    );
+                    self.settle(i, v);
                 }
                 self.lo_values[i] = v;
                 self.lo_at[i] = tk;
@@ -208,6 +267,84 @@ impl GuardTracker {
             self.walk.k += 1;
         }
         Ok(None)
+    }
+
+    /// The departures of the guards pending at a segment's start (exactly zero there, or the
+    /// guard whose event restarted the mode), read from the guards' values just after the
+    /// start of its first step `[t0, t1]`, at probes `t0 + h 2^-k` from the nearest out: a
+    /// guard with a holding side departed to its other side if any probe finds it there (the
+    /// nearest ones may still be in the rounding of its surface, the farther ones past a
+    /// short excursion), and into its holding side if every nonzero probe finds it there; a
+    /// guard that fires either way departs to the side of its nearest nonzero probe. A
+    /// departure that fires is an event at `t0`; any other becomes the guard's reference
+    /// sign, with the probe that showed it as its last check point, so that a return through
+    /// the surface later in the same step is a crossing, located after the excursion's
+    /// turning point. A guard zero at every probe stays pending.
+    fn probe<E>(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
+    ) -> Result<Option<Found>, E> {
+        const PROBES: [i32; 5] = [-30, -24, -18, -12, -6];
+        let n = self.len();
+        let pending: Vec<usize> = (0..n).filter(|&i| self.reference[i] == 0.0).collect();
+        // Per pending guard: the first probe on its non-holding side (or, for `==`, its
+        // first nonzero one), and the last nonzero one.
+        let mut away: Vec<Option<(f64, f64)>> = vec![None; pending.len()];
+        let mut last: Vec<Option<(f64, f64)>> = vec![None; pending.len()];
+        for k in PROBES {
+            let td = t0 + (t1 - t0) * 2f64.powi(k);
+            if td <= t0 || td >= t1 {
+                continue;
+            }
+            eval(td, Probe::Exact, &mut self.scratch)?;
+            for (j, &i) in pending.iter().enumerate() {
+                let v = self.scratch[i];
+                if v == 0.0 || away[j].is_some() {
+                    continue;
+                }
+                last[j] = Some((td, v));
+                if self.holding[i] == 0.0 || sign(v) != self.holding[i] {
+                    away[j] = Some((td, v));
+                }
+            }
+            if away.iter().all(Option::is_some) {
+                break;
+            }
+        }
+        for (j, &i) in pending.iter().enumerate() {
+            let Some((td, v)) = away[j].or(last[j]) else {
+                continue;
+            };
+            if let Some(direction) = self.departure(i, v) {
+                return Ok(Some(Found {
+                    index: i,
+                    t: t0,
+                    before: t0,
+                    direction,
+                }));
+            }
+            self.settle(i, v);
+            self.lo_values[i] = v;
+            self.lo_at[i] = td;
+        }
+        Ok(None)
+    }
+
+    /// Guard `i`'s reference sign becomes the sign of its new value `v` (nonzero) without an
+    /// event: on its holding side, that is the invariant's violation unless the guard is
+    /// exempt.
+    fn settle(&mut self, i: usize, v: f64) {
+        self.reference[i] = sign(v);
+        if self.reference[i] == self.holding[i] && !self.exempt[i] {
+            self.violation.get_or_insert(i);
+        }
+        self.quiet[i] = QuietRange::of(
+            self.reference[i],
+            self.directions[i],
+            self.departure_fires[i],
+        );
     }
 
     /// Screening's first look at a step: estimates at 1/3 and 2/3 of it and the exact values
@@ -326,6 +463,24 @@ impl GuardTracker {
     }
 }
 
+/// The sign of the side where a guard with this filter holds (`0`: either side).
+fn holding_sign(d: Direction) -> f64 {
+    match d {
+        Direction::Up => 1.0,
+        Direction::Down => -1.0,
+        Direction::Both => 0.0,
+    }
+}
+
+/// The crossing that leads to the side of sign `s`.
+fn crossed_to(s: f64) -> Crossed {
+    if s > 0.0 {
+        Crossed::Up
+    } else {
+        Crossed::Down
+    }
+}
+
 #[inline]
 fn sign(v: f64) -> f64 {
     if v > 0.0 {
@@ -360,7 +515,7 @@ mod tests {
         quiet: Quiet,
     ) -> Option<Found> {
         let mut tr = GuardTracker::default();
-        tr.start(dirs.iter().copied(), start, quiet);
+        tr.start(dirs.iter().copied(), start, quiet, true);
         let mut end = vec![0.0; dirs.len()];
         g(t1, &mut end);
         let checks = match checks {
@@ -383,7 +538,7 @@ mod tests {
         points: u32,
     ) -> (Option<Found>, usize) {
         let mut tr = GuardTracker::default();
-        tr.start([dir].into_iter(), &[g(0.0)], Quiet::None);
+        tr.start([dir].into_iter(), &[g(0.0)], Quiet::None, true);
         let mut exact = 0;
         let found = tr
             .scan::<()>(
@@ -423,11 +578,20 @@ mod tests {
             o[0] = 0.3 - t; // down at 0.3
             o[1] = t - 0.6; // up at 0.6
         };
-        let f = run(&[Direction::Up, Direction::Up], &[0.3, -0.6], g, 1.0, 0).unwrap();
+        // (Read as after a projection: guard 0 holds where it starts, and is exempt.)
+        let f = run_quiet(
+            &[Direction::Up, Direction::Up],
+            &[0.3, -0.6],
+            g,
+            1.0,
+            0,
+            Quiet::All,
+        )
+        .unwrap();
         assert_eq!(f.index, 1);
         let f = run(&[Direction::Both, Direction::Up], &[0.3, -0.6], g, 1.0, 0).unwrap();
         assert_eq!((f.index, f.direction), (0, Crossed::Down));
-        assert!(run(
+        assert!(run_quiet(
             &[Direction::Down, Direction::Down],
             &[0.3, -0.6],
             |t, o| {
@@ -435,7 +599,8 @@ mod tests {
                 o[1] = t - 0.6;
             },
             1.0,
-            0
+            0,
+            Quiet::All,
         )
         .is_none());
     }
@@ -499,6 +664,76 @@ mod tests {
         assert!(f.is_none());
     }
 
+    #[test]
+    fn a_restart_on_the_surface_does_not_hide_the_return_through_it() {
+        // A bounce: the guard that fired is a hair on its holding side, leaves it upwards and
+        // comes back down at 0.7, all inside one step.
+        let g = |t: f64, o: &mut [f64]| o[0] = -1e-17 + t * (0.7 - t);
+        let f = run_quiet(&[Direction::Down], &[-1e-17], g, 1.0, 0, Quiet::Guard(0)).unwrap();
+        assert_eq!(f.direction, Crossed::Down);
+        assert!((f.t - 0.7).abs() < 1e-14, "{f:?}");
+        // Also an excursion much shorter than the step, right at its start.
+        let g = |t: f64, o: &mut [f64]| o[0] = t * (0.001 - t);
+        let f = run_quiet(&[Direction::Down], &[0.0], g, 1.0, 0, Quiet::Guard(0)).unwrap();
+        assert!((f.t - 0.001).abs() < 1e-15, "{f:?}");
+        // The same excursion of another guard left exactly on its surface, heading the way
+        // its filter does not fire: its return fires, at the return, not at the restart.
+        let g = |t: f64, o: &mut [f64]| o[0] = -t * (0.4 - t);
+        let f = run(&[Direction::Up], &[0.0], g, 1.0, 0).unwrap();
+        assert_eq!(f.direction, Crossed::Up);
+        assert!((f.t - 0.4).abs() < 1e-15, "{f:?}");
+    }
+
+    #[test]
+    fn a_guard_that_holds_on_entry_fires_at_once() {
+        let g = |t: f64, o: &mut [f64]| {
+            o[0] = -1.0 - t;
+            o[1] = 2.0 + t;
+        };
+        // Both hold; the first listed fires, at the start, in the direction that leads there.
+        for quiet in [Quiet::None, Quiet::Start] {
+            let f = run_quiet(
+                &[Direction::Down, Direction::Up],
+                &[-1.0, 2.0],
+                g,
+                1.0,
+                0,
+                quiet,
+            )
+            .unwrap();
+            assert_eq!((f.index, f.t, f.direction), (0, 0.0, Crossed::Down));
+        }
+        // Not after a projection, and never for a guard that fires either way.
+        let g = |t: f64, o: &mut [f64]| o[0] = -1.0 - t;
+        assert!(run_quiet(&[Direction::Down], &[-1.0], g, 1.0, 0, Quiet::All).is_none());
+        assert!(run(&[Direction::Both], &[-1.0], g, 1.0, 0).is_none());
+        // The guard that restarted its mode has fired: leaving its surface to its holding
+        // side, it moves on.
+        assert!(run_quiet(
+            &[Direction::Down],
+            &[0.0],
+            |t, o| o[0] = -t,
+            1.0,
+            0,
+            Quiet::Guard(0)
+        )
+        .is_none());
+    }
+
+    #[test]
+    fn a_departure_at_the_start_of_a_run_is_quiet_and_exempt() {
+        let g = |t: f64, o: &mut [f64]| o[0] = -t;
+        let mut tr = GuardTracker::default();
+        tr.start([Direction::Down].into_iter(), &[0.0], Quiet::Start, true);
+        let found = tr
+            .scan::<()>(0.0, 1.0, &[-1.0], InteriorChecks::None, |t, _, o| {
+                g(t, o);
+                Ok(())
+            })
+            .unwrap();
+        assert_eq!((found, tr.violation()), (None, None));
+    }
+
     /// The events of one step `[0, 1]` of guards `g` with `checks`, every one passing.
     fn passes(
         dirs: &[Direction],
@@ -509,7 +744,7 @@ mod tests {
         let (mut start, mut end) = (vec![0.0; dirs.len()], vec![0.0; dirs.len()]);
         g(0.0, &mut start);
         g(1.0, &mut end);
-        tr.start(dirs.iter().copied(), &start, Quiet::None);
+        tr.start(dirs.iter().copied(), &start, Quiet::None, true);
         let mut eval = |t: f64, _: Probe, out: &mut [f64]| -> Result<(), ()> {
             g(t, out);
             Ok(())

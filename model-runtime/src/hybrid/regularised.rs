@@ -404,6 +404,10 @@ impl<H: TimeScale<N>, const N: usize, const M: usize> HybridSystem<Const<M>>
         Some(h / self.inner.time_scale(mode, &y))
     }
 
+    fn fires_on_entry(&self) -> bool {
+        self.inner.fires_on_entry()
+    }
+
     fn project(&self, mode: H::Mode, _tau: f64, z: &mut [f64; M]) -> bool {
         let mut y = head(z);
         let changed = self.inner.project(mode, self.t_seg + z[N], &mut y);

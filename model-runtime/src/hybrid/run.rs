@@ -175,7 +175,7 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         H: HybridSystem<D, Mode = Md>,
         O: Observer<D, Md, H::Guard, H::Note>,
     {
-        self.start_segment(sys, t0, y0, Quiet::All)?;
+        self.start_segment(sys, t0, y0, Quiet::Start)?;
         self.emit_samples(sys, t0, obs)?;
         loop {
             if self.it.t() >= t_end {
@@ -404,7 +404,15 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         )
         .map_err(at(t1))?;
         check_finite(t1, &self.end_values)?;
-        self.search(sys, Search::Step)
+        let found = self.search(sys, Search::Step)?;
+        match self.tracker.violation() {
+            Some(guard) if found.is_none() => Err(SolveError::GuardHolds {
+                t: t1,
+                guard,
+                value: self.end_values[guard],
+            }),
+            _ => Ok(found),
+        }
     }
 
     /// The search for the earliest admitted guard crossing in the last accepted step.
@@ -487,8 +495,13 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         self.end_values.resize(specs.len(), 0.0);
         let (y, f) = (self.it.y().clone(), self.it.f().clone());
         self.guards_at(sys, t, &y, &f)?;
-        self.tracker
-            .start(specs.iter().map(|s| s.direction), &self.values, quiet);
+        let entry = sys.fires_on_entry();
+        self.tracker.start(
+            specs.iter().map(|s| s.direction),
+            &self.values,
+            quiet,
+            entry,
+        );
         Ok(())
     }
 
@@ -500,8 +513,12 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
         let (t, y, f) = (self.it.t(), self.it.y().clone(), self.it.f().clone());
         self.guards_at(sys, t, &y, &f)?;
         let specs = sys.guards(self.mode);
-        self.tracker
-            .start(specs.iter().map(|s| s.direction), &self.values, Quiet::All);
+        self.tracker.start(
+            specs.iter().map(|s| s.direction),
+            &self.values,
+            Quiet::All,
+            false,
+        );
         Ok(())
     }
 
