@@ -81,7 +81,7 @@ mod cli;
 mod eval;
 mod figures;
 mod model_command;
-mod model_csv;
+mod model_tables;
 mod model_file;
 mod model_show;
 mod named_numbers;
