@@ -11,8 +11,8 @@
 //! writes what it computed, complete files whose last event row says why it stopped.
 
 use crate::args::{
-    backend, interrupt_on_ctrl_c, print_json, print_out, EXIT_FAILED, EXIT_INPUT,
-    EXIT_INTERRUPTED, EXIT_STOPPED,
+    backend, interrupt_on_ctrl_c, print_json, print_out, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    EXIT_STOPPED,
 };
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
 use crate::eval::{evaluate_model, parse_model_state, parse_params};
@@ -175,7 +175,8 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         ));
     }
     if args.format == TableFormat::Parquet {
-        let to_stdout = args.out.as_os_str() == "-" || args.events.as_deref() == Some(Path::new("-"));
+        let to_stdout =
+            args.out.as_os_str() == "-" || args.events.as_deref() == Some(Path::new("-"));
         if to_stdout {
             return input_error(
                 "-f parquet: Parquet is written to files only: give `--out FILE` (and `--events FILE`)",
@@ -186,7 +187,9 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
     // A failed run keeps what it computed: its files are written, then the failure said.
     let (solution, failure) = match solved(args, &interrupt) {
         Ok(solution) => (solution, None),
-        Err(ModelFileError::Failed(SolveFailure::Run(mut failure))) if failure.partial.is_some() => {
+        Err(ModelFileError::Failed(SolveFailure::Run(mut failure)))
+            if failure.partial.is_some() =>
+        {
             let partial = failure.partial.take().map(|partial| *partial);
             let message = failure.describe(WORK_BOUND_FLAG);
             match partial {
@@ -203,7 +206,7 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
     let mut written = write_to(&args.out, args.format, &trajectory(&solution));
     match &args.events {
         Some(path) if written.is_ok() => {
-            written = write_to(path, args.format, &events(&solution));
+            written = write_to(path, args.format, &events(&solution, failure.as_deref()));
         }
         Some(_) => {}
         None => {

@@ -3,8 +3,8 @@
 //! values) or Parquet, the same columns in both.
 //!
 //! The trajectory is `t`, for a switched model the `mode` in force, the states, the discrete
-//! values in force and the outputs. The events are one row per event with the state just
-//! before it (`phase` = `before`), and for an event that reset the state or changed the mode
+//! values in force and the outputs. The events are `event`, `phase`, then the same columns:
+//! one row per event with the state just before it (`phase` = `before`), and for an event that reset the state or changed the mode
 //! a second row with the state the run went on from (`after`, its `mode` the new one); an
 //! event that changed nothing (a smooth model's crossing, a record) has one row, `at`; an
 //! accumulation has one row, `at` its extrapolated point, with the state its rule sets. A
@@ -42,21 +42,16 @@ pub fn trajectory(solution: &Solution) -> Table {
     table
 }
 
-/// The events table: `event`, `phase`, then the trajectory's columns (`mode` always, empty
-/// for a smooth model).
-pub fn events(solution: &Solution) -> Table {
-    let mut header = vec!["event".to_string(), "phase".to_string(), "t".to_string()];
-    header.push("mode".to_string());
-    header.extend(solution.columns[1..].iter().cloned());
+/// The events table: `event`, `phase`, then the trajectory's columns; the `stop` row's
+/// phase says how the run ended, a failure with `failure` (its message as the terminal
+/// says it).
+pub fn events(solution: &Solution, failure: Option<&str>) -> Table {
+    let mut header = vec!["event".to_string(), "phase".to_string()];
+    header.extend(self::header(solution));
     let mut table = Table::new(header);
-    let switched = !solution.modes.is_empty();
     let mut push = |event: &str, phase: &str, mode: Option<&str>, row: &[f64]| {
         let mut line = vec![Cell::text(event), Cell::text(phase)];
-        let mut rest = cells(row, if switched { mode } else { None });
-        if !switched {
-            rest.insert(1, Cell::Null);
-        }
-        line.extend(rest);
+        line.extend(cells(row, mode));
         table.rows.push(line);
     };
     for event in &solution.events {
@@ -76,12 +71,18 @@ pub fn events(solution: &Solution) -> Table {
         Stop::Event { .. } => solution.events.last(),
         _ => None,
     };
-    let stop = solution.stop.to_string();
+    let stop = match failure {
+        Some(message) => format!("{}: {message}", solution.stop),
+        None => solution.stop.to_string(),
+    };
     match (stopped_by, solution.rows.last()) {
         (Some(event), _) => push("stop", &stop, event.mode.as_deref(), &event.row),
-        (None, Some(last)) => {
-            push("stop", &stop, solution.row_mode(solution.rows.len() - 1), last)
-        }
+        (None, Some(last)) => push(
+            "stop",
+            &stop,
+            solution.row_mode(solution.rows.len() - 1),
+            last,
+        ),
         (None, None) => {}
     }
     table

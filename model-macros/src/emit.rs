@@ -111,7 +111,8 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
         }
         None => quote! { ::core::option::Option::None },
     });
-    let initial = (0..n_states).map(|k| constant(model.initial.get(k).copied().flatten().unwrap_or(0.0)));
+    let initial =
+        (0..n_states).map(|k| constant(model.initial.get(k).copied().flatten().unwrap_or(0.0)));
     let info = info(info_name, model);
     let solved_markdown = &model.explanation.markdown;
     let solved_latex = &model.explanation.latex;

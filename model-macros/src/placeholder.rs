@@ -116,7 +116,12 @@ fn stub(ast: &ModelAst) -> CompiledModel {
         variants: Vec::new(),
         explanation: Explanation::default(),
         initial: (states.iter())
-            .map(|(name, ())| ast.initial.iter().find(|i| &i.name == name).map(|i| i.value))
+            .map(|(name, ())| {
+                ast.initial
+                    .iter()
+                    .find(|i| &i.name == name)
+                    .map(|i| i.value)
+            })
             .collect(),
     };
     let variants = ast

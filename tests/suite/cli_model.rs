@@ -168,7 +168,10 @@ fn bad_assignments_and_singular_states_are_named() {
             "`phi` is given twice",
         ),
         // theta = 0: the momenta's block divides by sin(theta).
-        (vec!["--state", "theta=0"], "the pivot `I1*sin(theta)^2` is 0 at this state"),
+        (
+            vec!["--state", "theta=0"],
+            "the pivot `I1*sin(theta)^2` is 0 at this state",
+        ),
     ] {
         let mut all = vec!["eval", HEAVY_TOP];
         all.extend(args.iter().copied());
@@ -344,12 +347,16 @@ fn a_terminal_event_stops_a_falling_body_on_the_ground() {
     // The samples 0, 0.1, ..., 0.6 before the landing, then the landing itself.
     assert_eq!(rows.len(), 8, "{rows:?}");
     assert!((rows[6][0] - 0.6).abs() < 1e-15, "{rows:?}");
-    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 1);
-    assert_eq!(header, "event,t,h,v");
-    assert_eq!(located.len(), 1);
+    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 2);
+    assert_eq!(header, "event,phase,t,h,v");
+    // The event, then the stop it caused, at the same point.
+    assert_eq!(located.len(), 2);
     assert_eq!(located[0], *last);
+    assert_eq!(located[1], *last);
     let text = std::fs::read_to_string(&events).unwrap();
-    assert!(text.lines().nth(1).unwrap().starts_with("h,"), "{text}");
+    assert!(text.lines().nth(1).unwrap().starts_with("h,at,"), "{text}");
+    let stop = text.lines().nth(2).unwrap();
+    assert!(stop.starts_with("stop,stopped by event `h`,"), "{text}");
     assert!(
         stderr.contains(&format!("stopped by event `h` at t = {}", last[0])),
         "{stderr}"
@@ -398,8 +405,10 @@ fn an_event_on_an_output_fires_only_in_its_direction() {
         arg(&events),
     ];
     solve_events(OSCILLATOR, &args);
-    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 1);
-    assert_eq!(header, "event,t,x,v,e");
+    let (header, mut located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 2);
+    assert_eq!(header, "event,phase,t,x,v,e");
+    // The last row says how the run ended, at its end.
+    assert_eq!(located.pop().unwrap()[0], 10.0);
     // cos(w t) rises through 1/2 at w t = 5 pi / 3 + 2 pi k: k = 0..3 before t = 10 (the
     // falling crossings at w t = pi / 3 + 2 pi k, five of them, do not fire).
     let pi = std::f64::consts::PI;

@@ -3,6 +3,8 @@
 
 mod cli_eval;
 mod cli_model;
+mod cli_model_diagnostics;
+mod cli_model_runs;
 mod cli_run;
 mod cli_switched;
 mod extrema;

@@ -239,7 +239,10 @@ pub fn quoted(names: &[&str]) -> String {
 /// The candidate `name` is most likely a typo of, if one is close: the same name in other
 /// case (`Resting` for `resting`), else roughly one edit per three characters, and never a
 /// whole replacement (`z` is not a typo of `x`).
-pub(crate) fn closest<'c>(name: &str, candidates: impl IntoIterator<Item = &'c str>) -> Option<&'c str> {
+pub(crate) fn closest<'c>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'c str>,
+) -> Option<&'c str> {
     let length = name.chars().count();
     let limit = ((length + 1) / 3).max(1);
     let lower = name.to_lowercase();

@@ -137,9 +137,7 @@ fn never_crosses(guard: &Relation, crossing: Crossing) -> Option<&'static str> {
     match crossing {
         Crossing::Down if !value.neg => Some("its left side never falls below its right side"),
         Crossing::Up if !value.pos => Some("its left side never rises above its right side"),
-        Crossing::Both if !value.neg || !value.pos => {
-            Some("its two sides never pass each other")
-        }
+        Crossing::Both if !value.neg || !value.pos => Some("its two sides never pass each other"),
         _ => None,
     }
 }
@@ -249,8 +247,14 @@ mod tests {
                when fine: h < 0 { v = -v; } }",
         );
         assert_eq!(found.len(), 2, "{found:?}");
-        assert!(found[0].starts_with("event `never` can never fire"), "{found:?}");
-        assert!(found[1].starts_with("event `also` can never fire"), "{found:?}");
+        assert!(
+            found[0].starts_with("event `never` can never fire"),
+            "{found:?}"
+        );
+        assert!(
+            found[1].starts_with("event `also` can never fire"),
+            "{found:?}"
+        );
     }
 
     #[test]
@@ -262,7 +266,13 @@ mod tests {
                mode c { equations { der(x) = 0; } } }",
         );
         assert_eq!(found.len(), 2, "{found:?}");
-        assert!(found[0].starts_with("mode `b` has events but none leaves it"), "{found:?}");
-        assert!(found[1].starts_with("mode `c` is never entered"), "{found:?}");
+        assert!(
+            found[0].starts_with("mode `b` has events but none leaves it"),
+            "{found:?}"
+        );
+        assert!(
+            found[1].starts_with("mode `c` is never entered"),
+            "{found:?}"
+        );
     }
 }

@@ -241,7 +241,10 @@ impl RunFailure {
             );
         }
         if let Some(steps) = self.steps {
-            text.push_str(&format!(" (after {steps} steps and {} events)", self.events));
+            text.push_str(&format!(
+                " (after {steps} steps and {} events)",
+                self.events
+            ));
         }
         text
     }

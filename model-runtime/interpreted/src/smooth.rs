@@ -17,8 +17,8 @@ use crate::tables::{Ended, Tables};
 use model_algebra::CompiledModel;
 use model_runtime::{
     Dyn, EvalError, EventHit, GuardSpec, HybridError, HybridOptions, HybridSolver, HybridSystem,
-    Matrix, Method, ModelInfo, Observed, Observer, Rhs, SolveError, StepOptions, StepView,
-    Stepper, StopReason, System, Transition, WithStepper,
+    Matrix, Method, ModelInfo, Observed, Observer, Rhs, SolveError, StepOptions, StepView, Stepper,
+    StopReason, System, Transition, WithStepper,
 };
 use std::ops::ControlFlow;
 
@@ -41,7 +41,13 @@ impl HybridSystem<Dyn> for WithEvents<'_> {
         self.interpreted.rhs(t, y, dy)
     }
 
-    fn jacobian(&self, _: (), t: f64, y: &Vec<f64>, jac: &mut Matrix<Dyn>) -> Result<(), EvalError> {
+    fn jacobian(
+        &self,
+        _: (),
+        t: f64,
+        y: &Vec<f64>,
+        jac: &mut Matrix<Dyn>,
+    ) -> Result<(), EvalError> {
         self.interpreted.jacobian(t, y, jac)
     }
 

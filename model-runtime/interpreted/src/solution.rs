@@ -77,7 +77,9 @@ impl Solution {
     /// row.
     pub fn stop_time(&self) -> Option<f64> {
         match (&self.stop, self.events.last()) {
-            (Stop::Event { name, kind }, Some(last)) if last.name == *name && last.kind == *kind => {
+            (Stop::Event { name, kind }, Some(last))
+                if last.name == *name && last.kind == *kind =>
+            {
                 Some(last.t())
             }
             _ => self.t_end(),
@@ -162,7 +164,7 @@ impl std::fmt::Display for Stop {
             Stop::EndTime => write!(f, "reached the end time"),
             Stop::Event { name, kind } => write!(f, "stopped by event `{}`", label(name, *kind)),
             Stop::Interrupted => write!(f, "interrupted"),
-            Stop::Failed { reason } => write!(f, "failed: {reason}"),
+            Stop::Failed { .. } => write!(f, "failed"),
         }
     }
 }

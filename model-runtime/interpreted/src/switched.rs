@@ -24,9 +24,9 @@ use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
     name_modes, AccumulationAction, AccumulationRule, Direction, Dyn, EvalError, EventAction,
     EventDecl, EventId, Fired, HybridError, HybridOptions, HybridSolver, InputError, ModeDecl,
-    ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepOptions, StepView, Stepper,
-    StopReason, Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind,
-    TransitionRecord, WithStepper,
+    ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepOptions, StepView, Stepper, StopReason,
+    Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind, TransitionRecord,
+    WithStepper,
 };
 use std::cell::RefCell;
 use std::ops::ControlFlow;
@@ -302,10 +302,13 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         let warnings = on_threshold(&interpreted, request.t0, &resolved.y0);
         let start = graph.first();
         let input = |error: InputError| {
-            run_failure(&graph, HybridError::Solve {
-                mode: start,
-                error: error.into(),
-            })
+            run_failure(
+                &graph,
+                HybridError::Solve {
+                    mode: start,
+                    error: error.into(),
+                },
+            )
         };
         let mut system =
             Switched::new(&mut interpreted, AccumulationRule::default()).map_err(input)?;
@@ -329,7 +332,12 @@ impl WithStepper<Dyn> for Run<'_, '_> {
                     t: met.t,
                     continued_in: tables.modes.get(met.to).cloned(),
                 });
-                tables.event(name, EventKind::Accumulation, met.to, (met.t, &met.y_after, after))?
+                tables.event(
+                    name,
+                    EventKind::Accumulation,
+                    met.to,
+                    (met.t, &met.y_after, after),
+                )?
             } else {
                 let mut event =
                     tables.event(name, EventKind::Crossing, met.from, (met.t, &met.y, before))?;
@@ -433,7 +441,11 @@ fn tables<'a>(
     request: &SolveRequest,
 ) -> Tables<'a> {
     let first: &CompiledModel = &model.modes[0].model;
-    let discrete: Vec<String> = model.discrete.iter().map(|(name, _)| name.clone()).collect();
+    let discrete: Vec<String> = model
+        .discrete
+        .iter()
+        .map(|(name, _)| name.clone())
+        .collect();
     let slots = model.slot_names();
     Tables {
         name: model.name.clone(),

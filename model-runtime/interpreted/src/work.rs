@@ -127,7 +127,9 @@ mod tests {
         // One step of 0.1 s: within 10 × (0.1 + 0.1) = 2 steps.
         assert!(meter.step(0.0, 0.1).is_none());
         assert!(meter.step(0.1, 0.1 + 1e-9).is_none());
-        let over = meter.step(0.1 + 1e-9, 0.1 + 2e-9).expect("a third step is over");
+        let over = meter
+            .step(0.1 + 1e-9, 0.1 + 2e-9)
+            .expect("a third step is over");
         assert_eq!(over.steps, 3);
         let message = over.describe("--max-steps-per-s");
         assert!(message.contains("raise `--max-steps-per-s`"), "{message}");
