@@ -243,7 +243,7 @@ mod tests {
         let found = messages(
             "mod m { states { h = 1, v } equations { der(h) = v; der(v) = -1; }
                when never: h^2 < 0 { v = 0; }
-               when also: abs(v) + 1 <= 0.5 { v = 0; }
+               when also: -(abs(v) + exp(h)) > 0 { v = 0; }
                when fine: h < 0 { v = -v; } }",
         );
         assert_eq!(found.len(), 2, "{found:?}");
