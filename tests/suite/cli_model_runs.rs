@@ -17,9 +17,12 @@ fn lines(path: &Path) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// A table as lines of fields.
+type Lines = Vec<Vec<String>>;
+
 /// `model solve FILE ARGS --out traj.csv --events events.csv`: the exit code, the two
 /// tables and standard error.
-fn solve(text: &str, extra: &[&str]) -> (Option<i32>, Vec<Vec<String>>, Vec<Vec<String>>, String) {
+fn solve(text: &str, extra: &[&str]) -> (Option<i32>, Lines, Lines, String) {
     let (dir, path) = file(text);
     let traj = dir.path().join("traj.csv");
     let events = dir.path().join("events.csv");
