@@ -146,10 +146,9 @@ pub struct ModelSolveArgs {
     /// watch it.
     #[arg(long = "event", value_name = "SPEC")]
     pub event: Vec<String>,
-    /// Write the events to this file (`event,phase,t,mode`, the states, the discrete values,
-    /// the outputs: the state before each event and after its reset, and a last row `stop`
-    /// saying how the run ended; `-`: standard output); without it, each event is said on
-    /// standard error.
+    /// Write the events to this file (`event,phase`, then the trajectory's columns: the state
+    /// before each event and after its reset, and a last row `stop` saying how the run
+    /// ended; `-`: standard output); without it, each event is said on standard error.
     #[arg(long, value_name = "PATH")]
     pub events: Option<PathBuf>,
 }
