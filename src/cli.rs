@@ -73,7 +73,8 @@ pub struct ModelPointArgs {
     /// One of the model's charts instead of the model itself.
     #[arg(long)]
     pub chart: Option<String>,
-    /// A state value, `NAME=VALUE` (repeatable; states not given are 0).
+    /// A state value, `NAME=VALUE` (repeatable): it overrides the initial value the file
+    /// writes (`states { x = 2 }`); a state given neither here nor there is 0.
     #[arg(long = "state", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub state: Vec<String>,
     /// A parameter value, `NAME=VALUE` (repeatable; the others keep the file's defaults).
@@ -127,17 +128,27 @@ pub struct ModelSolveArgs {
     /// Record every DT (and at the end time) instead of at every step.
     #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
-    /// The CSV file (`-`: standard output).
+    /// The trajectory file (`-`: standard output, as CSV): `t`, `mode` (a switched model),
+    /// the states, the discrete values, the outputs.
     #[arg(short, long, default_value = "-")]
     pub out: PathBuf,
+    /// The format of the files (Parquet: to files only).
+    #[arg(short, long, value_enum, default_value = "csv")]
+    pub format: crate::output::format::TableFormat,
+    /// The work bound, as `run`'s `solver.max_steps_per_s`: by simulated time `t` the run may
+    /// have taken `MAX × (|t − t0| + 0.1)` steps; a run over it fails, keeping what it
+    /// computed.
+    #[arg(long, value_name = "MAX", default_value = "1e6")]
+    pub max_steps_per_s: f64,
     /// An event, `NAME[:up|:down][:stop]` (repeatable): located where the state or output
     /// NAME crosses zero (upwards, downwards, or both by default); `:stop` ends the run there.
     /// For a threshold other than zero, add an output to the file (`hit = theta - 0.1`) and
     /// watch it.
     #[arg(long = "event", value_name = "SPEC")]
     pub event: Vec<String>,
-    /// Write the located events to this CSV (`event,t`, the states, the outputs; `-`:
-    /// standard output); without it, each event is said on standard error.
+    /// Write the events to this file (`event,phase`, then the trajectory's columns: the state
+    /// before each event and after its reset, and a last row `stop` saying how the run
+    /// ended; `-`: standard output); without it, each event is said on standard error.
     #[arg(long, value_name = "PATH")]
     pub events: Option<PathBuf>,
 }

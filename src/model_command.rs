@@ -4,23 +4,33 @@
 //! in the file, an unknown name in `--state`/`--set`, a malformed `--event` or a state where
 //! the model is singular is an input error (exit 2), and so is an unusable setting of `solve`
 //! (an empty time span, a sampling step or tolerance that is not positive);
-//! a failed integration or an unwritable output is a failure (exit 1), and a run that a
-//! `:stop` event ended before `--t-end` exits with 3, as a scene stopped by its physics does.
+//! a failed integration, a run over its work bound (`--max-steps-per-s`, as `run`'s) or an
+//! unwritable output is a failure (exit 1), a run that a `:stop` event or an accumulation
+//! without a rule ended before `--t-end` exits with 3, as a scene stopped by its physics
+//! does, and one interrupted by Ctrl-C with 130. A run that failed or was interrupted still
+//! writes what it computed, complete files whose last event row says why it stopped.
 
-use crate::args::{backend, print_json, print_out, EXIT_FAILED, EXIT_INPUT, EXIT_STOPPED};
+use crate::args::{
+    backend, interrupt_on_ctrl_c, print_json, print_out, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    EXIT_STOPPED,
+};
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
 use crate::eval::{evaluate_model, parse_model_state, parse_params};
-use crate::model_csv::{write_csv, write_events_csv};
 use crate::model_file::{event_spec, named, value_error, Arguments, ModelFileError};
 use crate::model_show::{Format, ModelName};
+use crate::model_tables::{events, trajectory};
+use crate::output::atomic::write_atomic;
+use crate::output::cells::Table;
+use crate::output::format::TableFormat;
 use clap::ValueEnum;
 use model_interpreted::{
-    evaluate, initial_state, params, solve, ModelFile, ModelRef, PointValues, Solution,
-    SolveRequest, Stop,
+    evaluate, initial_state, params, solve_with, Control, ModelFile, ModelRef, PointValues,
+    Solution, SolveFailure, SolveRequest, Stop,
 };
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
 
 /// Runs one model subcommand.
 pub fn run(command: &ModelCommand) -> ExitCode {
@@ -127,20 +137,30 @@ fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
         events: (args.event.iter())
             .map(|text| event_spec(text))
             .collect::<Result<_, _>>()?,
+        max_steps_per_s: args.max_steps_per_s,
     })
 }
 
-/// `model solve`: the file's model solved as the arguments say.
-fn solved(args: &ModelSolveArgs) -> Result<Solution, ModelFileError> {
+/// `model solve`: the file's model solved as the arguments say, until `interrupt` is set.
+fn solved(args: &ModelSolveArgs, interrupt: &AtomicBool) -> Result<Solution, ModelFileError> {
     let file = ModelFile::read(Path::new(&args.point.model))?;
+    if let ModelFile::Switched(model) = &file {
+        for warning in &model.warnings {
+            eprintln!("{warning}");
+        }
+    }
     let model = file.model(args.point.chart.as_deref())?;
     let arguments = Arguments {
         set: &args.point.set,
         state: &args.point.state,
         event: &args.event,
     };
-    solve(model, &request(args)?).map_err(|failure| arguments.solve_error(failure))
+    let control = Control { interrupt };
+    solve_with(model, &request(args)?, &control).map_err(|failure| arguments.solve_error(failure))
 }
+
+/// The flag that raises the work bound, as the failure names it.
+const WORK_BOUND_FLAG: &str = "--max-steps-per-s";
 
 fn solve_file(args: &ModelSolveArgs) -> ExitCode {
     if args.method.is_some() {
@@ -154,18 +174,39 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
             args.point.model
         ));
     }
-    let solution = match solved(args) {
-        Ok(solution) => solution,
+    if args.format == TableFormat::Parquet {
+        let to_stdout =
+            args.out.as_os_str() == "-" || args.events.as_deref() == Some(Path::new("-"));
+        if to_stdout {
+            return input_error(
+                "-f parquet: Parquet is written to files only: give `--out FILE` (and `--events FILE`)",
+            );
+        }
+    }
+    let interrupt = interrupt_on_ctrl_c("writing what is complete");
+    // A failed run keeps what it computed: its files are written, then the failure said.
+    let (solution, failure) = match solved(args, &interrupt) {
+        Ok(solution) => (solution, None),
+        Err(ModelFileError::Failed(SolveFailure::Run(mut failure)))
+            if failure.partial.is_some() =>
+        {
+            let partial = failure.partial.take().map(|partial| *partial);
+            let message = failure.describe(WORK_BOUND_FLAG);
+            match partial {
+                Some(partial) => (partial, Some(message)),
+                None => return ExitCode::from(EXIT_FAILED),
+            }
+        }
         Err(err) if err.is_input() => return input_error(err),
         Err(err) => {
             eprintln!("error: {err}");
             return ExitCode::from(EXIT_FAILED);
         }
     };
-    let mut written = write_to(&args.out, |out| write_csv(&solution, out));
+    let mut written = write_to(&args.out, args.format, &trajectory(&solution));
     match &args.events {
         Some(path) if written.is_ok() => {
-            written = write_to(path, |out| write_events_csv(&solution, out));
+            written = write_to(path, args.format, &events(&solution, failure.as_deref()));
         }
         Some(_) => {}
         None => {
@@ -178,33 +219,42 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
         eprintln!("error: {err}");
         return ExitCode::from(EXIT_FAILED);
     }
+    for warning in &solution.warnings {
+        eprintln!("warning: {warning}");
+    }
     for accumulation in &solution.accumulations {
         eprintln!("{accumulation}");
     }
     eprintln!("{}", summary(&solution, args.t0));
+    if let Some(message) = failure {
+        eprintln!("error: {message}");
+        return ExitCode::from(EXIT_FAILED);
+    }
     match solution.stop {
         Stop::EndTime => ExitCode::SUCCESS,
         Stop::Event { .. } => ExitCode::from(EXIT_STOPPED),
+        Stop::Interrupted => ExitCode::from(EXIT_INTERRUPTED),
+        Stop::Failed { .. } => ExitCode::from(EXIT_FAILED),
     }
 }
 
-/// Writes with `write` to the file `path` (`-`: standard output); an error names the path.
-fn write_to(
-    path: &Path,
-    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<(), String> {
-    let written = if path.as_os_str() == "-" {
+/// Writes `table` in `format` to the file `path` (`-`: standard output, as CSV), a file
+/// atomically (complete or not there); an error names the path.
+fn write_to(path: &Path, format: TableFormat, table: &Table) -> Result<(), String> {
+    if path.as_os_str() == "-" {
         let mut lock = std::io::stdout().lock();
-        write(&mut lock).and_then(|()| lock.flush())
-    } else {
-        std::fs::File::create(path)
-            .map(std::io::BufWriter::new)
-            .and_then(|mut file| write(&mut file).and_then(|()| file.flush()))
+        return (table.write_csv(&mut lock).and_then(|()| lock.flush()))
+            .map_err(|err| format!("cannot write to standard output: {err}"));
+    }
+    let written = match format {
+        TableFormat::Csv => write_atomic(path, |w| table.write_csv(w)),
+        TableFormat::Parquet => crate::output::parquet::write_table(path, table),
     };
-    written.map_err(|err| format!("cannot write {}: {err}", path.display()))
+    written.map_err(|err| err.to_string())
 }
 
-/// One line on the run: rows, events, why and when it ended, the work done.
+/// One line on the run: rows, events, why and when it ended (a run stopped by an event, at
+/// the event's time), the work done.
 fn summary(solution: &Solution, t0: f64) -> String {
     let stats = &solution.stats;
     format!(
@@ -213,7 +263,7 @@ fn summary(solution: &Solution, t0: f64) -> String {
         solution.rows.len(),
         solution.events.len(),
         solution.stop,
-        solution.t_end().unwrap_or(t0),
+        solution.stop_time().unwrap_or(t0),
         stats.steps,
         stats.rejected,
         stats.rhs_evals

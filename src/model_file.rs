@@ -75,7 +75,13 @@ pub fn show_switched(model: &CompiledSwitched, format: Format) -> String {
 pub fn show(path: &Path, format: Format) -> Result<String, ModelFileError> {
     let models = match ModelFile::read(path)? {
         ModelFile::Smooth(models) => models,
-        ModelFile::Switched(model) => return Ok(show_switched(&model, format)),
+        ModelFile::Switched(model) => {
+            // What the model says that is legal but likely not meant, beside its text.
+            for warning in &model.warnings {
+                eprintln!("{warning}");
+            }
+            return Ok(show_switched(&model, format));
+        }
     };
     let texts: Vec<String> = (models.iter().map(|m| &m.compiled.explanation))
         .map(|explanation| match format {

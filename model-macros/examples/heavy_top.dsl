@@ -5,7 +5,9 @@
 /// symmetry axis.
 pub mod heavy_top {
     params { m = 0.5, g = 9.81, l = 0.04, I1 = 0.0012, I3 = 0.0009 }
-    states { phi, theta, psi, w_phi, w_theta, w_psi }
+    // A sound start (the top tilted, spinning fast, precessing slowly), not the singular
+    // point theta = 0 of the Euler angles; `--state` or `state=` start it elsewhere.
+    states { phi, theta = 0.3, psi, w_phi = 2, w_theta, w_psi = 150 }
 
     // The spin about the symmetry axis, and the momenta conjugate to phi and psi.
     let omega3 = w_psi + w_phi * cos(theta);

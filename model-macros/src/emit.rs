@@ -111,6 +111,8 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
         }
         None => quote! { ::core::option::Option::None },
     });
+    let initial =
+        (0..n_states).map(|k| constant(model.initial.get(k).copied().flatten().unwrap_or(0.0)));
     let info = info(info_name, model);
     let solved_markdown = &model.explanation.markdown;
     let solved_latex = &model.explanation.latex;
@@ -147,6 +149,9 @@ fn module(header: &Header, model: &CompiledModel, nested: TokenStream) -> TokenS
             pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = [#(#output_names),*];
             /// Parameter defaults (`None` where the model gives none), in index order.
             pub const PARAM_DEFAULTS: [::core::option::Option<f64>; N_PARAMS] = [#(#defaults),*];
+            /// The initial state written in the model (`states { x = 2 }`; `0` where none is
+            /// written): where a run starts unless told otherwise.
+            pub const INITIAL: [f64; N_STATES] = [#(#initial),*];
             const MODEL_NAME: &str = #info_name;
             /// The solved equations as the compiler derived them, block by block with their
             /// pivots, then the outputs (Markdown, DSL syntax).

@@ -79,6 +79,7 @@ pub fn switched_placeholder(ast: &ModelAst) -> TokenStream {
         name: ast.name.to_string(),
         initial,
         discrete: Vec::new(),
+        warnings: Vec::new(),
         modes: (modes.iter())
             .map(|mode| {
                 let mut model = stub.clone();
@@ -114,6 +115,14 @@ fn stub(ast: &ModelAst) -> CompiledModel {
         numeric_blocks: Vec::new(),
         variants: Vec::new(),
         explanation: Explanation::default(),
+        initial: (states.iter())
+            .map(|(name, ())| {
+                ast.initial
+                    .iter()
+                    .find(|i| &i.name == name)
+                    .map(|i| i.value)
+            })
+            .collect(),
     };
     let variants = ast
         .variants

@@ -473,7 +473,8 @@ class Model:
     ) -> dict[str, dict[str, float]]:
         """The derivatives and outputs at one point (``eulerdisk model eval``).
 
-        States not given are zero; parameters not given take the file's defaults.
+        States not given start at the file's initial values (``states { x = 2 }``), or zero;
+        parameters not given take the file's defaults.
 
         Returns:
             ``{"derivatives": {"der(x)": ...}, "outputs": {...}}``.
@@ -506,8 +507,8 @@ class Model:
 
         Args:
             t_end: the end time.
-            state: initial states by name (others: zero, or the file's start for a switched
-                model).
+            state: initial states by name, overriding the file's initial values
+                (``states { x = 2 }``); a state given neither here nor there starts at zero.
             params: parameters by name (others: the file's defaults).
             t0: the start time.
             t_eval: a number: record every ``t_eval`` from ``t0`` (and at ``t_end``); a

@@ -301,6 +301,7 @@ impl FileModel {
             params: model_named("--set", request.sets)?,
             state: model_named("--state", request.state)?,
             events,
+            max_steps_per_s: model_interpreted::WorkBound::DEFAULT.steps_per_s,
         };
         let arguments = ModelArguments {
             set: request.sets,
@@ -361,11 +362,13 @@ pub fn is_failure(error: &ModelFileError) -> bool {
     matches!(error, ModelFileError::Failed(_) | ModelFileError::Point(_))
 }
 
-/// Why a solve ended, in words: `end_time` or `event NAME`.
+/// Why a solve ended, in words: `end_time`, `event NAME`, `interrupted` or `failed`.
 pub fn termination(stop: &Stop) -> String {
     match stop {
         Stop::EndTime => "end_time".to_string(),
         Stop::Event { name, .. } => format!("event {name}"),
+        Stop::Interrupted => "interrupted".to_string(),
+        Stop::Failed { .. } => "failed".to_string(),
     }
 }
 

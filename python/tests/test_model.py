@@ -77,6 +77,34 @@ def test_a_terminal_event_ends_the_solve_there():
     assert s.t[-1] == pytest.approx(math.pi / 4, abs=1e-8)
 
 
+DECAY = """
+mod decay {
+    params { k = 1.0 }
+    states { x = 2.0, y = 3.0 }
+    equations { der(x) = -k * x; der(y) = 0; }
+}
+"""
+
+
+def test_solve_starts_at_the_initial_values_the_file_writes():
+    m = eulerdisk.Model.from_str(DECAY)
+    s = m.solve(1.0, rtol=1e-12, atol=1e-14, t_eval=0.25)
+    assert np.allclose(s["x"], 2.0 * np.exp(-s.t), rtol=0, atol=1e-11)
+    assert np.all(s["y"] == 3.0)
+    # state= overrides the file's value; the other state keeps its own.
+    s = m.solve(1.0, state={"x": 1.0}, rtol=1e-12, atol=1e-14)
+    assert s["x"][-1] == pytest.approx(math.exp(-1.0), abs=1e-11)
+    assert s["y"][-1] == 3.0
+    assert m.eval()["derivatives"]["der(x)"] == -2.0
+
+
+def test_the_heavy_top_starts_away_from_its_singular_point(dsl_examples):
+    top = eulerdisk.Model.from_file(dsl_examples / "heavy_top.dsl")
+    s = top.solve(0.5)
+    assert s["theta"][0] == 0.3 and s["w_psi"][0] == 150.0
+    assert np.all(np.isfinite(s["energy"]))
+
+
 def test_the_heavy_top_keeps_its_energy_and_momenta(dsl_examples):
     top = eulerdisk.Model.from_file(dsl_examples / "heavy_top.dsl")
     assert top.states == ["phi", "theta", "psi", "w_phi", "w_theta", "w_psi"]

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 use crate::analysis::extrema::Located;
 use crate::analysis::summary::Summary;
 use crate::eval::Backend;
-use crate::figures::paper::write_paper_figures;
+use crate::figures::paper::{write_paper_figures, FIGURE_STEMS};
 use crate::output::atomic::{write_bytes_atomic, WriteError};
 use crate::output::files::write_table;
 use crate::output::tables::events_table;
@@ -493,7 +493,14 @@ pub fn write_outputs(
     let mut summary = Summary::of(&scene.name, data, &scene.params);
     summary.compared_with_paper = is_papers_scene(scene);
     timings.analysis_s = lap(&mut clock);
+    let path = dir.join("summary.json");
     if opts.figures && !data.samples.is_empty() {
+        // The summary first, as if no figure were drawn: a second Ctrl-C while they are
+        // drawn quits at once, and leaves a complete summary that says which are missing.
+        let mut provisional = summary.clone();
+        provisional.figures_not_drawn = FIGURE_STEMS.iter().map(|s| s.to_string()).collect();
+        provisional.timings = timings;
+        write_summary(&path, &provisional, opts)?;
         if opts.progress != ProgressStyle::Quiet {
             eprintln!("drawing the figures (Ctrl-C skips the rest)");
         }
@@ -508,16 +515,20 @@ pub fn write_outputs(
     timings.figures_s = lap(&mut clock);
     timings.total_s = clock;
     summary.timings = timings;
-    let path = dir.join("summary.json");
+    write_summary(&path, &summary, opts)?;
+    files.push(path);
+    Ok((summary, files))
+}
+
+/// Writes `summary` with the run's provenance to `path` (`summary.json`), atomically.
+fn write_summary(path: &Path, summary: &Summary, opts: &RunOptions) -> Result<(), WriteError> {
     let file = SummaryFile {
-        summary: &summary,
+        summary,
         produced_by: &opts.provenance,
     };
     let json = serde_json::to_string_pretty(&file).map_err(|e| WriteError {
-        path: path.clone(),
+        path: path.to_path_buf(),
         source: std::io::Error::other(e),
     })?;
-    write_bytes_atomic(&path, format!("{json}\n").as_bytes())?;
-    files.push(path);
-    Ok((summary, files))
+    write_bytes_atomic(path, format!("{json}\n").as_bytes())
 }

@@ -21,6 +21,10 @@ pub const WINDOW: f64 = 1.0;
 pub const FINE_RATE_MAX: f64 = 20_000.0;
 /// Most points the fine grid may have over a run: the simulation visits each of them.
 pub const MAX_GRID_POINTS: f64 = 1e9;
+/// The lowest trajectory rate that scene windows can refine (1/s): below it the fine grid
+/// holds more than 1e12 points per trajectory point, past where its whole-number arithmetic
+/// (the multiples, their least common multiple) is exact.
+pub const MIN_RATE_WITH_WINDOWS: f64 = FINE_RATE_MAX / 1e12;
 
 /// Which of the two fine windows a sample falls in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,7 +98,7 @@ impl SamplePlan {
             .collect();
         let every = multiples.iter().fold(self.every, |l, (_, m)| lcm(l, *m));
         SamplePlan {
-            figure_every: every / self.every * self.figure_every,
+            figure_every: (every / self.every).saturating_mul(self.figure_every),
             windows: multiples
                 .into_iter()
                 .map(|(range, m)| (range, every / m))
@@ -178,7 +182,8 @@ impl SamplePlan {
     }
 }
 
-/// The least common multiple of `a` and `b` (both > 0).
+/// The least common multiple of `a` and `b` (both > 0), `u64::MAX` where it does not fit
+/// (a grid that fine is refused by the scene's validation, `MAX_GRID_POINTS`, long before).
 fn lcm(a: u64, b: u64) -> u64 {
     let gcd = |mut a: u64, mut b: u64| {
         while b != 0 {
@@ -186,12 +191,27 @@ fn lcm(a: u64, b: u64) -> u64 {
         }
         a
     };
-    a / gcd(a, b) * b
+    (a / gcd(a, b)).saturating_mul(b)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A trajectory rate of 1e-300 with a window: no overflow in the grid's arithmetic (it
+    /// panicked with overflow checks, and wrapped without).
+    #[test]
+    fn a_tiny_rate_with_a_window_does_not_overflow() {
+        let window = SampleWindow {
+            from: 0.0,
+            to: 1.0,
+            sample_rate: 1e-299,
+        };
+        let plan = SamplePlan::new(0.0, 10.0, 1e-300).with_windows(&[window]);
+        assert_eq!(plan.every, u64::MAX);
+        assert!(plan.figure_every >= 1);
+        assert!(lcm(u64::MAX, 10) == u64::MAX && lcm(4, 6) == 12);
+    }
 
     #[test]
     fn a_scene_window_refines_the_grid_and_keeps_the_others() {

@@ -5,11 +5,11 @@
 //! of its own table, `[output]` (its quantities and its fine-sampling windows). Every rule is checked even after one fails, so the user sees
 //! all the problems of a scene in one go.
 
-use equations::{DiskConfig, DiskParams, InitialState, Issue, Number, Rule};
+use equations::{DiskConfig, DiskParams, InitialState, Issue, Number, Rule, STATE_NAMES};
 
 use super::schema::SceneFile;
 use crate::output::format::{TableFormat, PARQUET_UNAVAILABLE};
-use crate::run::plan::{SamplePlan, MAX_GRID_POINTS};
+use crate::run::plan::{SamplePlan, MAX_GRID_POINTS, MIN_RATE_WITH_WINDOWS};
 use equations::record::Quantity;
 
 /// A scene whose every rule holds, with its derived values.
@@ -36,6 +36,9 @@ pub fn validate(name: &str, file: SceneFile) -> Result<Scene, Vec<Issue>> {
     let quantities = check_quantities(&mut issues, &file.cli.output.quantities);
     check_windows(&mut issues, &file);
     check_format(&mut issues, &file);
+    if let Ok(disk) = &resolved {
+        check_energy(&mut issues, &disk.initial, &disk.params);
+    }
     match resolved {
         Ok(disk) if issues.is_empty() => Ok(Scene {
             name: name.to_string(),
@@ -46,6 +49,28 @@ pub fn validate(name: &str, file: SceneFile) -> Result<Scene, Vec<Issue>> {
             quantities,
         }),
         _ => Err(issues),
+    }
+}
+
+/// The start's energy is finite (every backend writes it; a velocity of 1e300 m/s squares
+/// to infinity): else an issue naming the largest of the components it is made of.
+fn check_energy(issues: &mut Vec<Issue>, initial: &InitialState, params: &DiskParams) {
+    let energy = initial.state.energy(params);
+    if energy.is_finite() {
+        return;
+    }
+    let parts = Quantity::Energy.reads();
+    let largest = (STATE_NAMES.iter().zip(initial.state.y))
+        .filter(|(name, _)| parts.contains(name))
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+    if let Some((name, value)) = largest {
+        issues.push(Issue::new(
+            format!("initial.{name}"),
+            Rule::Incompatible {
+                value: Number(value).to_string(),
+                reason: "gives the disk a non-finite energy at the start",
+            },
+        ));
     }
 }
 
@@ -129,6 +154,19 @@ fn check_windows(issues: &mut Vec<Issue>, file: &SceneFile) {
                 },
             ));
         }
+    }
+    let rate = run.sample_rate;
+    if !windows.is_empty() && rate.is_finite() && rate > 0.0 && rate < MIN_RATE_WITH_WINDOWS {
+        issues.push(Issue::new(
+            "run.sample_rate",
+            Rule::Incompatible {
+                value: Number(rate).to_string(),
+                reason: "is too low for `output.windows` to refine (at least 2e-8 samples per \
+                         second: the windows' grid would hold more than 1e12 points per \
+                         trajectory point)",
+            },
+        ));
+        return;
     }
     let clean = issues.iter().all(|i| !i.key.starts_with("output.windows"));
     if clean && !windows.is_empty() && run.sample_rate > 0.0 && run.t_end > 0.0 {

@@ -168,7 +168,10 @@ fn bad_assignments_and_singular_states_are_named() {
             "`phi` is given twice",
         ),
         // theta = 0: the momenta's block divides by sin(theta).
-        (vec![], "the pivot `I1*sin(theta)^2` is 0 at this state"),
+        (
+            vec!["--state", "theta=0"],
+            "the pivot `I1*sin(theta)^2` is 0 at this state",
+        ),
     ] {
         let mut all = vec!["eval", HEAVY_TOP];
         all.extend(args.iter().copied());
@@ -260,7 +263,7 @@ fn solve_writes_a_trajectory_that_keeps_the_energy() {
     let (lo, hi) = theta.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
     assert!(hi - lo > 1e-4, "{lo} {hi}");
     // A singular start stops with the pivot named, exit 1.
-    let out = model(&["solve", HEAVY_TOP, "--t-end", "1"]);
+    let out = model(&["solve", HEAVY_TOP, "--state", "theta=0", "--t-end", "1"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("sin(theta)"));
 }
@@ -344,12 +347,16 @@ fn a_terminal_event_stops_a_falling_body_on_the_ground() {
     // The samples 0, 0.1, ..., 0.6 before the landing, then the landing itself.
     assert_eq!(rows.len(), 8, "{rows:?}");
     assert!((rows[6][0] - 0.6).abs() < 1e-15, "{rows:?}");
-    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 1);
-    assert_eq!(header, "event,t,h,v");
-    assert_eq!(located.len(), 1);
+    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 2);
+    assert_eq!(header, "event,phase,t,h,v");
+    // The event, then the stop it caused, at the same point.
+    assert_eq!(located.len(), 2);
     assert_eq!(located[0], *last);
+    assert_eq!(located[1], *last);
     let text = std::fs::read_to_string(&events).unwrap();
-    assert!(text.lines().nth(1).unwrap().starts_with("h,"), "{text}");
+    assert!(text.lines().nth(1).unwrap().starts_with("h,at,"), "{text}");
+    let stop = text.lines().nth(2).unwrap();
+    assert!(stop.starts_with("stop,stopped by event `h`,"), "{text}");
     assert!(
         stderr.contains(&format!("stopped by event `h` at t = {}", last[0])),
         "{stderr}"
@@ -398,8 +405,10 @@ fn an_event_on_an_output_fires_only_in_its_direction() {
         arg(&events),
     ];
     solve_events(OSCILLATOR, &args);
-    let (header, located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 1);
-    assert_eq!(header, "event,t,x,v,e");
+    let (header, mut located) = read_csv(&std::fs::read_to_string(&events).unwrap(), 2);
+    assert_eq!(header, "event,phase,t,x,v,e");
+    // The last row says how the run ended, at its end.
+    assert_eq!(located.pop().unwrap()[0], 10.0);
     // cos(w t) rises through 1/2 at w t = 5 pi / 3 + 2 pi k: k = 0..3 before t = 10 (the
     // falling crossings at w t = pi / 3 + 2 pi k, five of them, do not fire).
     let pi = std::f64::consts::PI;
@@ -571,4 +580,38 @@ fn solve_runs_a_model_of_three_states() {
             assert!((got - want).abs() < 1e-10, "t = {t}: {got} vs {want}");
         }
     }
+}
+
+/// The decay of the issue: `x = 2 e^-t`, `y = 3` from the values written on the states, in
+/// every row; `--state` overrides one, the other keeps the file's. The shipped heavy top
+/// starts where its file says, away from its singular point.
+#[test]
+fn solve_starts_at_the_initial_values_the_file_writes() {
+    let (_dir, path) = file(
+        "mod decay {
+            params { k = 1.0 }
+            states { x = 2.0, y = 3.0 }
+            equations { der(x) = -k * x; der(y) = 0; }
+        }",
+    );
+    let tight = ["--rtol", "1e-12", "--atol", "1e-14", "--dt", "0.25"];
+    let mut args = vec!["solve", arg(&path), "--t-end", "1"];
+    args.extend(tight);
+    let (header, rows) = read_csv(&ok(&args), 0);
+    assert_eq!(header, "t,x,y");
+    assert_eq!(rows.len(), 5);
+    for row in &rows {
+        assert!((row[1] - 2.0 * (-row[0]).exp()).abs() < 1e-11, "{row:?}");
+        assert_eq!(row[2], 3.0);
+    }
+    args.extend(["--state", "x=1"]);
+    let (_, rows) = read_csv(&ok(&args), 0);
+    let last = rows.last().unwrap();
+    assert!((last[1] - (-1.0f64).exp()).abs() < 1e-11, "{last:?}");
+    assert_eq!(last[2], 3.0);
+    let eval: Value = serde_json::from_str(&ok(&["eval", arg(&path)])).unwrap();
+    assert_eq!(eval["derivatives"]["der(x)"], -2.0);
+    let (_, rows) = read_csv(&ok(&["solve", HEAVY_TOP, "--t-end", "0.1"]), 0);
+    assert_eq!(rows[0][2], 0.3);
+    assert_eq!(rows[0][6], 150.0);
 }

@@ -34,9 +34,17 @@ fn solve(file: &str, extra: &[&str]) -> (Vec<Vec<String>>, Vec<(String, f64)>, S
             .map(|line| line.split(',').map(str::to_string).collect())
             .collect()
     };
-    let rows = table(&traj);
+    // The trajectory without its `mode` column (checked on its own below).
+    let rows = (table(&traj).into_iter())
+        .map(|mut row| {
+            row.remove(1);
+            row
+        })
+        .collect();
+    // Each event once, at the state before it (not its `after` row, nor the `stop` row).
     let events = (table(&events).into_iter().skip(1))
-        .map(|row| (row[0].clone(), row[1].parse().unwrap()))
+        .filter(|row| row[1] != "after" && row[0] != "stop")
+        .map(|row| (row[0].clone(), row[2].parse().unwrap()))
         .collect();
     (rows, events, stderr)
 }

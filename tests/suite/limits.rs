@@ -257,3 +257,14 @@ fn a_rolling_loss_of_contact_writes_only_numbers() {
         }
     }
 }
+
+/// `initial.V_Y = 1e300` gives an infinite energy: a scene error naming the key, for the
+/// generated and the reference models alike (the reference ran and wrote `energy_J = inf`).
+#[test]
+fn a_start_with_an_infinite_energy_is_refused_by_its_key() {
+    for backend in [&[][..], &["--reference"][..]] {
+        let mut args = vec!["--set", "initial.V_Y=1e300"];
+        args.extend_from_slice(backend);
+        crate::cli_run::rejected(&args, "initial.V_Y");
+    }
+}

@@ -4,6 +4,8 @@
 mod architecture;
 mod cli_eval;
 mod cli_model;
+mod cli_model_diagnostics;
+mod cli_model_runs;
 mod cli_run;
 mod cli_switched;
 mod extrema;

@@ -166,6 +166,10 @@ pub struct CompiledModel {
     pub variants: Vec<CompiledModel>,
     /// The solved equations, printed (Markdown and LaTeX).
     pub explanation: Explanation,
+    /// Each state's initial value as the model's text writes it (`states { x = 2 }`), `None`
+    /// where none is written. The compiler leaves every one unwritten: initial values are no
+    /// part of the equations, and the front end that read the text fills them in.
+    pub initial: Vec<Option<f64>>,
 }
 
 /// The solved model, printed.

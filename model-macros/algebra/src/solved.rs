@@ -217,6 +217,7 @@ impl Solved {
             numeric_blocks,
             variants: Vec::new(),
             explanation: Explanation::default(),
+            initial: vec![None; selection.states.len()],
         })
     }
 }

@@ -3,7 +3,7 @@
 
 use crate::span::Errors;
 use crate::validate::Validated;
-use model_algebra::CompiledModel;
+use model_algebra::{CompiledModel, Named};
 
 /// Compiles every model (a model and its charts), reporting the errors of all together.
 pub fn compile_all(models: &[Validated]) -> syn::Result<Vec<CompiledModel>> {
@@ -24,7 +24,7 @@ pub fn compile_all(models: &[Validated]) -> syn::Result<Vec<CompiledModel>> {
 pub fn compile(model: &Validated) -> syn::Result<CompiledModel> {
     let spec = &model.spec;
     let spans = &model.ast.spans;
-    model_algebra::compile(spec, &model.options).map_err(|diagnostics| {
+    let mut compiled = model_algebra::compile(spec, &model.options).map_err(|diagnostics| {
         let mut errors = Errors::default();
         for diagnostic in diagnostics {
             errors.at(spans.range(diagnostic.id), diagnostic.message);
@@ -37,5 +37,18 @@ pub fn compile(model: &Validated) -> syn::Result<CompiledModel> {
                 format!("the equations of `{}` could not be compiled", spec.name),
             ),
         }
-    })
+    })?;
+    with_initial(&mut compiled, &model.ast.initial);
+    Ok(compiled)
+}
+
+/// The initial values written on the states (`states { x = 2 }`), given to the compiled
+/// model and its variants by state name (the compiler knows nothing of them).
+fn with_initial(compiled: &mut CompiledModel, initial: &[Named<f64>]) {
+    compiled.initial = (compiled.states.iter())
+        .map(|state| initial.iter().find(|i| &i.name == state).map(|i| i.value))
+        .collect();
+    for variant in &mut compiled.variants {
+        with_initial(variant, initial);
+    }
 }

@@ -45,6 +45,7 @@ mod switching;
 mod text;
 mod unchecked;
 mod validate;
+mod warnings;
 
 pub use ast::{
     Accumulates, Call, Chart, Equation, Expr, Mode, ModelAst, RelOp, Relation, Target, Variant,
@@ -65,6 +66,7 @@ pub use switched_show::{switching_latex, switching_markdown};
 pub use text::{Located, LocatedErrors, Source, TextModel};
 pub use unchecked::spec_unchecked;
 pub use validate::{validate, Validated, RESERVED_MODULES};
+pub use warnings::{warnings, Warning};
 
 #[cfg(test)]
 mod tests;

@@ -147,16 +147,7 @@ impl Names {
         } else {
             values.collect()
         };
-        // Roughly one edit per three characters, and never a whole replacement (`z` is not a
-        // typo of `x`).
-        let length = name.chars().count();
-        let limit = ((length + 1) / 3).max(1);
-        candidates
-            .into_iter()
-            .map(|candidate| (edit_distance(name, candidate), candidate))
-            .filter(|&(distance, _)| distance <= limit && distance < length)
-            .min_by_key(|&(distance, _)| distance)
-            .map(|(_, candidate)| candidate)
+        closest(name, candidates)
     }
 
     /// The states and outputs, for a variant's `keep`.
@@ -243,4 +234,28 @@ pub fn quoted(names: &[&str]) -> String {
         .map(|name| format!("`{name}`"))
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// The candidate `name` is most likely a typo of, if one is close: the same name in other
+/// case (`Resting` for `resting`), else roughly one edit per three characters, and never a
+/// whole replacement (`z` is not a typo of `x`).
+pub(crate) fn closest<'c>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'c str>,
+) -> Option<&'c str> {
+    let length = name.chars().count();
+    let limit = ((length + 1) / 3).max(1);
+    let lower = name.to_lowercase();
+    candidates
+        .into_iter()
+        .map(|candidate| {
+            let distance = match candidate.to_lowercase() == lower {
+                true => 0,
+                false => edit_distance(name, candidate),
+            };
+            (distance, candidate)
+        })
+        .filter(|&(distance, _)| distance <= limit && distance < length)
+        .min_by_key(|&(distance, _)| distance)
+        .map(|(_, candidate)| candidate)
 }

@@ -54,9 +54,32 @@ pub(crate) fn parse_binding(
     spans: &mut Spans,
 ) -> syn::Result<Named<crate::ast::Expr>> {
     let name = parse_name(input, spans)?;
-    input.parse::<Token![=]>()?;
+    compound_assignment(input, &name.name)?;
+    input
+        .parse::<Token![=]>()
+        .map_err(|_| input.error(format!("expected `=`: write `{} = EXPR`", name.name)))?;
     let value = parse_expr(input, spans)?;
     Ok(with_value(name, value))
+}
+
+/// A Rust compound assignment (`n += 1`) where the DSL wants `NAME = EXPR`: an error at the
+/// operator that says what to write instead.
+fn compound_assignment(input: ParseStream, name: &str) -> syn::Result<()> {
+    let operator = if input.peek(Token![+=]) {
+        "+"
+    } else if input.peek(Token![-=]) {
+        "-"
+    } else if input.peek(Token![*=]) {
+        "*"
+    } else if input.peek(Token![/=]) {
+        "/"
+    } else {
+        return Ok(());
+    };
+    Err(input.error(format!(
+        "`{operator}=` is not an assignment of the DSL: write `{name} = {name} {operator} EXPR` \
+         (the right side reads the value before the assignment)"
+    )))
 }
 
 pub(crate) fn parse_name(input: ParseStream, spans: &mut Spans) -> syn::Result<Named<()>> {

@@ -267,7 +267,12 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                 if found.is_none() {
                     errors.at(
                         range(name.id),
-                        format!("unknown mode `{}`: {}", name.name, mode_list()),
+                        format!(
+                            "unknown mode `{}`{}: {}",
+                            name.name,
+                            did_you_mean(&name.name, views.iter().map(|v| v.name.as_str())),
+                            mode_list()
+                        ),
                     );
                 }
                 found
@@ -325,8 +330,10 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
                     continue;
                 }
                 planned.push((state, outputs.len()));
+                // Internal names, unique even where the user declared an event twice (that
+                // is reported once, naming the event): never in a message.
                 outputs.push(Named {
-                    name: format!("{kind}:{event}:{}", reset.name),
+                    name: format!("{kind}:{}:{event}:{}", outputs.len(), reset.name),
                     id: reset.id,
                     value: reset.value.clone(),
                 });
@@ -340,10 +347,10 @@ pub fn validate_switched(ast: &ModelAst) -> syn::Result<SwitchedPlan> {
         };
         // The guards first, together, then each jump's resets, together: the compiler then
         // splits the outputs program into contiguous parts.
-        for &(when, _) in &view.events {
+        for (k, &(when, _)) in view.events.iter().enumerate() {
             let guard = &when.guard;
             outputs.push(Named {
-                name: format!("when:{}", when.name.name),
+                name: format!("when:{k}:{}", when.name.name),
                 id: when.name.id,
                 value: Expr::Bin(
                     guard.id,
@@ -726,4 +733,12 @@ fn mode_views<'a>(ast: &'a ModelAst) -> Vec<ModeView<'a>> {
             }
         })
         .collect()
+}
+
+/// ` (did you mean `NAME`?)` for the closest of `candidates`, or nothing.
+fn did_you_mean<'c>(name: &str, candidates: impl IntoIterator<Item = &'c str>) -> String {
+    match crate::names::closest(name, candidates) {
+        Some(close) => format!(" (did you mean `{close}`?)"),
+        None => String::new(),
+    }
 }

@@ -18,6 +18,10 @@ pub struct CompiledSwitched {
     pub discrete: Vec<(String, f64)>,
     /// The modes, the first being where a run starts.
     pub modes: Vec<CompiledMode>,
+    /// What the model says that is legal but likely not meant (a guard that can never fire,
+    /// a mode never entered or never left), each at its place in the text when the model
+    /// was read from one ([`crate::Source::compile_switched`]); empty otherwise.
+    pub warnings: Vec<crate::text::Located>,
 }
 
 /// One mode compiled.
@@ -255,6 +259,7 @@ pub fn compile_switched(plan: &SwitchedPlan) -> syn::Result<CompiledSwitched> {
     Ok(CompiledSwitched {
         name: plan.ast.name.to_string(),
         initial: plan.initial.clone(),
+        warnings: Vec::new(),
         discrete: plan.discrete.clone(),
         modes,
     })

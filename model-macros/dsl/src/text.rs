@@ -12,6 +12,7 @@ use crate::span::Errors;
 use crate::switched::validate_switched;
 use crate::switched_compile::{compile_switched, CompiledSwitched};
 use crate::validate::validate;
+use crate::warnings::warnings;
 use crate::ModelAst;
 extern crate proc_macro;
 use model_algebra::CompiledModel;
@@ -169,7 +170,15 @@ impl Source {
         }
         errors.finish().map_err(|errors| self.locate_all(errors))?;
         let plan = plan.map_err(|errors| self.locate_all(errors))?;
-        compile_switched(&plan).map_err(|errors| self.locate_all(errors))
+        let mut compiled = compile_switched(&plan).map_err(|errors| self.locate_all(errors))?;
+        compiled.warnings = (warnings(&plan).into_iter())
+            .filter_map(|warning| {
+                let message = format!("warning: {}", warning.message);
+                let located = self.locate_all(warning.range.error(&message)).0;
+                located.into_iter().next()
+            })
+            .collect();
+        Ok(compiled)
     }
 
     /// Every error of a (combined) `syn::Error`, located in this source.

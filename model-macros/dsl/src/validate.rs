@@ -457,6 +457,17 @@ impl<'a> Validator<'a> {
         } else {
             let message = match self.names.get(name) {
                 Some(decl) => format!("`{name}` is {}, not a function", decl.kind),
+                // A hybrid-systems habit: `pre(v)` for the value before the event.
+                None if name == "pre" => {
+                    let inner = match call.args.as_slice() {
+                        [Expr::Name(_, inner)] => inner.as_str(),
+                        _ => "x",
+                    };
+                    format!(
+                        "there is no `pre`: a reset already reads every value as it was just \
+                         before the event, so write `{inner}` for `pre({inner})`"
+                    )
+                }
                 None => {
                     let hint = match self.names.suggest(name, 0, true) {
                         Some(close) => format!(" (did you mean `{close}`?)"),

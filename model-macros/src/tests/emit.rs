@@ -106,6 +106,7 @@ fn compiled() -> CompiledModel {
         numeric_blocks: vec!["der(a), der(b)".into()],
         variants: Vec::new(),
         explanation: Default::default(),
+        initial: vec![Some(2.0), None],
     }
 }
 

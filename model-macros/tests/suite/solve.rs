@@ -216,3 +216,27 @@ fn bad_output_times_and_budgets_are_errors() {
         "{budget:?}"
     );
 }
+
+model_macros::model! {
+    /// x decays from its written start, y stays where it is written to be.
+    mod decay {
+        params { k = 1.0 }
+        states { x = 2.0, y = 3.0 }
+        equations { der(x) = -k * x; der(y) = 0; }
+    }
+}
+
+/// A smooth model's initial values as written are its `INITIAL`, and a run from there follows
+/// the closed form `x = 2 e^-t`, `y = 3`; a state without a value starts at 0.
+#[test]
+fn a_smooth_model_starts_at_its_written_initial_values() {
+    assert_eq!(decay::INITIAL, [2.0, 3.0]);
+    assert_eq!(oscillator::INITIAL, [0.0, 0.0]);
+    let sol = Problem::new(&decay::Model::default(), decay::INITIAL, (0.0, 1.0))
+        .tolerances(1e-12, 1e-14)
+        .solve::<0>()
+        .unwrap();
+    let last = sol.y.last().unwrap();
+    assert!((last[decay::state::x] - 2.0 * (-1.0f64).exp()).abs() < 1e-11);
+    assert_eq!(last[decay::state::y], 3.0);
+}

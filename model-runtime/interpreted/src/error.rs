@@ -2,6 +2,8 @@
 //! failed: one enum per stage, so a front end says each in its own words (a command line
 //! names its flags, a Python package its keyword arguments) without reading a message.
 
+use crate::solution::Solution;
+use crate::work::WorkExceeded;
 use model_algebra::EvalFailure;
 use model_dsl::LocatedErrors;
 use std::path::PathBuf;
@@ -156,6 +158,12 @@ pub enum RequestError {
         /// The end.
         t_end: f64,
     },
+    /// The work bound is not positive and finite.
+    #[error("max_steps_per_s = {steps_per_s}: the work bound must be positive and finite")]
+    WorkBound {
+        /// The bound given.
+        steps_per_s: f64,
+    },
     /// The runtime refused a setting (the time span, a tolerance), in its words.
     #[error("{0}")]
     Settings(String),
@@ -199,7 +207,7 @@ pub enum SolveFailure {
     },
 }
 
-/// A failed integration and the work done until then.
+/// A failed integration, the work done until then, and what was computed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunFailure {
     /// What went wrong, in the model's terms.
@@ -208,19 +216,49 @@ pub struct RunFailure {
     pub steps: Option<u64>,
     /// The events met before the failure.
     pub events: usize,
+    /// The work bound, when the run went over it ([`crate::SolveRequest::max_steps_per_s`]).
+    pub work: Option<WorkExceeded>,
+    /// Whether the run went over its work bound under an explicit method, which a stiff
+    /// model makes take ever shorter steps (an implicit method is the way out).
+    pub stiff_hint: bool,
+    /// The solution until the failure (its stop [`crate::Stop::Failed`]): the rows and
+    /// events computed, for a front end to keep.
+    pub partial: Option<Box<Solution>>,
+}
+
+impl RunFailure {
+    /// The failure in words, naming the setting that raises the work bound as the caller
+    /// spells it (`--max-steps-per-s`).
+    pub fn describe(&self, setting: &str) -> String {
+        let mut text = match &self.work {
+            Some(over) => over.describe(setting),
+            None => self.message.clone(),
+        };
+        if self.stiff_hint {
+            text.push_str(
+                "; steps this short are the mark of a stiff model under an explicit method: \
+                 an implicit one (`rodas4`) takes long steps there",
+            );
+        }
+        if let Some(steps) = self.steps {
+            text.push_str(&format!(
+                " (after {steps} steps and {} events)",
+                self.events
+            ));
+        }
+        text
+    }
 }
 
 impl std::fmt::Display for RunFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.steps {
-            Some(steps) => write!(
-                f,
-                "{} (after {steps} steps and {} events)",
-                self.message, self.events
-            ),
-            None => write!(f, "{}", self.message),
-        }
+        f.write_str(&self.describe("max_steps_per_s"))
     }
+}
+
+/// An unusable setting the runtime refused (a time span, a tolerance), as a request error.
+pub(crate) fn settings(message: String) -> SolveFailure {
+    SolveFailure::Request(RequestError::Settings(message))
 }
 
 /// Why a model cannot be evaluated at one point.

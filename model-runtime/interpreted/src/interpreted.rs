@@ -10,7 +10,6 @@
 //! borrows from its constants and an interpreted one owns: its names live as long as the
 //! model being solved ([`Labels`]), so a long-lived process solving many models keeps none.
 
-use crate::error::{PointError, SolveFailure};
 use model_algebra::{CompiledModel, EvalFailure, Inputs};
 use model_runtime::{
     Dyn, EvalError, ModelInfo, Name, Names, Rhs, System, SystemOutputs, Tolerance,
@@ -19,28 +18,6 @@ use model_runtime::{
 /// The request's tolerance for the `n` states of a model.
 pub(crate) fn tolerance(n: usize, rtol: f64, atol: f64) -> Tolerance<Dyn> {
     Tolerance::scalar_in(Dyn(n), rtol, atol)
-}
-
-/// `t`, the states and the outputs of `model` at `(t, y)`, as a trajectory row.
-pub(crate) fn row(
-    model: &CompiledModel,
-    params: &[f64],
-    t: f64,
-    y: &[f64],
-) -> Result<Vec<f64>, SolveFailure> {
-    let at_t = |failure: EvalFailure| SolveFailure::Eval {
-        t,
-        failure: PointError::Interpreter {
-            model: model.name.clone(),
-            failure,
-        },
-    };
-    let der = model.derivatives(t, y, params).map_err(at_t)?;
-    let outputs = model.outputs_at(t, y, &der, params).map_err(at_t)?;
-    let mut row = vec![t];
-    row.extend_from_slice(y);
-    row.extend(outputs);
-    Ok(row)
 }
 
 /// What the runtime calls an interpreted model and its parts: its [`ModelInfo`] and the
@@ -90,6 +67,11 @@ impl<'a> Interpreted<'a> {
             params,
             labels,
         }
+    }
+
+    /// The model it runs.
+    pub(crate) fn model(&self) -> &'a CompiledModel {
+        self.model
     }
 
     /// An interpreter failure as the runtime's error, naming the pivot.

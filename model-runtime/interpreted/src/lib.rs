@@ -21,9 +21,11 @@
 //!   with its charts, or switched); [`ModelFile::model`] chooses a [`ModelRef`]
 //!   ([`LoadError`]); a front end that keeps only the compiled models picks one with
 //!   [`select_chart`].
-//! * **Solving**: [`solve`] with a [`SolveRequest`] ([`EventRequest`], [`Named`] values) gives
-//!   a [`Solution`] ([`SolvedEvent`], [`EventKind`], [`Stop`], [`AccumulationPoint`]) or a
-//!   [`SolveFailure`] ([`RequestError`], [`UnknownEvent`], [`RunFailure`], [`ValueError`]).
+//! * **Solving**: [`solve`] with a [`SolveRequest`] ([`EventRequest`], [`Named`] values, a
+//!   [`WorkBound`]) gives a [`Solution`] ([`SolvedEvent`], [`EventKind`], [`Stop`],
+//!   [`AccumulationPoint`]) or a [`SolveFailure`] ([`RequestError`], [`UnknownEvent`],
+//!   [`RunFailure`] with the solution until the failure, [`WorkExceeded`], [`ValueError`]);
+//!   [`solve_with`] also stops on an interrupt ([`Control`]).
 //! * **One point**: [`evaluate`] gives the derivatives and outputs by name, [`PointValues`]
 //!   ([`NamedValues`], [`PointError`]); the values in the model's order, [`params`],
 //!   [`initial_state`], [`resolve`].
@@ -69,29 +71,44 @@
 mod error;
 mod interpreted;
 mod load;
+mod recording;
 mod request;
 mod smooth;
 mod solution;
 mod switched;
+mod tables;
 mod values;
+mod work;
 
 pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
 };
 pub use load::{select_chart, ModelFile, ModelRef};
-pub use request::{EventRequest, SolveRequest, Watched};
+pub use request::{Control, EventRequest, SolveRequest, Watched};
 pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 pub use switched::mode_graph;
 pub use values::{evaluate, initial_state, params, resolve, Named, NamedValues, PointValues};
+pub use work::{WorkBound, WorkExceeded};
 
 /// Solves `model` as `request` says: the values and events resolved by name, the integration
 /// by the runtime with the model's programs run by the interpreter, the outputs evaluated at
 /// every recorded point. An unusable request is a [`SolveFailure::Request`] found before any
 /// integration; a failed run says why in the model's terms.
 pub fn solve(model: ModelRef<'_>, request: &SolveRequest) -> Result<Solution, SolveFailure> {
+    let never = std::sync::atomic::AtomicBool::new(false);
+    solve_with(model, request, &Control { interrupt: &never })
+}
+
+/// [`solve`], stopped at its next step once `control`'s interrupt is set: the solution then
+/// holds the rows and events computed, its stop [`Stop::Interrupted`].
+pub fn solve_with(
+    model: ModelRef<'_>,
+    request: &SolveRequest,
+    control: &Control<'_>,
+) -> Result<Solution, SolveFailure> {
     let resolved = request::Resolved::new(model, request)?;
     match model {
-        ModelRef::Smooth(model) => smooth::solve_smooth(model, resolved, request),
-        ModelRef::Switched(model) => switched::solve_switched(model, resolved, request),
+        ModelRef::Smooth(model) => smooth::solve_smooth(model, resolved, request, control),
+        ModelRef::Switched(model) => switched::solve_switched(model, resolved, request, control),
     }
 }

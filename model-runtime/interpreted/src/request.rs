@@ -6,7 +6,9 @@
 use crate::error::{RequestError, UnknownEvent};
 use crate::load::{quoted, ModelRef};
 use crate::values::{initial_state, params, Named};
+use crate::work::WorkBound;
 use model_runtime::{Direction, Method};
+use std::sync::atomic::AtomicBool;
 
 /// How to solve a model.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,6 +36,27 @@ pub struct SolveRequest {
     /// The events to locate, in the order given (the first wins a tie); only for a smooth
     /// model (a switched model declares its events in the file).
     pub events: Vec<EventRequest>,
+    /// The work bound: by time `t` the run may have taken
+    /// `max_steps_per_s × (|t − t0| + 0.1)` accepted steps ([`WorkBound`]); a run over it
+    /// fails, keeping what it computed.
+    pub max_steps_per_s: f64,
+}
+
+impl SolveRequest {
+    /// The request's work bound.
+    pub fn work_bound(&self) -> WorkBound {
+        WorkBound {
+            steps_per_s: self.max_steps_per_s,
+        }
+    }
+}
+
+/// What a caller controls while a solve runs: a flag that, once set (by a Ctrl-C handler,
+/// say), stops the run at its next step with what it computed ([`crate::Stop::Interrupted`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Control<'a> {
+    /// Set to stop the run.
+    pub interrupt: &'a AtomicBool,
 }
 
 impl SolveRequest {
@@ -51,6 +74,7 @@ impl SolveRequest {
             params: Vec::new(),
             state: Vec::new(),
             events: Vec::new(),
+            max_steps_per_s: WorkBound::DEFAULT.steps_per_s,
         }
     }
 }
@@ -95,6 +119,10 @@ pub(crate) struct Resolved {
 impl Resolved {
     /// Resolves `request` for `model`; every problem is a [`RequestError`].
     pub(crate) fn new(model: ModelRef<'_>, request: &SolveRequest) -> Result<Self, RequestError> {
+        let bound = request.max_steps_per_s;
+        if !(bound.is_finite() && bound > 0.0) {
+            return Err(RequestError::WorkBound { steps_per_s: bound });
+        }
         let params = params(model, &request.params).map_err(RequestError::Params)?;
         let y0 = initial_state(model, &request.state).map_err(RequestError::State)?;
         let events = match model {

@@ -1,127 +1,271 @@
-//! A smooth model solved by the runtime's `Problem` API, its programs run by the interpreter.
+//! A smooth model solved by the runtime's hybrid driver as a system of one mode whose guards
+//! are the requested events, its programs run by the interpreter.
 //!
 //! Events are zero crossings of one of the model's states or outputs. A threshold other than
 //! zero is an output of the file (`hit = theta - 0.1`), so a front end needs no expression
-//! language of its own; an output needs the derivatives, which the runtime hands every event
-//! function, and is evaluated by the interpreter there.
+//! language of its own; an output needs the derivatives, which the runtime hands every guard,
+//! and is evaluated by the interpreter there. The driver is the one `model_runtime::Problem`
+//! runs (the same steps, the same event location), observed by this crate's [`Recording`]
+//! so that a failed, bounded or interrupted run keeps what it computed.
 
-use crate::error::{RequestError, RunFailure, SolveFailure};
-use crate::interpreted::{row, tolerance, Interpreted, Labels};
-use crate::request::{Resolved, ResolvedEvent, SolveRequest, Watched};
-use crate::solution::{EventKind, Solution, SolvedEvent, Stop};
+use crate::error::{settings, SolveFailure};
+use crate::interpreted::{tolerance, Interpreted, Labels};
+use crate::recording::{Grid, Recording};
+use crate::request::{Control, Resolved, SolveRequest, Watched};
+use crate::solution::{EventKind, Solution, Stop};
+use crate::tables::{Ended, Tables};
 use model_algebra::CompiledModel;
-use model_runtime::{Event, Output, Problem, SolveError, Termination};
-use std::sync::Arc;
+use model_runtime::{
+    Dyn, EvalError, EventHit, GuardSpec, HybridError, HybridOptions, HybridSolver, HybridSystem,
+    Matrix, Method, ModelInfo, Observed, Observer, Rhs, SolveError, StepOptions, StepView, Stepper,
+    StopReason, System, Transition, WithStepper,
+};
+use std::ops::ControlFlow;
 
-/// The model and its parameters, owned, for the event functions (which must be `'static`).
-struct Shared {
-    model: CompiledModel,
-    params: Vec<f64>,
+/// The model with its events as the guards of one mode, and the events located (each by
+/// its index in the request, with its time and state).
+struct WithEvents<'a> {
+    interpreted: Interpreted<'a>,
+    resolved: &'a Resolved,
+    guards: Vec<GuardSpec<usize>>,
+    located: Vec<(usize, f64, Vec<f64>)>,
 }
 
-impl ResolvedEvent {
-    /// The runtime's event: the state read from `y`, or the output evaluated at `(t, y, dy)`
-    /// by the interpreter (NaN where it cannot be, which the runtime reports naming the
-    /// event).
-    fn event(&self, shared: &Arc<Shared>) -> Event {
-        let name = &self.request.name;
-        let event = match self.watched {
-            Watched::State(k) => Event::new(name, move |_t, y, _dy| y[k]),
-            Watched::Output(j) => {
-                let shared = Arc::clone(shared);
-                Event::new(name, move |t, y, dy| {
-                    (shared.model.outputs_at(t, y, dy, &shared.params))
-                        .map_or(f64::NAN, |outputs| outputs[j])
+impl HybridSystem<Dyn> for WithEvents<'_> {
+    type Mode = ();
+    type Guard = usize;
+    type Stop = usize;
+    type Note = ();
+
+    fn rhs(&self, _: (), t: f64, y: &Vec<f64>, dy: &mut Vec<f64>) -> Result<(), EvalError> {
+        self.interpreted.rhs(t, y, dy)
+    }
+
+    fn jacobian(
+        &self,
+        _: (),
+        t: f64,
+        y: &Vec<f64>,
+        jac: &mut Matrix<Dyn>,
+    ) -> Result<(), EvalError> {
+        self.interpreted.jacobian(t, y, jac)
+    }
+
+    fn guards(&self, _: ()) -> &[GuardSpec<usize>] {
+        &self.guards
+    }
+
+    /// A state read from `y`, an output evaluated at `(t, y, dy)` by the interpreter.
+    fn guard_values(
+        &self,
+        _: (),
+        t: f64,
+        y: &Vec<f64>,
+        dy: &Vec<f64>,
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let mut outputs: Option<Vec<f64>> = None;
+        for (value, event) in values.iter_mut().zip(&self.resolved.events) {
+            *value = match event.watched {
+                Watched::State(k) => y[k],
+                Watched::Output(j) => {
+                    if outputs.is_none() {
+                        let model = self.interpreted.model();
+                        let params = &self.resolved.params;
+                        let at = model.outputs_at(t, y, dy, params);
+                        outputs = Some(at.map_err(|e| self.interpreted.error(e))?);
+                    }
+                    outputs.as_ref().map_or(f64::NAN, |o| o[j])
+                }
+            };
+        }
+        Ok(())
+    }
+
+    fn on_event(
+        &mut self,
+        _: (),
+        hit: &EventHit<Dyn, usize>,
+    ) -> Result<Transition<Dyn, (), usize>, EvalError> {
+        self.located.push((hit.guard, hit.t, hit.y.clone()));
+        Ok(if self.resolved.events[hit.guard].request.stop {
+            Transition::Stop(hit.guard)
+        } else {
+            Transition::Continue {
+                y: hit.y.clone(),
+                note: (),
+            }
+        })
+    }
+}
+
+impl Observer<Dyn, (), usize> for Recording<'_> {
+    fn wants_dense(&self) -> bool {
+        Recording::wants_dense(self)
+    }
+
+    fn on_step(&mut self, step: &StepView<'_, Dyn, ()>) -> Observed {
+        self.step(0, step)
+    }
+
+    fn proceed(&mut self) -> ControlFlow<()> {
+        Recording::proceed(self)
+    }
+}
+
+/// The run, waiting for the method's stepper.
+struct Run<'a, 'b> {
+    model: &'a CompiledModel,
+    resolved: &'a Resolved,
+    request: &'a SolveRequest,
+    control: &'b Control<'b>,
+}
+
+impl WithStepper<Dyn> for Run<'_, '_> {
+    type Output = Result<Solution, SolveFailure>;
+
+    fn run<S: Stepper<Dyn>>(self, stepper: S) -> Self::Output {
+        let Run {
+            model,
+            resolved,
+            request,
+            control,
+        } = self;
+        let n = model.states.len();
+        let labels = Labels::of(model);
+        let mut system = WithEvents {
+            interpreted: Interpreted::new(model, &resolved.params, &labels),
+            resolved,
+            guards: (resolved.events.iter().enumerate())
+                .map(|(index, event)| GuardSpec {
+                    id: index,
+                    direction: event.request.direction,
                 })
+                .collect(),
+            located: Vec::new(),
+        };
+        let grid = match &resolved.times {
+            Some(times) => Grid::Times {
+                times: times.clone(),
+                next: 0,
+            },
+            None => Grid::Steps,
+        };
+        let bound = (request.t0, request.work_bound());
+        let mut recording = Recording::new(grid, Default::default(), bound, control.interrupt);
+        recording.start(request.t0, 0, &resolved.y0);
+        let options = HybridOptions {
+            // The work bound is the recording's, by simulated time.
+            step: StepOptions {
+                max_steps: u64::MAX,
+                ..HybridOptions::default().step
+            },
+            ..HybridOptions::default()
+        };
+        let tolerance = tolerance(n, request.rtol, request.atol);
+        let mut solver = HybridSolver::new(stepper, tolerance, options)
+            .map_err(|error| settings(error.to_string()))?;
+        let outcome = solver.run(
+            &mut system,
+            (),
+            request.t0,
+            &resolved.y0,
+            request.t_end,
+            &mut recording,
+        );
+        let tables = Tables {
+            name: model.name.clone(),
+            models: vec![model],
+            modes: Vec::new(),
+            params: &resolved.params,
+            columns: columns(model.states.iter().chain(&model.outputs)),
+            states: n,
+            discrete: 0,
+            explicit: explicit(request.method),
+        };
+        let events = (system.located.iter())
+            .map(|(guard, t, y)| {
+                let name = &resolved.events[*guard].request.name;
+                tables.event(name, EventKind::Crossing, 0, (*t, y, &[]))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let ended = match outcome {
+            Ok(outcome) => {
+                let stop = match outcome.stop {
+                    StopReason::EndTime | StopReason::Observer => Stop::EndTime,
+                    StopReason::User(guard) => Stop::Event {
+                        name: resolved.events[guard].request.name.clone(),
+                        kind: EventKind::Crossing,
+                    },
+                };
+                if let Stop::Event { .. } = stop {
+                    // The run ended at the event: its state closes the trajectory.
+                    recording.close(outcome.t, 0, &outcome.y);
+                }
+                Ended::Ran {
+                    stop,
+                    stats: outcome.stats,
+                }
+            }
+            Err(error) => {
+                let names: Vec<String> = (resolved.events.iter())
+                    .map(|e| e.request.name.clone())
+                    .collect();
+                let info = Box::new(system.interpreted.info().clone());
+                let failure = solve_failure(error, info, names);
+                if let model_runtime::SolveFailure::Solve {
+                    error: SolveError::InvalidInput(_),
+                    ..
+                } = failure
+                {
+                    // Unusable settings (a time span, a tolerance) are the caller's input.
+                    return Err(settings(failure.to_string()));
+                }
+                Ended::Failed {
+                    message: failure.to_string(),
+                    stats: solver.stats(),
+                }
             }
         };
-        let event = event.direction(self.request.direction);
-        if self.request.stop {
-            event.terminal()
-        } else {
-            event
-        }
+        tables.finish(recording, events, Vec::new(), ended)
     }
 }
 
-/// Integrates `model` as `request` says; the outputs are evaluated at every recorded point.
-pub(crate) fn solve_smooth(
-    model: &CompiledModel,
-    resolved: Resolved,
-    request: &SolveRequest,
-) -> Result<Solution, SolveFailure> {
-    let n = model.states.len();
-    let params = &resolved.params;
-    let labels = Labels::of(model);
-    let interpreted = Interpreted::new(model, params, &labels);
-    let output = match resolved.times {
-        Some(times) => Output::Times(times),
-        None => Output::Steps,
-    };
-    let mut problem = Problem::new(&interpreted, resolved.y0, (request.t0, request.t_end))
-        .method(request.method)
-        .tolerance(tolerance(n, request.rtol, request.atol))
-        .output(output);
-    if !resolved.events.is_empty() {
-        let shared = Arc::new(Shared {
-            model: model.clone(),
-            params: params.clone(),
-        });
-        for event in &resolved.events {
-            problem = problem.event(event.event(&shared));
+/// The failure of the one-mode run in the runtime's terms, as `model_runtime::Problem`
+/// reports it (states and events by name).
+fn solve_failure(
+    error: HybridError<()>,
+    info: Box<ModelInfo>,
+    events: Vec<String>,
+) -> model_runtime::SolveFailure {
+    let error = match error {
+        HybridError::Solve { error, .. } => error,
+        HybridError::Transition { t, source, .. } | HybridError::Observer { t, source, .. } => {
+            SolveError::Eval { t, source }
         }
-    }
-    let solved = problem.solve::<0>().map_err(|failure| match failure {
-        // Unusable settings (a time span, a tolerance) are the caller's input, not a failed run.
-        model_runtime::SolveFailure::Solve {
-            error: SolveError::InvalidInput(_),
+        HybridError::Chattering {
+            t,
+            transitions,
+            window,
             ..
+        } => {
+            return model_runtime::SolveFailure::Chattering {
+                t,
+                events: transitions,
+                window,
+            }
         }
-        | model_runtime::SolveFailure::OutputTime { .. } => {
-            SolveFailure::Request(RequestError::Settings(failure.to_string()))
-        }
-        failure => SolveFailure::Run(RunFailure {
-            message: failure.to_string(),
-            steps: None,
-            events: 0,
-        }),
-    })?;
-    let mut rows = Vec::with_capacity(solved.t.len() + 1);
-    for (&t, y) in solved.t.iter().zip(&solved.y) {
-        rows.push(row(model, params, t, y)?);
-    }
-    let events = (solved.events.iter())
-        .map(|event| {
-            Ok(SolvedEvent {
-                name: event.name.clone(),
-                kind: EventKind::Crossing,
-                row: row(model, params, event.t, &event.y)?,
-            })
-        })
-        .collect::<Result<Vec<_>, SolveFailure>>()?;
-    let stop = match solved.stop {
-        Termination::EndTime => Stop::EndTime,
-        Termination::Event { name } => Stop::Event {
-            name,
-            kind: EventKind::Crossing,
-        },
     };
-    if let (Stop::Event { .. }, Some(last)) = (&stop, events.last()) {
-        // The run ended at the event: its state closes the trajectory.
-        if rows.last().is_none_or(|row| row[0] < last.t()) {
-            rows.push(last.row.clone());
-        }
-    }
-    Ok(Solution {
-        model: model.name.clone(),
-        columns: columns(model.states.iter().chain(&model.outputs)),
-        states: n,
-        rows,
+    model_runtime::SolveFailure::Solve {
+        error,
+        info,
         events,
-        stop,
-        stats: solved.stats,
-        accumulations: Vec::new(),
-    })
+    }
+}
+
+/// Whether `method` is explicit (a stiff model makes its steps ever shorter).
+pub(crate) fn explicit(method: Method) -> bool {
+    !matches!(method, Method::Rodas4)
 }
 
 /// `t`, then `names`.
@@ -129,4 +273,23 @@ pub(crate) fn columns<'a>(names: impl Iterator<Item = &'a String>) -> Vec<String
     std::iter::once("t".to_string())
         .chain(names.cloned())
         .collect()
+}
+
+/// Integrates `model` as `request` says; the outputs are evaluated at every recorded point.
+pub(crate) fn solve_smooth(
+    model: &CompiledModel,
+    resolved: Resolved,
+    request: &SolveRequest,
+    control: &Control<'_>,
+) -> Result<Solution, SolveFailure> {
+    let n = model.states.len();
+    request.method.with_stepper(
+        Dyn(n),
+        Run {
+            model,
+            resolved: &resolved,
+            request,
+            control,
+        },
+    )
 }

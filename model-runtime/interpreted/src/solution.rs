@@ -1,6 +1,8 @@
-//! What [`crate::solve`] returns, typed: a table of `t`, the states and the outputs with
-//! their names, the events with what they were, why the run ended and the work done. A front
-//! end formats these (a CSV, a sentence, a NumPy array); it matches on types, never on text.
+//! What [`crate::solve`] returns, typed: a table of `t`, the states, the discrete values and
+//! the outputs with their names (and, for a switched model, the mode of each row), the events
+//! with what they were and the state on both sides of a reset, why the run ended and the work
+//! done. A front end formats these (a CSV, a sentence, a NumPy array); it matches on types,
+//! never on text.
 
 use model_runtime::Stats;
 
@@ -9,12 +11,20 @@ use model_runtime::Stats;
 pub struct Solution {
     /// The model's name.
     pub model: String,
-    /// Column names: `t`, the states, the outputs.
+    /// Column names: `t`, the states, the discrete values, the outputs.
     pub columns: Vec<String>,
     /// The number of states (the columns `1..=states`).
     pub states: usize,
+    /// The number of discrete values (the columns after the states), each row holding the
+    /// values in force at its time.
+    pub discrete: usize,
+    /// The model's modes by name (none for a smooth model).
+    pub modes: Vec<String>,
+    /// The mode in force at each row, by index into [`Solution::modes`] (empty for a smooth
+    /// model).
+    pub row_modes: Vec<usize>,
     /// One row per recorded time, in time order; after a terminal event the last row is the
-    /// event's.
+    /// event's. The outputs read the discrete values of the row's own time.
     pub rows: Vec<Vec<f64>>,
     /// The events the run met, in time order.
     pub events: Vec<SolvedEvent>,
@@ -25,6 +35,9 @@ pub struct Solution {
     /// Where the firings of an event accumulated (a switched model's Zeno points), in time
     /// order.
     pub accumulations: Vec<AccumulationPoint>,
+    /// What the run found legal but likely not meant (a guard reading a derivative that
+    /// starts on its threshold), for a front end to say.
+    pub warnings: Vec<String>,
 }
 
 impl Solution {
@@ -39,14 +52,38 @@ impl Solution {
         &self.columns[1..=self.states]
     }
 
-    /// The output names.
-    pub fn output_names(&self) -> &[String] {
-        &self.columns[1 + self.states..]
+    /// The discrete values' names.
+    pub fn discrete_names(&self) -> &[String] {
+        &self.columns[1 + self.states..1 + self.states + self.discrete]
     }
 
-    /// The time the run ended.
+    /// The output names.
+    pub fn output_names(&self) -> &[String] {
+        &self.columns[1 + self.states + self.discrete..]
+    }
+
+    /// The name of the mode in force at row `k` (`None` for a smooth model).
+    pub fn row_mode(&self, k: usize) -> Option<&str> {
+        (self.row_modes.get(k)).map(|&mode| self.modes[mode].as_str())
+    }
+
+    /// The time of the last row.
     pub fn t_end(&self) -> Option<f64> {
         self.rows.last().map(|row| row[0])
+    }
+
+    /// The time the run ended: the time of the event that stopped it (for an accumulation,
+    /// its extrapolated point, the time its row and every message give), else of the last
+    /// row.
+    pub fn stop_time(&self) -> Option<f64> {
+        match (&self.stop, self.events.last()) {
+            (Stop::Event { name, kind }, Some(last))
+                if last.name == *name && last.kind == *kind =>
+            {
+                Some(last.t())
+            }
+            _ => self.t_end(),
+        }
     }
 }
 
@@ -67,8 +104,17 @@ pub struct SolvedEvent {
     pub name: String,
     /// What it was.
     pub kind: EventKind,
-    /// `t`, the states and the outputs at the event, as a trajectory row.
+    /// The mode it fired in (`None` for a smooth model).
+    pub mode: Option<String>,
+    /// `t`, the states, the discrete values and the outputs at the event, before any reset,
+    /// as a trajectory row (for an accumulation: the state its rule sets, at the
+    /// extrapolated point).
     pub row: Vec<f64>,
+    /// The same just after the event's reset, in the mode the run went on in (`None` for an
+    /// event that reset nothing: a record, a stop, a smooth model's crossing).
+    pub after: Option<Vec<f64>>,
+    /// The mode the run went on in after the event (`None` as for `after`).
+    pub mode_after: Option<String>,
 }
 
 impl SolvedEvent {
@@ -103,6 +149,13 @@ pub enum Stop {
         /// A crossing, or an accumulation no rule continues from.
         kind: EventKind,
     },
+    /// The caller interrupted it (the rows are those computed until then).
+    Interrupted,
+    /// It failed (the stop of the solution a [`crate::RunFailure`] keeps).
+    Failed {
+        /// Why.
+        reason: String,
+    },
 }
 
 impl std::fmt::Display for Stop {
@@ -110,6 +163,8 @@ impl std::fmt::Display for Stop {
         match self {
             Stop::EndTime => write!(f, "reached the end time"),
             Stop::Event { name, kind } => write!(f, "stopped by event `{}`", label(name, *kind)),
+            Stop::Interrupted => write!(f, "interrupted"),
+            Stop::Failed { .. } => write!(f, "failed"),
         }
     }
 }

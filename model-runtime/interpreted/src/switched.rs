@@ -3,24 +3,34 @@
 //! same text.
 //!
 //! Each mode runs in the model's own states, as a smooth model does (see `interpreted`), with
-//! the request's tolerance. The trajectory's rows are `t`, the states
-//! and the outputs of the mode in force; each located event is an event of the solution under
-//! its name (an impact, a stick, a stop), and an accumulation of an event's resets an
+//! the request's tolerance. The trajectory's rows are `t`, the states, the discrete values in
+//! force and the outputs of the mode in force (reading those values); each located event is
+//! an event of the solution under its name (an impact, a stick, a stop) with the state before
+//! and, for a reset, after it, and an accumulation of an event's resets an
 //! [`EventKind::Accumulation`] at the extrapolated accumulation point, with the state its rule
-//! sets.
+//! sets. A run that stops at an accumulation reports it at that one time: its event row, the
+//! solution's [`Solution::stop_time`] and every message (the driver itself ends at the last
+//! firing, within the rule's tail before it, which is the trajectory's last row).
 
 use crate::error::{RunFailure, SolveFailure};
-use crate::interpreted::{row, tolerance, Interpreted, Labels};
-use crate::request::{Resolved, SolveRequest};
-use crate::smooth::columns;
-use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
+use crate::interpreted::{tolerance, Interpreted, Labels};
+use crate::recording::{Grid, Recording, SharedValues};
+use crate::request::{Control, Resolved, SolveRequest};
+use crate::smooth::{columns, explicit};
+use crate::solution::{AccumulationPoint, EventKind, Solution, Stop};
+use crate::tables::{Ended, Tables};
 use model_algebra::{CompiledModel, Inputs};
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
-    run_switched, AccumulationAction, Direction, Dop853, Dopri5, Dyn, EvalError, EventAction,
-    EventDecl, Fired, HybridError, HybridOptions, Method, ModeDecl, ModeGraph, Rhs, Rk4, Rodas4,
-    SwitchedFailure, SwitchedModel, SwitchedRun,
+    name_modes, AccumulationAction, AccumulationRule, Direction, Dyn, EvalError, EventAction,
+    EventDecl, EventId, Fired, HybridError, HybridOptions, HybridSolver, InputError, ModeDecl,
+    ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepOptions, StepView, Stepper, StopReason,
+    Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind, TransitionRecord,
+    WithStepper,
 };
+use std::cell::RefCell;
+use std::ops::ControlFlow;
+use std::rc::Rc;
 
 /// The runtime's mode graph of a compiled switched model.
 pub fn mode_graph(model: &CompiledSwitched) -> Result<ModeGraph, SolveFailure> {
@@ -60,6 +70,9 @@ struct InterpretedSwitched<'a> {
     /// The parameters, then the discrete values as they are now (the model's parameters,
     /// the discrete values' defaults the initial ones: what every mode's model reads).
     values: Vec<f64>,
+    /// The discrete values as they are now, shared with the recording (written at each
+    /// reset, read at each recorded point).
+    discrete: SharedValues,
     /// Each mode's names, in mode order.
     labels: Vec<Labels>,
     graph: ModeGraph,
@@ -68,9 +81,11 @@ struct InterpretedSwitched<'a> {
 impl<'a> InterpretedSwitched<'a> {
     fn new(model: &'a CompiledSwitched, params: &[f64]) -> Result<Self, SolveFailure> {
         let values = params.to_vec();
+        let discrete = values[model.n_params()..].to_vec();
         Ok(InterpretedSwitched {
             model,
             values,
+            discrete: Rc::new(RefCell::new(discrete)),
             labels: (model.modes.iter())
                 .map(|mode| Labels::of(&mode.model))
                 .collect(),
@@ -156,6 +171,7 @@ impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
             } else {
                 // A discrete value: after the parameters in what the modes read.
                 self.values[params + slot - n] = value;
+                self.discrete.borrow_mut()[slot - n] = value;
             }
         }
         Ok(())
@@ -171,134 +187,303 @@ impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
     }
 }
 
-/// Integrates a switched model from its first mode. The rows are those of the mode in force;
-/// the events are every event the run met, an accumulation at its extrapolated point, and a
-/// terminal event last.
+/// One transition as the recording saw it: the event, what it did, the state on both sides
+/// (with the discrete values, by snapshot) and the modes.
+struct Met {
+    event: EventId,
+    fired: Fired,
+    t: f64,
+    from: usize,
+    to: usize,
+    y: Vec<f64>,
+    y_after: Vec<f64>,
+    before: usize,
+    after: usize,
+}
+
+/// The recording of a switched run, and its transitions.
+struct SwitchedRecording<'r> {
+    recording: Recording<'r>,
+    met: Vec<Met>,
+    /// The discrete values in force since the last transition (a snapshot's index).
+    known: usize,
+}
+
+impl Observer<Dyn, ModeId, EventId, SwitchedNote> for SwitchedRecording<'_> {
+    fn on_step(&mut self, step: &StepView<'_, Dyn, ModeId>) -> Observed {
+        self.recording.step(step.mode.index(), step)
+    }
+
+    fn on_sample(&mut self, sample: &Sample<'_, Dyn, ModeId>) -> Observed {
+        self.recording.sample(sample.mode.index(), sample)
+    }
+
+    fn proceed(&mut self) -> ControlFlow<()> {
+        self.recording.proceed()
+    }
+
+    fn on_transition(
+        &mut self,
+        record: TransitionRecord<Dyn, ModeId, EventId, SwitchedNote>,
+    ) -> Observed {
+        let (event, fired, t) = match record.note {
+            SwitchedNote::Recorded(event) => (event, Fired::Recorded, record.hit.t),
+            SwitchedNote::Reset(event) => (event, Fired::Reset, record.hit.t),
+            SwitchedNote::Accumulated {
+                event,
+                accumulation,
+            } => (event, Fired::Accumulated, accumulation.t_inf),
+        };
+        let from = record.from.index();
+        let to = match record.kind {
+            TransitionKind::Switch { to } => to.index(),
+            TransitionKind::Continue | TransitionKind::Pass => from,
+        };
+        // Discrete values change only in a transition's reset, applied before this call.
+        let before = self.known;
+        let after = self.recording.values_now();
+        self.known = after;
+        self.met.push(Met {
+            event,
+            fired,
+            t,
+            from,
+            to,
+            y: record.hit.y,
+            y_after: record.y_after,
+            before,
+            after,
+        });
+        Ok(())
+    }
+}
+
+/// The run, waiting for the method's stepper.
+struct Run<'a, 'c> {
+    model: &'a CompiledSwitched,
+    resolved: &'a Resolved,
+    request: &'a SolveRequest,
+    control: &'a Control<'c>,
+}
+
+impl WithStepper<Dyn> for Run<'_, '_> {
+    type Output = Result<Solution, SolveFailure>;
+
+    fn run<S: Stepper<Dyn>>(self, stepper: S) -> Self::Output {
+        let Run {
+            model,
+            resolved,
+            request,
+            control,
+        } = self;
+        let n = model.states().len();
+        let mut interpreted = InterpretedSwitched::new(model, &resolved.params)?;
+        let graph = interpreted.graph.clone();
+        let discrete = Rc::clone(&interpreted.discrete);
+        let options = HybridOptions {
+            sample_rate: request.dt.map(|dt| 1.0 / dt),
+            // The work bound is the recording's, by simulated time.
+            step: StepOptions {
+                max_steps: u64::MAX,
+                ..HybridOptions::default().step
+            },
+            ..HybridOptions::default()
+        };
+        let grid = match request.dt {
+            Some(_) => Grid::Rate,
+            None => Grid::Steps,
+        };
+        let bound = (request.t0, request.work_bound());
+        let mut observer = SwitchedRecording {
+            recording: Recording::new(grid, discrete, bound, control.interrupt),
+            met: Vec::new(),
+            known: 0,
+        };
+        let warnings = on_threshold(&interpreted, request.t0, &resolved.y0);
+        let start = graph.first();
+        let input = |error: InputError| {
+            run_failure(
+                &graph,
+                HybridError::Solve {
+                    mode: start,
+                    error: error.into(),
+                },
+            )
+        };
+        let mut system =
+            Switched::new(&mut interpreted, AccumulationRule::default()).map_err(input)?;
+        let tolerance = tolerance(n, request.rtol, request.atol);
+        let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input)?;
+        let (t0, t_end) = (request.t0, request.t_end);
+        let outcome = solver.run(&mut system, start, t0, &resolved.y0, t_end, &mut observer);
+        let SwitchedRecording {
+            mut recording, met, ..
+        } = observer;
+        let tables = tables(model, resolved, request);
+        let mut events = Vec::with_capacity(met.len() + 1);
+        let mut accumulations = Vec::new();
+        for met in &met {
+            let name = &graph.mode(met.event.mode).events[met.event.event].name;
+            let before = &recording.snapshots[met.before];
+            let after = &recording.snapshots[met.after];
+            let event = if met.fired == Fired::Accumulated {
+                accumulations.push(AccumulationPoint {
+                    event: name.clone(),
+                    t: met.t,
+                    continued_in: tables.modes.get(met.to).cloned(),
+                });
+                tables.event(
+                    name,
+                    EventKind::Accumulation,
+                    met.to,
+                    (met.t, &met.y_after, after),
+                )?
+            } else {
+                let mut event =
+                    tables.event(name, EventKind::Crossing, met.from, (met.t, &met.y, before))?;
+                if met.fired == Fired::Reset {
+                    event.after = Some(tables.row(met.to, met.t, &met.y_after, after)?);
+                    event.mode_after = tables.modes.get(met.to).cloned();
+                }
+                event
+            };
+            events.push(event);
+        }
+        let ended = match outcome {
+            Ok(outcome) => {
+                let mode = outcome.mode.index();
+                let now = recording.values_now();
+                let values = recording.snapshots[now].clone();
+                let stop = match outcome.stop {
+                    StopReason::EndTime | StopReason::Observer => Stop::EndTime,
+                    StopReason::User(stop) => {
+                        let (kind, t) = match stop {
+                            SwitchedStop::Event { t, .. } => (EventKind::Crossing, t),
+                            SwitchedStop::Accumulation { t_inf, .. } => {
+                                (EventKind::Accumulation, t_inf)
+                            }
+                        };
+                        let id = stop.event();
+                        let name = graph.mode(id.mode).events[id.event].name.clone();
+                        if kind == EventKind::Accumulation {
+                            accumulations.push(AccumulationPoint {
+                                event: name.clone(),
+                                t,
+                                continued_in: None,
+                            });
+                        }
+                        events.push(tables.event(&name, kind, mode, (t, &outcome.y, &values))?);
+                        Stop::Event { name, kind }
+                    }
+                };
+                recording.close(outcome.t, mode, &outcome.y);
+                Ended::Ran {
+                    stop,
+                    stats: outcome.stats,
+                }
+            }
+            Err(error) => match run_failure(&graph, error) {
+                SolveFailure::Run(failure) => Ended::Failed {
+                    message: failure.message,
+                    stats: solver.stats(),
+                },
+                other => return Err(other),
+            },
+        };
+        let mut solved = tables.finish(recording, events, accumulations, ended);
+        match &mut solved {
+            Ok(solution) => solution.warnings = warnings,
+            Err(SolveFailure::Run(RunFailure {
+                partial: Some(partial),
+                ..
+            })) => partial.warnings = warnings,
+            Err(_) => {}
+        }
+        solved
+    }
+}
+
+/// The events of the first mode whose guard reads a derivative and is exactly on its
+/// threshold at the start: a guard fires when it crosses, and its departure from a
+/// threshold it starts on is not a crossing, so such an event may never fire.
+fn on_threshold(model: &InterpretedSwitched<'_>, t0: f64, y0: &[f64]) -> Vec<String> {
+    let mode = &model.model.modes[0];
+    let y = y0.to_vec();
+    let mut dy = vec![0.0; y.len()];
+    let mut values = vec![0.0; mode.events.len()];
+    let evaluated = (model.rhs(0, t0, &y, &mut dy))
+        .and_then(|()| model.event_values(0, t0, &y, &dy, &mut values));
+    if evaluated.is_err() {
+        // The run itself says why the model cannot be evaluated there.
+        return Vec::new();
+    }
+    (mode.events.iter().zip(&values))
+        // The guard as the compiler printed it, in the DSL's syntax: `der(` only where the
+        // guard reads a derivative.
+        .filter(|(event, &value)| value == 0.0 && event.guard.contains("der("))
+        .map(|(event, _)| {
+            format!(
+                "event `{}`: its guard `{}` reads a derivative and is on its threshold (0) at \
+                 the start, t = {t0}; leaving a threshold is not crossing it, so the event \
+                 fires only once the guard comes back through it: start the run off the \
+                 threshold or write the guard on a state",
+                event.name, event.guard
+            )
+        })
+        .collect()
+}
+
+/// The tables of a switched model: the states' slot names, the discrete values, the outputs
+/// (every mode has the same), each mode's model.
+fn tables<'a>(
+    model: &'a CompiledSwitched,
+    resolved: &'a Resolved,
+    request: &SolveRequest,
+) -> Tables<'a> {
+    let first: &CompiledModel = &model.modes[0].model;
+    let discrete: Vec<String> = model
+        .discrete
+        .iter()
+        .map(|(name, _)| name.clone())
+        .collect();
+    let slots = model.slot_names();
+    Tables {
+        name: model.name.clone(),
+        models: model.modes.iter().map(|mode| &mode.model).collect(),
+        modes: model.modes.iter().map(|m| m.model.name.clone()).collect(),
+        params: &resolved.params[..model.n_params()],
+        columns: columns(slots.iter().chain(&discrete).chain(&first.outputs)),
+        states: slots.len(),
+        discrete: discrete.len(),
+        explicit: explicit(request.method),
+    }
+}
+
+/// Integrates a switched model from its first mode. The rows are those of the mode in force,
+/// with the discrete values in force; the events are every event the run met, an
+/// accumulation at its extrapolated point, and a terminal event last.
 pub(crate) fn solve_switched(
     model: &CompiledSwitched,
     resolved: Resolved,
     request: &SolveRequest,
+    control: &Control<'_>,
 ) -> Result<Solution, SolveFailure> {
     let n = model.states().len();
-    let params = &resolved.params;
-    let mut interpreted = InterpretedSwitched::new(model, params)?;
-    let tolerance = tolerance(n, request.rtol, request.atol);
-    let options = HybridOptions {
-        sample_rate: request.dt.map(|dt| 1.0 / dt),
-        ..HybridOptions::default()
-    };
-    let start = (request.t0, resolved.y0);
-    let t_end = request.t_end;
-    let run = match request.method {
-        Method::Dopri5 => run_switched(
-            &mut interpreted,
-            Dopri5::new_in(Dyn(n)),
-            tolerance,
-            options,
-            start,
-            t_end,
-        ),
-        Method::Dop853 => run_switched(
-            &mut interpreted,
-            Dop853::new_in(Dyn(n)),
-            tolerance,
-            options,
-            start,
-            t_end,
-        ),
-        Method::Rodas4 => run_switched(
-            &mut interpreted,
-            Rodas4::new_in(Dyn(n)),
-            tolerance,
-            options,
-            start,
-            t_end,
-        ),
-        Method::Rk4 { h } => run_switched(
-            &mut interpreted,
-            Rk4::new_in(Dyn(n), h),
-            tolerance,
-            options,
-            start,
-            t_end,
-        ),
-    }
-    .map_err(run_failure)?;
-    let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
-    // Outputs read no discrete value (the compiler refuses it): the values at the end serve.
-    let values = &interpreted.values;
-    let at = |mode: &str, t: f64, y: &[f64]| row(mode_model(mode), values, t, y);
-    let mut rows = Vec::with_capacity(run.samples.len() + 1);
-    for (t, mode, y) in &run.samples {
-        rows.push(at(mode, *t, y)?);
-    }
-    if rows.last().is_none_or(|r| r[0] < run.t) {
-        rows.push(at(&run.mode, run.t, &run.y)?);
-    }
-    let mut events = Vec::with_capacity(run.events.len());
-    let mut accumulations = Vec::new();
-    for (k, event) in run.events.iter().enumerate() {
-        let solved = match event.fired {
-            Fired::Accumulated | Fired::AccumulatedStop => {
-                let continued_in =
-                    (event.fired == Fired::Accumulated).then(|| mode_after(&run, k).to_string());
-                accumulations.push(AccumulationPoint {
-                    event: event.event.clone(),
-                    t: event.t,
-                    continued_in,
-                });
-                SolvedEvent {
-                    name: event.event.clone(),
-                    kind: EventKind::Accumulation,
-                    row: at(mode_after(&run, k), event.t, &event.y_after)?,
-                }
-            }
-            _ => SolvedEvent {
-                name: event.event.clone(),
-                kind: EventKind::Crossing,
-                row: at(&event.mode, event.t, &event.y)?,
-            },
-        };
-        events.push(solved);
-    }
-    let stop = match &run.stopped_by {
-        None => Stop::EndTime,
-        Some(name) => Stop::Event {
-            name: name.clone(),
-            kind: match run.events.last().map(|e| e.fired) {
-                Some(Fired::AccumulatedStop) => EventKind::Accumulation,
-                _ => EventKind::Crossing,
-            },
+    request.method.with_stepper(
+        Dyn(n),
+        Run {
+            model,
+            resolved: &resolved,
+            request,
+            control,
         },
-    };
-    let first: &CompiledModel = &model.modes[0].model;
-    Ok(Solution {
-        model: model.name.clone(),
-        columns: columns(model.slot_names().iter().chain(&first.outputs)),
-        states: n,
-        rows,
-        events,
-        stop,
-        stats: run.stats,
-        accumulations,
-    })
+    )
 }
 
-/// The mode the run continued in after its `k`-th event (its own, for an event that ended
-/// the run).
-fn mode_after(run: &SwitchedRun<Dyn>, k: usize) -> &str {
-    let event = &run.events[k];
-    match run.events.get(k + 1) {
-        Some(next) => next.mode.as_str(),
-        None if event.fired == Fired::Accumulated => run.mode.as_str(),
-        None => event.mode.as_str(),
-    }
-}
-
-/// A failed run in the model's words (modes by name, what resolves a chatter), with the work
-/// done until then.
-fn run_failure(failure: SwitchedFailure<Dyn>) -> SolveFailure {
-    let message = match &*failure.error {
+/// A failed run in the model's words (modes by name, what resolves a chatter).
+fn run_failure(graph: &ModeGraph, error: HybridError<ModeId>) -> SolveFailure {
+    let error = name_modes(graph, error);
+    let message = match &error {
         HybridError::Chattering {
             t,
             transitions,
@@ -316,7 +501,10 @@ fn run_failure(failure: SwitchedFailure<Dyn>) -> SolveFailure {
     };
     SolveFailure::Run(RunFailure {
         message,
-        steps: Some(failure.steps),
-        events: failure.events.len(),
+        steps: None,
+        events: 0,
+        work: None,
+        stiff_hint: false,
+        partial: None,
     })
 }

@@ -55,12 +55,13 @@ pub fn params(model: ModelRef<'_>, given: &[Named]) -> Result<Vec<f64>, ValueErr
 }
 
 /// The initial state of `model` from `given`: a state not given starts at the value the file
-/// writes on it (a switched model's `x = 1`), or zero.
+/// writes on it (`states { x = 2 }`, smooth or switched alike), or zero.
 pub fn initial_state(model: ModelRef<'_>, given: &[Named]) -> Result<Vec<f64>, ValueError> {
-    let initial = |k: usize| match model {
-        ModelRef::Smooth(_) => Some(0.0),
-        ModelRef::Switched(model) => Some(model.initial[k].unwrap_or(0.0)),
+    let written = match model {
+        ModelRef::Smooth(model) => &model.initial,
+        ModelRef::Switched(model) => &model.initial,
     };
+    let initial = |k: usize| Some(written.get(k).copied().flatten().unwrap_or(0.0));
     resolve(model.states(), initial, given)
 }
 

@@ -1,0 +1,195 @@
+//! What a solve keeps as the run streams it: the recorded points with the mode and the
+//! discrete values in force at each, the transitions with the values on both sides, and
+//! whether the run must stop (the work bound, an interrupt).
+//!
+//! Why an observer of its own rather than the runtime's one-call drivers: a model's outputs
+//! read the discrete values of their own time, not those of the run's end, so each point
+//! carries the values in force when it was recorded; a run that fails, goes over its work
+//! bound or is interrupted still hands back everything computed until then; and the smooth
+//! and the switched model share this one piece instead of two copies.
+
+use crate::work::{WorkBound, WorkExceeded, WorkMeter};
+use model_runtime::{Dyn, Observed, Sample, StepView};
+use std::cell::RefCell;
+use std::ops::ControlFlow;
+use std::rc::Rc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// One recorded point: its time, the mode in force (by index), the state and the discrete
+/// values (by index into [`Recording::snapshots`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Point {
+    pub(crate) t: f64,
+    pub(crate) mode: usize,
+    pub(crate) y: Vec<f64>,
+    pub(crate) discrete: usize,
+}
+
+/// Why the observer ended a run early.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Halt {
+    /// The steps outran the work bound.
+    Work(WorkExceeded),
+    /// The caller's interrupt flag was set.
+    Interrupted,
+}
+
+/// Where to record: at every accepted step (and the start), at the runtime's samples (a
+/// rate, [`model_runtime::HybridOptions::sample_rate`]), or at given times read off each
+/// step's dense output.
+#[derive(Clone, Debug)]
+pub(crate) enum Grid {
+    /// Every accepted step.
+    Steps,
+    /// The runtime's samples.
+    Rate,
+    /// Exactly these times (increasing).
+    Times {
+        /// The times.
+        times: Vec<f64>,
+        /// The next one not yet recorded.
+        next: usize,
+    },
+}
+
+/// The discrete values as the model sets them (shared with it: written at each reset, read
+/// here at each recorded point).
+pub(crate) type SharedValues = Rc<RefCell<Vec<f64>>>;
+
+/// The points and the state of a run being recorded.
+pub(crate) struct Recording<'a> {
+    pub(crate) grid: Grid,
+    pub(crate) points: Vec<Point>,
+    /// Each distinct set of discrete values met, in order.
+    pub(crate) snapshots: Vec<Vec<f64>>,
+    discrete: SharedValues,
+    meter: WorkMeter,
+    interrupt: &'a AtomicBool,
+    pub(crate) halt: Option<Halt>,
+    pub(crate) steps: u64,
+}
+
+impl<'a> Recording<'a> {
+    pub(crate) fn new(
+        grid: Grid,
+        discrete: SharedValues,
+        (t0, bound): (f64, WorkBound),
+        interrupt: &'a AtomicBool,
+    ) -> Self {
+        let first = discrete.borrow().clone();
+        Recording {
+            grid,
+            points: Vec::new(),
+            snapshots: vec![first],
+            discrete,
+            meter: WorkMeter::new(bound, t0),
+            interrupt,
+            halt: None,
+            steps: 0,
+        }
+    }
+
+    /// The discrete values in force now, by index into [`Recording::snapshots`].
+    pub(crate) fn values_now(&mut self) -> usize {
+        let now = self.discrete.borrow();
+        let last = self.snapshots.len() - 1;
+        if self.snapshots[last] == *now {
+            return last;
+        }
+        self.snapshots.push(now.clone());
+        last + 1
+    }
+
+    /// Records `(t, mode, y)` with the discrete values in force.
+    pub(crate) fn push(&mut self, t: f64, mode: usize, y: &[f64]) {
+        let discrete = self.values_now();
+        self.points.push(Point {
+            t,
+            mode,
+            y: y.to_vec(),
+            discrete,
+        });
+    }
+
+    /// The start, where a grid records it.
+    pub(crate) fn start(&mut self, t0: f64, mode: usize, y0: &[f64]) {
+        match &mut self.grid {
+            Grid::Steps => self.push(t0, mode, y0),
+            Grid::Rate => {}
+            Grid::Times { times, next } => {
+                let mut count = 0;
+                while *next < times.len() && times[*next] <= t0 {
+                    *next += 1;
+                    count += 1;
+                }
+                for _ in 0..count {
+                    self.push(t0, mode, y0);
+                }
+            }
+        }
+    }
+
+    /// Whether the grid needs each step's dense output.
+    pub(crate) fn wants_dense(&self) -> bool {
+        matches!(self.grid, Grid::Times { .. })
+    }
+
+    /// An accepted step in mode `mode`: its points, and the work it adds.
+    pub(crate) fn step(&mut self, mode: usize, step: &StepView<'_, Dyn, impl Copy>) -> Observed {
+        self.steps += 1;
+        if let Some(over) = self.meter.step(step.t0, step.t1) {
+            self.halt.get_or_insert(Halt::Work(over));
+        }
+        match &mut self.grid {
+            Grid::Steps => {
+                if self.points.last().is_none_or(|p| p.t < step.t0) {
+                    self.push(step.t0, mode, step.y0);
+                }
+                self.push(step.t1, mode, step.y1);
+            }
+            Grid::Rate => {}
+            Grid::Times { times, next } => {
+                let mut due = Vec::new();
+                while *next < times.len() && times[*next] <= step.t1 {
+                    due.push(times[*next]);
+                    *next += 1;
+                }
+                for t in due {
+                    let mut y = step.y1.clone();
+                    if t < step.t1 {
+                        // Always present: `wants_dense` asks the driver for it.
+                        if let Some(dense) = step.dense {
+                            dense.at(t, &mut y);
+                        }
+                    }
+                    self.push(t, mode, &y);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A sample of the runtime's rate.
+    pub(crate) fn sample(&mut self, mode: usize, sample: &Sample<'_, Dyn, impl Copy>) -> Observed {
+        self.push(sample.t, mode, sample.y);
+        Ok(())
+    }
+
+    /// Whether the run goes on: not once the work bound is reached or the caller interrupts.
+    pub(crate) fn proceed(&mut self) -> ControlFlow<()> {
+        if self.halt.is_none() && self.interrupt.load(Ordering::Relaxed) {
+            self.halt = Some(Halt::Interrupted);
+        }
+        match self.halt {
+            Some(_) => ControlFlow::Break(()),
+            None => ControlFlow::Continue(()),
+        }
+    }
+
+    /// Closes the trajectory at the run's last point `(t, mode, y)` unless it is recorded.
+    pub(crate) fn close(&mut self, t: f64, mode: usize, y: &[f64]) {
+        if self.points.last().is_none_or(|p| p.t < t) {
+            self.push(t, mode, y);
+        }
+    }
+}

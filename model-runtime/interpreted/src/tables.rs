@@ -1,0 +1,175 @@
+//! A recorded run made into its [`Solution`]: each point's row (`t`, the states, the discrete
+//! values in force, the outputs of the mode in force, evaluated by the interpreter with those
+//! values), the events' rows, and how the run ended: at its end, at an event, interrupted
+//! (the solution so far), or failed (the solution so far inside the failure).
+//!
+//! An output that is NaN or infinite at a recorded point is the error `model eval` gives at
+//! that point, never a number written: a file holds what the model says, or the run says why
+//! not.
+
+use crate::error::{PointError, RunFailure, SolveFailure};
+use crate::recording::{Halt, Recording};
+use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
+use model_algebra::{CompiledModel, EvalFailure};
+use model_runtime::Stats;
+
+/// How a run ended, before its rows are made.
+pub(crate) enum Ended {
+    /// The driver returned: at the end time, at a terminal event, or stopped by the
+    /// recording (its [`Recording::halt`]).
+    Ran {
+        /// Why, as far as the driver knows (`Stop::Interrupted` for a halt).
+        stop: Stop,
+        /// The work done.
+        stats: Stats,
+    },
+    /// The driver failed.
+    Failed {
+        /// Why, in the model's terms.
+        message: String,
+        /// The work done until then.
+        stats: Stats,
+    },
+}
+
+/// What the rows of a model's solution are made of.
+pub(crate) struct Tables<'a> {
+    /// The model's name.
+    pub(crate) name: String,
+    /// Each mode's model (a smooth model's is its only one).
+    pub(crate) models: Vec<&'a CompiledModel>,
+    /// The modes' names (none for a smooth model).
+    pub(crate) modes: Vec<String>,
+    /// The model's own parameter values (each mode's model reads the discrete values after
+    /// them).
+    pub(crate) params: &'a [f64],
+    /// The column names: `t`, the states, the discrete values, the outputs.
+    pub(crate) columns: Vec<String>,
+    /// The number of states.
+    pub(crate) states: usize,
+    /// The number of discrete values.
+    pub(crate) discrete: usize,
+    /// Whether the method is explicit (a work bound reached then suggests an implicit one).
+    pub(crate) explicit: bool,
+}
+
+impl Tables<'_> {
+    /// `t`, the states, the discrete values and the outputs of mode `mode` at `(t, y)` with
+    /// the discrete values `discrete`.
+    pub(crate) fn row(
+        &self,
+        mode: usize,
+        t: f64,
+        y: &[f64],
+        discrete: &[f64],
+    ) -> Result<Vec<f64>, SolveFailure> {
+        let model = self.models[mode];
+        let values: Vec<f64> = self.params.iter().chain(discrete).copied().collect();
+        let at_t = |failure: PointError| SolveFailure::Eval { t, failure };
+        let interpreter = |failure: EvalFailure| {
+            at_t(PointError::Interpreter {
+                model: model.name.clone(),
+                failure,
+            })
+        };
+        let der = model.derivatives(t, y, &values).map_err(interpreter)?;
+        let outputs = model.outputs_at(t, y, &der, &values).map_err(interpreter)?;
+        if let Some(k) = outputs.iter().position(|v| !v.is_finite()) {
+            return Err(at_t(PointError::NonFinite {
+                model: model.name.clone(),
+                name: model.outputs[k].clone(),
+                value: outputs[k],
+            }));
+        }
+        let mut row = Vec::with_capacity(self.columns.len());
+        row.push(t);
+        row.extend_from_slice(y);
+        row.extend_from_slice(discrete);
+        row.extend(outputs);
+        Ok(row)
+    }
+
+    /// An event's row: `(t, y)` in `mode` with the discrete values `discrete`, named.
+    pub(crate) fn event(
+        &self,
+        name: &str,
+        kind: EventKind,
+        mode: usize,
+        (t, y, discrete): (f64, &[f64], &[f64]),
+    ) -> Result<SolvedEvent, SolveFailure> {
+        Ok(SolvedEvent {
+            name: name.to_string(),
+            kind,
+            mode: self.modes.get(mode).cloned(),
+            row: self.row(mode, t, y, discrete)?,
+            after: None,
+            mode_after: None,
+        })
+    }
+
+    /// The solution of a recorded run: its rows, `events`, `accumulations`, and how it
+    /// `ended`. An
+    /// interrupted run is a solution stopped as [`Stop::Interrupted`]; a failed one, or one
+    /// over its work bound, a [`SolveFailure::Run`] holding the solution until then.
+    pub(crate) fn finish(
+        &self,
+        recording: Recording<'_>,
+        events: Vec<SolvedEvent>,
+        accumulations: Vec<AccumulationPoint>,
+        ended: Ended,
+    ) -> Result<Solution, SolveFailure> {
+        let mut rows = Vec::with_capacity(recording.points.len());
+        let mut row_modes = Vec::with_capacity(recording.points.len());
+        for point in &recording.points {
+            let discrete = &recording.snapshots[point.discrete];
+            rows.push(self.row(point.mode, point.t, &point.y, discrete)?);
+            row_modes.push(point.mode);
+        }
+        if self.modes.is_empty() {
+            row_modes.clear();
+        }
+        let steps = recording.steps;
+        let (stop, stats, failure) = match (ended, recording.halt) {
+            (Ended::Failed { message, stats }, _) => {
+                let stop = Stop::Failed {
+                    reason: message.clone(),
+                };
+                (stop, stats, Some((message, None)))
+            }
+            (Ended::Ran { stats, .. }, Some(Halt::Work(over))) => {
+                let stop = Stop::Failed {
+                    reason: over.to_string(),
+                };
+                (stop, stats, Some((over.to_string(), Some(over))))
+            }
+            (Ended::Ran { stats, .. }, Some(Halt::Interrupted)) => (Stop::Interrupted, stats, None),
+            (Ended::Ran { stop, stats }, None) => (stop, stats, None),
+        };
+        let n_events = events.len();
+        let solution = Solution {
+            model: self.name.clone(),
+            columns: self.columns.clone(),
+            states: self.states,
+            discrete: self.discrete,
+            modes: self.modes.clone(),
+            row_modes,
+            rows,
+            events,
+            stop,
+            stats,
+            accumulations,
+            warnings: Vec::new(),
+        };
+        match failure {
+            None => Ok(solution),
+            Some((message, work)) => Err(SolveFailure::Run(RunFailure {
+                message,
+                steps: Some(steps),
+                events: n_events,
+                stiff_hint: work.is_some() && self.explicit,
+                work,
+                partial: Some(Box::new(solution)),
+            })),
+        }
+    }
+}
