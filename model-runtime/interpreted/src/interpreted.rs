@@ -10,8 +10,9 @@
 //! borrows from its constants and an interpreted one owns: its names live as long as the
 //! model being solved ([`Labels`]), so a long-lived process solving many models keeps none.
 
+use crate::engine::Engine;
 use crate::error::{PointError, SolveFailure};
-use model_algebra::{CompiledModel, EvalFailure, Inputs};
+use model_algebra::{CompiledModel, EvalFailure};
 use model_runtime::{
     Dyn, EvalError, ModelInfo, Name, Names, Rhs, System, SystemOutputs, Tolerance,
 };
@@ -21,25 +22,37 @@ pub(crate) fn tolerance(n: usize, rtol: f64, atol: f64) -> Tolerance<Dyn> {
     Tolerance::scalar_in(Dyn(n), rtol, atol)
 }
 
-/// `t`, the states and the outputs of `model` at `(t, y)`, as a trajectory row.
-pub(crate) fn row(
-    model: &CompiledModel,
-    params: &[f64],
-    t: f64,
-    y: &[f64],
-) -> Result<Vec<f64>, SolveFailure> {
-    let at_t = |failure: EvalFailure| SolveFailure::Eval {
+/// `model`'s failure at `t` as a failed solve.
+pub(crate) fn failure_at(model: &CompiledModel, t: f64, failure: EvalFailure) -> SolveFailure {
+    SolveFailure::Eval {
         t,
         failure: PointError::Interpreter {
             model: model.name.clone(),
             failure,
         },
-    };
-    let der = model.derivatives(t, y, params).map_err(at_t)?;
-    let outputs = model.outputs_at(t, y, &der, params).map_err(at_t)?;
-    let mut row = vec![t];
-    row.extend_from_slice(y);
-    row.extend(outputs);
+    }
+}
+
+/// `t`, the states and the outputs of `model` (evaluated by `engine`) at `(t, y)`, as a
+/// trajectory row.
+pub(crate) fn row(
+    model: &CompiledModel,
+    engine: &Engine,
+    params: &[f64],
+    t: f64,
+    y: &[f64],
+) -> Result<Vec<f64>, SolveFailure> {
+    let n = y.len();
+    let mut row = vec![0.0; 1 + 2 * n + engine.n_outputs()];
+    row[0] = t;
+    row[1..=n].copy_from_slice(y);
+    let (der, outputs) = row[1 + n..].split_at_mut(n);
+    let at_t = |failure| failure_at(model, t, failure);
+    engine.rhs(t, y, params, der).map_err(at_t)?;
+    engine.outputs(t, y, der, params, outputs).map_err(at_t)?;
+    // The derivatives were room to work in; the row is `t`, the states, the outputs.
+    row.copy_within(1 + 2 * n.., 1 + n);
+    row.truncate(1 + n + engine.n_outputs());
     Ok(row)
 }
 
@@ -80,15 +93,23 @@ pub(crate) struct Interpreted<'a> {
     model: &'a CompiledModel,
     params: &'a [f64],
     labels: &'a Labels,
+    engine: &'a Engine,
 }
 
 impl<'a> Interpreted<'a> {
-    /// `model` reading `params`, named by `labels` (made by [`Labels::of`] from `model`).
-    pub(crate) fn new(model: &'a CompiledModel, params: &'a [f64], labels: &'a Labels) -> Self {
+    /// `model` reading `params`, named by `labels` (made by [`Labels::of`] from `model`) and
+    /// evaluated by `engine` (made from `model`).
+    pub(crate) fn new(
+        model: &'a CompiledModel,
+        params: &'a [f64],
+        labels: &'a Labels,
+        engine: &'a Engine,
+    ) -> Self {
         Interpreted {
             model,
             params,
             labels,
+            engine,
         }
     }
 
@@ -112,30 +133,19 @@ impl<'a> Interpreted<'a> {
 
 impl Rhs<Dyn> for Interpreted<'_> {
     fn rhs(&self, t: f64, y: &Vec<f64>, dy: &mut Vec<f64>) -> Result<(), EvalError> {
-        let der = (self.model.derivatives(t, y, self.params)).map_err(|e| self.error(e))?;
-        if let Some(k) = der.iter().position(|v| !v.is_finite()) {
+        (self.engine.rhs(t, y, self.params, dy)).map_err(|e| self.error(e))?;
+        if let Some(k) = dy.iter().position(|v| !v.is_finite()) {
             return Err(EvalError::NonFinite {
                 model: self.labels.info.name.clone(),
                 quantity: self.labels.der_names[k].clone(),
-                value: der[k],
+                value: dy[k],
             });
         }
-        dy.copy_from_slice(&der);
         Ok(())
     }
 
     fn jacobian(&self, t: f64, y: &Vec<f64>, jac: &mut Vec<Vec<f64>>) -> Result<(), EvalError> {
-        let inputs = Inputs {
-            t,
-            states: y,
-            params: self.params,
-            ders: &[],
-        };
-        let stores = (self.model.jacobian.eval(&inputs)).map_err(|e| self.error(e))?;
-        for (row, values) in jac.iter_mut().zip(stores.jacobian(y.len())) {
-            row.copy_from_slice(&values);
-        }
-        Ok(())
+        (self.engine.jacobian(t, y, self.params, jac)).map_err(|e| self.error(e))
     }
 }
 

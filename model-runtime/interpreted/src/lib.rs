@@ -66,6 +66,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod engine;
 mod error;
 mod interpreted;
 mod load;

@@ -5,33 +5,41 @@
 //! language of its own; an output needs the derivatives, which the runtime hands every event
 //! function, and is evaluated by the interpreter there.
 
+use crate::engine::Engine;
 use crate::error::{RequestError, RunFailure, SolveFailure};
-use crate::interpreted::{row, tolerance, Interpreted, Labels};
+use crate::interpreted::{failure_at, row, tolerance, Interpreted, Labels};
 use crate::request::{Resolved, ResolvedEvent, SolveRequest, Watched};
 use crate::solution::{EventKind, Solution, SolvedEvent, Stop};
 use model_algebra::CompiledModel;
 use model_runtime::{Event, Output, Problem, SolveError, Termination};
-use std::sync::Arc;
+use std::cell::RefCell;
+use std::rc::Rc;
 
-/// The model and its parameters, owned, for the event functions (which must be `'static`).
+/// The model's engine and its parameters, owned, for the event functions (which must be
+/// `'static`).
 struct Shared {
-    model: CompiledModel,
+    engine: Engine,
     params: Vec<f64>,
+    /// The outputs, evaluated into.
+    outputs: RefCell<Vec<f64>>,
 }
 
 impl ResolvedEvent {
     /// The runtime's event: the state read from `y`, or the output evaluated at `(t, y, dy)`
     /// by the interpreter (NaN where it cannot be, which the runtime reports naming the
     /// event).
-    fn event(&self, shared: &Arc<Shared>) -> Event {
+    fn event(&self, shared: &Rc<Shared>) -> Event {
         let name = &self.request.name;
         let event = match self.watched {
             Watched::State(k) => Event::new(name, move |_t, y, _dy| y[k]),
             Watched::Output(j) => {
-                let shared = Arc::clone(shared);
+                let shared = Rc::clone(shared);
                 Event::new(name, move |t, y, dy| {
-                    (shared.model.outputs_at(t, y, dy, &shared.params))
-                        .map_or(f64::NAN, |outputs| outputs[j])
+                    let mut outputs = shared.outputs.borrow_mut();
+                    (shared
+                        .engine
+                        .outputs(t, y, dy, &shared.params, &mut outputs))
+                    .map_or(f64::NAN, |()| outputs[j])
                 })
             }
         };
@@ -53,7 +61,10 @@ pub(crate) fn solve_smooth(
     let n = model.states.len();
     let params = &resolved.params;
     let labels = Labels::of(model);
-    let interpreted = Interpreted::new(model, params, &labels);
+    let engine =
+        |model| Engine::new(model, params.len()).map_err(|e| failure_at(model, request.t0, e));
+    let evaluator = engine(model)?;
+    let interpreted = Interpreted::new(model, params, &labels, &evaluator);
     let output = match resolved.times {
         Some(times) => Output::Times(times),
         None => Output::Steps,
@@ -63,9 +74,10 @@ pub(crate) fn solve_smooth(
         .tolerance(tolerance(n, request.rtol, request.atol))
         .output(output);
     if !resolved.events.is_empty() {
-        let shared = Arc::new(Shared {
-            model: model.clone(),
+        let shared = Rc::new(Shared {
+            engine: engine(model)?,
             params: params.clone(),
+            outputs: RefCell::new(vec![0.0; model.outputs.len()]),
         });
         for event in &resolved.events {
             problem = problem.event(event.event(&shared));
@@ -88,14 +100,14 @@ pub(crate) fn solve_smooth(
     })?;
     let mut rows = Vec::with_capacity(solved.t.len() + 1);
     for (&t, y) in solved.t.iter().zip(&solved.y) {
-        rows.push(row(model, params, t, y)?);
+        rows.push(row(model, &evaluator, params, t, y)?);
     }
     let events = (solved.events.iter())
         .map(|event| {
             Ok(SolvedEvent {
                 name: event.name.clone(),
                 kind: EventKind::Crossing,
-                row: row(model, params, event.t, &event.y)?,
+                row: row(model, &evaluator, params, event.t, &event.y)?,
             })
         })
         .collect::<Result<Vec<_>, SolveFailure>>()?;

@@ -9,8 +9,9 @@
 //! [`EventKind::Accumulation`] at the extrapolated accumulation point, with the state its rule
 //! sets.
 
+use crate::engine::{Engine, Runner};
 use crate::error::{RunFailure, SolveFailure};
-use crate::interpreted::{row, tolerance, Interpreted, Labels};
+use crate::interpreted::{failure_at, row, tolerance, Interpreted, Labels};
 use crate::request::{Resolved, SolveRequest};
 use crate::smooth::columns;
 use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
@@ -62,18 +63,32 @@ struct InterpretedSwitched<'a> {
     values: Vec<f64>,
     /// Each mode's names, in mode order.
     labels: Vec<Labels>,
+    /// Each mode's programs, in mode order.
+    engines: Vec<Engine>,
+    /// Each mode's guards, in mode order.
+    guards: Vec<Runner>,
     graph: ModeGraph,
 }
 
 impl<'a> InterpretedSwitched<'a> {
-    fn new(model: &'a CompiledSwitched, params: &[f64]) -> Result<Self, SolveFailure> {
+    fn new(model: &'a CompiledSwitched, params: &[f64], t0: f64) -> Result<Self, SolveFailure> {
         let values = params.to_vec();
+        let (mut engines, mut guards) = (Vec::new(), Vec::new());
+        for mode in &model.modes {
+            let m = &mode.model;
+            let at_t0 = |e| failure_at(m, t0, e);
+            engines.push(Engine::new(m, values.len()).map_err(at_t0)?);
+            let guard = Runner::outputs(&mode.guards, m, values.len(), mode.events.len());
+            guards.push(guard.map_err(at_t0)?);
+        }
         Ok(InterpretedSwitched {
             model,
-            values,
             labels: (model.modes.iter())
                 .map(|mode| Labels::of(&mode.model))
                 .collect(),
+            values,
+            engines,
+            guards,
             graph: mode_graph(model)?,
         })
     }
@@ -84,6 +99,7 @@ impl<'a> InterpretedSwitched<'a> {
             &self.model.modes[mode].model,
             &self.values,
             &self.labels[mode],
+            &self.engines[mode],
         )
     }
 
@@ -124,10 +140,8 @@ impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
         dy: &Vec<f64>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
-        let guards = &self.model.modes[mode].guards;
-        let stores = (guards.eval(&self.inputs(t, y, dy))).map_err(|e| self.mode(mode).error(e))?;
-        values.copy_from_slice(&stores.outputs(values.len()));
-        Ok(())
+        (self.guards[mode].run(&self.inputs(t, y, dy), values))
+            .map_err(|e| self.mode(mode).error(e))
     }
 
     fn reset(
@@ -181,7 +195,7 @@ pub(crate) fn solve_switched(
 ) -> Result<Solution, SolveFailure> {
     let n = model.states().len();
     let params = &resolved.params;
-    let mut interpreted = InterpretedSwitched::new(model, params)?;
+    let mut interpreted = InterpretedSwitched::new(model, params, request.t0)?;
     let tolerance = tolerance(n, request.rtol, request.atol);
     let options = HybridOptions {
         sample_rate: request.dt.map(|dt| 1.0 / dt),
@@ -224,10 +238,13 @@ pub(crate) fn solve_switched(
         ),
     }
     .map_err(run_failure)?;
-    let mode_model = |name: &str| &model.modes[model.mode(name).unwrap_or(0)].model;
+    let index = |name: &str| model.mode(name).unwrap_or(0);
     // Outputs read no discrete value (the compiler refuses it): the values at the end serve.
     let values = &interpreted.values;
-    let at = |mode: &str, t: f64, y: &[f64]| row(mode_model(mode), values, t, y);
+    let at = |mode: &str, t: f64, y: &[f64]| {
+        let k = index(mode);
+        row(&model.modes[k].model, &interpreted.engines[k], values, t, y)
+    };
     let mut rows = Vec::with_capacity(run.samples.len() + 1);
     for (t, mode, y) in &run.samples {
         rows.push(at(mode, *t, y)?);

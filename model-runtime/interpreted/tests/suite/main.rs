@@ -1,6 +1,7 @@
 //! The library's tests: smooth models against the same model compiled by `model!` and against
 //! closed forms, switched models against closed forms, and every input error located.
 
+mod engine;
 mod requests;
 mod sizes;
 mod smooth;
