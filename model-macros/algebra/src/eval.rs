@@ -4,7 +4,7 @@
 //! pivot checks and the numeric block solve), which makes it the reference the generated Rust
 //! is tested against.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{call_value, pow_value, select_value};
 use crate::program::{Node, Operand, Program, Stmt, SumCheck, Target};
@@ -85,7 +85,7 @@ impl Stores {
 impl Program {
     /// Runs the program.
     pub fn eval(&self, inputs: &Inputs) -> Result<Stores, EvalFailure> {
-        let mut tmps: HashMap<u32, f64> = HashMap::new();
+        let mut tmps: HashMap<u32, f64> = HashMap::default();
         let mut stores = Stores::default();
         let read = |tmps: &HashMap<u32, f64>, o: Operand| -> Result<f64, EvalFailure> {
             let bad = EvalFailure::BadOperand(o);

@@ -15,7 +15,7 @@
 //! destination unwritten (a Jacobian's structural zeros), [`FlatProgram::run`] zeroes the
 //! destination first, as [`Stores`](crate::Stores) does.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::eval::{solve_dense_in, EvalFailure, Inputs};
 use crate::expr::{call_value, pow_value, select_value};
@@ -311,9 +311,9 @@ impl FlatProgram {
         let inputs = Layout { shape, slots: 0 }.end_of_inputs();
         let mut b = Builder {
             layout: Layout { shape, slots: 0 },
-            tmps: HashMap::new(),
+            tmps: HashMap::default(),
             constants: Vec::new(),
-            constant_slots: HashMap::new(),
+            constant_slots: HashMap::default(),
             next: inputs,
         };
         let (mut ops, mut checks, mut blocks) = (Vec::new(), Vec::new(), Vec::new());

@@ -55,6 +55,7 @@ mod expand;
 mod explain;
 mod expr;
 mod flat;
+mod hash;
 mod interpret;
 mod jacobian;
 mod linear;
