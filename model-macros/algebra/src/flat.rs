@@ -254,6 +254,14 @@ pub struct Scratch {
     block: Vec<f64>,
 }
 
+impl Scratch {
+    /// Memory for code generated from the program: at least two values, and `2 + n² + 2n`
+    /// for its largest numeric block of size `n`.
+    pub fn work(&mut self) -> &mut [f64] {
+        &mut self.block
+    }
+}
+
 /// Temporaries to slots, while a program is laid out.
 struct Builder {
     layout: Layout,
@@ -417,7 +425,9 @@ impl FlatProgram {
         let n = self.blocks.iter().map(|b| b.n).max().unwrap_or(0);
         Scratch {
             slots,
-            block: vec![0.0; n * n + 2 * n],
+            // Two more than a block needs: generated code keeps a failing pivot and a
+            // `sin_cos` there (`Scratch::work`).
+            block: vec![0.0; 2 + n * n + 2 * n],
         }
     }
 

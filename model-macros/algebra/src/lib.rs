@@ -77,7 +77,7 @@ mod trig;
 mod variant;
 
 pub use compile::compile;
-pub use eval::{EvalFailure, Inputs, Stores};
+pub use eval::{solve_dense_in, EvalFailure, Inputs, Stores};
 pub use explain::{is_internal, latex_name};
 pub use expr::{call_value, pow_value, select_value};
 pub use flat::{

@@ -1,6 +1,7 @@
 //! Cost of one right-hand side of a model read at run time, per evaluator: the reference
-//! interpreter (`Program::eval`), the flat evaluator (`FlatProgram::run`) and, where the same
-//! model is compiled by `model!`, the compiled model. The evaluators are timed alternately,
+//! interpreter (`Program::eval`), the flat evaluator (`FlatProgram::run`), the same program
+//! compiled to machine code (`model_jit::JitProgram`, with the time that compiling takes) and,
+//! where the same model is compiled by `model!`, the compiled model. The evaluators are timed alternately,
 //! repeat by repeat, so the machine's load weighs on all of them alike; the median is printed.
 //!
 //! ```text
@@ -147,11 +148,17 @@ fn main() {
         "RHS cost, median of {repeats} alternating repeats (ns per evaluation, {})",
         Clock::kind()
     );
-    println!("| model | reference interpreter | flat evaluator | `model!` | flat / `model!` |");
-    println!("|---|---:|---:|---:|---:|");
+    println!(
+        "| model | reference interpreter | flat evaluator | JIT | `model!` | JIT / `model!` | JIT compile (rhs + Jacobian) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
     for case in cases() {
         let flat = FlatModel::new(&case.model, case.params.len()).unwrap();
         let mut scratch = flat.rhs.scratch();
+        let clock = std::time::Instant::now();
+        let jit = model_jit::JitProgram::new(flat.rhs.clone()).unwrap();
+        model_jit::JitProgram::new(flat.jacobian.clone()).unwrap();
+        let compile_ms = clock.elapsed().as_secs_f64() * 1e3;
         let params = case.params.clone();
         // The evaluators agree before they are timed (and the points evaluate).
         for y in &case.points {
@@ -160,6 +167,8 @@ fn main() {
             flat.rhs
                 .run(&at(y, &params), &mut scratch, &mut got)
                 .unwrap();
+            assert_eq!(got, want, "{}", case.name);
+            jit.run(&at(y, &params), &mut scratch, &mut got).unwrap();
             assert_eq!(got, want, "{}", case.name);
             if let Some(compiled) = &case.compiled {
                 compiled(y, &mut got);
@@ -178,6 +187,7 @@ fn main() {
         });
         let evals = ((budget / (probe * 1e-9)) as usize).max(1000);
         let (mut reference, mut flat_ns, mut compiled_ns) = (Vec::new(), Vec::new(), Vec::new());
+        let mut jit_ns = Vec::new();
         for _ in 0..repeats {
             reference.push(time(&case.points, evals, |y, dy| {
                 dy.copy_from_slice(&case.model.rhs.eval(&at(y, &params)).unwrap().ders(y.len()));
@@ -185,20 +195,23 @@ fn main() {
             flat_ns.push(time(&case.points, evals * 4, |y, dy| {
                 flat.rhs.run(&at(y, &params), &mut scratch, dy).unwrap();
             }));
+            jit_ns.push(time(&case.points, evals * 4, |y, dy| {
+                jit.run(&at(y, &params), &mut scratch, dy).unwrap();
+            }));
             if let Some(compiled) = &case.compiled {
                 compiled_ns.push(time(&case.points, evals * 4, |y, dy| compiled(y, dy)));
             }
         }
-        let (reference, flat_ns) = (median(reference), median(flat_ns));
+        let (reference, flat_ns, jit_ns) = (median(reference), median(flat_ns), median(jit_ns));
         let (compiled, ratio) = match compiled_ns.is_empty() {
             true => ("–".to_string(), "–".to_string()),
             false => {
                 let c = median(compiled_ns);
-                (format!("{c:.0}"), format!("{:.1}×", flat_ns / c))
+                (format!("{c:.0}"), format!("{:.2}×", jit_ns / c))
             }
         };
         println!(
-            "| {} | {reference:.0} | {flat_ns:.0} | {compiled} | {ratio} |",
+            "| {} | {reference:.0} | {flat_ns:.0} | {jit_ns:.0} | {compiled} | {ratio} | {compile_ms:.1} ms |",
             case.name
         );
     }

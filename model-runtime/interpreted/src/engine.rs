@@ -1,6 +1,8 @@
 //! How a solve evaluates a model's programs: each laid out once in slots
 //! ([`model_algebra::FlatProgram`]) with its working memory, so a right-hand side allocates
-//! nothing and hashes nothing.
+//! nothing and hashes nothing, and by default compiled to machine code ([`model_jit`]) when
+//! the solve starts. The flat evaluator runs where there is no code generator for the machine
+//! and when [`set_evaluator`] chooses it (`--no-jit`); both give the same values to the bit.
 //!
 //! The reference interpreter ([`model_algebra::Program::eval`]) stays what one-off evaluations
 //! and the tests use; an [`Engine`] computes the same values to the bit, only faster. The
@@ -8,6 +10,9 @@
 //! one engine serves one solve on one thread.
 
 use std::cell::RefCell;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use model_jit::JitProgram;
 
 use model_algebra::{
     CompiledModel, EvalFailure, FlatError, FlatModel, FlatProgram, Inputs, Program, Scratch, Shape,
@@ -22,16 +27,56 @@ fn bad_operand(error: FlatError) -> EvalFailure {
     }
 }
 
+/// How models read at run time are evaluated, for the whole process.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Evaluator {
+    /// Compiled to machine code when the solve starts (the flat evaluator where the machine
+    /// has no code generator).
+    #[default]
+    Compiled,
+    /// The flat evaluator, operation by operation.
+    Flat,
+}
+
+/// Whether the flat evaluator was chosen.
+static FLAT: AtomicBool = AtomicBool::new(false);
+
+/// Chooses how the models of later solves are evaluated (the results are the same).
+pub fn set_evaluator(evaluator: Evaluator) {
+    FLAT.store(evaluator == Evaluator::Flat, Ordering::Relaxed);
+}
+
+/// A program as it runs: machine code, or laid out in slots.
+enum Code {
+    Compiled(Box<JitProgram>),
+    Flat(FlatProgram),
+}
+
 /// A program with its working memory.
 pub(crate) struct Runner {
-    program: FlatProgram,
+    code: Code,
     scratch: RefCell<Scratch>,
 }
 
 impl Runner {
     fn new(program: FlatProgram) -> Self {
         let scratch = RefCell::new(program.scratch());
-        Runner { program, scratch }
+        let code = match FLAT.load(Ordering::Relaxed) {
+            true => Code::Flat(program),
+            // No code generator for this machine: the flat evaluator, with the same results.
+            false => match JitProgram::new(program.clone()) {
+                Ok(compiled) => Code::Compiled(Box::new(compiled)),
+                Err(_) => Code::Flat(program),
+            },
+        };
+        Runner { code, scratch }
+    }
+
+    fn program(&self) -> &FlatProgram {
+        match &self.code {
+            Code::Compiled(compiled) => compiled.flat(),
+            Code::Flat(program) => program,
+        }
     }
 
     /// `program` (reading `dy`) storing `Output` targets into `n` values, reading `params`
@@ -54,8 +99,11 @@ impl Runner {
 
     /// Runs the program, its stores into `out`.
     pub(crate) fn run(&self, inputs: &Inputs, out: &mut [f64]) -> Result<(), EvalFailure> {
-        self.program
-            .run(inputs, &mut self.scratch.borrow_mut(), out)
+        let scratch = &mut self.scratch.borrow_mut();
+        match &self.code {
+            Code::Compiled(compiled) => compiled.run(inputs, scratch, out),
+            Code::Flat(program) => program.run(inputs, scratch, out),
+        }
     }
 }
 
@@ -143,6 +191,6 @@ impl Engine {
 
     /// The number of outputs.
     pub(crate) fn n_outputs(&self) -> usize {
-        self.outputs.program.sink.len()
+        self.outputs.program().sink.len()
     }
 }

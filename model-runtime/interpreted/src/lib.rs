@@ -66,6 +66,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod cache;
 mod engine;
 mod error;
 mod interpreted;
@@ -76,6 +77,8 @@ mod solution;
 mod switched;
 mod values;
 
+pub use cache::ModelCache;
+pub use engine::{set_evaluator, Evaluator};
 pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
 };

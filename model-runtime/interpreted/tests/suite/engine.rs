@@ -229,3 +229,40 @@ fn the_flat_evaluator_matches_the_reference_on_every_example() {
         "{ok} of {scratches} evaluations succeeded"
     );
 }
+
+/// Machine code against the flat evaluator: the same values and failures, to the bit, on every
+/// program of every example (where the machine has a code generator).
+#[test]
+fn compiled_programs_match_the_flat_evaluator_on_every_example() {
+    let mut compiled = 0;
+    // The points of one program come one after another: it is compiled once for them.
+    let mut last: Option<(String, FlatProgram, model_jit::JitProgram)> = None;
+    at_random_points(|case, inputs| {
+        if last.as_ref().is_none_or(|(name, ..)| *name != case.name) {
+            let flat = FlatProgram::new(&case.program, case.shape, case.sink).unwrap();
+            last = match model_jit::JitProgram::new(flat.clone()) {
+                Ok(jit) => Some((case.name.clone(), flat, jit)),
+                Err(model_jit::JitError::Unsupported(_)) => None,
+                Err(e) => panic!("{}: {e}", case.name),
+            };
+            compiled += last.is_some() as usize;
+        }
+        let Some((_, flat, jit)) = &last else {
+            return;
+        };
+        let (mut a, mut b) = (
+            vec![f64::NAN; case.sink.len()],
+            vec![f64::NAN; case.sink.len()],
+        );
+        let mut scratch = flat.scratch();
+        let want = flat.run(inputs, &mut scratch, &mut a).map(|()| a);
+        let got = jit.run(inputs, &mut scratch, &mut b).map(|()| b);
+        assert_same(case, got, want);
+    });
+    if cfg!(any(target_arch = "x86_64", target_arch = "aarch64")) {
+        assert!(
+            compiled > 0,
+            "no program compiled on a machine Cranelift supports"
+        );
+    }
+}
