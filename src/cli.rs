@@ -55,6 +55,10 @@ pub enum ModelCommand {
         /// Markdown (DSL syntax) or LaTeX.
         #[arg(short, long, value_enum, default_value = "markdown")]
         format: crate::model_show::Format,
+        /// Compile the file even if the cache of compiled models holds it, and keep nothing
+        /// there (the cache: `$XDG_CACHE_HOME/eulerdisk/models` or `~/.cache/eulerdisk/models`).
+        #[arg(long)]
+        no_cache: bool,
     },
     /// Evaluate a model of the disk (`model eval rolling`), or a DSL file's model interpreted,
     /// at one state: derivatives (`der(x)`) and outputs by name, as JSON.
@@ -85,6 +89,10 @@ pub struct ModelPointArgs {
         allow_hyphen_values = true
     )]
     pub set: Vec<String>,
+    /// Compile the file even if the cache of compiled models holds it, and keep nothing
+    /// there (the cache: `$XDG_CACHE_HOME/eulerdisk/models` or `~/.cache/eulerdisk/models`).
+    #[arg(long)]
+    pub no_cache: bool,
 }
 
 /// `eulerdisk model eval NAME|FILE`.
@@ -151,6 +159,11 @@ pub struct ModelSolveArgs {
     /// ended; `-`: standard output); without it, each event is said on standard error.
     #[arg(long, value_name = "PATH")]
     pub events: Option<PathBuf>,
+    /// Evaluate the model with the flat evaluator instead of compiling it to machine code
+    /// (the same results, slower; the default falls back to it on machines without a code
+    /// generator).
+    #[arg(long)]
+    pub no_jit: bool,
 }
 
 impl ModelSolveArgs {

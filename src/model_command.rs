@@ -35,7 +35,11 @@ use std::sync::atomic::AtomicBool;
 /// Runs one model subcommand.
 pub fn run(command: &ModelCommand) -> ExitCode {
     match command {
-        ModelCommand::Show { model, format } => show(model, *format),
+        ModelCommand::Show {
+            model,
+            format,
+            no_cache,
+        } => show(model, *format, *no_cache),
         ModelCommand::Eval(args) => eval(args),
         ModelCommand::Solve(args) => solve_file(args),
     }
@@ -46,7 +50,7 @@ fn input_error(error: impl std::fmt::Display) -> ExitCode {
     ExitCode::from(EXIT_INPUT)
 }
 
-fn show(model: &str, format: Format) -> ExitCode {
+fn show(model: &str, format: Format, no_cache: bool) -> ExitCode {
     if let Ok(name) = ModelName::from_str(model, true) {
         return match crate::model_show::show(name, format) {
             Ok(text) => match print_out(&text) {
@@ -65,7 +69,7 @@ fn show(model: &str, format: Format) -> ExitCode {
             "`{model}` is neither a model of the disk (rolling, sliding, sliding-cartesian) nor a DSL file"
         ));
     }
-    match crate::model_file::show(path, format) {
+    match crate::model_file::show(path, format, no_cache) {
         Ok(text) => match print_out(&text) {
             Ok(()) => ExitCode::SUCCESS,
             Err(code) => code,
@@ -77,7 +81,7 @@ fn show(model: &str, format: Format) -> ExitCode {
 /// `model eval`: the derivatives and outputs at the point the arguments give.
 fn point(args: &ModelEvalArgs) -> Result<PointValues, ModelFileError> {
     let point = &args.point;
-    let file = ModelFile::read(Path::new(&point.model))?;
+    let file = crate::model_file::read(Path::new(&point.model), point.no_cache)?;
     let model = file.smooth(point.chart.as_deref())?;
     let params = params(ModelRef::Smooth(model), &named("--set", &point.set)?)
         .map_err(|e| value_error("--set", &point.set, e))?;
@@ -143,7 +147,7 @@ fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
 
 /// `model solve`: the file's model solved as the arguments say, until `interrupt` is set.
 fn solved(args: &ModelSolveArgs, interrupt: &AtomicBool) -> Result<Solution, ModelFileError> {
-    let file = ModelFile::read(Path::new(&args.point.model))?;
+    let file = crate::model_file::read(Path::new(&args.point.model), args.point.no_cache)?;
     if let ModelFile::Switched(model) = &file {
         for warning in &model.warnings {
             eprintln!("{warning}");
@@ -163,6 +167,9 @@ fn solved(args: &ModelSolveArgs, interrupt: &AtomicBool) -> Result<Solution, Mod
 const WORK_BOUND_FLAG: &str = "--max-steps-per-s";
 
 fn solve_file(args: &ModelSolveArgs) -> ExitCode {
+    if args.no_jit {
+        model_interpreted::set_evaluator(model_interpreted::Evaluator::Flat);
+    }
     if args.method.is_some() {
         eprintln!("note: `--method` is deprecated: write `--integrator`");
     }

@@ -11,7 +11,8 @@
 use crate::model_show::Format;
 use model_dsl::{switching_latex, switching_markdown, CompiledSwitched};
 use model_interpreted::{
-    EventRequest, LoadError, ModelFile, Named, PointError, RequestError, SolveFailure, ValueError,
+    EventRequest, LoadError, ModelCache, ModelFile, Named, PointError, RequestError, SolveFailure,
+    ValueError,
 };
 use model_runtime::Direction;
 use std::path::Path;
@@ -71,9 +72,16 @@ pub fn show_switched(model: &CompiledSwitched, format: Format) -> String {
     text
 }
 
+/// The file at `path` compiled, through the user's cache of compiled models unless
+/// `no_cache` (or there is no cache directory: then compiled).
+pub fn read(path: &Path, no_cache: bool) -> Result<ModelFile, ModelFileError> {
+    let cache = (!no_cache).then(ModelCache::user).flatten();
+    Ok(ModelFile::read_with(path, cache.as_ref())?)
+}
+
 /// The solved equations of every model of the file (the model, then its charts).
-pub fn show(path: &Path, format: Format) -> Result<String, ModelFileError> {
-    let models = match ModelFile::read(path)? {
+pub fn show(path: &Path, format: Format, no_cache: bool) -> Result<String, ModelFileError> {
+    let models = match read(path, no_cache)? {
         ModelFile::Smooth(models) => models,
         ModelFile::Switched(model) => {
             // What the model says that is legal but likely not meant, beside its text.

@@ -8,7 +8,7 @@
 //! by two or more products is computed once and multiplied, while one used once becomes a
 //! division.
 
-use std::collections::{HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
 
 use crate::expr::{integer_exponent, ExprId, Node, Pool, Sym};
 use crate::program::{Node as Op, Operand, Program, Stmt, Target};
@@ -60,13 +60,13 @@ impl<'a> Emitter<'a> {
             system,
             input,
             stmts: Vec::new(),
-            value: HashMap::new(),
-            sym_value: HashMap::new(),
+            value: HashMap::default(),
+            sym_value: HashMap::default(),
             next_tmp: 0,
-            sincos: HashSet::new(),
-            shared_reciprocals: HashSet::new(),
-            factor_uses: HashMap::new(),
-            numbered: HashMap::new(),
+            sincos: HashSet::default(),
+            shared_reciprocals: HashSet::default(),
+            factor_uses: HashMap::default(),
+            numbered: HashMap::default(),
             pivot_tolerance,
             pivots: Vec::new(),
             numeric_blocks: Vec::new(),
@@ -78,7 +78,7 @@ impl<'a> Emitter<'a> {
     /// Everything reachable from `roots` through definitions, children before parents.
     fn analyse(&mut self, roots: &[ExprId]) {
         let nodes = self.system.reachable_nodes(self.pool, roots);
-        let mut reciprocal_uses: HashMap<ExprId, u32> = HashMap::new();
+        let mut reciprocal_uses: HashMap<ExprId, u32> = HashMap::default();
         for &n in &nodes {
             let node = self.pool.node(n);
             if let Node::Call(Func::Sin, [u]) = node {

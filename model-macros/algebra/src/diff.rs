@@ -7,7 +7,7 @@
 //! engine applies the chain rule node by node, children before parents, each node once (the
 //! memo is keyed by node, so shared subexpressions are differentiated once).
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{ExprId, Node, Pool, Sym};
 use crate::spec::Func;
@@ -38,7 +38,7 @@ pub fn derivative(
 /// derivatives at once; the tests check single partials).
 #[cfg(test)]
 pub fn partial(pool: &mut Pool, root: ExprId, by: Sym) -> ExprId {
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     derivative(pool, &mut memo, root, &mut |_, s| {
         if s == by {
             ExprId::ONE
@@ -55,7 +55,7 @@ pub fn time_derivative(pool: &mut Pool, root: ExprId) -> Option<ExprId> {
     if pool.has_der(root) || pool.symbols(root).iter().any(|s| matches!(s, Sym::Aux(_))) {
         return None;
     }
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     Some(derivative(pool, &mut memo, root, &mut |pool, s| match s {
         Sym::State(i) => pool.sym(Sym::Der(i)),
         Sym::Time => ExprId::ONE,

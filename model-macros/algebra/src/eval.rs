@@ -4,7 +4,7 @@
 //! pivot checks and the numeric block solve), which makes it the reference the generated Rust
 //! is tested against.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{call_value, pow_value, select_value};
 use crate::program::{Node, Operand, Program, Stmt, SumCheck, Target};
@@ -85,7 +85,7 @@ impl Stores {
 impl Program {
     /// Runs the program.
     pub fn eval(&self, inputs: &Inputs) -> Result<Stores, EvalFailure> {
-        let mut tmps: HashMap<u32, f64> = HashMap::new();
+        let mut tmps: HashMap<u32, f64> = HashMap::default();
         let mut stores = Stores::default();
         let read = |tmps: &HashMap<u32, f64>, o: Operand| -> Result<f64, EvalFailure> {
             let bad = EvalFailure::BadOperand(o);
@@ -177,6 +177,13 @@ impl Program {
 
 /// Gaussian elimination with partial pivoting; `Err(pivot)` when a pivot is zero or not finite.
 pub fn solve_dense(n: usize, a: &mut [f64], b: &mut [f64]) -> Result<Vec<f64>, f64> {
+    let mut x = vec![0.0; n];
+    solve_dense_in(n, a, b, &mut x)?;
+    Ok(x)
+}
+
+/// [`solve_dense`] writing the solution into `x` (of length `n`), allocating nothing.
+pub fn solve_dense_in(n: usize, a: &mut [f64], b: &mut [f64], x: &mut [f64]) -> Result<(), f64> {
     for k in 0..n {
         let p = (k..n)
             .max_by(|&i, &j| a[i * n + k].abs().total_cmp(&a[j * n + k].abs()))
@@ -200,7 +207,6 @@ pub fn solve_dense(n: usize, a: &mut [f64], b: &mut [f64]) -> Result<Vec<f64>, f
             b[i] -= f * b[k];
         }
     }
-    let mut x = vec![0.0; n];
     for k in (0..n).rev() {
         let mut s = b[k];
         for j in k + 1..n {
@@ -208,7 +214,7 @@ pub fn solve_dense(n: usize, a: &mut [f64], b: &mut [f64]) -> Result<Vec<f64>, f
         }
         x[k] = s / a[k * n + k];
     }
-    Ok(x)
+    Ok(())
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 //! [`expand_if_smaller`] tries the expansion, bounded in the number of terms, and keeps it only
 //! when it costs no more operations than the original.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{integer_exponent, ExprId, Node, Pool};
 
@@ -16,7 +16,7 @@ pub const TERM_LIMIT: usize = 96;
 /// `e` with products distributed over sums, or `None` if some product would exceed
 /// [`TERM_LIMIT`] terms.
 pub fn expand(pool: &mut Pool, e: ExprId) -> Option<ExprId> {
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     expand_memo(pool, &mut memo, e)
 }
 

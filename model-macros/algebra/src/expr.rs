@@ -7,7 +7,8 @@
 //! canonical order, so `a*b` and `b*a` are the same node. Nodes are only ever built through the
 //! simplifying constructors of [`crate::simplify`], which keep this canonical form.
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
+use std::collections::BTreeSet;
 
 use crate::spec::Func;
 
@@ -125,7 +126,7 @@ impl Pool {
         let mut pool = Pool {
             nodes: Vec::new(),
             info: Vec::new(),
-            index: HashMap::new(),
+            index: HashMap::default(),
             next_aux: 0,
         };
         for v in [0.0, 1.0, -1.0] {
@@ -212,7 +213,7 @@ impl Pool {
 
     /// Every node reachable from `roots` (children before parents).
     pub fn reachable(&self, roots: &[ExprId]) -> Vec<ExprId> {
-        let mut seen = HashSet::new();
+        let mut seen = HashSet::default();
         let mut order = Vec::new();
         let mut stack: Vec<(ExprId, bool)> = roots.iter().rev().map(|&r| (r, false)).collect();
         while let Some((id, expanded)) = stack.pop() {
@@ -254,7 +255,7 @@ impl Pool {
 
     /// Evaluates `roots` with the symbol values given by `value`.
     pub fn eval_many(&self, roots: &[ExprId], value: &dyn Fn(Sym) -> f64) -> Vec<f64> {
-        let mut memo: HashMap<ExprId, f64> = HashMap::new();
+        let mut memo: HashMap<ExprId, f64> = HashMap::default();
         for id in self.reachable(roots) {
             let arg = |k: usize| memo[&self.node(id).children()[k]];
             let v = match self.node(id) {

@@ -5,7 +5,41 @@
 //! and what tests compare the symbolic Jacobian with.
 
 use crate::eval::{EvalFailure, Inputs};
+use crate::flat::{FlatError, FlatProgram, Shape, Sink};
 use crate::program::CompiledModel;
+
+/// A model's three programs laid out in slots ([`FlatProgram`]), for a given number of
+/// parameters (a switched model's modes read its discrete values after them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FlatModel {
+    /// `dy = f(t, y, p)` into `dy`.
+    pub rhs: FlatProgram,
+    /// The Jacobian, row-major into `n²` values.
+    pub jacobian: FlatProgram,
+    /// The outputs, given `dy`.
+    pub outputs: FlatProgram,
+}
+
+impl FlatModel {
+    /// `model`'s programs, reading `params` parameters.
+    pub fn new(model: &CompiledModel, params: usize) -> Result<Self, FlatError> {
+        let n = model.states.len();
+        let shape = Shape {
+            states: n,
+            params,
+            ders: 0,
+        };
+        Ok(FlatModel {
+            rhs: FlatProgram::new(&model.rhs, shape, Sink::Ders(n))?,
+            jacobian: FlatProgram::new(&model.jacobian, shape, Sink::Jacobian(n))?,
+            outputs: FlatProgram::new(
+                &model.outputs_program,
+                Shape { ders: n, ..shape },
+                Sink::Outputs(model.outputs.len()),
+            )?,
+        })
+    }
+}
 
 impl CompiledModel {
     /// `dy = f(t, y, p)`, interpreted.

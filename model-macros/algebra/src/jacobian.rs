@@ -11,7 +11,7 @@
 //! column in which the block's inputs depend on `y_j`. The result is exact (no finite
 //! differences), like the symbolic columns.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::diff::derivative;
 use crate::expr::{ExprId, Node, Pool, Sym};
@@ -40,8 +40,8 @@ pub fn jacobian(
     let is_row: std::collections::HashSet<usize> = rows.iter().copied().collect();
     let mut entries = Vec::new();
     for &j in cols {
-        let mut memo: HashMap<ExprId, ExprId> = HashMap::new();
-        let mut dsym: HashMap<Sym, ExprId> = HashMap::new();
+        let mut memo: HashMap<ExprId, ExprId> = HashMap::default();
+        let mut dsym: HashMap<Sym, ExprId> = HashMap::default();
         // Only the groups that read `y_j`, directly or through what other such groups define,
         // have a derivative by `y_j` that is not zero: a column costs what depends on `y_j`,
         // not the whole system (decoupled states would make the Jacobian quadratic).
@@ -125,7 +125,7 @@ pub fn jacobian(
 
 /// For each symbol, the groups whose expressions read it.
 fn readers(pool: &Pool, groups: &[Group]) -> HashMap<Sym, Vec<usize>> {
-    let mut readers: HashMap<Sym, Vec<usize>> = HashMap::new();
+    let mut readers: HashMap<Sym, Vec<usize>> = HashMap::default();
     for (g, group) in groups.iter().enumerate() {
         let roots: Vec<ExprId> = match &group.body {
             Body::Symbolic(defs) => defs.iter().map(|&(_, e)| e).collect(),

@@ -54,6 +54,8 @@ mod eval;
 mod expand;
 mod explain;
 mod expr;
+mod flat;
+mod hash;
 mod interpret;
 mod jacobian;
 mod linear;
@@ -75,8 +77,13 @@ mod trig;
 mod variant;
 
 pub use compile::compile;
-pub use eval::{EvalFailure, Inputs, Stores};
+pub use eval::{solve_dense_in, EvalFailure, Inputs, Stores};
 pub use explain::{is_internal, latex_name};
+pub use expr::{call_value, pow_value, select_value};
+pub use flat::{
+    Binary, Block, Check, FlatError, FlatProgram, Layout, Op, Scratch, Shape, Sink, Slot, Unary,
+};
+pub use interpret::FlatModel;
 pub use model_ops::OpCounts;
 pub use options::{CompileOptions, PIVOT_TOLERANCE};
 pub use program::{CompiledModel, Explanation, Node, Operand, Program, Stmt, SumCheck, Target};

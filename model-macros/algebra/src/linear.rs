@@ -5,7 +5,8 @@
 //! split still refuses them (returning the offending subexpression) so that it is total on
 //! any input.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use crate::hash::HashMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use crate::expr::{ExprId, Node, Pool, Sym};
 
@@ -24,7 +25,7 @@ pub struct NonLinear(pub ExprId);
 
 /// Splits `e` into coefficients of the derivatives and a remainder.
 pub fn split(pool: &mut Pool, e: ExprId) -> Result<LinearForm, NonLinear> {
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     split_memo(pool, &mut memo, e)
 }
 

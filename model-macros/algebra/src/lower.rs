@@ -7,7 +7,7 @@
 //! literal, a name that does not resolve. Lets are substituted (they are macros), each lowered once; fixed parameters of a
 //! variant become constants here, before any algebra, so terms they zero out never exist.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::diff::time_derivative;
 use crate::expr::{ExprId, Pool, Sym};
@@ -67,7 +67,7 @@ pub struct Lowerer<'s> {
 impl<'s> Lowerer<'s> {
     /// A lowerer for `spec`, with `fixed[i]` the compile-time value of parameter `i`, if any.
     pub fn new(spec: &'s ModelSpec, fixed: Vec<Option<f64>>) -> Lowerer<'s> {
-        let mut names = HashMap::new();
+        let mut names = HashMap::default();
         names.insert("t", Binding::Time);
         names.insert("pi", Binding::Pi);
         for (i, p) in spec.params.iter().enumerate() {

@@ -7,6 +7,7 @@
 
 /// A value a statement reads.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Operand {
     /// A constant.
     Const(f64),
@@ -24,6 +25,7 @@ pub enum Operand {
 
 /// A one-operation expression.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Node {
     /// A copy.
     Copy(Operand),
@@ -53,6 +55,7 @@ pub enum Node {
 /// A sum inside a pivot (the pivot itself, or one factor of it) with the scale of its
 /// rounding error: the sum of its terms' magnitudes as the program adds them.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SumCheck {
     /// The sum's value.
     pub sum: Operand,
@@ -69,6 +72,7 @@ impl SumCheck {
 
 /// Where a result is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Target {
     /// `dy[i]`
     Der(usize),
@@ -80,6 +84,7 @@ pub enum Target {
 
 /// One statement.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Stmt {
     /// `let tK = node;`
     Let {
@@ -136,6 +141,7 @@ pub enum Stmt {
 
 /// One emitted function's body.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Program {
     /// The statements, in execution order.
     pub stmts: Vec<Stmt>,
@@ -143,6 +149,7 @@ pub struct Program {
 
 /// A compiled model: names and the three programs.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompiledModel {
     /// The module name.
     pub name: String,
@@ -174,6 +181,7 @@ pub struct CompiledModel {
 
 /// The solved model, printed.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Explanation {
     /// Markdown: one section per block (its derivatives, the pivots, the solved equations in
     /// DSL syntax), then the outputs.

@@ -5,8 +5,8 @@
 //! event's resets (once, at the event) from one compiled model, so every subexpression they
 //! share is derived once by the compiler. Each use then runs only the statements it needs.
 
+use crate::hash::HashSet;
 use crate::program::{Node, Operand, Program, Stmt, Target};
-use std::collections::HashSet;
 use std::ops::Range;
 
 impl Program {
@@ -14,7 +14,7 @@ impl Program {
     /// stores renumbered from 0; every other store is dropped. A pivot check is kept when the
     /// value it checks is kept.
     pub fn select_outputs(&self, outputs: Range<usize>) -> Program {
-        let mut live: HashSet<u32> = HashSet::new();
+        let mut live: HashSet<u32> = HashSet::default();
         let mut kept: Vec<Stmt> = Vec::new();
         let need = |operand: &Operand, live: &mut HashSet<u32>| {
             if let Operand::Tmp(t) = operand {

@@ -8,7 +8,7 @@
 //! powers distributed over products, numeric factors distributed over sums inside sums, and
 //! `c*M*sin(u)^2 + c*M*cos(u)^2 = c*M`. Nothing is expanded, so nothing swells.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{call_value, integer_exponent, pow_value, ExprId, Node, Pool, Sym};
 use crate::spec::Func;
@@ -81,7 +81,7 @@ impl Pool {
     pub fn add(&mut self, terms: &[ExprId]) -> ExprId {
         let mut constant = 0.0;
         let mut order: Vec<ExprId> = Vec::new();
-        let mut coeffs: HashMap<ExprId, f64> = HashMap::new();
+        let mut coeffs: HashMap<ExprId, f64> = HashMap::default();
         let mut stack: Vec<(ExprId, f64)> = terms.iter().rev().map(|&t| (t, 1.0)).collect();
         while let Some((t, scale)) = stack.pop() {
             match self.node(t) {
@@ -130,7 +130,7 @@ impl Pool {
     fn pythagoras(&mut self, order: &mut Vec<ExprId>, coeffs: &mut HashMap<ExprId, f64>) -> f64 {
         let mut constant = 0.0;
         loop {
-            let mut seen: HashMap<SquareKey, Vec<Square>> = HashMap::new();
+            let mut seen: HashMap<SquareKey, Vec<Square>> = HashMap::default();
             let mut found = None;
             'outer: for &rest in order.iter() {
                 let c = coeffs[&rest];
@@ -196,7 +196,7 @@ impl Pool {
     pub fn mul(&mut self, factors: &[ExprId]) -> ExprId {
         let mut coefficient = 1.0;
         let mut bases: Vec<ExprId> = Vec::new();
-        let mut exponents: HashMap<ExprId, Vec<ExprId>> = HashMap::new();
+        let mut exponents: HashMap<ExprId, Vec<ExprId>> = HashMap::default();
         let mut stack: Vec<ExprId> = factors.iter().rev().copied().collect();
         while let Some(f) = stack.pop() {
             let (base, exponent) = match self.node(f) {

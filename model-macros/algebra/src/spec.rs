@@ -11,6 +11,7 @@ pub struct NodeId(pub u32);
 
 /// The built-in functions of the DSL.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Func {
     /// `sin(x)`
     Sin,

@@ -5,7 +5,8 @@
 //! definitions by the chain rule, and the emitter computes each definition once. This is what
 //! keeps a cascade of blocks from multiplying out into one huge expression.
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
+use std::collections::BTreeSet;
 
 use crate::expr::{ExprId, Node, Pool, Sym};
 
@@ -115,9 +116,9 @@ impl System {
     /// Every node that computing `roots` evaluates: through the definitions of the symbols it
     /// reads, with the pivots of their groups (and all of a numeric group's entries).
     pub fn reachable_nodes(&self, pool: &Pool, roots: &[ExprId]) -> HashSet<ExprId> {
-        let mut nodes = HashSet::new();
+        let mut nodes = HashSet::default();
         let mut seen_groups = vec![false; self.groups.len()];
-        let mut seen_syms: HashSet<Sym> = HashSet::new();
+        let mut seen_syms: HashSet<Sym> = HashSet::default();
         let mut todo: Vec<ExprId> = roots.to_vec();
         while let Some(e) = todo.pop() {
             for n in pool.reachable(&[e]) {

@@ -24,7 +24,7 @@
 //! of every group that divides by it, so the singular point is reported by name instead of
 //! surfacing as a non-finite derivative.
 
-use std::collections::{HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
 
 use crate::expr::{ExprId, Node, Pool};
 use crate::spec::Func;
@@ -161,7 +161,7 @@ impl<'p> Identities<'p> {
         Identities {
             pool,
             free,
-            memo: HashMap::new(),
+            memo: HashMap::default(),
             radicands: Vec::new(),
         }
     }
@@ -383,7 +383,7 @@ mod tests {
                 _ => None,
             })
             .collect();
-        assert_eq!(args, HashSet::from([psi, phi]));
+        assert_eq!(args, HashSet::from_iter([psi, phi]));
         // A constant shift and a scaled angle.
         let half_pi = p.num(std::f64::consts::FRAC_PI_2);
         let shifted = p.add2(alpha, half_pi);

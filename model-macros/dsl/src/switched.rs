@@ -20,6 +20,7 @@ use std::collections::BTreeMap;
 
 /// Which crossings of a guard fire its event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Crossing {
     /// `a > b`, `a >= b`: `a - b` crosses zero upwards.
     Up,
@@ -41,6 +42,7 @@ impl Crossing {
 
 /// What an event does once located.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Action<J> {
     /// Nothing: it is recorded, and the run goes on untouched.
     Record,
@@ -68,6 +70,7 @@ pub struct JumpPlan {
 
 /// The modes a decided event may continue in, and whether it may stop the run.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Choice {
     /// The mode indices, in the order written.
     pub modes: Vec<usize>,

@@ -8,6 +8,7 @@ use model_algebra::{CompiledModel, Program};
 
 /// A switched model after the compiler.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompiledSwitched {
     /// The model's name.
     pub name: String,
@@ -26,6 +27,7 @@ pub struct CompiledSwitched {
 
 /// One mode compiled.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompiledMode {
     /// The mode's model (named after the mode), with the user's outputs only.
     pub model: CompiledModel,
@@ -44,6 +46,7 @@ pub struct CompiledMode {
 /// One number a mode declares besides its equations (its clock in regularised time,
 /// `dt = s dτ`, or its first step), compiled.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Clock {
     /// `out[0]` = the number (a clock reads `y` and `p` only).
     pub program: Program,
@@ -53,6 +56,7 @@ pub struct Clock {
 
 /// One event compiled.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompiledEvent {
     /// The event's name.
     pub name: String,
@@ -72,6 +76,7 @@ pub struct CompiledEvent {
 
 /// A compiled jump: the target and the program of the new values.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Jump {
     /// The mode the run continues in (`None`: the same mode, restarted).
     pub to: Option<usize>,

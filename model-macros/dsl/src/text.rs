@@ -42,6 +42,7 @@ pub struct TextModel {
 
 /// One error with its place in the text.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Located {
     /// The source's name.
     pub name: String,
@@ -144,6 +145,25 @@ impl Source {
                 compiled,
             })
             .collect())
+    }
+
+    /// The models of this text with what an earlier [`compile`](Self::compile) of the same
+    /// text derived (kept by a cache), the text parsed and validated again (which is quick: the
+    /// compiling is what takes time). `None` when the models do not fit the text (not as
+    /// many, or named otherwise): then they were not derived from it.
+    pub fn with_compiled(&self, compiled: Vec<CompiledModel>) -> Option<Vec<TextModel>> {
+        let ast = self.parse().ok()?;
+        let validated = validate(&ast).ok()?;
+        let fits = validated.len() == compiled.len()
+            && (validated.iter().zip(&compiled)).all(|(v, c)| v.ast.name == c.name);
+        fits.then(|| {
+            (validated.into_iter().zip(compiled))
+                .map(|(model, compiled)| TextModel {
+                    ast: model.ast,
+                    compiled,
+                })
+                .collect()
+        })
     }
 
     /// Parses, validates and compiles a switched model (one with `mode` or `when`), as `model!`

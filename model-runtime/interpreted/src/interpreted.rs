@@ -10,7 +10,9 @@
 //! borrows from its constants and an interpreted one owns: its names live as long as the
 //! model being solved ([`Labels`]), so a long-lived process solving many models keeps none.
 
-use model_algebra::{CompiledModel, EvalFailure, Inputs};
+use crate::engine::Engine;
+use crate::error::{PointError, SolveFailure};
+use model_algebra::{CompiledModel, EvalFailure};
 use model_runtime::{
     Dyn, EvalError, ModelInfo, Name, Names, Rhs, System, SystemOutputs, Tolerance,
 };
@@ -18,6 +20,17 @@ use model_runtime::{
 /// The request's tolerance for the `n` states of a model.
 pub(crate) fn tolerance(n: usize, rtol: f64, atol: f64) -> Tolerance<Dyn> {
     Tolerance::scalar_in(Dyn(n), rtol, atol)
+}
+
+/// `model`'s failure at `t` as a failed solve.
+pub(crate) fn failure_at(model: &CompiledModel, t: f64, failure: EvalFailure) -> SolveFailure {
+    SolveFailure::Eval {
+        t,
+        failure: PointError::Interpreter {
+            model: model.name.clone(),
+            failure,
+        },
+    }
 }
 
 /// What the runtime calls an interpreted model and its parts: its [`ModelInfo`] and the
@@ -57,21 +70,29 @@ pub(crate) struct Interpreted<'a> {
     model: &'a CompiledModel,
     params: &'a [f64],
     labels: &'a Labels,
+    engine: &'a Engine,
 }
 
 impl<'a> Interpreted<'a> {
-    /// `model` reading `params`, named by `labels` (made by [`Labels::of`] from `model`).
-    pub(crate) fn new(model: &'a CompiledModel, params: &'a [f64], labels: &'a Labels) -> Self {
+    /// `model` reading `params`, named by `labels` (made by [`Labels::of`] from `model`) and
+    /// evaluated by `engine` (made from `model`).
+    pub(crate) fn new(
+        model: &'a CompiledModel,
+        params: &'a [f64],
+        labels: &'a Labels,
+        engine: &'a Engine,
+    ) -> Self {
         Interpreted {
             model,
             params,
             labels,
+            engine,
         }
     }
 
-    /// The model it runs.
-    pub(crate) fn model(&self) -> &'a CompiledModel {
-        self.model
+    /// The engine that evaluates it.
+    pub(crate) fn engine(&self) -> &'a Engine {
+        self.engine
     }
 
     /// An interpreter failure as the runtime's error, naming the pivot.
@@ -94,30 +115,19 @@ impl<'a> Interpreted<'a> {
 
 impl Rhs<Dyn> for Interpreted<'_> {
     fn rhs(&self, t: f64, y: &Vec<f64>, dy: &mut Vec<f64>) -> Result<(), EvalError> {
-        let der = (self.model.derivatives(t, y, self.params)).map_err(|e| self.error(e))?;
-        if let Some(k) = der.iter().position(|v| !v.is_finite()) {
+        (self.engine.rhs(t, y, self.params, dy)).map_err(|e| self.error(e))?;
+        if let Some(k) = dy.iter().position(|v| !v.is_finite()) {
             return Err(EvalError::NonFinite {
                 model: self.labels.info.name.clone(),
                 quantity: self.labels.der_names[k].clone(),
-                value: der[k],
+                value: dy[k],
             });
         }
-        dy.copy_from_slice(&der);
         Ok(())
     }
 
     fn jacobian(&self, t: f64, y: &Vec<f64>, jac: &mut Vec<Vec<f64>>) -> Result<(), EvalError> {
-        let inputs = Inputs {
-            t,
-            states: y,
-            params: self.params,
-            ders: &[],
-        };
-        let stores = (self.model.jacobian.eval(&inputs)).map_err(|e| self.error(e))?;
-        for (row, values) in jac.iter_mut().zip(stores.jacobian(y.len())) {
-            row.copy_from_slice(&values);
-        }
-        Ok(())
+        (self.engine.jacobian(t, y, self.params, jac)).map_err(|e| self.error(e))
     }
 }
 
@@ -131,7 +141,7 @@ impl System<Dyn> for Interpreted<'_> {
     }
 }
 
-/// The outputs are evaluated by the interpreter at the recorded points ([`row`]), not by the
+/// The outputs are evaluated by the interpreter at the recorded points (`Tables::row`), not by the
 /// runtime.
 impl SystemOutputs<Dyn, 0> for Interpreted<'_> {
     fn outputs(

@@ -68,6 +68,8 @@
 //! ```
 #![warn(missing_docs)]
 
+mod cache;
+mod engine;
 mod error;
 mod interpreted;
 mod load;
@@ -80,6 +82,8 @@ mod tables;
 mod values;
 mod work;
 
+pub use cache::ModelCache;
+pub use engine::{set_evaluator, Evaluator};
 pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
 };

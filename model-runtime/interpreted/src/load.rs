@@ -2,6 +2,7 @@
 //! equation compiler as `model!`, into a smooth model with its charts or a switched model.
 //! Every mistake in the text is a located error ([`LoadError::Dsl`]), never a panic.
 
+use crate::cache::ModelCache;
 use crate::error::LoadError;
 use model_algebra::CompiledModel;
 use model_dsl::{CompiledSwitched, Source, TextModel};
@@ -29,11 +30,25 @@ pub enum ModelRef<'a> {
 impl ModelFile {
     /// Reads and compiles the file at `path`.
     pub fn read(path: &Path) -> Result<Self, LoadError> {
+        Self::read_with(path, None)
+    }
+
+    /// Reads the file at `path` and compiles it, or takes its compiled models from `cache`
+    /// when it holds a valid entry for this text (and keeps them there when not).
+    pub fn read_with(path: &Path, cache: Option<&ModelCache>) -> Result<Self, LoadError> {
         let source = Source::read(path).map_err(|source| LoadError::Read {
             path: path.to_path_buf(),
             source,
         })?;
-        Self::compile(&source)
+        let Some(cache) = cache else {
+            return Self::compile(&source);
+        };
+        if let Some(file) = cache.get(&source) {
+            return Ok(file);
+        }
+        let file = Self::compile(&source)?;
+        cache.put(&source, &file);
+        Ok(file)
     }
 
     /// Compiles `text`; `name` is the source's name in the errors' locations (a file name).
@@ -41,7 +56,7 @@ impl ModelFile {
         Self::compile(&Source::new(name, text))
     }
 
-    fn compile(source: &Source) -> Result<Self, LoadError> {
+    pub(crate) fn compile(source: &Source) -> Result<Self, LoadError> {
         let ast = source.parse().map_err(LoadError::Dsl)?;
         if ast.is_switched() {
             let model = source.compile_switched().map_err(LoadError::Dsl)?;

@@ -8,8 +8,9 @@
 //! runs (the same steps, the same event location), observed by this crate's [`Recording`]
 //! so that a failed, bounded or interrupted run keeps what it computed.
 
+use crate::engine::Engine;
 use crate::error::{settings, SolveFailure};
-use crate::interpreted::{tolerance, Interpreted, Labels};
+use crate::interpreted::{failure_at, tolerance, Interpreted, Labels};
 use crate::recording::{Grid, Recording};
 use crate::request::{Control, Resolved, SolveRequest, Watched};
 use crate::solution::{EventKind, Solution, Stop};
@@ -20,6 +21,7 @@ use model_runtime::{
     Matrix, Method, ModelInfo, Observed, Observer, Rhs, SolveError, StepOptions, StepView, Stepper,
     StopReason, System, Transition, WithStepper,
 };
+use std::cell::RefCell;
 use std::ops::ControlFlow;
 
 /// The model with its events as the guards of one mode, and the events located (each by
@@ -29,6 +31,8 @@ struct WithEvents<'a> {
     resolved: &'a Resolved,
     guards: Vec<GuardSpec<usize>>,
     located: Vec<(usize, f64, Vec<f64>)>,
+    /// The outputs, evaluated into where an event watches one.
+    outputs: RefCell<Vec<f64>>,
 }
 
 impl HybridSystem<Dyn> for WithEvents<'_> {
@@ -64,18 +68,20 @@ impl HybridSystem<Dyn> for WithEvents<'_> {
         dy: &Vec<f64>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
-        let mut outputs: Option<Vec<f64>> = None;
+        let mut outputs = self.outputs.borrow_mut();
+        let mut evaluated = false;
         for (value, event) in values.iter_mut().zip(&self.resolved.events) {
             *value = match event.watched {
                 Watched::State(k) => y[k],
                 Watched::Output(j) => {
-                    if outputs.is_none() {
-                        let model = self.interpreted.model();
+                    if !evaluated {
+                        let engine = self.interpreted.engine();
                         let params = &self.resolved.params;
-                        let at = model.outputs_at(t, y, dy, params);
-                        outputs = Some(at.map_err(|e| self.interpreted.error(e))?);
+                        let at = engine.outputs(t, y, dy, params, &mut outputs);
+                        at.map_err(|e| self.interpreted.error(e))?;
+                        evaluated = true;
                     }
-                    outputs.as_ref().map_or(f64::NAN, |o| o[j])
+                    outputs[j]
                 }
             };
         }
@@ -133,8 +139,10 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         } = self;
         let n = model.states.len();
         let labels = Labels::of(model);
+        let engine = Engine::new(model, resolved.params.len())
+            .map_err(|e| failure_at(model, request.t0, e))?;
         let mut system = WithEvents {
-            interpreted: Interpreted::new(model, &resolved.params, &labels),
+            interpreted: Interpreted::new(model, &resolved.params, &labels, &engine),
             resolved,
             guards: (resolved.events.iter().enumerate())
                 .map(|(index, event)| GuardSpec {
@@ -143,6 +151,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
                 })
                 .collect(),
             located: Vec::new(),
+            outputs: RefCell::new(vec![0.0; engine.n_outputs()]),
         };
         let grid = match &resolved.times {
             Some(times) => Grid::Times {
@@ -176,6 +185,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         let tables = Tables {
             name: model.name.clone(),
             models: vec![model],
+            engines: vec![&engine],
             modes: Vec::new(),
             params: &resolved.params,
             columns: columns(model.states.iter().chain(&model.outputs)),

@@ -12,8 +12,9 @@
 //! solution's [`Solution::stop_time`] and every message (the driver itself ends at the last
 //! firing, within the rule's tail before it, which is the trajectory's last row).
 
+use crate::engine::{Engine, Runner};
 use crate::error::{RunFailure, SolveFailure};
-use crate::interpreted::{tolerance, Interpreted, Labels};
+use crate::interpreted::{failure_at, tolerance, Interpreted, Labels};
 use crate::recording::{Grid, Recording, SharedValues};
 use crate::request::{Control, Resolved, SolveRequest};
 use crate::smooth::{columns, explicit};
@@ -75,20 +76,34 @@ struct InterpretedSwitched<'a> {
     discrete: SharedValues,
     /// Each mode's names, in mode order.
     labels: Vec<Labels>,
+    /// Each mode's programs, in mode order.
+    engines: Vec<Engine>,
+    /// Each mode's guards, in mode order.
+    guards: Vec<Runner>,
     graph: ModeGraph,
 }
 
 impl<'a> InterpretedSwitched<'a> {
-    fn new(model: &'a CompiledSwitched, params: &[f64]) -> Result<Self, SolveFailure> {
+    fn new(model: &'a CompiledSwitched, params: &[f64], t0: f64) -> Result<Self, SolveFailure> {
         let values = params.to_vec();
         let discrete = values[model.n_params()..].to_vec();
+        let (mut engines, mut guards) = (Vec::new(), Vec::new());
+        for mode in &model.modes {
+            let m = &mode.model;
+            let at_t0 = |e| failure_at(m, t0, e);
+            engines.push(Engine::new(m, values.len()).map_err(at_t0)?);
+            let guard = Runner::outputs(&mode.guards, m, values.len(), mode.events.len());
+            guards.push(guard.map_err(at_t0)?);
+        }
         Ok(InterpretedSwitched {
             model,
-            values,
             discrete: Rc::new(RefCell::new(discrete)),
             labels: (model.modes.iter())
                 .map(|mode| Labels::of(&mode.model))
                 .collect(),
+            values,
+            engines,
+            guards,
             graph: mode_graph(model)?,
         })
     }
@@ -99,6 +114,7 @@ impl<'a> InterpretedSwitched<'a> {
             &self.model.modes[mode].model,
             &self.values,
             &self.labels[mode],
+            &self.engines[mode],
         )
     }
 
@@ -139,10 +155,8 @@ impl SwitchedModel<Dyn> for InterpretedSwitched<'_> {
         dy: &Vec<f64>,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
-        let guards = &self.model.modes[mode].guards;
-        let stores = (guards.eval(&self.inputs(t, y, dy))).map_err(|e| self.mode(mode).error(e))?;
-        values.copy_from_slice(&stores.outputs(values.len()));
-        Ok(())
+        (self.guards[mode].run(&self.inputs(t, y, dy), values))
+            .map_err(|e| self.mode(mode).error(e))
     }
 
     fn reset(
@@ -277,7 +291,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             control,
         } = self;
         let n = model.states().len();
-        let mut interpreted = InterpretedSwitched::new(model, &resolved.params)?;
+        let mut interpreted = InterpretedSwitched::new(model, &resolved.params, request.t0)?;
         let graph = interpreted.graph.clone();
         let discrete = Rc::clone(&interpreted.discrete);
         let options = HybridOptions {
@@ -319,7 +333,9 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         let SwitchedRecording {
             mut recording, met, ..
         } = observer;
-        let tables = tables(model, resolved, request);
+        drop(system);
+        let engines = interpreted.engines.iter().collect();
+        let tables = tables(model, engines, resolved, request);
         let mut events = Vec::with_capacity(met.len() + 1);
         let mut accumulations = Vec::new();
         for met in &met {
@@ -437,6 +453,7 @@ fn on_threshold(model: &InterpretedSwitched<'_>, t0: f64, y0: &[f64]) -> Vec<Str
 /// (every mode has the same), each mode's model.
 fn tables<'a>(
     model: &'a CompiledSwitched,
+    engines: Vec<&'a Engine>,
     resolved: &'a Resolved,
     request: &SolveRequest,
 ) -> Tables<'a> {
@@ -450,6 +467,7 @@ fn tables<'a>(
     Tables {
         name: model.name.clone(),
         models: model.modes.iter().map(|mode| &mode.model).collect(),
+        engines,
         modes: model.modes.iter().map(|m| m.model.name.clone()).collect(),
         params: &resolved.params[..model.n_params()],
         columns: columns(slots.iter().chain(&discrete).chain(&first.outputs)),

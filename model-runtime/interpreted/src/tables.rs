@@ -7,6 +7,7 @@
 //! that point, never a number written: a file holds what the model says, or the run says why
 //! not.
 
+use crate::engine::Engine;
 use crate::error::{PointError, RunFailure, SolveFailure};
 use crate::recording::{Halt, Recording};
 use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
@@ -38,6 +39,8 @@ pub(crate) struct Tables<'a> {
     pub(crate) name: String,
     /// Each mode's model (a smooth model's is its only one).
     pub(crate) models: Vec<&'a CompiledModel>,
+    /// Each mode's engine, made from its model.
+    pub(crate) engines: Vec<&'a Engine>,
     /// The modes' names (none for a smooth model).
     pub(crate) modes: Vec<String>,
     /// The model's own parameter values (each mode's model reads the discrete values after
@@ -72,8 +75,11 @@ impl Tables<'_> {
                 failure,
             })
         };
-        let der = model.derivatives(t, y, &values).map_err(interpreter)?;
-        let outputs = model.outputs_at(t, y, &der, &values).map_err(interpreter)?;
+        let engine = self.engines[mode];
+        let mut der = vec![0.0; y.len()];
+        engine.rhs(t, y, &values, &mut der).map_err(interpreter)?;
+        let mut outputs = vec![0.0; engine.n_outputs()];
+        (engine.outputs(t, y, &der, &values, &mut outputs)).map_err(interpreter)?;
         if let Some(k) = outputs.iter().position(|v| !v.is_finite()) {
             return Err(at_t(PointError::NonFinite {
                 model: model.name.clone(),

@@ -16,8 +16,9 @@
 //! terms (that would copy them at every level): it is left out of the counts and skipped when
 //! a term's product is built, once, at the level where no factor is shared any more.
 
+use crate::hash::{HashMap, HashSet};
 use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap, HashSet};
+use std::collections::BinaryHeap;
 
 use crate::expr::{ExprId, Node, Pool};
 
@@ -98,7 +99,7 @@ pub(super) fn factored(pool: &mut Pool, terms: &[ExprId]) -> Factored {
     let mut factoring = Factoring {
         pool,
         terms,
-        pulled: HashSet::new(),
+        pulled: HashSet::default(),
         work: 0,
     };
     let members: Vec<usize> = (0..factoring.terms.len()).collect();
@@ -181,7 +182,7 @@ impl Factoring<'_> {
     /// The numeric coefficients shared (up to sign, other than one) by two or more of
     /// `members`, each with the terms that have it, the most shared first.
     fn shared_coefficients(&self, members: &[usize]) -> Vec<(u64, Vec<usize>)> {
-        let mut by_magnitude: HashMap<u64, Vec<usize>> = HashMap::new();
+        let mut by_magnitude: HashMap<u64, Vec<usize>> = HashMap::default();
         for &t in members {
             let term = &self.terms[t];
             let c = term.coefficient;
@@ -205,7 +206,7 @@ impl Factoring<'_> {
     /// Pulls out each shared coefficient of `rest`, whose terms share no factor: their sums
     /// scaled go to `parts`, the others stay in `rest`.
     fn coefficients(&mut self, rest: &mut Vec<usize>, parts: &mut Vec<ExprId>) {
-        let mut taken = HashSet::new();
+        let mut taken = HashSet::default();
         for (bits, members) in self.shared_coefficients(rest) {
             taken.extend(members.iter().copied());
             let magnitude = f64::from_bits(bits);

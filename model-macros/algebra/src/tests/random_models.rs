@@ -12,8 +12,8 @@ use crate::{compile, CompileOptions};
 
 /// Three states `x, y, w` (the trees read `x`, `y` and the parameter `z`).
 #[derive(Clone, Debug)]
-struct RandomModel {
-    n: usize,
+pub(super) struct RandomModel {
+    pub(super) n: usize,
     /// Row-major coefficients; the diagonal gets `+ 4` so that the matrix is usually regular.
     mass: Vec<Option<Ast>>,
     forcing: Vec<Ast>,
@@ -21,7 +21,7 @@ struct RandomModel {
 
 const STATES: [&str; 3] = ["x", "y", "w"];
 
-fn random_model() -> impl Strategy<Value = RandomModel> {
+pub(super) fn random_model() -> impl Strategy<Value = RandomModel> {
     (1usize..=3).prop_flat_map(|n| {
         (
             prop::collection::vec(prop::option::weighted(0.7, ast(false, false)), n * n),
@@ -45,7 +45,7 @@ fn coefficient(model: &RandomModel, i: usize, j: usize) -> Option<Ast> {
     }
 }
 
-fn spec(model: &RandomModel) -> ModelSpec {
+pub(super) fn spec(model: &RandomModel) -> ModelSpec {
     let named = |name: &str| Named {
         name: name.into(),
         id: NodeId(42),
@@ -86,7 +86,7 @@ fn spec(model: &RandomModel) -> ModelSpec {
     }
 }
 
-fn point() -> impl Strategy<Value = [f64; 4]> {
+pub(super) fn point() -> impl Strategy<Value = [f64; 4]> {
     [0.3f64..2.0, 0.3f64..2.0, 0.3f64..2.0, 0.3f64..2.0]
 }
 

@@ -1,0 +1,337 @@
+//! A cache on disk of compiled models, so that reading the same file again skips the compiler.
+//!
+//! Compiling a big model (the 20-link chain: the symbolic solve of a 40-state system and its
+//! Jacobian) takes seconds; its result, the solved programs, is data. An entry holds that data
+//! (never machine code: nothing read from the cache runs as code), keyed by a hash of the
+//! compiler's version and the file's text. Nothing in an entry is trusted because of its name:
+//!
+//! * an entry starts with a header naming the format and the compiler's version (a hash of the
+//!   sources of the stages that derive programs, made by `build.rs`) and a checksum of the
+//!   rest; an entry of another version, or whose checksum does not match (truncated, edited,
+//!   corrupted), is ignored;
+//! * the entry holds the whole text it was compiled from and whether it was read as Rust, and
+//!   is used only when both equal the file's now (so even two texts with the same key cannot
+//!   be confused);
+//! * the models are checked against the text parsed again (their number and names).
+//!
+//! An entry that fails any check is a miss: the file is compiled and the entry rewritten.
+//! Entries are written to a temporary file in the same directory and renamed into place, so a
+//! reader sees a whole entry or none, and two processes writing the same entry at once leave
+//! one of two identical entries. The directory is `$XDG_CACHE_HOME/eulerdisk/models`, else
+//! `$HOME/.cache/eulerdisk/models`, created readable by its owner only (mode 0700). A cache
+//! that cannot be read or written is no error: the file is compiled as without one.
+
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use model_algebra::CompiledModel;
+use model_dsl::{CompiledSwitched, Source};
+use serde::{Deserialize, Serialize};
+
+use crate::load::ModelFile;
+
+/// The entry format; part of every entry's header.
+const FORMAT: &str = "eulerdisk-compiled-model-1";
+
+/// The compiler's version: a hash of its sources (see `build.rs`).
+const COMPILER: &str = env!("MODEL_COMPILER_HASH");
+
+/// Where compiled models are kept.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModelCache {
+    dir: PathBuf,
+}
+
+/// What an entry holds: the text and the compiled models.
+#[derive(Serialize, Deserialize)]
+struct Entry {
+    /// The text compiled.
+    text: String,
+    /// Whether it was read as a Rust file holding `model!`.
+    rust: bool,
+    /// The compiled models.
+    models: Models,
+}
+
+/// A file's models as kept: a smooth model's compiled models (the model, then its charts; the
+/// syntax trees are parsed again on a hit), or a switched model.
+#[derive(Serialize, Deserialize)]
+enum Models {
+    Smooth(Vec<CompiledModel>),
+    Switched(CompiledSwitched),
+}
+
+impl ModelCache {
+    /// The cache in `dir` (created when first written).
+    pub fn at(dir: impl Into<PathBuf>) -> Self {
+        ModelCache { dir: dir.into() }
+    }
+
+    /// The user's cache: `$XDG_CACHE_HOME/eulerdisk/models`, else
+    /// `$HOME/.cache/eulerdisk/models`; `None` when neither variable is set (to an absolute
+    /// path).
+    pub fn user() -> Option<Self> {
+        let absolute = |var: &str| {
+            std::env::var_os(var)
+                .map(PathBuf::from)
+                .filter(|p| p.is_absolute())
+        };
+        let base =
+            (absolute("XDG_CACHE_HOME")).or_else(|| absolute("HOME").map(|h| h.join(".cache")))?;
+        Some(ModelCache::at(base.join("eulerdisk").join("models")))
+    }
+
+    /// The directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The entry's path for `source`.
+    fn path(&self, source: &Source) -> PathBuf {
+        let key = |salt: u8| {
+            let mut hasher = DefaultHasher::new();
+            (salt, FORMAT, COMPILER, source.rust, &source.text).hash(&mut hasher);
+            hasher.finish()
+        };
+        self.dir
+            .join(format!("{:016x}{:016x}.json", key(1), key(2)))
+    }
+
+    /// The file compiled from `source`, if a valid entry for it is kept.
+    pub(crate) fn get(&self, source: &Source) -> Option<ModelFile> {
+        let bytes = std::fs::read(self.path(source)).ok()?;
+        let entry = decode(&bytes)?;
+        if entry.text != source.text || entry.rust != source.rust {
+            return None;
+        }
+        match entry.models {
+            Models::Smooth(models) => source.with_compiled(models).map(ModelFile::Smooth),
+            Models::Switched(mut model) => {
+                // The warnings name the file the entry was written from: name this one.
+                for warning in &mut model.warnings {
+                    warning.name.clone_from(&source.name);
+                }
+                Some(ModelFile::Switched(model))
+            }
+        }
+    }
+
+    /// Keeps `file`, compiled from `source` (silently not, if the cache cannot be written).
+    pub(crate) fn put(&self, source: &Source, file: &ModelFile) {
+        let models = match file {
+            ModelFile::Smooth(models) => {
+                Models::Smooth(models.iter().map(|m| m.compiled.clone()).collect())
+            }
+            ModelFile::Switched(model) => Models::Switched(model.clone()),
+        };
+        let entry = Entry {
+            text: source.text.clone(),
+            rust: source.rust,
+            models,
+        };
+        let _ = self.write(&self.path(source), &encode(&entry));
+    }
+
+    /// Writes `bytes` to `path` through a temporary file renamed into place.
+    fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+        create_private(&self.dir)?;
+        let unique = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos());
+        let temporary = path.with_extension(format!("{}.{unique}.tmp", std::process::id()));
+        let written = std::fs::File::create(&temporary).and_then(|mut f| {
+            f.write_all(bytes)?;
+            f.sync_all()
+        });
+        let renamed = written.and_then(|()| std::fs::rename(&temporary, path));
+        if renamed.is_err() {
+            let _ = std::fs::remove_file(&temporary);
+        }
+        renamed
+    }
+}
+
+/// Creates `dir` and its parents, readable by its owner only.
+fn create_private(dir: &Path) -> std::io::Result<()> {
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    #[cfg(unix)]
+    std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+    builder.create(dir)
+}
+
+/// The checksum of an entry's body.
+fn checksum(body: &[u8]) -> u64 {
+    let mut hasher = DefaultHasher::new();
+    body.hash(&mut hasher);
+    hasher.finish()
+}
+
+/// `FORMAT COMPILER CHECKSUM\n` then the entry as JSON.
+fn encode(entry: &Entry) -> Vec<u8> {
+    let body = serde_json::to_vec(entry).unwrap_or_default();
+    let mut bytes = format!("{FORMAT} {COMPILER} {:016x}\n", checksum(&body)).into_bytes();
+    bytes.extend(body);
+    bytes
+}
+
+/// The entry in `bytes`, if its header is this build's and its checksum matches.
+fn decode(bytes: &[u8]) -> Option<Entry> {
+    let newline = bytes.iter().position(|&b| b == b'\n')?;
+    let (header, body) = (
+        std::str::from_utf8(&bytes[..newline]).ok()?,
+        &bytes[newline + 1..],
+    );
+    let mut fields = header.split(' ');
+    let valid = fields.next() == Some(FORMAT)
+        && fields.next() == Some(COMPILER)
+        && fields.next() == Some(&format!("{:016x}", checksum(body)))
+        && fields.next().is_none();
+    valid.then(|| serde_json::from_slice(body).ok())?
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BALL: &str = include_str!("../../../model-macros/examples/bouncing_ball.dsl");
+    const TOP: &str = include_str!("../../../model-macros/examples/heavy_top.dsl");
+
+    /// A fresh cache directory for one test.
+    fn cache(test: &str) -> ModelCache {
+        let dir = std::env::temp_dir().join(format!("model-cache-{}-{test}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        ModelCache::at(dir.join("models"))
+    }
+
+    fn compiled(file: &ModelFile) -> String {
+        match file {
+            ModelFile::Smooth(models) => format!(
+                "{:?}",
+                models.iter().map(|m| &m.compiled).collect::<Vec<_>>()
+            ),
+            ModelFile::Switched(model) => format!("{model:?}"),
+        }
+    }
+
+    fn entries(cache: &ModelCache) -> Vec<PathBuf> {
+        let mut paths: Vec<PathBuf> = (std::fs::read_dir(cache.dir()).unwrap())
+            .map(|e| e.unwrap().path())
+            .collect();
+        paths.sort();
+        paths
+    }
+
+    #[test]
+    fn a_second_load_hits_and_gives_the_same_models() {
+        let cache = cache("hit");
+        for (name, text) in [("top.dsl", TOP), ("ball.dsl", BALL)] {
+            let source = Source::new(name, text);
+            assert!(cache.get(&source).is_none(), "{name}: empty cache");
+            let fresh = ModelFile::compile(&source).unwrap();
+            cache.put(&source, &fresh);
+            let kept = cache.get(&source).expect("a hit");
+            // The compiled programs, constants and texts come back exactly.
+            assert_eq!(compiled(&kept), compiled(&fresh), "{name}");
+            if let (ModelFile::Smooth(a), ModelFile::Smooth(b)) = (&kept, &fresh) {
+                let (a, b) = (&a[0].compiled, &b[0].compiled);
+                assert_eq!(a, b);
+            }
+        }
+        assert_eq!(entries(&cache).len(), 2);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(cache.dir()).unwrap().permissions().mode();
+            assert_eq!(mode & 0o777, 0o700);
+        }
+    }
+
+    #[test]
+    fn what_a_hit_returns_comes_from_the_entry() {
+        let cache = cache("from-entry");
+        let source = Source::new("top.dsl", TOP);
+        let ModelFile::Smooth(models) = ModelFile::compile(&source).unwrap() else {
+            panic!("smooth")
+        };
+        let mut changed: Vec<CompiledModel> = models.iter().map(|m| m.compiled.clone()).collect();
+        changed[0].explanation.markdown = "kept".into();
+        let entry = Entry {
+            text: TOP.into(),
+            rust: false,
+            models: Models::Smooth(changed),
+        };
+        cache.write(&cache.path(&source), &encode(&entry)).unwrap();
+        let Some(ModelFile::Smooth(kept)) = cache.get(&source) else {
+            panic!("a hit")
+        };
+        assert_eq!(kept[0].compiled.explanation.markdown, "kept");
+    }
+
+    #[test]
+    fn corrupted_foreign_and_stale_entries_are_ignored() {
+        let cache = cache("bad");
+        let source = Source::new("top.dsl", TOP);
+        let file = ModelFile::compile(&source).unwrap();
+        cache.put(&source, &file);
+        let path = cache.path(&source);
+        let good = std::fs::read(&path).unwrap();
+        let check = |bytes: &[u8], what: &str| {
+            std::fs::write(&path, bytes).unwrap();
+            assert!(cache.get(&source).is_none(), "{what} was trusted");
+        };
+        // One byte of the body changed (a digit of a constant: still valid JSON).
+        let digit = good.iter().rposition(|b| b.is_ascii_digit()).unwrap();
+        let mut flipped = good.clone();
+        flipped[digit] = if good[digit] == b'7' { b'8' } else { b'7' };
+        check(&flipped, "a changed digit");
+        check(&good[..good.len() / 2], "a truncated entry");
+        check(b"", "an empty entry");
+        let other =
+            String::from_utf8(good.clone())
+                .unwrap()
+                .replacen(COMPILER, "0123456789abcdef", 1);
+        check(other.as_bytes(), "another compiler's entry");
+        // A whole valid entry of another text, under this text's name.
+        let ball = Source::new("ball.dsl", BALL);
+        cache.put(&ball, &ModelFile::compile(&ball).unwrap());
+        check(
+            &std::fs::read(cache.path(&ball)).unwrap(),
+            "another text's entry",
+        );
+        // The same text read as Rust is another source.
+        std::fs::write(&path, &good).unwrap();
+        assert!(cache.get(&Source::rust("top.rs", TOP)).is_none());
+        assert!(cache.get(&source).is_some(), "the good entry is used");
+    }
+
+    #[test]
+    fn racing_writers_leave_one_valid_entry() {
+        let cache = cache("race");
+        let want = compiled(&ModelFile::compile(&Source::new("ball.dsl", BALL)).unwrap());
+        std::thread::scope(|scope| {
+            for _ in 0..8 {
+                scope.spawn(|| {
+                    // Each writer compiles on its own thread (a syntax tree stays on its own).
+                    let source = Source::new("ball.dsl", BALL);
+                    let file = ModelFile::compile(&source).unwrap();
+                    for _ in 0..20 {
+                        cache.put(&source, &file);
+                        // A reader racing the writers sees a whole entry or none.
+                        if let Some(kept) = cache.get(&source) {
+                            assert_eq!(compiled(&kept), want);
+                        }
+                    }
+                });
+            }
+        });
+        let source = Source::new("ball.dsl", BALL);
+        assert_eq!(
+            entries(&cache),
+            vec![cache.path(&source)],
+            "no temporary left"
+        );
+        assert_eq!(compiled(&cache.get(&source).unwrap()), want);
+    }
+}
