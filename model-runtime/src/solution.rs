@@ -167,12 +167,9 @@ pub enum SolveFailure {
 }
 
 impl SolveFailure {
-    /// The failure of the single-mode hybrid run behind a solve.
-    pub(crate) fn from_hybrid(
-        error: HybridError<()>,
-        info: Box<ModelInfo>,
-        events: &[String],
-    ) -> Self {
+    /// The failure of a single-mode hybrid run (the run behind [`crate::Problem::solve`],
+    /// or a front end's own one-mode system), in a solve's terms: states and events by name.
+    pub fn from_hybrid(error: HybridError<()>, info: Box<ModelInfo>, events: &[String]) -> Self {
         let error = match error {
             HybridError::Solve { error, .. } => error,
             HybridError::Transition { t, source, .. } | HybridError::Observer { t, source, .. } => {

@@ -54,6 +54,12 @@ const LAYERS: &[Layer] = &[
         generic: true,
     },
     Layer {
+        name: "model-jit",
+        dir: "model-runtime/jit",
+        may_use: &["model-algebra"],
+        generic: true,
+    },
+    Layer {
         name: "model-interpreted",
         dir: "model-runtime/interpreted",
         may_use: &[

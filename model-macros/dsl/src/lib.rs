@@ -31,6 +31,7 @@ mod compile;
 mod expr;
 mod lexical;
 mod limits;
+mod located;
 mod names;
 mod options;
 mod parse;
@@ -53,6 +54,7 @@ pub use ast::{
 };
 pub use compile::{compile, compile_all};
 pub use limits::{MAX_DEPTH, MAX_TOKENS};
+pub use located::{Located, LocatedErrors};
 pub use parse::{parse_model, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
 pub use statements::is_rust_keyword;
@@ -63,7 +65,7 @@ pub use switched_compile::{
     compile_switched, Clock, CompiledEvent, CompiledMode, CompiledSwitched, Jump,
 };
 pub use switched_show::{switching_latex, switching_markdown};
-pub use text::{Located, LocatedErrors, Source, TextModel};
+pub use text::{Source, TextModel};
 pub use unchecked::spec_unchecked;
 pub use validate::{validate, Validated, RESERVED_MODULES};
 pub use warnings::{warnings, Warning};

@@ -22,7 +22,7 @@ pub struct CompiledSwitched {
     /// What the model says that is legal but likely not meant (a guard that can never fire,
     /// a mode never entered or never left), each at its place in the text when the model
     /// was read from one ([`crate::Source::compile_switched`]); empty otherwise.
-    pub warnings: Vec<crate::text::Located>,
+    pub warnings: Vec<crate::located::Located>,
 }
 
 /// One mode compiled.

@@ -7,6 +7,7 @@
 //! form compilers and editors understand.
 
 use crate::compile::compile_all;
+use crate::located::{Located, LocatedErrors};
 use crate::parse::parse_model_recovering;
 use crate::span::Errors;
 use crate::switched::validate_switched;
@@ -17,7 +18,6 @@ use crate::ModelAst;
 extern crate proc_macro;
 use model_algebra::CompiledModel;
 use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
-use std::fmt;
 
 /// The text of a model and the name it is reported under.
 #[derive(Clone, Debug)]
@@ -39,28 +39,6 @@ pub struct TextModel {
     /// What the compiler derived from it.
     pub compiled: CompiledModel,
 }
-
-/// One error with its place in the text.
-#[derive(Clone, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Located {
-    /// The source's name.
-    pub name: String,
-    /// 1-based line of the offending token.
-    pub line: usize,
-    /// 1-based column (in characters) of the offending token.
-    pub column: usize,
-    /// How many characters to underline on that line (at least 1).
-    pub width: usize,
-    /// What is wrong.
-    pub message: String,
-    /// The text of the offending line, to show under the message.
-    pub source_line: String,
-}
-
-/// Every error found in one source, in the order the front end reported them.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LocatedErrors(pub Vec<Located>);
 
 impl Source {
     /// A source named `name` holding `text`.
@@ -281,37 +259,3 @@ fn macro_body(tokens: TokenStream) -> Option<TokenStream> {
     }
     None
 }
-
-impl fmt::Display for Located {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let gutter = self.line.to_string();
-        let pad = " ".repeat(gutter.len());
-        writeln!(
-            f,
-            "{}:{}:{}: {}",
-            self.name, self.line, self.column, self.message
-        )?;
-        writeln!(f, "{pad} |")?;
-        writeln!(f, "{gutter} | {}", self.source_line)?;
-        write!(
-            f,
-            "{pad} | {}{}",
-            " ".repeat(self.column - 1),
-            "^".repeat(self.width)
-        )
-    }
-}
-
-impl fmt::Display for LocatedErrors {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (k, error) in self.0.iter().enumerate() {
-            if k > 0 {
-                writeln!(f)?;
-            }
-            write!(f, "{error}")?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for LocatedErrors {}

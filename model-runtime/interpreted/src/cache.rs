@@ -29,7 +29,7 @@ use model_algebra::CompiledModel;
 use model_dsl::{CompiledSwitched, Source};
 use serde::{Deserialize, Serialize};
 
-use crate::load::ModelFile;
+use crate::file::ModelFile;
 
 /// The entry format; part of every entry's header.
 const FORMAT: &str = "eulerdisk-compiled-model-1";

@@ -71,6 +71,7 @@
 mod cache;
 mod engine;
 mod error;
+mod file;
 mod interpreted;
 mod load;
 mod recording;
@@ -87,7 +88,8 @@ pub use engine::{set_evaluator, Evaluator};
 pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
 };
-pub use load::{select_chart, ModelFile, ModelRef};
+pub use file::ModelFile;
+pub use load::{select_chart, ModelRef};
 pub use request::{Control, EventRequest, SolveRequest, Watched};
 pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 pub use switched::mode_graph;

@@ -4,18 +4,10 @@
 
 use crate::cache::ModelCache;
 use crate::error::LoadError;
+use crate::file::ModelFile;
 use model_algebra::CompiledModel;
-use model_dsl::{CompiledSwitched, Source, TextModel};
+use model_dsl::{CompiledSwitched, Source};
 use std::path::Path;
-
-/// A model file as compiled: a smooth model (with its charts) or a switched one.
-#[derive(Clone, Debug)]
-pub enum ModelFile {
-    /// The model, then each of its charts.
-    Smooth(Vec<TextModel>),
-    /// A model with modes and events.
-    Switched(CompiledSwitched),
-}
 
 /// One model of a file, ready to evaluate or solve: a smooth model (the file's model or one
 /// of its charts) or a switched one.

@@ -17,9 +17,9 @@ use crate::solution::{EventKind, Solution, Stop};
 use crate::tables::{Ended, Tables};
 use model_algebra::CompiledModel;
 use model_runtime::{
-    Dyn, EvalError, EventHit, GuardSpec, HybridError, HybridOptions, HybridSolver, HybridSystem,
-    Matrix, Method, ModelInfo, Observed, Observer, Rhs, SolveError, StepOptions, StepView, Stepper,
-    StopReason, System, Transition, WithStepper,
+    Dyn, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver, HybridSystem, Matrix, Method,
+    Observed, Observer, Rhs, SolveError, StepOptions, StepView, Stepper, StopReason, System,
+    Transition, WithStepper,
 };
 use std::cell::RefCell;
 use std::ops::ControlFlow;
@@ -222,7 +222,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
                     .map(|e| e.request.name.clone())
                     .collect();
                 let info = Box::new(system.interpreted.info().clone());
-                let failure = solve_failure(error, info, names);
+                let failure = model_runtime::SolveFailure::from_hybrid(error, info, &names);
                 if let model_runtime::SolveFailure::Solve {
                     error: SolveError::InvalidInput(_),
                     ..
@@ -238,38 +238,6 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             }
         };
         tables.finish(recording, events, Vec::new(), ended)
-    }
-}
-
-/// The failure of the one-mode run in the runtime's terms, as `model_runtime::Problem`
-/// reports it (states and events by name).
-fn solve_failure(
-    error: HybridError<()>,
-    info: Box<ModelInfo>,
-    events: Vec<String>,
-) -> model_runtime::SolveFailure {
-    let error = match error {
-        HybridError::Solve { error, .. } => error,
-        HybridError::Transition { t, source, .. } | HybridError::Observer { t, source, .. } => {
-            SolveError::Eval { t, source }
-        }
-        HybridError::Chattering {
-            t,
-            transitions,
-            window,
-            ..
-        } => {
-            return model_runtime::SolveFailure::Chattering {
-                t,
-                events: transitions,
-                window,
-            }
-        }
-    };
-    model_runtime::SolveFailure::Solve {
-        error,
-        info,
-        events,
     }
 }
 
