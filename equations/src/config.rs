@@ -13,7 +13,7 @@ use crate::modes::{Mode, SlipChart};
 use crate::settings::{
     ChatterLimit, ErrorNorm, Integrator, RunTable, SlipSign, SolverTable, TimeVariable,
 };
-use crate::work::WorkBound;
+use crate::work::{WorkBound, WORK_BOUND_KEY};
 use model_runtime::{InteriorChecks, LimitingComponent, StepControl};
 use std::f64::consts::FRAC_PI_2;
 
@@ -223,7 +223,7 @@ impl DiskConfig {
                 false,
             );
         }
-        c.positive(WorkBound::KEY, self.work.steps_per_s);
+        c.positive(WORK_BOUND_KEY, self.work.steps_per_s);
         c.positive("chatter.window", self.chatter.window);
         if self.chatter.max_transitions == 0 {
             c.push("chatter.max_transitions", Rule::NotPositive { value: 0.0 });

@@ -340,7 +340,7 @@ pub enum SimError {
     },
     /// The run took more steps per simulated second than its [`crate::WorkBound`] allows:
     /// its step size has collapsed far below what the scene's time scale needs.
-    #[error("{0}")]
+    #[error("{}", crate::work::describe(.0))]
     WorkBound(WorkExceeded),
     /// Sliding had to start but no consistent slip direction exists.
     #[error("at t = {t}: {source}")]

@@ -83,4 +83,4 @@ pub use settings::{
     spelled, ChatterLimit, ErrorNorm, Integrator, RunTable, SlipSign, SolverTable, TimeVariable,
 };
 pub use start::{InitialState, CONSTRAINT_TOL, STATE_NAMES};
-pub use work::{WorkBound, WorkExceeded};
+pub use work::{WorkBound, WorkExceeded, WORK_BOUND_KEY};

@@ -66,7 +66,8 @@
 //!   ends the run like any other ([`Observed`], [`ObserverError`]); a step's interpolant kept after
 //!   the step, [`StoredInterpolant`], from each method's [`DenseOutput`] ([`Dopri5Dense`],
 //!   [`Dop853Dense`], [`Rodas4Dense`], [`Rk4Dense`]).
-//! * **Work and failures**: [`Stats`], [`ComponentCounts`]; [`SolveError`], [`InputError`],
+//! * **Work and failures**: [`Stats`], [`ComponentCounts`]; the bound on steps per simulated
+//!   second, [`WorkBound`] ([`WorkMeter`], [`WorkExceeded`]); [`SolveError`], [`InputError`],
 //!   [`GroupProblem`]; reading settings spelled as words, [`parse_word`] and
 //!   [`ParseSettingError`].
 //!
@@ -122,6 +123,7 @@ mod switched;
 mod switched_run;
 mod tableau;
 mod tolerance;
+mod work;
 
 pub use accumulation::{Accumulation, AccumulationDetector, AccumulationRule};
 pub use control::{StepControl, StepOptions};
@@ -164,3 +166,4 @@ pub use switched_run::{
     name_modes, run_switched, EventRecord, Fired, SwitchedFailure, SwitchedRun,
 };
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};
+pub use work::{WorkBound, WorkExceeded, WorkMeter};

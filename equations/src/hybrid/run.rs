@@ -21,11 +21,11 @@ use super::{
 use crate::config::{AllowedModes, DiskConfig};
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, DIM};
 use crate::start::InitialState;
-use crate::work::{WorkExceeded, WorkMeter};
 use model_runtime::{
     Const, EvalError, HybridOutcome, Model, Observed, Observer, ObserverError, Sample, Stats,
     StepView,
 };
+use model_runtime::{WorkExceeded, WorkMeter};
 
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
 /// mode decisions to `observer`.

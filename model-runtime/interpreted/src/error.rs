@@ -3,9 +3,9 @@
 //! names its flags, a Python package its keyword arguments) without reading a message.
 
 use crate::solution::Solution;
-use crate::work::WorkExceeded;
 use model_algebra::EvalFailure;
 use model_dsl::LocatedErrors;
+use model_runtime::WorkExceeded;
 use std::path::PathBuf;
 
 /// Why a model file could not be loaded or a model chosen from it.
@@ -231,7 +231,7 @@ impl RunFailure {
     /// spells it (`--max-steps-per-s`).
     pub fn describe(&self, setting: &str) -> String {
         let mut text = match &self.work {
-            Some(over) => over.describe(setting),
+            Some(over) => over.describe(setting, ""),
             None => self.message.clone(),
         };
         if self.stiff_hint {

@@ -81,7 +81,6 @@ mod solution;
 mod switched;
 mod tables;
 mod values;
-mod work;
 
 pub use cache::ModelCache;
 pub use engine::{set_evaluator, Evaluator};
@@ -90,11 +89,11 @@ pub use error::{
 };
 pub use file::ModelFile;
 pub use load::{select_chart, ModelRef};
+pub use model_runtime::{WorkBound, WorkExceeded};
 pub use request::{Control, EventRequest, SolveRequest, Watched};
 pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 pub use switched::mode_graph;
 pub use values::{evaluate, initial_state, params, resolve, Named, NamedValues, PointValues};
-pub use work::{WorkBound, WorkExceeded};
 
 /// Solves `model` as `request` says: the values and events resolved by name, the integration
 /// by the runtime with the model's programs run by the interpreter, the outputs evaluated at

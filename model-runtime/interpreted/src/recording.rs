@@ -8,8 +8,8 @@
 //! bound or is interrupted still hands back everything computed until then; and the smooth
 //! and the switched model share this one piece instead of two copies.
 
-use crate::work::{WorkBound, WorkExceeded, WorkMeter};
 use model_runtime::{Dyn, Observed, Sample, StepView};
+use model_runtime::{WorkBound, WorkExceeded, WorkMeter};
 use std::cell::RefCell;
 use std::ops::ControlFlow;
 use std::rc::Rc;

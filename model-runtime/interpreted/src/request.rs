@@ -6,7 +6,7 @@
 use crate::error::{RequestError, UnknownEvent};
 use crate::load::{quoted, ModelRef};
 use crate::values::{initial_state, params, Named};
-use crate::work::WorkBound;
+use model_runtime::WorkBound;
 use model_runtime::{Direction, Method};
 use std::sync::atomic::AtomicBool;
 

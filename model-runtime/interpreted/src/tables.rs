@@ -143,10 +143,13 @@ impl Tables<'_> {
                 (stop, stats, Some((message, None)))
             }
             (Ended::Ran { stats, .. }, Some(Halt::Work(over))) => {
+                // The library's own spelling of the setting; a front end names its flag
+                // through `RunFailure::describe`.
+                let reason = over.describe("max_steps_per_s", "");
                 let stop = Stop::Failed {
-                    reason: over.to_string(),
+                    reason: reason.clone(),
                 };
-                (stop, stats, Some((over.to_string(), Some(over))))
+                (stop, stats, Some((reason, Some(over))))
             }
             (Ended::Ran { stats, .. }, Some(Halt::Interrupted)) => (Stop::Interrupted, stats, None),
             (Ended::Ran { stop, stats }, None) => (stop, stats, None),
