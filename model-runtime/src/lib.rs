@@ -57,7 +57,7 @@
 //!   the hybrid system [`Switched`] ([`SwitchedStop`], [`SwitchedNote`]); accumulation (Zeno)
 //!   detection, [`AccumulationDetector`] with its [`AccumulationRule`] and [`Accumulation`];
 //!   one call from such a model to its named events and samples, [`run_switched`]
-//!   ([`SwitchedRun`], [`EventRecord`], [`Fired`], [`SwitchedFailure`], [`name_modes`]).
+//!   ([`SwitchedRun`], [`EventRecord`], [`Fired`], [`Firing`], [`SwitchedFailure`], [`name_modes`]).
 //! * **Regularised time** (a hybrid system integrated in `τ` with `dt = s dτ`):
 //!   [`TimeScale`], [`Regularised`] (which also reads a run's outcome and failure back in
 //!   physical terms), [`ClockGuard`], [`Clocked`], and the observer adaptor [`PhysicalTime`].
@@ -163,7 +163,7 @@ pub use switched::graph::{
 pub use switched::outcome::{SwitchedNote, SwitchedStop};
 pub use switched::{Switched, SwitchedModel};
 pub use switched_run::{
-    name_modes, run_switched, EventRecord, Fired, SwitchedFailure, SwitchedRun,
+    name_modes, run_switched, EventRecord, Fired, Firing, SwitchedFailure, SwitchedRun,
 };
 pub use tolerance::{ComponentGroup, ErrorEstimate, LimitingComponent, Tolerance, VectorGroups};
 pub use work::{WorkBound, WorkExceeded, WorkMeter};

@@ -35,6 +35,33 @@ pub enum Fired {
     AccumulatedStop,
 }
 
+/// An event a transition reports: which, what it did, and its one time (the crossing's, or
+/// for an accumulation the extrapolated point).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Firing {
+    /// The event.
+    pub event: EventId,
+    /// What it did.
+    pub fired: Fired,
+    /// When.
+    pub t: f64,
+}
+
+impl Firing {
+    /// The event of a transition with `note`, whose guard was hit at `hit_t`.
+    pub fn of(note: SwitchedNote, hit_t: f64) -> Self {
+        let (event, fired, t) = match note {
+            SwitchedNote::Recorded(event) => (event, Fired::Recorded, hit_t),
+            SwitchedNote::Reset(event) => (event, Fired::Reset, hit_t),
+            SwitchedNote::Accumulated {
+                event,
+                accumulation,
+            } => (event, Fired::Accumulated, accumulation.t_inf),
+        };
+        Firing { event, fired, t }
+    }
+}
+
 /// One event of a run, by name.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventRecord<D: Dim> {
@@ -226,14 +253,7 @@ impl<D: Dim> Observer<D, ModeId, EventId, SwitchedNote> for Collector<'_, D> {
         &mut self,
         record: TransitionRecord<D, ModeId, EventId, SwitchedNote>,
     ) -> Observed {
-        let (event, fired, t) = match record.note {
-            SwitchedNote::Recorded(event) => (event, Fired::Recorded, record.hit.t),
-            SwitchedNote::Reset(event) => (event, Fired::Reset, record.hit.t),
-            SwitchedNote::Accumulated {
-                event,
-                accumulation,
-            } => (event, Fired::Accumulated, accumulation.t_inf),
-        };
+        let Firing { event, fired, t } = Firing::of(record.note, record.hit.t);
         self.events.push(EventRecord {
             event: self.graph.mode(event.mode).events[event.event].name.clone(),
             mode: self.graph.mode_name(record.from).to_string(),

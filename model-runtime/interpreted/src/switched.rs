@@ -24,10 +24,10 @@ use model_algebra::{CompiledModel, Inputs};
 use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
     name_modes, AccumulationAction, AccumulationRule, Direction, Dyn, EvalError, EventAction,
-    EventDecl, EventId, Fired, HybridError, HybridOptions, HybridSolver, InputError, ModeDecl,
-    ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepOptions, StepView, Stepper, StopReason,
-    Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind, TransitionRecord,
-    WithStepper,
+    EventDecl, EventId, Fired, Firing, HybridError, HybridOptions, HybridSolver, InputError,
+    ModeDecl, ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepOptions, StepView, Stepper,
+    StopReason, Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind,
+    TransitionRecord, WithStepper,
 };
 use std::cell::RefCell;
 use std::ops::ControlFlow;
@@ -240,14 +240,7 @@ impl Observer<Dyn, ModeId, EventId, SwitchedNote> for SwitchedRecording<'_> {
         &mut self,
         record: TransitionRecord<Dyn, ModeId, EventId, SwitchedNote>,
     ) -> Observed {
-        let (event, fired, t) = match record.note {
-            SwitchedNote::Recorded(event) => (event, Fired::Recorded, record.hit.t),
-            SwitchedNote::Reset(event) => (event, Fired::Reset, record.hit.t),
-            SwitchedNote::Accumulated {
-                event,
-                accumulation,
-            } => (event, Fired::Accumulated, accumulation.t_inf),
-        };
+        let Firing { event, fired, t } = Firing::of(record.note, record.hit.t);
         let from = record.from.index();
         let to = match record.kind {
             TransitionKind::Switch { to } => to.index(),

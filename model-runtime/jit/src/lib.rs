@@ -319,7 +319,15 @@ impl Generator<'_> {
                         let n = b.ins().iconst(types::I32, n as i64);
                         self.call(b, Callee::Powi, &[a, n])?.expect("a result")
                     }
-                    Unary::Call(f) => self.call(b, Callee::Unary(f), &[a])?.expect("a result"),
+                    Unary::Call(
+                        f @ (Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln | Func::Sign),
+                    ) => self.call(b, Callee::Unary(f), &[a])?.expect("a result"),
+                    // A two-argument function as a unary operation is a compiler bug: refused
+                    // here (the flat evaluator then runs the program and reports it), never
+                    // sent to a function of another name.
+                    Unary::Call(f) => {
+                        return Err(JitError::Codegen(format!("`{f:?}` as a one-argument call")))
+                    }
                 };
                 self.set(dst, v);
             }
