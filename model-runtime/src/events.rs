@@ -44,10 +44,13 @@ pub(crate) enum Probe {
 /// * **Direction filter.** [`Direction::Up`] guards fire only on up-crossings,
 ///   [`Direction::Down`] only on down-crossings, [`Direction::Both`] on either. A filtered
 ///   crossing fires nothing but still updates the reference sign.
-/// * **A guard on its surface where a segment starts** (exactly zero after a switch, or the
-///   guard whose event restarted the mode, whatever rounding left in its value) takes its
-///   reference from its *departure*: its value just after the start, probed on the first
-///   step's dense output at `t0 + h/4096` (further in if it is still exactly zero there).
+/// * **A guard on its surface where a segment starts** (after a switch or a restart: exactly
+///   zero, or closer to zero than it moves in `h 2^-30`, the first probe's time, so within
+///   the rounding an event located on a surface leaves; and the guard whose event restarted
+///   the mode, whatever rounding left in its value) takes its reference from its
+///   *departure*: its value just after the start, probed on the first step's dense output at
+///   `t0 + h 2^-k` for `k` = 30, 24, 18, 12, 6, from the nearest out (the nearest ones may
+///   still be in the rounding of its surface, the farther ones past a short excursion).
 ///   - A departure in a direction the filter admits is an event at the segment's start: the
 ///     new mode was entered on its own switching surface heading out through it (an immediate
 ///     switch back, a sliding-mode relay that must chatter), visible instead of silently

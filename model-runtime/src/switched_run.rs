@@ -136,7 +136,8 @@ impl<D: Dim> std::fmt::Display for SwitchedFailure<D> {
 impl<D: Dim> std::error::Error for SwitchedFailure<D> {}
 
 /// Runs `model` from `(t0, y0)` in its first mode to `t_end` with `stepper`, the tolerances
-/// and options given and the default [`AccumulationRule`]; a failure names the mode and keeps
+/// and options given and the [`AccumulationRule`] for the run's span
+/// ([`AccumulationRule::for_span`]); a failure names the mode and keeps
 /// the work done.
 pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
     model: M,
@@ -156,7 +157,8 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
         events: Vec::new(),
         steps: 0,
     };
-    let mut system = Switched::new(model, AccumulationRule::default()).map_err(input)?;
+    let rule = AccumulationRule::for_span(t_end - t0);
+    let mut system = Switched::new(model, rule).map_err(input)?;
     let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input)?;
     let mut collector = Collector {
         graph: &graph,

@@ -174,6 +174,19 @@ fn a_stiff_model_meets_the_work_bound_and_keeps_what_it_computed() {
     assert_eq!(code, Some(2), "{stderr}");
 }
 
+/// A run over its work bound whose steps went mostly to events (a bouncing ball whose
+/// intervals the loose tolerances blur, with no accumulation rule): the message says so, not
+/// that the model is stiff.
+#[test]
+fn a_run_spent_on_events_says_so_at_the_work_bound() {
+    let ball = "mod ball { states { h = 1, v } equations { der(h) = v; der(v) = -9.81; }
+        when impact: h < 0 { v = -0.9 * v; } }";
+    let (code, _, _, stderr) = solve(ball, &["--t-end", "100", "--max-steps-per-s", "30"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("events took most of the steps"), "{stderr}");
+    assert!(!stderr.contains("stiff"), "{stderr}");
+}
+
 /// A Zeno ball without a rest rule: the accumulation's time is the same in its event row,
 /// the `stop` row, the terminal's accumulation line and the summary.
 #[test]

@@ -135,6 +135,60 @@ fn the_belt_and_the_block_from_their_files_name_every_event() {
     assert!(stderr.contains("the run goes on in `standing`"), "{stderr}");
 }
 
+/// The shipped rocking block, and variants of it, come to rest at the default tolerances (and
+/// at a loose rtol) where the closed form says. Linearised, a rock that starts at `theta = 0`
+/// with speed `w` returns after `(2/p) atanh(w / (p alpha))` with speed `w`; the first impact,
+/// from rest at `theta0`, comes at `acosh(alpha / (alpha - theta0)) / p` with speed
+/// `p sqrt(alpha^2 - (alpha - theta0)^2)`, and each impact keeps `r` of the speed. Before the
+/// accumulation rule took the run's span into account, the shipped file at its defaults
+/// rocked on for a million impacts (its ratios turn to noise below 1e-8 s, a 1e-9 s tail was
+/// never reached): a low work bound makes that a failure here, not a hang.
+#[test]
+fn the_rocking_block_comes_to_rest_where_the_closed_form_says() {
+    let (p, alpha) = (2.0f64, 0.2f64);
+    for (r, theta0, rtol) in [
+        (0.7f64, 0.1f64, "1e-8"),
+        (0.7, 0.1, "1e-6"),
+        (0.5, 0.05, "1e-6"),
+        (0.85, 0.15, "1e-8"),
+        (0.85, 0.15, "1e-11"),
+        (0.9, 0.1, "1e-7"),
+    ] {
+        let t1 = (alpha / (alpha - theta0)).acosh() / p;
+        let w1 = p * (alpha * alpha - (alpha - theta0).powi(2)).sqrt();
+        let rests = t1
+            + (1..2000)
+                .map(|k| 2.0 / p * (w1 * r.powi(k) / (p * alpha)).atanh())
+                .sum::<f64>();
+        let (r_arg, theta_arg) = (format!("r={r}"), format!("theta={theta0}"));
+        let args = [
+            "--t-end",
+            "10",
+            "--rtol",
+            rtol,
+            "--set",
+            &r_arg,
+            "--state",
+            &theta_arg,
+            "--max-steps-per-s",
+            "20000",
+        ];
+        let (rows, events, stderr) = solve(&example("rocking_block"), &args);
+        let (name, t) = events.last().unwrap();
+        assert_eq!(name, "impact accumulates", "r = {r}, rtol {rtol}: {stderr}");
+        // The event times carry the tolerance's error, summed over the impacts; the
+        // accumulation point is extrapolated from ratios that the absolute tolerance
+        // (1e-10 on speeds of 1e-7) blurs, within the rule's tail, 1e-7 of the 10 s span.
+        let rtol: f64 = rtol.parse().unwrap();
+        let bound = 1e2 * rtol * rests + 1e-6;
+        assert!(
+            (t - rests).abs() < bound,
+            "r = {r}, rtol {rtol}: {t} vs {rests}"
+        );
+        assert_eq!(rows.last().unwrap()[0], "10", "r = {r}");
+    }
+}
+
 #[test]
 fn a_terminal_event_and_an_unresolved_accumulation_end_the_run_by_name() {
     let (_, events, stderr) = solve(

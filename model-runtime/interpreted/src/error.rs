@@ -218,12 +218,33 @@ pub struct RunFailure {
     pub events: usize,
     /// The work bound, when the run went over it ([`crate::SolveRequest::max_steps_per_s`]).
     pub work: Option<WorkExceeded>,
-    /// Whether the run went over its work bound under an explicit method, which a stiff
-    /// model makes take ever shorter steps (an implicit method is the way out).
-    pub stiff_hint: bool,
+    /// What the run's last steps suggest when it went over its work bound.
+    pub hint: Option<WorkHint>,
     /// The solution until the failure (its stop [`crate::Stop::Failed`]): the rows and
     /// events computed, for a front end to keep.
     pub partial: Option<Box<Solution>>,
+}
+
+/// Why a run that went over its work bound took such short steps, as far as its record shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WorkHint {
+    /// Few events under an explicit method: a stiff model, which makes an explicit method
+    /// take ever shorter steps (an implicit one is the way out).
+    Stiff,
+    /// At least one event per ten steps: firings coming ever faster, an accumulation.
+    Events,
+}
+
+impl WorkHint {
+    /// The hint for a run over its work bound after `steps` steps and `events` events under
+    /// an `explicit` method or not.
+    pub fn of(steps: u64, events: usize, explicit: bool) -> Option<Self> {
+        if events as u64 * 10 >= steps {
+            Some(WorkHint::Events)
+        } else {
+            explicit.then_some(WorkHint::Stiff)
+        }
+    }
 }
 
 impl RunFailure {
@@ -234,11 +255,17 @@ impl RunFailure {
             Some(over) => over.describe(setting, ""),
             None => self.message.clone(),
         };
-        if self.stiff_hint {
-            text.push_str(
+        match self.hint {
+            Some(WorkHint::Stiff) => text.push_str(
                 "; steps this short are the mark of a stiff model under an explicit method: \
                  an implicit one (`rodas4`) takes long steps there",
-            );
+            ),
+            Some(WorkHint::Events) => text.push_str(
+                "; events took most of the steps, ever closer together: an accumulation that \
+                 no `when EVENT accumulates -> MODE` rule declared (or one whose intervals \
+                 the tolerances blur: tighten rtol and atol)",
+            ),
+            None => {}
         }
         if let Some(steps) = self.steps {
             text.push_str(&format!(

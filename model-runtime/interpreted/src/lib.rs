@@ -24,7 +24,8 @@
 //! * **Solving**: [`solve`] with a [`SolveRequest`] ([`EventRequest`], [`Named`] values, a
 //!   [`WorkBound`]) gives a [`Solution`] ([`SolvedEvent`], [`EventKind`], [`Stop`],
 //!   [`AccumulationPoint`]) or a [`SolveFailure`] ([`RequestError`], [`UnknownEvent`],
-//!   [`RunFailure`] with the solution until the failure, [`WorkExceeded`], [`ValueError`]);
+//!   [`RunFailure`] with the solution until the failure and a [`WorkHint`], [`WorkExceeded`],
+//!   [`ValueError`]);
 //!   [`solve_with`] also stops on an interrupt ([`Control`]).
 //! * **One point**: [`evaluate`] gives the derivatives and outputs by name, [`PointValues`]
 //!   ([`NamedValues`], [`PointError`]); the values in the model's order, [`params`],
@@ -86,6 +87,7 @@ pub use cache::ModelCache;
 pub use engine::{set_evaluator, Evaluator};
 pub use error::{
     LoadError, PointError, RequestError, RunFailure, SolveFailure, UnknownEvent, ValueError,
+    WorkHint,
 };
 pub use file::ModelFile;
 pub use load::{select_chart, ModelRef};

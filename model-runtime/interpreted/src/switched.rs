@@ -317,8 +317,8 @@ impl WithStepper<Dyn> for Run<'_, '_> {
                 },
             )
         };
-        let mut system =
-            Switched::new(&mut interpreted, AccumulationRule::default()).map_err(input)?;
+        let rule = AccumulationRule::for_span(request.t_end - request.t0);
+        let mut system = Switched::new(&mut interpreted, rule).map_err(input)?;
         let tolerance = tolerance(n, request.rtol, request.atol);
         let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input)?;
         let (t0, t_end) = (request.t0, request.t_end);
@@ -515,7 +515,7 @@ fn run_failure(graph: &ModeGraph, error: HybridError<ModeId>) -> SolveFailure {
         steps: None,
         events: 0,
         work: None,
-        stiff_hint: false,
+        hint: None,
         partial: None,
     })
 }

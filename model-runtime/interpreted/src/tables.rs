@@ -8,7 +8,7 @@
 //! not.
 
 use crate::engine::Engine;
-use crate::error::{PointError, RunFailure, SolveFailure};
+use crate::error::{PointError, RunFailure, SolveFailure, WorkHint};
 use crate::recording::{Halt, Recording};
 use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 use model_algebra::{CompiledModel, EvalFailure};
@@ -175,7 +175,10 @@ impl Tables<'_> {
                 message,
                 steps: Some(steps),
                 events: n_events,
-                stiff_hint: work.is_some() && self.explicit,
+                hint: work
+                    .is_some()
+                    .then(|| WorkHint::of(steps, n_events, self.explicit))
+                    .flatten(),
                 work,
                 partial: Some(Box::new(solution)),
             })),

@@ -47,6 +47,9 @@ pub(crate) struct GuardTracker {
     /// Whether the guards that are pending (exactly zero) at the next scan take their
     /// departure from a probe just after the step's start (see [`GuardTracker::probe`]).
     fresh: bool,
+    /// Whether a guard found within rounding of its surface where the segment starts is
+    /// taken to be on it (after a switch or a restart; see [`GuardTracker::on_surface`]).
+    rounding_is_surface: bool,
     /// A guard found on its holding side without having fired: the invariant's violation.
     violation: Option<usize>,
     /// Guard values at the last check point (for a guard that passed since: at the pass).
@@ -103,6 +106,7 @@ impl GuardTracker {
                 && self.reference[i] == self.holding[i]
         }));
         self.fresh = true;
+        self.rounding_is_surface = matches!(quiet, Quiet::None | Quiet::Guard(_));
         self.violation = None;
         self.quiet.clear();
         self.quiet.extend((0..n).map(|i| {
@@ -203,6 +207,10 @@ impl GuardTracker {
         } = self.walk;
         if self.fresh {
             // The segment's first step: first what holds where it starts, then the departures.
+            if self.rounding_is_surface {
+                self.rounding_is_surface = false;
+                self.on_surface(t0, t1, &mut eval)?;
+            }
             if let Some(index) = self.enters.iter().position(|&e| e) {
                 self.enters[index] = false;
                 return Ok(Some(Found {
@@ -330,6 +338,46 @@ impl GuardTracker {
             self.lo_at[i] = td;
         }
         Ok(None)
+    }
+
+    /// After a switch or a restart, a guard that starts closer to its surface than it moves
+    /// in the first probe's time (`t0 + h 2^-30`) is on its surface, pending, so that its
+    /// departure decides (see [`super::GuardSpec`]): an event located on its surface leaves
+    /// the state a few ulps to one side of it, and a mode entered at that instant must not
+    /// read a guard that is leaving its holding side as holding (an immediate switch back, a
+    /// chatter the model does not have), nor one that leaves through its surface as not
+    /// crossing it.
+    fn on_surface<E>(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let td = t0 + (t1 - t0) * 2f64.powi(-30);
+        if td <= t0 || td >= t1 || !self.reference.iter().any(|&r| r != 0.0) {
+            return Ok(());
+        }
+        // The estimate (no model evaluation) says which guards may be that close; the exact
+        // values decide.
+        eval(td, Probe::Estimate, &mut self.scratch)?;
+        // (A non-finite estimate is near: the exact look decides.)
+        let clear = |i: usize| {
+            let (v, v0) = (self.scratch[i], self.lo_values[i]);
+            self.reference[i] == 0.0 || (v - v0).abs() <= 0.5 * v0.abs()
+        };
+        if (0..self.len()).all(clear) {
+            return Ok(());
+        }
+        eval(td, Probe::Exact, &mut self.scratch)?;
+        for i in 0..self.len() {
+            let (v0, v) = (self.lo_values[i], self.scratch[i]);
+            if self.reference[i] != 0.0 && v.is_finite() && (v - v0).abs() > v0.abs() {
+                self.reference[i] = 0.0;
+                self.enters[i] = false;
+                self.quiet[i] = QuietRange::of(0.0, self.directions[i], self.departure_fires[i]);
+            }
+        }
+        Ok(())
     }
 
     /// Guard `i`'s reference sign becomes the sign of its new value `v` (nonzero) without an
@@ -538,7 +586,9 @@ mod tests {
         points: u32,
     ) -> (Option<Found>, usize) {
         let mut tr = GuardTracker::default();
-        tr.start([dir].into_iter(), &[g(0.0)], Quiet::None, true);
+        // At a run's start, so that only the interior points are counted (after a switch a
+        // bad estimate also asks for an exact look just after the start: `on_surface`).
+        tr.start([dir].into_iter(), &[g(0.0)], Quiet::Start, true);
         let mut exact = 0;
         let found = tr
             .scan::<()>(
@@ -622,6 +672,26 @@ mod tests {
         };
         let f = run(&[Direction::Up, Direction::Down], &[-0.5, 0.0], g2, 1.0, 0).unwrap();
         assert_eq!((f.index, f.t), (1, 0.0));
+    }
+
+    #[test]
+    fn a_guard_within_rounding_of_its_surface_after_a_switch_is_on_it() {
+        // A hair on its holding side (the rounding an event located there leaves), leaving it
+        // at once: on its surface, departing to the other side, so nothing fires...
+        let g = |t: f64, o: &mut [f64]| o[0] = 1e-15 - t;
+        assert!(run(&[Direction::Up], &[1e-15], g, 1.0, 0).is_none());
+        // ... where at the start of a run it holds, and fires at once.
+        let f = run_quiet(&[Direction::Up], &[1e-15], g, 1.0, 0, Quiet::Start).unwrap();
+        assert_eq!((f.t, f.direction), (0.0, Crossed::Up));
+        // A hair on the other side of a guard that fires either way, leaving: a departure
+        // through its surface, an event at the start.
+        let g = |t: f64, o: &mut [f64]| o[0] = -1e-15 - t;
+        let f = run(&[Direction::Both], &[-1e-15], g, 1.0, 0).unwrap();
+        assert_eq!((f.t, f.direction), (0.0, Crossed::Down));
+        // Farther than it moves in h 2^-30: holds strictly, fires on entry.
+        let g = |t: f64, o: &mut [f64]| o[0] = 1e-8 - t;
+        let f = run(&[Direction::Up], &[1e-8], g, 1.0, 0).unwrap();
+        assert_eq!((f.t, f.direction), (0.0, Crossed::Up));
     }
 
     #[test]

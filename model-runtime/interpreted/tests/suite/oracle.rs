@@ -43,7 +43,20 @@ fn compare(model: &Model) -> Verdict {
         Err(SolveFailure::Run(_)) => Vec::new(),
         Err(other) => return Verdict::Disagree(format!("fails: {other}")),
     };
-    let failed = |what: String| Verdict::Disagree(format!("{what}\n{text}"));
+    let failed = |what: String| {
+        let mut what = format!("{what}\n{text}");
+        if std::env::var_os("ORACLE_VERBOSE").is_some() {
+            what += &format!("reference ({end:?}):\n");
+            for e in &events {
+                what += &format!("  {} {:.17} {:?}\n", e.name, e.t, e.y);
+            }
+            what += &format!("interpreter ({:?}):\n", solved.as_ref().map(|s| &s.stop));
+            for (name, t, y) in &ran {
+                what += &format!("  {name} {t:.17} {y:?}\n");
+            }
+        }
+        Verdict::Disagree(what)
+    };
     for (k, want) in events.iter().enumerate() {
         let Some((name, t, y)) = ran.get(k) else {
             if solved.is_err() && matches!(end, RefEnd::Unresolved(_)) {
@@ -117,7 +130,11 @@ struct Tally {
 
 fn campaign(seeds: impl Iterator<Item = u64>) -> Tally {
     let mut tally = Tally::default();
+    let trace = std::env::var_os("ORACLE_TRACE").is_some();
     for seed in seeds {
+        if trace {
+            eprintln!("seed {seed}");
+        }
         let model = Model::random(seed);
         tally.events += reference::run(&model, T_END).0.len();
         match compare(&model) {
@@ -136,6 +153,18 @@ fn random_models_agree_with_the_reference_driver() {
     // The comparison is not vacuous: most models are compared to their end.
     assert!(tally.agree > 60, "{tally:?}");
     assert!(tally.events > 200, "{tally:?}");
+}
+
+/// The campaign's disagreements, each fixed and kept: a guard left a few ulps to one side of
+/// its surface by an event located there, when a mode is entered at that instant, read as
+/// holding (an immediate switch back, a chatter the reference does not see: 1000152) or as
+/// not departing (an `==` guard leaving through its surface unseen, a chatter missed:
+/// 1000020, 1000237, 1000365).
+#[test]
+fn the_campaigns_disagreements_are_fixed() {
+    for seed in [1_000_020, 1_000_152, 1_000_237, 1_000_365] {
+        assert_eq!(compare(&Model::random(seed)), Verdict::Agree, "seed {seed}");
+    }
 }
 
 #[test]
