@@ -2,6 +2,12 @@
 
 from typing import Any
 
+__version__: str
+MAX_SAMPLES: int
+"""The most times a solve records at."""
+DENSE_NODES: int
+"""The nodes at which each step's dense output is kept."""
+
 class SceneError(ValueError):
     """A scene that cannot be run; ``key`` is the scene key it is about, or None."""
 
@@ -97,9 +103,12 @@ class NativeModel:
         t0: float,
         t_end: float,
         dt: float | None,
-        times: list[float] | None,
+        times: bytes | None,
         method: str,
         rtol: float,
         atol: float,
+        first_step: float | None,
+        max_step: float | None,
+        dense: bool,
     ) -> dict[str, Any]:
-        """Integrates the model."""
+        """Integrates the model; ``times`` as the bytes of native ``f64``."""

@@ -16,7 +16,9 @@ use eulerdisk::{
 };
 use model_algebra::CompiledModel;
 use model_dsl::CompiledSwitched;
-use model_interpreted::{evaluate, initial_state, LoadError, ModelFile, ModelRef, Solution, Stop};
+use model_interpreted::{
+    evaluate, initial_state, Control, LoadError, ModelFile, ModelRef, Solution, Stepping, Stop,
+};
 use model_runtime::{Method, Stats};
 
 /// Where a scene comes from.
@@ -284,8 +286,13 @@ impl FileModel {
         Ok(serde_json::to_string(&point).expect("named numbers serialise"))
     }
 
-    /// Integrates the model as `eulerdisk model solve` does.
-    pub fn solve(&self, request: &SolveRequest<'_>) -> Result<Solution, ModelFileError> {
+    /// Integrates the model as `eulerdisk model solve` does; `interrupt` stops it at its
+    /// next step.
+    pub fn solve(
+        &self,
+        request: &SolveRequest<'_>,
+        interrupt: &AtomicBool,
+    ) -> Result<Solution, ModelFileError> {
         let model = self.model(request.chart)?;
         let events = (request.events.iter())
             .map(|text| model_event_spec(text))
@@ -308,7 +315,14 @@ impl FileModel {
             state: request.state,
             event: request.events,
         };
-        model_interpreted::solve(model, &library).map_err(|f| arguments.solve_error(f))
+        let stepping = Stepping {
+            first_step: request.first_step,
+            max_step: request.max_step,
+            dense: request.dense,
+        };
+        let control = Control { interrupt };
+        model_interpreted::solve_stepped(model, &library, &control, &stepping)
+            .map_err(|f| arguments.solve_error(f))
     }
 }
 
@@ -336,6 +350,12 @@ pub struct SolveRequest<'a> {
     pub rtol: f64,
     /// Absolute tolerance.
     pub atol: f64,
+    /// The first step (`None`: chosen by the integrator).
+    pub first_step: Option<f64>,
+    /// The largest step (`None`: unbounded).
+    pub max_step: Option<f64>,
+    /// Whether to keep every step's dense output.
+    pub dense: bool,
 }
 
 /// The integrator called `name` (`dopri5`, `dop853`, `rodas4`), as `--method` takes it.
