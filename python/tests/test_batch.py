@@ -5,20 +5,9 @@ import time
 
 import numpy as np
 import pytest
+from support import OSCILLATOR
 
 import eulerdisk
-
-OSCILLATOR = """
-mod oscillator {
-    params { k = 4.0 }
-    states { x = 1.0, v }
-    equations {
-        der(x) = v;
-        der(v) = -k * x;
-    }
-    outputs { energy = v^2 / 2 + k * x^2 / 2; }
-}
-"""
 
 
 @pytest.fixture
@@ -28,12 +17,14 @@ def oscillator():
 
 def test_a_parameter_array_gives_stacked_solves_equal_to_single_ones(oscillator):
     ks = np.linspace(1.0, 4.0, 5)
-    batch = oscillator.solve_many(2.0, params={"k": ks}, t_eval=0.1, method="RK45")
+    batch = oscillator.solve_many(
+        2.0, params={"k": ks}, t_eval=0.1, method="RK45", state={"x": 1.0}
+    )
     assert len(batch) == 5 and batch.y.shape == (5, 2, 21) and batch.t.shape == (21,)
     assert batch["energy"].shape == (5, 21)
     for k, y in zip(ks, batch.y, strict=True):
         np.testing.assert_array_equal(
-            y, oscillator.solve(2.0, params={"k": k}, t_eval=0.1, method="RK45").y
+            y, oscillator.solve(2.0, params={"k": k}, t_eval=0.1, method="RK45", state={"x": 1.0}).y
         )
     np.testing.assert_allclose(batch.y[:, 0, -1], np.cos(np.sqrt(ks) * 2.0), atol=1e-7)
 
@@ -76,7 +67,13 @@ def test_the_solves_run_at_the_same_time(oscillator):
 
     oscillator.solve = timed
     oscillator.solve_many(
-        5e3, params={"k": [1.0, 2.0]}, t_eval=1.0, rtol=1e-13, atol=1e-15, workers=2
+        5e3,
+        params={"k": [1.0, 2.0]},
+        state={"x": 1.0},
+        t_eval=1.0,
+        rtol=1e-13,
+        atol=1e-15,
+        workers=2,
     )
     (a0, a1), (b0, b1) = spans
     overlap = min(a1, b1) - max(a0, b0)

@@ -4,19 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from support import OSCILLATOR
 
 import eulerdisk
-
-OSCILLATOR = """
-mod oscillator {
-    params { k = 4.0 }
-    states { x, v }
-    equations {
-        der(x) = v;
-        der(v) = -k * x;
-    }
-}
-"""
 
 # One number, in every spelling a NumPy session produces.
 HALF = [
