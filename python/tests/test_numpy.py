@@ -74,6 +74,8 @@ def test_run_takes_numpy_numbers_in_t_end_and_set(value):
     )
     assert len(r["t"]) == 26
     assert r.provenance["overrides"][-1] == f"run.t_end={float(value)!r}"
+    by_set = eulerdisk.run("tangent-toy", set={"run.t_end": value, "run.sample_rate": 100})
+    np.testing.assert_array_equal(by_set["theta"], r["theta"])
 
 
 def test_a_scene_dict_takes_numpy_numbers(root):

@@ -58,8 +58,11 @@ def test_t_events_and_y_events_follow_the_events_asked_for(oscillator):
 
 def test_a_switched_models_events_are_grouped_by_name(dsl_examples):
     ball = eulerdisk.Model.from_file(dsl_examples / "bouncing_ball.dsl")
-    s = ball.solve(10.0, t_eval=0.01)
+    s = ball.solve(10.0, t_eval=0.01, dense_output=True)
     assert s.event_names[0] == "impact"
+    # The dense output follows the modes: free fall h = 1 - g t^2 / 2 until the impact.
+    fall = np.linspace(0.0, 0.4, 9)
+    np.testing.assert_allclose(s.sol(fall)[0], 1.0 - 9.81 * fall**2 / 2, atol=1e-9)
     assert s.t_events[0][0] == pytest.approx(math.sqrt(2 / 9.81), abs=1e-9)
     assert len(s.t_events[0]) == sum(e.name == "impact" for e in s.events)
 

@@ -224,6 +224,10 @@ struct SwitchedRecording<'r> {
 }
 
 impl Observer<Dyn, ModeId, EventId, SwitchedNote> for SwitchedRecording<'_> {
+    fn wants_dense(&self) -> bool {
+        self.recording.wants_dense()
+    }
+
     fn on_step(&mut self, step: &StepView<'_, Dyn, ModeId>) -> Observed {
         self.recording.step(step.mode.index(), step)
     }
