@@ -25,6 +25,7 @@ import re
 import sys
 import tempfile
 from collections.abc import Iterator, Mapping, Sequence
+from concurrent.futures import Executor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -32,7 +33,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _native, _values
+from . import _native, _shards, _values
 from ._batch import Batch
 from ._model import Model, Real
 from ._native import (
@@ -364,17 +365,30 @@ def sweep(
     out: PathLike | None = None,
     set: Mapping[str, object] | None = None,
     progress: bool | None = None,
+    executor: Executor | None = None,
+    shards: int | None = None,
 ) -> SweepResult:
     """Runs a sweep, as ``eulerdisk sweep`` does, and returns its table.
+
+    On this machine's cores by default; with ``executor`` (any
+    :class:`concurrent.futures.Executor`: the standard library's, or Dask's
+    ``distributed.Client(...).get_executor()`` for a cluster), as ``shards`` tasks, each
+    running its share of the points as ``eulerdisk sweep --shard i/n`` does, merged into
+    ``out``'s table afterwards as ``eulerdisk sweep merge`` does. The executor's workers must
+    see ``out`` (and a sweep file) at the same path: on one machine, or on a shared file
+    system.
 
     Args:
         sweep: a built-in sweep's name, a sweep file's path, or the sweep as nested dicts (an
             optional top-level ``"name"``; relative scene paths start from the current folder).
-        jobs: runs at once (default: the sweep's ``jobs``, else the number of cores).
+        jobs: runs at once (default: the sweep's ``jobs``, else the number of cores); with
+            an executor, runs at once in each task (default 1).
         out: the sweep's folder; a folder already holding some of its runs is resumed, as by
             the command line. By default a temporary folder, removed afterwards.
         set: overrides of every point's scene, as ``--set table.key=value``.
-        progress: as for :func:`run`.
+        progress: as for :func:`run` (none with an executor).
+        executor: run the sweep's shards as this executor's tasks.
+        shards: how many tasks (default: the number of cores here).
 
     Raises:
         SweepError: the sweep cannot be run; the message is the command line's.
@@ -383,16 +397,28 @@ def sweep(
     """
     if jobs is not None and jobs < 1:
         raise SweepError("jobs must be at least 1")
+    if shards is not None and shards < 1:
+        raise SweepError("shards must be at least 1")
     if isinstance(sweep, Mapping):
         name = str(sweep.get("name", "python-sweep"))
         toml: str | None = _toml({k: v for k, v in sweep.items() if k != "name"})
         folder: str | None = os.getcwd()
     else:
-        name, toml, folder = os.fspath(sweep), None, None
+        path = Path(sweep)
+        name = str(path.resolve()) if path.is_file() else os.fspath(sweep)
+        toml, folder = None, None
+    sets = _values.assignments(set)
     with tempfile.TemporaryDirectory(prefix="eulerdisk-sweep-") as scratch:
-        target = Path(out) if out is not None else Path(scratch)
-        sets = _values.assignments(set)
-        raw = _native.sweep(name, toml, folder, sets, str(target), jobs or 0, _progress(progress))
+        target = (Path(out) if out is not None else Path(scratch)).resolve()
+        if executor is None:
+            raw = _native.sweep(
+                name, toml, folder, sets, str(target), jobs or 0, _progress(progress)
+            )
+        else:
+            count = shards or os.cpu_count() or 1
+            source = (name, toml, folder)
+            raw, runs = _shards.on_executor(executor, source, sets, target, count, jobs or 1)
+            raw.update(runs)
         return SweepResult(
             table=Table.read_csv(Path(raw["table"])),
             points=int(raw["points"]),

@@ -50,8 +50,14 @@ def sweep(
     out: str,
     jobs: int,
     progress: bool,
+    shard: tuple[int, int] | None = None,
 ) -> dict[str, Any]:
-    """Runs a sweep into ``out``; the path of its table and the counts of its runs."""
+    """Runs a sweep (or shard ``(index, count)`` of it) into ``out``; the path of its table
+    and the counts of its runs."""
+
+def merge_sweep(dirs: list[str], out: str) -> dict[str, Any]:
+    """Joins sweep folders (shards) into ``out``; its table and the counts of points, rows,
+    missing and duplicated points."""
 
 class NativeModel:
     """A compiled model file."""

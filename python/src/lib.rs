@@ -233,10 +233,10 @@ fn default_scene() -> &'static str {
     bridge::default_scene()
 }
 
-/// Runs a sweep into `out` as `eulerdisk sweep` does; returns the path of its table and the
-/// counts of the runs.
+/// Runs a sweep into `out` as `eulerdisk sweep` does, or shard `(index, count)` of it as
+/// `--shard index/count` does; returns the path of its table and the counts of the runs.
 #[pyfunction]
-#[pyo3(signature = (sweep, toml, folder, sets, out, jobs, progress))]
+#[pyo3(signature = (sweep, toml, folder, sets, out, jobs, progress, shard=None))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -247,6 +247,7 @@ fn sweep<'py>(
     out: PathBuf,
     jobs: usize,
     progress: bool,
+    shard: Option<(usize, usize)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let source = match toml {
         Some(toml) => SweepSource::Text {
@@ -257,7 +258,7 @@ fn sweep<'py>(
         None => SweepSource::Named(sweep),
     };
     let report = interruptible(py, |interrupt| {
-        bridge::sweep(&source, &sets, &out, jobs, progress, interrupt)
+        bridge::sweep(&source, &sets, (&out, shard), jobs, progress, interrupt)
     })?
     .map_err(SweepError::new_err)?;
     let e = report.exec;
@@ -269,6 +270,26 @@ fn sweep<'py>(
     out.set_item("failed", e.failed)?;
     out.set_item("interrupted", e.interrupted)?;
     Ok(out)
+}
+
+/// Joins sweep folders (shards) into `out` as `eulerdisk sweep merge` does; returns the path
+/// of its table and the counts of points, rows, missing and duplicated points.
+#[pyfunction]
+fn merge_sweep<'py>(
+    py: Python<'py>,
+    dirs: Vec<PathBuf>,
+    out: PathBuf,
+) -> PyResult<Bound<'py, PyDict>> {
+    let merged = py
+        .detach(|| bridge::merge_sweep(&dirs, &out))
+        .map_err(SweepError::new_err)?;
+    let report = PyDict::new(py);
+    report.set_item("table", bridge::sweep_table(&out))?;
+    report.set_item("points", merged.points)?;
+    report.set_item("rows", merged.rows)?;
+    report.set_item("missing", merged.missing)?;
+    report.set_item("duplicates", merged.duplicates)?;
+    Ok(report)
 }
 
 /// A compiled model file (the Python class `eulerdisk.Model` wraps it).
@@ -446,6 +467,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(default_scene, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(merge_sweep, m)?)?;
     m.add_class::<NativeModel>()?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("DslError", py.get_type::<DslError>())?;
