@@ -12,7 +12,7 @@ Every argument is checked, and every error worded, exactly as by the command lin
 passes ``set={"run.t_end": 2}`` on as ``--set run.t_end=2``.
 
 Long calls release the GIL, so Python threads run simulations in parallel, and Ctrl-C raises
-:class:`KeyboardInterrupt` within a second (a run or a sweep stops at its next step).
+:class:`KeyboardInterrupt` within a second (a run, a sweep or a solve stops at its next step).
 """
 
 from __future__ import annotations
