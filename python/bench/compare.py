@@ -161,6 +161,33 @@ def dsl_vs_scipy(repeat: int) -> list[str]:
     ]
 
 
+def solve_many_vs_loop(repeat: int) -> list[str]:
+    """``Model.solve_many`` on every core against a loop of single solves, heavy top."""
+    top = eulerdisk.Model.from_file(HEAVY_TOP)
+    y0 = np.zeros((16, len(top.states)))
+    y0[:, top.states.index("theta")] = 0.3
+    y0[:, top.states.index("w_phi")] = 2.0
+    y0[:, top.states.index("w_psi")] = np.linspace(100.0, 200.0, 16)
+
+    def loop() -> None:
+        for row in y0:
+            top.solve(10.0, y0=row, t_eval=0.01)
+
+    def many() -> None:
+        top.solve_many(10.0, y0=y0, t_eval=0.01)
+
+    loop_wall, loop_cpu = measure(loop, repeat, time.process_time)
+    many_wall, many_cpu = measure(many, repeat, time.process_time)
+    cores = os.cpu_count()
+    return [
+        "| heavy top, 10 s, 16 spins, DOP853 | wall (s) | CPU (s) | CPU / wall |",
+        "|---|---:|---:|---:|",
+        f"| a loop of `Model.solve` | {loop_wall:.2f} | {loop_cpu:.2f} | {loop_cpu / loop_wall:.2f} |",
+        f"| `Model.solve_many` ({cores} workers) | {many_wall:.2f} | {many_cpu:.2f} | {many_cpu / many_wall:.2f} |",
+        f"| speed-up | {loop_wall / many_wall:.2f}x | | |",
+    ]
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cli", type=Path, default=ROOT / "target" / "release" / "eulerdisk")
@@ -171,6 +198,7 @@ def main() -> None:
         python_vs_cli(args.cli, args.repeat),
         threads(args.repeat),
         dsl_vs_scipy(5 * args.repeat),
+        solve_many_vs_loop(args.repeat),
     ):
         print("\n".join(table), end="\n\n")
 

@@ -12,7 +12,7 @@ Every argument is checked, and every error worded, exactly as by the command lin
 passes ``set={"run.t_end": 2}`` on as ``--set run.t_end=2``.
 
 Long calls release the GIL, so Python threads run simulations in parallel, and Ctrl-C raises
-:class:`KeyboardInterrupt` within a second (a run or a sweep stops at its next step).
+:class:`KeyboardInterrupt` within a second (a run, a sweep or a solve stops at its next step).
 """
 
 from __future__ import annotations
@@ -24,15 +24,18 @@ import os
 import re
 import sys
 import tempfile
-from collections.abc import Iterable, Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Iterator, Mapping, Sequence
+from concurrent.futures import Executor
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
-from . import _native
+from . import _native, _shards, _values
+from ._batch import Batch
+from ._model import Model, Real
 from ._native import (
     DslError,
     ModelInputError,
@@ -40,12 +43,16 @@ from ._native import (
     SceneError,
     SolveError,
     SweepError,
+    __version__,
 )
+from ._solution import DenseOutput, Event, Solution
 
 if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = [
+    "Batch",
+    "DenseOutput",
     "DslError",
     "Event",
     "Model",
@@ -58,26 +65,13 @@ __all__ = [
     "SweepError",
     "SweepResult",
     "Table",
+    "__version__",
     "run",
     "sweep",
 ]
 
 Array = npt.NDArray[np.float64]
 PathLike = str | os.PathLike[str]
-
-
-def _setting(value: object) -> str:
-    """One value as the command line's ``--set`` writes it (TOML's spelling)."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return repr(value)
-    return str(value)
-
-
-def _assignments(values: Mapping[str, object] | None) -> list[str]:
-    """``{"a.b": 1}`` as ``["a.b=1"]``: the command line's ``NAME=VALUE`` arguments."""
-    return [f"{key}={_setting(value)}" for key, value in (values or {}).items()]
 
 
 def _key(name: str) -> str:
@@ -90,10 +84,9 @@ def _toml(table: Mapping[str, Any]) -> str:
     lines: list[str] = []
 
     def value(v: object) -> str:
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if isinstance(v, int | float):
-            return _setting(v)
+        v = _values.scalar(v)
+        if isinstance(v, bool | int | float):
+            return _values.setting(v)
         if isinstance(v, str):
             return json.dumps(v)
         if isinstance(v, Sequence):
@@ -244,10 +237,11 @@ class RunResult:
         return self.trajectory.to_pandas()
 
     def __repr__(self) -> str:
+        # The mode changes after the start's decision, as the summary counts them.
+        changes = sum(t != "initial_friction" for t in self.transitions.get("trigger", ()))
         return (
             f"RunResult(scene={self.summary.get('scene')!r}, {self.trajectory.rows} samples, "
-            f"{len(self.transitions['t_s']) if 't_s' in self.transitions else 0} transitions, "
-            f"stop={self.stop_reason!r})"
+            f"{changes} transitions, stop={self.stop_reason!r})"
         )
 
 
@@ -264,7 +258,7 @@ def _scene_source(scene: str | PathLike | Mapping[str, Any] | None) -> tuple[str
 def run(
     scene: str | PathLike | Mapping[str, Any] | None = None,
     *,
-    t_end: float | None = None,
+    t_end: Real | None = None,
     set: Mapping[str, object] | None = None,
     progress: bool | None = None,
     out: PathLike | None = None,
@@ -291,9 +285,9 @@ def run(
             ``out`` are complete (each is written under a temporary name and then renamed).
     """
     name, toml = _scene_source(scene)
-    sets = _assignments(set)
+    sets = _values.assignments(set)
     if t_end is not None:
-        sets.append(f"run.t_end={_setting(float(t_end))}")
+        sets.append(f"run.t_end={_values.setting(float(t_end))}")
     with tempfile.TemporaryDirectory(prefix="eulerdisk-run-") as scratch:
         folder = Path(out) if out is not None else Path(scratch)
         raw = _native.run(
@@ -339,225 +333,6 @@ def _run_result(raw: Mapping[str, Any], folder: Path, out: Path | None) -> RunRe
 
 
 @dataclass(frozen=True)
-class Event:
-    """One located event of :meth:`Model.solve`: its name, time, and every column there."""
-
-    name: str
-    t: float
-    values: dict[str, float] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class Solution:
-    """What :meth:`Model.solve` gives.
-
-    Attributes:
-        t: the recorded times.
-        y: the states then the outputs at those times, by name.
-        events: the located events, in order.
-        stop: ``end_time``, or ``event NAME`` for a run a terminal event ended.
-        stats: the integrator's work (``steps``, ``rejected``, ``rhs_evals``, ...).
-        notes: remarks on the run (an accumulation of events, ...).
-    """
-
-    t: Array
-    y: dict[str, Array]
-    events: list[Event]
-    stop: str
-    stats: dict[str, int]
-    notes: list[str]
-
-    def __getitem__(self, name: str) -> Array:
-        """A state's or output's values (``"t"``: the times)."""
-        return self.t if name == "t" else self.y[name]
-
-    def to_pandas(self) -> pd.DataFrame:
-        """``t``, the states and the outputs as a ``pandas.DataFrame``."""
-        return Table({"t": self.t, **self.y}).to_pandas()
-
-
-
-def _sampling(t_eval: float | Iterable[float] | None) -> tuple[float | None, list[float] | None]:
-    """``t_eval`` as the native call takes it: a sampling step, or sampling times."""
-    if t_eval is None:
-        return None, None
-    if isinstance(t_eval, (int, float)):
-        return float(t_eval), None
-    return None, [float(t) for t in np.asarray(t_eval, dtype=float).ravel()]
-
-class Model:
-    """A model file of the DSL, compiled by the equation compiler and run by its interpreter.
-
-    The same as ``eulerdisk model show|eval|solve FILE``: make one with :meth:`from_file` or
-    :meth:`from_str`. In Jupyter it displays its solved equations.
-    """
-
-    def __init__(self, native: _native.NativeModel) -> None:
-        """Wraps a compiled model; use :meth:`from_file` or :meth:`from_str`."""
-        self._native = native
-
-    @classmethod
-    def from_file(cls, path: PathLike) -> Model:
-        """Compiles the model file at ``path``.
-
-        Raises:
-            DslError: the file has errors; the message gives each as ``file:line:col``, with
-                the line and a caret under the offending token.
-        """
-        return cls(_native.NativeModel.from_file(os.fspath(path)))
-
-    @classmethod
-    def from_str(cls, text: str, name: str = "<string>") -> Model:
-        """Compiles a model given as text; ``name`` stands for the file in error messages.
-
-        Raises:
-            DslError: as :meth:`from_file`.
-        """
-        return cls(_native.NativeModel.from_text(name, text))
-
-    @property
-    def name(self) -> str:
-        """The model's name (``mod NAME { .. }``)."""
-        return self._native.name
-
-    @property
-    def states(self) -> list[str]:
-        """The states, in order."""
-        return self._native.states
-
-    @property
-    def params(self) -> dict[str, float | None]:
-        """The parameters and their defaults (None: the parameter must be given)."""
-        return dict(self._native.params)
-
-    @property
-    def outputs(self) -> list[str]:
-        """The outputs, in order."""
-        return self._native.outputs
-
-    @property
-    def charts(self) -> list[str]:
-        """The names of the model's other charts."""
-        return self._native.charts
-
-    @property
-    def modes(self) -> list[str]:
-        """The modes of a switched model (empty for a smooth one)."""
-        return self._native.modes
-
-    def markdown(self) -> str:
-        """The solved equations in Markdown (``eulerdisk model show``)."""
-        return self._native.show(False)
-
-    def latex(self) -> str:
-        """The solved equations as LaTeX (``eulerdisk model show --format latex``)."""
-        return self._native.show(True)
-
-    def _repr_markdown_(self) -> str:
-        return self.markdown()
-
-    def _repr_latex_(self) -> str:
-        return self.latex()
-
-    def __repr__(self) -> str:
-        kind = f"modes {self.modes}" if self.modes else f"states {self.states}"
-        return f"Model({self.name!r}, {kind})"
-
-    def eval(
-        self,
-        state: Mapping[str, float] | None = None,
-        params: Mapping[str, float] | None = None,
-        *,
-        t: float = 0.0,
-        chart: str | None = None,
-    ) -> dict[str, dict[str, float]]:
-        """The derivatives and outputs at one point (``eulerdisk model eval``).
-
-        States not given start at the file's initial values (``states { x = 2 }``), or zero;
-        parameters not given take the file's defaults.
-
-        Returns:
-            ``{"derivatives": {"der(x)": ...}, "outputs": {...}}``.
-
-        Raises:
-            ModelInputError: an unknown name, a parameter without default not given.
-            SolveError: the model cannot be evaluated there (a singular pivot, a non-finite
-                value), said in the model's terms.
-        """
-        raw = json.loads(
-            self._native.eval(chart, float(t), _assignments(state), _assignments(params))
-        )
-        return {"derivatives": raw["derivatives"], "outputs": raw["outputs"]}
-
-    def solve(
-        self,
-        t_end: float,
-        *,
-        state: Mapping[str, float] | None = None,
-        params: Mapping[str, float] | None = None,
-        t0: float = 0.0,
-        t_eval: float | Iterable[float] | None = None,
-        events: Iterable[str] = (),
-        method: str = "dop853",
-        rtol: float = 1e-8,
-        atol: float = 1e-10,
-        chart: str | None = None,
-    ) -> Solution:
-        """Integrates the model from ``t0`` to ``t_end`` (``eulerdisk model solve``).
-
-        Args:
-            t_end: the end time.
-            state: initial states by name, overriding the file's initial values
-                (``states { x = 2 }``); a state given neither here nor there starts at zero.
-            params: parameters by name (others: the file's defaults).
-            t0: the start time.
-            t_eval: a number: record every ``t_eval`` from ``t0`` (and at ``t_end``); a
-                sequence (or NumPy array) of increasing times inside ``[t0, t_end]``: record at
-                exactly those (a smooth model only), as ``solve_ivp``'s ``t_eval``; by default
-                every accepted step.
-            events: zero crossings to locate, as ``NAME[:up|:down][:stop]`` of a state or an
-                output (a switched model declares its own in the file).
-            method: ``dop853`` (default), ``dopri5`` or ``rodas4`` (stiff models).
-            rtol: relative tolerance.
-            atol: absolute tolerance.
-            chart: solve the model in this chart of the file.
-
-        Raises:
-            ModelInputError: an unknown name or method, a bad event, an unusable setting.
-            SolveError: the integration failed; the message says where and why.
-            KeyboardInterrupt: Ctrl-C, raised once the integration has ended (a model file's
-                solve has no cancellation yet; the GIL is released meanwhile).
-        """
-        raw = self._native.solve(
-            chart,
-            _assignments(state),
-            _assignments(params),
-            list(events),
-            float(t0),
-            float(t_end),
-            *_sampling(t_eval),
-            method,
-            float(rtol),
-            float(atol),
-        )
-        columns = _columns(raw["columns"])
-        header: list[str] = raw["header"]
-        found = [
-            Event(name=name, t=row[0], values=dict(zip(header, row, strict=True)))
-            for name, row in raw["events"]
-        ]
-        t = columns.pop("t")
-        return Solution(
-            t=t,
-            y=columns,
-            events=found,
-            stop=raw["stop"],
-            stats=dict(raw["stats"]),
-            notes=list(raw["notes"]),
-        )
-
-
-@dataclass(frozen=True)
 class SweepResult:
     """What :func:`sweep` gives: the sweep's table (``sweep.csv``) and the counts of its runs.
 
@@ -590,17 +365,30 @@ def sweep(
     out: PathLike | None = None,
     set: Mapping[str, object] | None = None,
     progress: bool | None = None,
+    executor: Executor | None = None,
+    shards: int | None = None,
 ) -> SweepResult:
     """Runs a sweep, as ``eulerdisk sweep`` does, and returns its table.
+
+    On this machine's cores by default; with ``executor`` (any
+    :class:`concurrent.futures.Executor`: the standard library's, or Dask's
+    ``distributed.Client(...).get_executor()`` for a cluster), as ``shards`` tasks, each
+    running its share of the points as ``eulerdisk sweep --shard i/n`` does, merged into
+    ``out``'s table afterwards as ``eulerdisk sweep merge`` does. The executor's workers must
+    see ``out`` (and a sweep file) at the same path: on one machine, or on a shared file
+    system.
 
     Args:
         sweep: a built-in sweep's name, a sweep file's path, or the sweep as nested dicts (an
             optional top-level ``"name"``; relative scene paths start from the current folder).
-        jobs: runs at once (default: the sweep's ``jobs``, else the number of cores).
+        jobs: runs at once (default: the sweep's ``jobs``, else the number of cores); with
+            an executor, runs at once in each task (default 1).
         out: the sweep's folder; a folder already holding some of its runs is resumed, as by
             the command line. By default a temporary folder, removed afterwards.
         set: overrides of every point's scene, as ``--set table.key=value``.
-        progress: as for :func:`run`.
+        progress: as for :func:`run` (none with an executor).
+        executor: run the sweep's shards as this executor's tasks.
+        shards: how many tasks (default: the number of cores here).
 
     Raises:
         SweepError: the sweep cannot be run; the message is the command line's.
@@ -609,17 +397,28 @@ def sweep(
     """
     if jobs is not None and jobs < 1:
         raise SweepError("jobs must be at least 1")
+    if shards is not None and shards < 1:
+        raise SweepError("shards must be at least 1")
     if isinstance(sweep, Mapping):
         name = str(sweep.get("name", "python-sweep"))
         toml: str | None = _toml({k: v for k, v in sweep.items() if k != "name"})
         folder: str | None = os.getcwd()
     else:
-        name, toml, folder = os.fspath(sweep), None, None
+        path = Path(sweep)
+        name = str(path.resolve()) if path.is_file() else os.fspath(sweep)
+        toml, folder = None, None
+    sets = _values.assignments(set)
     with tempfile.TemporaryDirectory(prefix="eulerdisk-sweep-") as scratch:
-        target = Path(out) if out is not None else Path(scratch)
-        raw = _native.sweep(
-            name, toml, folder, _assignments(set), str(target), jobs or 0, _progress(progress)
-        )
+        target = (Path(out) if out is not None else Path(scratch)).resolve()
+        if executor is None:
+            raw = _native.sweep(
+                name, toml, folder, sets, str(target), jobs or 0, _progress(progress)
+            )
+        else:
+            count = shards or os.cpu_count() or 1
+            source = (name, toml, folder)
+            raw, runs = _shards.on_executor(executor, source, sets, target, count, jobs or 1)
+            raw.update(runs)
         return SweepResult(
             table=Table.read_csv(Path(raw["table"])),
             points=int(raw["points"]),

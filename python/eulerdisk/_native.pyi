@@ -2,6 +2,12 @@
 
 from typing import Any
 
+__version__: str
+MAX_SAMPLES: int
+"""The most times a solve records at."""
+DENSE_NODES: int
+"""The nodes at which each step's dense output is kept."""
+
 class SceneError(ValueError):
     """A scene that cannot be run; ``key`` is the scene key it is about, or None."""
 
@@ -44,8 +50,14 @@ def sweep(
     out: str,
     jobs: int,
     progress: bool,
+    shard: tuple[int, int] | None = None,
 ) -> dict[str, Any]:
-    """Runs a sweep into ``out``; the path of its table and the counts of its runs."""
+    """Runs a sweep (or shard ``(index, count)`` of it) into ``out``; the path of its table
+    and the counts of its runs."""
+
+def merge_sweep(dirs: list[str], out: str) -> dict[str, Any]:
+    """Joins sweep folders (shards) into ``out``; its table and the counts of points, rows,
+    missing and duplicated points."""
 
 class NativeModel:
     """A compiled model file."""
@@ -97,9 +109,12 @@ class NativeModel:
         t0: float,
         t_end: float,
         dt: float | None,
-        times: list[float] | None,
+        times: bytes | None,
         method: str,
         rtol: float,
         atol: float,
+        first_step: float | None,
+        max_step: float | None,
+        dense: bool,
     ) -> dict[str, Any]:
-        """Integrates the model."""
+        """Integrates the model; ``times`` as the bytes of native ``f64``."""

@@ -9,14 +9,16 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use eulerdisk::{
-    load_scene, load_sweep, model_event_spec, model_named, model_value_error, parse_scene,
+    load_scene, load_sweep, merge, model_event_spec, model_named, model_value_error, parse_scene,
     parse_sweep, plan, run_scene, run_sweep, show_switched, Backend, ExecOptions, LoadedSweep,
     ModelArguments, ModelFileError, ModelFormat, Override, ProgressStyle, Provenance, RunOptions,
-    RunReport, Scene, SceneError, SweepReport, DEFAULT_SCENE, TABLE_FILE,
+    RunReport, Scene, SceneError, Shard, SweepReport, DEFAULT_SCENE, TABLE_FILE,
 };
 use model_algebra::CompiledModel;
 use model_dsl::CompiledSwitched;
-use model_interpreted::{evaluate, initial_state, LoadError, ModelFile, ModelRef, Solution, Stop};
+use model_interpreted::{
+    evaluate, initial_state, Control, LoadError, ModelFile, ModelRef, Solution, Stepping, Stop,
+};
 use model_runtime::{Method, Stats};
 
 /// Where a scene comes from.
@@ -130,11 +132,12 @@ pub enum SweepSource {
 }
 
 /// Loads, plans and runs a sweep into `out` as `eulerdisk sweep` does (resuming what `out`
-/// already holds); `Err` is the command line's message.
+/// already holds), or shard `(index, count)` of its points as `--shard index/count` does (into
+/// its folder inside `out`); `Err` is the command line's message.
 pub fn sweep(
     source: &SweepSource,
     sets: &[String],
-    out: &Path,
+    (out, shard): (&Path, Option<(usize, usize)>),
     jobs: usize,
     progress: bool,
     interrupt: &AtomicBool,
@@ -156,9 +159,34 @@ pub fn sweep(
     let options = ExecOptions {
         jobs,
         progress: progress_style(progress),
-        shard: None,
+        shard: shard.map(|(index, count)| Shard { index, count }),
     };
     run_sweep(&plan, out, &options, interrupt).map_err(|e| e.to_string())
+}
+
+/// What `eulerdisk sweep merge` found joining sweep folders: the sweep's points, the rows
+/// merged, the points without a row and those with rows in several folders.
+pub struct Merged {
+    /// Points of the sweep.
+    pub points: usize,
+    /// Rows merged.
+    pub rows: usize,
+    /// Points without a row.
+    pub missing: usize,
+    /// Points with rows in several folders.
+    pub duplicates: usize,
+}
+
+/// Joins the sweep folders `dirs` (shards found inside them) into `out`, as `eulerdisk sweep
+/// merge` does; `Err` is the command line's message.
+pub fn merge_sweep(dirs: &[PathBuf], out: &Path) -> Result<Merged, String> {
+    let (_, _, report) = merge(dirs, out).map_err(|e| e.to_string())?;
+    Ok(Merged {
+        points: report.points,
+        rows: report.rows,
+        missing: report.missing.len(),
+        duplicates: report.duplicates.len(),
+    })
 }
 
 /// A compiled model file: a smooth model with its charts, or a switched one. Only the
@@ -284,8 +312,13 @@ impl FileModel {
         Ok(serde_json::to_string(&point).expect("named numbers serialise"))
     }
 
-    /// Integrates the model as `eulerdisk model solve` does.
-    pub fn solve(&self, request: &SolveRequest<'_>) -> Result<Solution, ModelFileError> {
+    /// Integrates the model as `eulerdisk model solve` does; `interrupt` stops it at its
+    /// next step.
+    pub fn solve(
+        &self,
+        request: &SolveRequest<'_>,
+        interrupt: &AtomicBool,
+    ) -> Result<Solution, ModelFileError> {
         let model = self.model(request.chart)?;
         let events = (request.events.iter())
             .map(|text| model_event_spec(text))
@@ -308,7 +341,14 @@ impl FileModel {
             state: request.state,
             event: request.events,
         };
-        model_interpreted::solve(model, &library).map_err(|f| arguments.solve_error(f))
+        let stepping = Stepping {
+            first_step: request.first_step,
+            max_step: request.max_step,
+            dense: request.dense,
+        };
+        let control = Control { interrupt };
+        model_interpreted::solve_stepped(model, &library, &control, &stepping)
+            .map_err(|f| arguments.solve_error(f))
     }
 }
 
@@ -336,6 +376,12 @@ pub struct SolveRequest<'a> {
     pub rtol: f64,
     /// Absolute tolerance.
     pub atol: f64,
+    /// The first step (`None`: chosen by the integrator).
+    pub first_step: Option<f64>,
+    /// The largest step (`None`: unbounded).
+    pub max_step: Option<f64>,
+    /// Whether to keep every step's dense output.
+    pub dense: bool,
 }
 
 /// The integrator called `name` (`dopri5`, `dop853`, `rodas4`), as `--method` takes it.

@@ -24,40 +24,42 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
+use model_interpreted::DENSE_NODES;
+
 use bridge::{FileModel, LoadedScene, RunRequest, SceneSource, SolveRequest, SweepSource};
 
 create_exception!(
-    _native,
+    eulerdisk,
     SceneError,
     PyValueError,
     "A scene that cannot be run: the command line's message, and in `key` the scene key it is about (`table.key`), or None."
 );
 create_exception!(
-    _native,
+    eulerdisk,
     DslError,
     PyValueError,
     "A model file with errors: the message locates each (`file:line:col`) and shows the line with a caret."
 );
 create_exception!(
-    _native,
+    eulerdisk,
     ModelInputError,
     PyValueError,
     "An unusable argument of `Model.eval` or `Model.solve`: an unknown name, a missing parameter, a bad event or setting."
 );
 create_exception!(
-    _native,
+    eulerdisk,
     SolveError,
     PyRuntimeError,
     "A model that could not be evaluated or integrated (a singular pivot, a non-finite value, a failed step)."
 );
 create_exception!(
-    _native,
+    eulerdisk,
     SweepError,
     PyValueError,
     "A sweep that cannot be run: the command line's message."
 );
 create_exception!(
-    _native,
+    eulerdisk,
     RunError,
     PyRuntimeError,
     "A run whose outputs could not be written."
@@ -86,7 +88,7 @@ fn interruptible<T: Send>(
         });
         let mut raised = None;
         loop {
-            let finished = py.allow_threads(|| {
+            let finished = py.detach(|| {
                 let rx = done_rx
                     .lock()
                     .unwrap_or_else(|poisoned| poisoned.into_inner());
@@ -104,7 +106,7 @@ fn interruptible<T: Send>(
                 break;
             }
         }
-        let joined = py.allow_threads(|| worker.join());
+        let joined = py.detach(|| worker.join());
         match (raised, joined) {
             (Some(signal), _) => Err(signal),
             (None, Ok(result)) => Ok(result),
@@ -147,6 +149,14 @@ fn column<'py>(
         }
         Ok(())
     })
+}
+
+/// Native `f64`s from their bytes (NumPy's `tobytes()`); a trailing partial number is
+/// ignored (the Python side passes whole arrays).
+fn floats(bytes: &[u8]) -> Vec<f64> {
+    (bytes.chunks_exact(8))
+        .map(|chunk| f64::from_ne_bytes(chunk.try_into().expect("chunks of 8 bytes")))
+        .collect()
 }
 
 /// Loads a scene and checks it; raises `SceneError` as `eulerdisk run` would fail.
@@ -223,10 +233,10 @@ fn default_scene() -> &'static str {
     bridge::default_scene()
 }
 
-/// Runs a sweep into `out` as `eulerdisk sweep` does; returns the path of its table and the
-/// counts of the runs.
+/// Runs a sweep into `out` as `eulerdisk sweep` does, or shard `(index, count)` of it as
+/// `--shard index/count` does; returns the path of its table and the counts of the runs.
 #[pyfunction]
-#[pyo3(signature = (sweep, toml, folder, sets, out, jobs, progress))]
+#[pyo3(signature = (sweep, toml, folder, sets, out, jobs, progress, shard=None))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -237,6 +247,7 @@ fn sweep<'py>(
     out: PathBuf,
     jobs: usize,
     progress: bool,
+    shard: Option<(usize, usize)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let source = match toml {
         Some(toml) => SweepSource::Text {
@@ -247,7 +258,7 @@ fn sweep<'py>(
         None => SweepSource::Named(sweep),
     };
     let report = interruptible(py, |interrupt| {
-        bridge::sweep(&source, &sets, &out, jobs, progress, interrupt)
+        bridge::sweep(&source, &sets, (&out, shard), jobs, progress, interrupt)
     })?
     .map_err(SweepError::new_err)?;
     let e = report.exec;
@@ -259,6 +270,26 @@ fn sweep<'py>(
     out.set_item("failed", e.failed)?;
     out.set_item("interrupted", e.interrupted)?;
     Ok(out)
+}
+
+/// Joins sweep folders (shards) into `out` as `eulerdisk sweep merge` does; returns the path
+/// of its table and the counts of points, rows, missing and duplicated points.
+#[pyfunction]
+fn merge_sweep<'py>(
+    py: Python<'py>,
+    dirs: Vec<PathBuf>,
+    out: PathBuf,
+) -> PyResult<Bound<'py, PyDict>> {
+    let merged = py
+        .detach(|| bridge::merge_sweep(&dirs, &out))
+        .map_err(SweepError::new_err)?;
+    let report = PyDict::new(py);
+    report.set_item("table", bridge::sweep_table(&out))?;
+    report.set_item("points", merged.points)?;
+    report.set_item("rows", merged.rows)?;
+    report.set_item("missing", merged.missing)?;
+    report.set_item("duplicates", merged.duplicates)?;
+    Ok(report)
 }
 
 /// A compiled model file (the Python class `eulerdisk.Model` wraps it).
@@ -273,7 +304,7 @@ impl NativeModel {
     #[staticmethod]
     fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<NativeModel> {
         let model = py
-            .allow_threads(|| FileModel::from_file(&path))
+            .detach(|| FileModel::from_file(&path))
             .map_err(|e| model_error(&e))?;
         Ok(NativeModel { model })
     }
@@ -282,7 +313,7 @@ impl NativeModel {
     #[staticmethod]
     fn from_text(py: Python<'_>, name: String, text: String) -> PyResult<NativeModel> {
         let model = py
-            .allow_threads(|| FileModel::from_text(&name, &text))
+            .detach(|| FileModel::from_text(&name, &text))
             .map_err(|e| model_error(&e))?;
         Ok(NativeModel { model })
     }
@@ -342,9 +373,10 @@ impl NativeModel {
             .map_err(|e| model_error(&e))
     }
 
-    /// Integrates the model; returns the header, the columns, the events, the stop, the
-    /// work counters and the notes.
-    #[pyo3(signature = (chart, state, sets, events, t0, t_end, dt, times, method, rtol, atol))]
+    /// Integrates the model; returns the header, the number of states, the columns, the
+    /// events, the stop, the work counters, the notes and (with `dense`) every step's dense
+    /// output. `times` are native `f64` bytes.
+    #[pyo3(signature = (chart, state, sets, events, t0, t_end, dt, times, method, rtol, atol, first_step, max_step, dense))]
     #[allow(clippy::too_many_arguments)]
     fn solve<'py>(
         &self,
@@ -356,10 +388,13 @@ impl NativeModel {
         t0: f64,
         t_end: f64,
         dt: Option<f64>,
-        times: Option<Vec<f64>>,
+        times: Option<&[u8]>,
         method: &str,
         rtol: f64,
         atol: f64,
+        first_step: Option<f64>,
+        max_step: Option<f64>,
+        dense: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let method = bridge::method(method).ok_or_else(|| {
             ModelInputError::new_err(format!(
@@ -374,29 +409,53 @@ impl NativeModel {
             t0,
             t_end,
             dt,
-            times,
+            times: times.map(floats),
             method,
             rtol,
             atol,
+            first_step,
+            max_step,
+            dense,
         };
         let model = &self.model;
-        let solved = interruptible(py, |_| model.solve(&request))?.map_err(|e| model_error(&e))?;
+        let solved = interruptible(py, |interrupt| model.solve(&request, interrupt))?
+            .map_err(|e| model_error(&e))?;
         let rows = &solved.rows;
         let columns = PyDict::new(py);
         for (k, name) in solved.columns.iter().enumerate() {
             columns.set_item(name, column(py, rows.len(), |i| rows[i][k])?)?;
         }
-        let found: Vec<(String, Vec<f64>)> = (solved.events.iter())
-            .map(|e| (e.label(), e.row.clone()))
+        let found: Vec<(String, Option<usize>, Vec<f64>)> = (solved.events.iter())
+            .map(|e| (e.label(), e.request, e.row.clone()))
             .collect();
         let out = PyDict::new(py);
         out.set_item("header", &solved.columns)?;
+        out.set_item("states", solved.states)?;
         out.set_item("columns", columns)?;
         out.set_item("events", found)?;
         out.set_item("stop", bridge::termination(&solved.stop))?;
         out.set_item("stats", bridge::stats(&solved.stats))?;
         let notes: Vec<String> = solved.accumulations.iter().map(|a| a.to_string()).collect();
         out.set_item("notes", notes)?;
+        let steps = &solved.dense;
+        out.set_item(
+            "dense_t",
+            column(py, 2 * steps.len(), |i| {
+                let step = &steps[i / 2];
+                if i % 2 == 0 {
+                    step.t0
+                } else {
+                    step.t1
+                }
+            })?,
+        )?;
+        let per_step = DENSE_NODES * solved.states;
+        out.set_item(
+            "dense_y",
+            column(py, per_step * steps.len(), |i| {
+                steps[i / per_step].values[i % per_step]
+            })?,
+        )?;
         Ok(out)
     }
 }
@@ -408,6 +467,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(default_scene, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(merge_sweep, m)?)?;
     m.add_class::<NativeModel>()?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("DslError", py.get_type::<DslError>())?;
@@ -415,5 +475,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SolveError", py.get_type::<SolveError>())?;
     m.add("SweepError", py.get_type::<SweepError>())?;
     m.add("RunError", py.get_type::<RunError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("MAX_SAMPLES", model_interpreted::MAX_SAMPLES)?;
+    m.add("DENSE_NODES", DENSE_NODES)?;
     Ok(())
 }

@@ -4,22 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from support import OSCILLATOR
 
 import eulerdisk
-
-OSCILLATOR = """
-mod oscillator {
-    params { k = 4.0 }
-    states { x, v }
-    equations {
-        der(x) = v;
-        der(v) = -k * x;
-    }
-    outputs {
-        energy = v^2 / 2 + k * x^2 / 2;
-    }
-}
-"""
 
 
 def test_a_model_from_text_names_its_states_params_and_outputs():
@@ -55,7 +42,6 @@ def test_solve_follows_the_closed_form_and_locates_events():
     assert list(frame.columns) == ["t", "x", "v", "energy"]
 
 
-
 def test_t_eval_times_are_recorded_exactly_as_given():
     m = eulerdisk.Model.from_str(OSCILLATOR)
     times = np.sort(np.random.default_rng(7).uniform(0.0, 3.0, 57))
@@ -69,6 +55,7 @@ def test_t_eval_times_are_recorded_exactly_as_given():
     ]:
         with pytest.raises(eulerdisk.ModelInputError, match=words):
             m.solve(3.0, state={"x": 1.0}, t_eval=bad)
+
 
 def test_a_terminal_event_ends_the_solve_there():
     m = eulerdisk.Model.from_str(OSCILLATOR)

@@ -1,5 +1,8 @@
 """`eulerdisk.sweep`: the command line's sweep table, DataFrame-ready, resumable."""
 
+import concurrent.futures
+import multiprocessing
+
 import numpy as np
 import pytest
 
@@ -53,3 +56,32 @@ def test_sweep_errors_are_the_command_lines():
         eulerdisk.sweep(bad, progress=False)
     with pytest.raises(eulerdisk.SweepError, match="jobs"):
         eulerdisk.sweep(SWEEP, jobs=0)
+
+
+def test_a_sweep_on_an_executor_gives_the_same_table_and_resumes(tmp_path):
+    local = eulerdisk.sweep(SWEEP, out=tmp_path / "local", progress=False)
+    spawn = multiprocessing.get_context("spawn")
+    executors = [
+        lambda: concurrent.futures.ThreadPoolExecutor(2),
+        lambda: concurrent.futures.ProcessPoolExecutor(2, mp_context=spawn),
+    ]
+    for k, make in enumerate(executors):
+        out = tmp_path / f"executor-{k}"
+        with make() as pool:
+            done = eulerdisk.sweep(SWEEP, out=out, executor=pool, shards=2)
+            again = eulerdisk.sweep(SWEEP, out=out, executor=pool, shards=2)
+        assert done.points == 2 and done.ran == 2 and done.failed == 0
+        assert sorted((out).glob("shard-*")) == [out / "shard-0-of-2", out / "shard-1-of-2"]
+        for column in ["friction.mu_d", "transitions", "theta_period_first_s"]:
+            assert list(done.table[column]) == list(local.table[column])
+        assert again.ran == 0 and again.skipped == 2 and again.table.rows == 2
+
+
+def test_a_sweep_on_a_dask_cluster(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    with (
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        done = eulerdisk.sweep(SWEEP, out=tmp_path, executor=client.get_executor(), shards=2)
+    assert done.ran == 2 and list(done.table["status"]) == ["completed", "completed"]

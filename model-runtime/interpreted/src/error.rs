@@ -158,6 +158,12 @@ pub enum RequestError {
         /// The end.
         t_end: f64,
     },
+    /// More sampling times than a solve records ([`crate::MAX_SAMPLES`]).
+    #[error("{count} sampling times: at most {max} are recorded", max = crate::MAX_SAMPLES)]
+    TimeCount {
+        /// How many were given.
+        count: usize,
+    },
     /// The work bound is not positive and finite.
     #[error("max_steps_per_s = {steps_per_s}: the work bound must be positive and finite")]
     WorkBound {

@@ -25,8 +25,9 @@
 //!   [`WorkBound`]) gives a [`Solution`] ([`SolvedEvent`], [`EventKind`], [`Stop`],
 //!   [`AccumulationPoint`]) or a [`SolveFailure`] ([`RequestError`], [`UnknownEvent`],
 //!   [`RunFailure`] with the solution until the failure and a [`WorkHint`], [`WorkExceeded`],
-//!   [`ValueError`]);
-//!   [`solve_with`] also stops on an interrupt ([`Control`]).
+//!   [`ValueError`]); [`solve_with`] also stops on an interrupt ([`Control`]);
+//!   [`solve_stepped`] bounds the step sizes and keeps each step's dense output
+//!   ([`Stepping`], [`DenseStep`]).
 //! * **One point**: [`evaluate`] gives the derivatives and outputs by name, [`PointValues`]
 //!   ([`NamedValues`], [`PointError`]); the values in the model's order, [`params`],
 //!   [`initial_state`], [`resolve`].
@@ -92,8 +93,10 @@ pub use error::{
 pub use file::ModelFile;
 pub use load::{select_chart, ModelRef};
 pub use model_runtime::{WorkBound, WorkExceeded};
-pub use request::{Control, EventRequest, SolveRequest, Watched};
-pub use solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
+pub use request::{Control, EventRequest, SolveRequest, Stepping, Watched, MAX_SAMPLES};
+pub use solution::{
+    AccumulationPoint, DenseStep, EventKind, Solution, SolvedEvent, Stop, DENSE_NODES,
+};
 pub use switched::mode_graph;
 pub use values::{evaluate, initial_state, params, resolve, Named, NamedValues, PointValues};
 
@@ -113,9 +116,21 @@ pub fn solve_with(
     request: &SolveRequest,
     control: &Control<'_>,
 ) -> Result<Solution, SolveFailure> {
+    solve_stepped(model, request, control, &Stepping::default())
+}
+
+/// [`solve_with`], its steps shaped by `stepping`: a first and a largest step size, and the
+/// dense output of every step kept in the solution.
+pub fn solve_stepped(
+    model: ModelRef<'_>,
+    request: &SolveRequest,
+    control: &Control<'_>,
+    stepping: &Stepping,
+) -> Result<Solution, SolveFailure> {
     let resolved = request::Resolved::new(model, request)?;
+    let how = (control, stepping);
     match model {
-        ModelRef::Smooth(model) => smooth::solve_smooth(model, resolved, request, control),
-        ModelRef::Switched(model) => switched::solve_switched(model, resolved, request, control),
+        ModelRef::Smooth(model) => smooth::solve_smooth(model, resolved, request, how),
+        ModelRef::Switched(model) => switched::solve_switched(model, resolved, request, how),
     }
 }

@@ -8,6 +8,7 @@
 //! bound or is interrupted still hands back everything computed until then; and the smooth
 //! and the switched model share this one piece instead of two copies.
 
+use crate::solution::DenseStep;
 use model_runtime::{Dyn, Observed, Sample, StepView};
 use model_runtime::{WorkBound, WorkExceeded, WorkMeter};
 use std::cell::RefCell;
@@ -67,6 +68,8 @@ pub(crate) struct Recording<'a> {
     interrupt: &'a AtomicBool,
     pub(crate) halt: Option<Halt>,
     pub(crate) steps: u64,
+    /// Each accepted step's dense output, when the caller asked to keep it.
+    pub(crate) dense: Option<Vec<DenseStep>>,
 }
 
 impl<'a> Recording<'a> {
@@ -86,7 +89,14 @@ impl<'a> Recording<'a> {
             interrupt,
             halt: None,
             steps: 0,
+            dense: None,
         }
+    }
+
+    /// The recording, keeping every accepted step's dense output when `keep`.
+    pub(crate) fn with_dense(mut self, keep: bool) -> Self {
+        self.dense = keep.then(Vec::new);
+        self
     }
 
     /// The discrete values in force now, by index into [`Recording::snapshots`].
@@ -131,7 +141,7 @@ impl<'a> Recording<'a> {
 
     /// Whether the grid needs each step's dense output.
     pub(crate) fn wants_dense(&self) -> bool {
-        matches!(self.grid, Grid::Times { .. })
+        self.dense.is_some() || matches!(self.grid, Grid::Times { .. })
     }
 
     /// An accepted step in mode `mode`: its points, and the work it adds.
@@ -139,6 +149,16 @@ impl<'a> Recording<'a> {
         self.steps += 1;
         if let Some(over) = self.meter.step(step.t0, step.t1) {
             self.halt.get_or_insert(Halt::Work(over));
+        }
+        if let (Some(kept), Some(dense)) = (&mut self.dense, step.dense) {
+            if step.t1 > step.t0 {
+                kept.push(DenseStep::sampled(
+                    step.t0,
+                    step.t1,
+                    step.y0.len(),
+                    |t, y| dense.at(t, y),
+                ));
+            }
         }
         match &mut self.grid {
             Grid::Steps => {

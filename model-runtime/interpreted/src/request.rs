@@ -79,6 +79,38 @@ impl SolveRequest {
     }
 }
 
+/// The most times a solve records at (`dt` or given times): a request asking for more is an
+/// error found before anything is allocated.
+pub const MAX_SAMPLES: usize = 100_000_000;
+
+/// How a caller may shape the integrator's steps, beyond what a [`SolveRequest`] says: bounds
+/// on the step size (SciPy's `first_step` and `max_step`), and whether to keep each accepted
+/// step's interpolant ([`crate::DenseStep`]). The default changes nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stepping {
+    /// The first step of the run and of each restart after an event (`None`: chosen by the
+    /// integrator; a switched model's mode may choose its own).
+    pub first_step: Option<f64>,
+    /// The largest step (`None`: unbounded).
+    pub max_step: Option<f64>,
+    /// Keep every accepted step's dense output in [`crate::Solution::dense`].
+    pub dense: bool,
+}
+
+impl Stepping {
+    /// The runtime's step options with these bounds, and no step budget (the work bound is
+    /// the recording's, by simulated time).
+    pub(crate) fn options(&self) -> model_runtime::StepOptions {
+        let default = model_runtime::StepOptions::default();
+        model_runtime::StepOptions {
+            h_initial: self.first_step,
+            h_max: self.max_step.unwrap_or(default.h_max),
+            max_steps: u64::MAX,
+            ..default
+        }
+    }
+}
+
 /// An event: where a state or an output of the model crosses zero.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventRequest {
@@ -188,6 +220,9 @@ fn checked_times(
             model: model.name.clone(),
         });
     }
+    if times.len() > MAX_SAMPLES {
+        return Err(RequestError::TimeCount { count: times.len() });
+    }
     let (t0, t_end) = (request.t0.min(request.t_end), request.t0.max(request.t_end));
     for (index, &t) in times.iter().enumerate() {
         let problem = if !t.is_finite() {
@@ -209,13 +244,6 @@ fn checked_times(
             });
         }
     }
-    if times.len() > 100_000_000 {
-        return Err(RequestError::SampleCount {
-            dt: f64::NAN,
-            t0: request.t0,
-            t_end: request.t_end,
-        });
-    }
     Ok(times.to_vec())
 }
 
@@ -225,7 +253,7 @@ fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, RequestError> 
         return Err(RequestError::SampleStep { dt });
     }
     let count = ((t_end - t0) / dt).floor();
-    if !(0.0..1e8).contains(&count) {
+    if !(0.0..MAX_SAMPLES as f64).contains(&count) {
         return Err(RequestError::SampleCount { dt, t0, t_end });
     }
     let mut times: Vec<f64> = (0..=count as u64).map(|k| t0 + k as f64 * dt).collect();

@@ -12,14 +12,14 @@ use crate::engine::Engine;
 use crate::error::{settings, SolveFailure};
 use crate::interpreted::{failure_at, tolerance, Interpreted, Labels};
 use crate::recording::{Grid, Recording};
-use crate::request::{Control, Resolved, SolveRequest, Watched};
-use crate::solution::{EventKind, Solution, Stop};
+use crate::request::{Control, Resolved, SolveRequest, Stepping, Watched};
+use crate::solution::{EventKind, Solution, SolvedEvent, Stop};
 use crate::tables::{Ended, Tables};
 use model_algebra::CompiledModel;
 use model_runtime::{
     Dyn, EvalError, EventHit, GuardSpec, HybridOptions, HybridSolver, HybridSystem, Matrix, Method,
-    Observed, Observer, Rhs, SolveError, StepOptions, StepView, Stepper, StopReason, System,
-    Transition, WithStepper,
+    Observed, Observer, Rhs, SolveError, StepView, Stepper, StopReason, System, Transition,
+    WithStepper,
 };
 use std::cell::RefCell;
 use std::ops::ControlFlow;
@@ -125,6 +125,7 @@ struct Run<'a, 'b> {
     resolved: &'a Resolved,
     request: &'a SolveRequest,
     control: &'b Control<'b>,
+    stepping: &'b Stepping,
 }
 
 impl WithStepper<Dyn> for Run<'_, '_> {
@@ -136,6 +137,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             resolved,
             request,
             control,
+            stepping,
         } = self;
         let n = model.states.len();
         let labels = Labels::of(model);
@@ -161,14 +163,11 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             None => Grid::Steps,
         };
         let bound = (request.t0, request.work_bound());
-        let mut recording = Recording::new(grid, Default::default(), bound, control.interrupt);
+        let mut recording = Recording::new(grid, Default::default(), bound, control.interrupt)
+            .with_dense(stepping.dense);
         recording.start(request.t0, 0, &resolved.y0);
         let options = HybridOptions {
-            // The work bound is the recording's, by simulated time.
-            step: StepOptions {
-                max_steps: u64::MAX,
-                ..HybridOptions::default().step
-            },
+            step: stepping.options(),
             ..HybridOptions::default()
         };
         let tolerance = tolerance(n, request.rtol, request.atol);
@@ -196,7 +195,11 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         let events = (system.located.iter())
             .map(|(guard, t, y)| {
                 let name = &resolved.events[*guard].request.name;
-                tables.event(name, EventKind::Crossing, 0, (*t, y, &[]))
+                let event = tables.event(name, EventKind::Crossing, 0, (*t, y, &[]))?;
+                Ok::<_, SolveFailure>(SolvedEvent {
+                    request: Some(*guard),
+                    ..event
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         let ended = match outcome {
@@ -258,7 +261,7 @@ pub(crate) fn solve_smooth(
     model: &CompiledModel,
     resolved: Resolved,
     request: &SolveRequest,
-    control: &Control<'_>,
+    (control, stepping): (&Control<'_>, &Stepping),
 ) -> Result<Solution, SolveFailure> {
     let n = model.states.len();
     request.method.with_stepper(
@@ -268,6 +271,7 @@ pub(crate) fn solve_smooth(
             resolved: &resolved,
             request,
             control,
+            stepping,
         },
     )
 }

@@ -38,6 +38,9 @@ pub struct Solution {
     /// What the run found legal but likely not meant (a guard reading a derivative that
     /// starts on its threshold), for a front end to say.
     pub warnings: Vec<String>,
+    /// Every accepted step's dense output, in time order, when the caller asked for it
+    /// ([`crate::Stepping::dense`]); empty otherwise.
+    pub dense: Vec<DenseStep>,
 }
 
 impl Solution {
@@ -87,6 +90,52 @@ impl Solution {
     }
 }
 
+/// How many nodes of each step [`DenseStep`] keeps: enough to determine every method's
+/// interpolating polynomial (DOP853's is of degree 7, DOPRI5's of 4, RODAS4's of 3).
+pub const DENSE_NODES: usize = 8;
+
+/// One accepted step's dense output, as values at fixed nodes: the interpolant of each
+/// method is a polynomial in `t` of degree below [`DENSE_NODES`], so its values at the
+/// step's [`DENSE_NODES`] Chebyshev–Lobatto nodes (`t0 + (t1 − t0)(1 − cos(kπ/7))/2`)
+/// determine it, and barycentric interpolation through them gives it back anywhere in the
+/// step, to rounding. A front end needs no method's coefficients, only these numbers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DenseStep {
+    /// The step's start.
+    pub t0: f64,
+    /// The step's end.
+    pub t1: f64,
+    /// The state at each node, node after node ([`DENSE_NODES`] × the number of states).
+    pub values: Vec<f64>,
+}
+
+impl DenseStep {
+    /// The nodes of a step from `t0` to `t1`.
+    pub fn nodes(t0: f64, t1: f64) -> [f64; DENSE_NODES] {
+        let last = (DENSE_NODES - 1) as f64;
+        std::array::from_fn(|k| {
+            let theta = (1.0 - (k as f64 * std::f64::consts::PI / last).cos()) / 2.0;
+            t0 + (t1 - t0) * theta
+        })
+    }
+
+    /// The step from `t0` to `t1` of an interpolant `at(t, y)` of `n` states.
+    pub(crate) fn sampled(
+        t0: f64,
+        t1: f64,
+        n: usize,
+        mut at: impl FnMut(f64, &mut Vec<f64>),
+    ) -> Self {
+        let mut values = Vec::with_capacity(DENSE_NODES * n);
+        let mut y = vec![0.0; n];
+        for t in Self::nodes(t0, t1) {
+            at(t, &mut y);
+            values.extend_from_slice(&y);
+        }
+        DenseStep { t0, t1, values }
+    }
+}
+
 /// What an event was.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EventKind {
@@ -115,6 +164,9 @@ pub struct SolvedEvent {
     pub after: Option<Vec<f64>>,
     /// The mode the run went on in after the event (`None` as for `after`).
     pub mode_after: Option<String>,
+    /// A smooth model's event: its position in the request's events (two requests may watch
+    /// the same quantity in two directions); `None` for an event the file declares.
+    pub request: Option<usize>,
 }
 
 impl SolvedEvent {

@@ -16,7 +16,7 @@ use crate::engine::{Engine, Runner};
 use crate::error::{RunFailure, SolveFailure};
 use crate::interpreted::{failure_at, tolerance, Interpreted, Labels};
 use crate::recording::{Grid, Recording, SharedValues};
-use crate::request::{Control, Resolved, SolveRequest};
+use crate::request::{Control, Resolved, SolveRequest, Stepping};
 use crate::smooth::{columns, explicit};
 use crate::solution::{AccumulationPoint, EventKind, Solution, Stop};
 use crate::tables::{Ended, Tables};
@@ -25,9 +25,9 @@ use model_dsl::{Action, CompiledSwitched, Crossing};
 use model_runtime::{
     name_modes, AccumulationAction, AccumulationRule, Direction, Dyn, EvalError, EventAction,
     EventDecl, EventId, Fired, Firing, HybridError, HybridOptions, HybridSolver, InputError,
-    ModeDecl, ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepOptions, StepView, Stepper,
-    StopReason, Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind,
-    TransitionRecord, WithStepper,
+    ModeDecl, ModeGraph, ModeId, Observed, Observer, Rhs, Sample, StepView, Stepper, StopReason,
+    Switched, SwitchedModel, SwitchedNote, SwitchedStop, TransitionKind, TransitionRecord,
+    WithStepper,
 };
 use std::cell::RefCell;
 use std::ops::ControlFlow;
@@ -224,6 +224,10 @@ struct SwitchedRecording<'r> {
 }
 
 impl Observer<Dyn, ModeId, EventId, SwitchedNote> for SwitchedRecording<'_> {
+    fn wants_dense(&self) -> bool {
+        self.recording.wants_dense()
+    }
+
     fn on_step(&mut self, step: &StepView<'_, Dyn, ModeId>) -> Observed {
         self.recording.step(step.mode.index(), step)
     }
@@ -271,6 +275,7 @@ struct Run<'a, 'c> {
     resolved: &'a Resolved,
     request: &'a SolveRequest,
     control: &'a Control<'c>,
+    stepping: &'a Stepping,
 }
 
 impl WithStepper<Dyn> for Run<'_, '_> {
@@ -282,6 +287,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             resolved,
             request,
             control,
+            stepping,
         } = self;
         let n = model.states().len();
         let mut interpreted = InterpretedSwitched::new(model, &resolved.params, request.t0)?;
@@ -289,11 +295,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         let discrete = Rc::clone(&interpreted.discrete);
         let options = HybridOptions {
             sample_rate: request.dt.map(|dt| 1.0 / dt),
-            // The work bound is the recording's, by simulated time.
-            step: StepOptions {
-                max_steps: u64::MAX,
-                ..HybridOptions::default().step
-            },
+            step: stepping.options(),
             ..HybridOptions::default()
         };
         let grid = match request.dt {
@@ -302,7 +304,8 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         };
         let bound = (request.t0, request.work_bound());
         let mut observer = SwitchedRecording {
-            recording: Recording::new(grid, discrete, bound, control.interrupt),
+            recording: Recording::new(grid, discrete, bound, control.interrupt)
+                .with_dense(stepping.dense),
             met: Vec::new(),
             known: 0,
         };
@@ -477,7 +480,7 @@ pub(crate) fn solve_switched(
     model: &CompiledSwitched,
     resolved: Resolved,
     request: &SolveRequest,
-    control: &Control<'_>,
+    (control, stepping): (&Control<'_>, &Stepping),
 ) -> Result<Solution, SolveFailure> {
     let n = model.states().len();
     request.method.with_stepper(
@@ -487,6 +490,7 @@ pub(crate) fn solve_switched(
             resolved: &resolved,
             request,
             control,
+            stepping,
         },
     )
 }

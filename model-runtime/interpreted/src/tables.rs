@@ -110,6 +110,7 @@ impl Tables<'_> {
             row: self.row(mode, t, y, discrete)?,
             after: None,
             mode_after: None,
+            request: None,
         })
     }
 
@@ -135,6 +136,7 @@ impl Tables<'_> {
             row_modes.clear();
         }
         let steps = recording.steps;
+        let dense = recording.dense.unwrap_or_default();
         let (stop, stats, failure) = match (ended, recording.halt) {
             (Ended::Failed { message, stats }, _) => {
                 let stop = Stop::Failed {
@@ -168,6 +170,7 @@ impl Tables<'_> {
             stats,
             accumulations,
             warnings: Vec::new(),
+            dense,
         };
         match failure {
             None => Ok(solution),

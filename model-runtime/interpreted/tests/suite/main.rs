@@ -8,6 +8,7 @@ mod oracle;
 mod requests;
 mod sizes;
 mod smooth;
+mod stepping;
 mod switched;
 
 use model_interpreted::{ModelFile, ModelRef, SolveRequest};
