@@ -29,9 +29,11 @@
 //!
 //! A reset that restarts its own mode can fire again and again at ever shorter intervals: a
 //! bouncing ball coming to rest (Zeno behaviour). [`Switched`] feeds the times of successive
-//! restarts by one event to an [`AccumulationDetector`]: "successive" means the same event of
-//! the same mode with no transition in between (events that only pass do not interrupt; any
-//! other transition, or a restart by another event, starts the history afresh). When the
+//! restarts by each event to an [`AccumulationDetector`] of its own: "successive" means the
+//! same event restarting the same mode, with no switch to another mode in between (events
+//! that only pass do not interrupt, nor do restarts by the mode's other events: a rimless
+//! wheel rocking between two spokes restarts its mode by each in turn; a switch starts every
+//! history afresh). When the
 //! detector's [`AccumulationRule`] declares an accumulation (the latest intervals all shrink
 //! and the remaining time, extrapolated from a steady ratio or bounded by the slowest of
 //! wobbling ones, is at most the rule's `tail`), the firing that showed it does not apply its
@@ -278,9 +280,12 @@ pub struct Switched<M> {
     model: M,
     /// Each mode's guards, one per event.
     specs: Vec<Vec<GuardSpec<EventId>>>,
-    detector: AccumulationDetector,
-    /// The event whose successive restarts the detector has seen.
-    watching: Option<EventId>,
+    /// One detector per event of the current mode (its restarts since the mode was entered),
+    /// all made with `rule`.
+    detectors: Vec<AccumulationDetector>,
+    rule: AccumulationRule,
+    /// The mode whose restarts the detectors have seen.
+    watching: Option<ModeId>,
 }
 
 impl<M> Switched<M> {
@@ -304,7 +309,8 @@ impl<M> Switched<M> {
         Ok(Switched {
             model,
             specs,
-            detector: AccumulationDetector::new(rule)?,
+            detectors: Vec::new(),
+            rule: AccumulationDetector::new(rule)?.rule(),
             watching: None,
         })
     }
@@ -322,18 +328,27 @@ impl<M> Switched<M> {
     /// Forgets the accumulation history (before reusing the system for an unrelated run;
     /// a run that starts earlier than the last firing restarts it anyway).
     pub fn forget(&mut self) {
-        self.detector.reset();
+        self.detectors
+            .iter_mut()
+            .for_each(AccumulationDetector::reset);
         self.watching = None;
     }
 
     /// Records that `event` restarted its mode at `t`: the accumulation if that shows one
-    /// (the history is then forgotten: the accumulation ends the sequence).
+    /// (the history is then forgotten: the accumulation ends the sequence). Each event of the
+    /// mode keeps its own history, so that restarts by two events in turn (a rimless wheel
+    /// rocking between two spokes) accumulate too.
     fn restarted(&mut self, event: EventId, t: f64) -> Option<Accumulation> {
-        if self.watching != Some(event) {
+        if self.watching != Some(event.mode) {
             self.forget();
-            self.watching = Some(event);
+            self.watching = Some(event.mode);
         }
-        let accumulation = self.detector.fire(t);
+        while self.detectors.len() <= event.event {
+            // The rule was checked when the system was made.
+            let detector = AccumulationDetector::new(self.rule).ok()?;
+            self.detectors.push(detector);
+        }
+        let accumulation = self.detectors[event.event].fire(t);
         if accumulation.is_some() {
             self.forget();
         }

@@ -413,3 +413,88 @@ fn a_guard_that_holds_at_the_start_of_a_run_fires_there() {
     let solved = solve(model(&file), &SolveRequest::new(3.0)).unwrap();
     assert!((solved.t_end().unwrap() - 1.0).abs() < 1e-9);
 }
+
+/// A linearised rimless wheel pushed uphill (`theta'' = theta - gamma` about its stance
+/// spoke; a spoke `2 alpha` ahead or behind lands when `|theta| = alpha`, the wheel pivots
+/// onto it keeping `c` of its speed). It falls back over its rear spoke and then rocks
+/// between two spokes ever faster: every reset leaves the wheel on the other spoke's surface,
+/// each rock an excursion shorter than the step before it (once a missed landing and a wheel
+/// at `theta = -3e15`).
+const RIMLESS: &str = "mod rimless {
+    params { gamma = 0.05, alpha = 0.2, c = 0.5 }
+    states { theta = 0, omega = 0.02 }
+    equations { der(theta) = omega; der(omega) = theta - gamma; }
+    when back: theta < -alpha { theta = alpha; omega = c * omega; }
+    when ahead: theta > alpha { theta = -alpha; omega = c * omega; }
+}";
+
+/// The rimless wheel's landings in closed form (`theta(t) = gamma + (theta0 - gamma) cosh t +
+/// omega0 sinh t` about each spoke), until a rock is shorter than `shortest`.
+fn rimless_landings(shortest: f64) -> Vec<(&'static str, f64)> {
+    let (gamma, alpha, c) = (0.05f64, 0.2f64, 0.5f64);
+    let (mut t0, mut theta0, mut omega0) = (0.0, 0.0, 0.02);
+    let mut landings = Vec::new();
+    loop {
+        let (a, b) = (theta0 - gamma, omega0);
+        // The way from the spoke, `theta - theta0`, without cancellation (`cosh s - 1 =
+        // 2 sinh^2(s/2)`): the last rocks are far smaller than `theta`'s rounding.
+        let way = move |s: f64| a * 2.0 * (s / 2.0).sinh().powi(2) + b * s.sinh();
+        let dt = first_root(0.0, |s| {
+            ((alpha - theta0) - way(s)).min((theta0 + alpha) + way(s))
+        });
+        if dt < shortest {
+            return landings;
+        }
+        let omega = a * dt.sinh() + b * dt.cosh();
+        let back = theta0 + way(dt) < 0.0;
+        landings.push((if back { "back" } else { "ahead" }, t0 + dt));
+        (t0, theta0, omega0) = (t0 + dt, if back { alpha } else { -alpha }, c * omega);
+    }
+}
+
+#[test]
+fn a_rimless_wheel_rocking_between_two_spokes_lands_on_every_one() {
+    let reference = rimless_landings(1e-4);
+    assert!(reference.len() >= 6, "{reference:?}");
+    let file = compile("rimless.dsl", RIMLESS);
+    for method in METHODS {
+        let solved = solve(model(&file), &with(method, 1e-8, 1e-10, 10.0)).unwrap();
+        let theta = column(&solved, "theta");
+        assert!(
+            theta.iter().all(|th| th.abs() < 0.2 + 1e-7),
+            "{method:?}: the wheel left its spokes"
+        );
+        let landings: Vec<_> = (solved.events.iter())
+            .filter(|e| e.kind == EventKind::Crossing)
+            .map(|e| (e.name.as_str(), e.t()))
+            .collect();
+        assert!(
+            landings.len() >= reference.len(),
+            "{method:?}: {landings:?}"
+        );
+        for (k, (got, want)) in landings.iter().zip(&reference).enumerate() {
+            assert!(
+                got.0 == want.0 && (got.1 - want.1).abs() < 1e-6,
+                "{method:?}: landing {k}: {got:?} vs {want:?}"
+            );
+        }
+        // The rocks accumulate where the closed form's do (no rule: the run stops there),
+        // within what the tolerances resolve: a rock of speed w rises w^2 / (2 (alpha +
+        // gamma)), below rtol * alpha once w < 3e-5, where the rocks left add up to 1e-4 s
+        // (dop853 and dopri5 come within 1e-6; rodas4's dense output ends the rocks there).
+        let last = rimless_landings(1e-12).last().unwrap().1;
+        assert!(
+            matches!(
+                &solved.stop,
+                Stop::Event {
+                    kind: EventKind::Accumulation,
+                    ..
+                }
+            ),
+            "{method:?}: {:?}",
+            solved.stop
+        );
+        let rest = solved.rows.last().unwrap()[0];
+        assert!((rest - last).abs() < 1e-4, "{method:?}: {rest} vs {last}");
+    }
+}

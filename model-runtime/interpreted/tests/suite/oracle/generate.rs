@@ -169,8 +169,13 @@ impl Model {
 
     /// The model in the model language.
     pub fn text(&self) -> String {
+        self.text_named("rnd")
+    }
+
+    /// The model in the model language, as module `name`.
+    pub fn text_named(&self, name: &str) -> String {
         let mut s = format!(
-            "mod rnd {{\n    states {{ x = {}, v = {} }}\n    let q = x + {} * v;\n    \
+            "mod {name} {{\n    states {{ x = {}, v = {} }}\n    let q = x + {} * v;\n    \
              outputs {{ o = x + {} * v^2; }}\n",
             num(self.x0),
             num(self.v0),

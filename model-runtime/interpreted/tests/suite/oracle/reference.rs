@@ -40,8 +40,26 @@ pub enum RefEnd {
     Unresolved(&'static str),
 }
 
+/// What the reference makes of a guard within rounding of its surface where a mode is entered
+/// (a guard whose own event, located on it, left the state a few ulps to one side, read
+/// again when a chain of events at one instant comes back to its mode): whether it departs
+/// or holds is decided by those ulps, which the two drivers need not share.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ties {
+    /// Beyond what the comparison judges: the events before are compared, nothing after.
+    Unresolved,
+    /// Taken as the reference computes them (exactly on the surface where its bisection
+    /// landed there): for the cases checked one by one.
+    AsComputed,
+}
+
 /// The reference run of `model` to `t_end`.
 pub fn run(model: &Model, t_end: f64) -> (Vec<RefEvent>, RefEnd) {
+    run_with(model, t_end, Ties::Unresolved)
+}
+
+/// The reference run of `model` to `t_end`, with surface ties taken as `ties` says.
+pub fn run_with(model: &Model, t_end: f64, ties: Ties) -> (Vec<RefEvent>, RefEnd) {
     let mut events: Vec<RefEvent> = Vec::new();
     let (mut t, mut y, mut mode) = (0.0, [model.x0, model.v0], 0usize);
     let mut start = Start::Run;
@@ -100,6 +118,12 @@ pub fn run(model: &Model, t_end: f64) -> (Vec<RefEvent>, RefEnd) {
                 };
                 mode = to.unwrap_or(mode);
                 (t, y) = (te, y2);
+                if ties == Ties::Unresolved && surface_tie(model, mode, start, reset, t, y) {
+                    return (
+                        events,
+                        RefEnd::Unresolved("a guard within rounding of its surface on entry"),
+                    );
+                }
             }
         }
     }
@@ -231,6 +255,20 @@ fn segment(
                     continue;
                 }
                 let into = sign(g1);
+                // A guard on its surface whose departure turns back within the fixed step
+                // (a speed so small that the acceleration wins inside one step) departs
+                // one way at the step's scale and the other at the driver's probes, far
+                // closer to the start: beyond what this reference resolves.
+                let hf = h * 2f64.powi(-20);
+                let fine = sign(guard(model, mode, i, t + hf, rk4(model, mode, t, y, hf)));
+                if departs[i] && fine != 0.0 && fine != into {
+                    return Some(Segment {
+                        index: i,
+                        t,
+                        y,
+                        unresolved: Some("a departure that turns within the fixed step"),
+                    });
+                }
                 if departs[i] && (hs == 0.0 || hs == into) {
                     // A departure that fires: at the last point where the guard was zero.
                     if best.is_none_or(|b| t < b.0) {
@@ -354,4 +392,24 @@ fn thin_before(
         }
     }
     None
+}
+
+/// Whether a guard of `mode` other than the one that restarted it is within rounding of its
+/// surface at `(t, y)`, where the run enters it after a reset `reset`: unless the reset set
+/// the guard's quantity to its threshold exactly (which both drivers compute alike).
+fn surface_tie(
+    model: &Model,
+    mode: usize,
+    start: Start,
+    reset: Reset,
+    t: f64,
+    y: [f64; 2],
+) -> bool {
+    let events = &model.modes[mode].events;
+    (0..events.len()).any(|i| {
+        let e = &events[i];
+        let exact =
+            matches!(reset, Reset::SetX(c) if e.quantity == Quantity::X && c == e.threshold);
+        start != Start::Restart(i) && !exact && guard(model, mode, i, t, y).abs() < 1e-12
+    })
 }
