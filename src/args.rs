@@ -1,5 +1,6 @@
 //! What every subcommand's arguments share: the exit codes, the arguments of a run, the
-//! integrators, the progress style, the Ctrl-C handler, the choice of models.
+//! integrators, the tables' format, the progress style, the Ctrl-C handler, the choice of
+//! models.
 //!
 //! One vocabulary for every subcommand: `--state NAME=VALUE` and `--set KEY=VALUE`
 //! (repeatable), `--integrator`, `--rtol`, `--atol`, `--t-end`, `-o/--out`, `-q/--quiet`,
@@ -25,10 +26,11 @@ use std::sync::Arc;
 
 use clap::{Args, ValueEnum};
 
-use crate::eval::Backend;
-use crate::output::format::TableFormat;
-use crate::run::ProgressStyle;
-use crate::scene::{Override, SceneError, DEFAULT_SCENE};
+use eulerdisk::{
+    Backend, Override, ProgressStyle, SceneError, TableFormat, DEFAULT_BACKEND, DEFAULT_SCENE,
+};
+
+use crate::terminal::TERMINAL_BARS;
 
 /// Exit code of a rejected input (bad scene, bad sweep file, bad JSON, singular state).
 pub const EXIT_INPUT: u8 = 2;
@@ -103,6 +105,24 @@ impl From<IntegratorName> for model_runtime::Method {
     }
 }
 
+/// The format of the tables, as `-f/--format` takes it (the library's [`TableFormat`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// Comma-separated text, numbers that parse back to the same bits.
+    Csv,
+    /// Apache Parquet: typed columns, Snappy-compressed.
+    Parquet,
+}
+
+impl From<FormatArg> for TableFormat {
+    fn from(format: FormatArg) -> TableFormat {
+        match format {
+            FormatArg::Csv => TableFormat::Csv,
+            FormatArg::Parquet => TableFormat::Parquet,
+        }
+    }
+}
+
 /// `eulerdisk run`.
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {
@@ -134,7 +154,7 @@ pub struct RunArgs {
     /// The format of the tables (trajectory, events, extrema, peaks): overrides
     /// `output.format`.
     #[arg(short, long, value_enum)]
-    pub format: Option<TableFormat>,
+    pub format: Option<FormatArg>,
     /// Run the hand-written reference models instead of the generated ones.
     #[arg(long)]
     pub reference: bool,
@@ -165,7 +185,11 @@ impl RunArgs {
             out.push(Override::new("solver", "integrator", v.name()));
         }
         if let Some(v) = self.format {
-            out.push(Override::new("output", "format", v.name()));
+            out.push(Override::new(
+                "output",
+                "format",
+                TableFormat::from(v).name(),
+            ));
         }
         for spec in &self.set {
             out.push(Override::parse(spec)?);
@@ -174,12 +198,13 @@ impl RunArgs {
     }
 }
 
-/// How a command reports progress: nothing when `quiet`, a bar on a terminal, lines otherwise.
+/// How a command reports progress: nothing when `quiet`, a bar on a terminal, lines otherwise
+/// (the library's lines; the bar is this program's, [`TERMINAL_BARS`]).
 pub fn progress_style(quiet: bool) -> ProgressStyle {
     if quiet {
         ProgressStyle::Quiet
     } else if std::io::stderr().is_terminal() {
-        ProgressStyle::Bar
+        ProgressStyle::Bar(&TERMINAL_BARS)
     } else {
         ProgressStyle::Lines
     }
@@ -204,14 +229,25 @@ pub fn interrupt_on_ctrl_c(message: &'static str) -> Arc<AtomicBool> {
     interrupt
 }
 
-/// The models the CLI runs unless `--reference` is given: the one line to switch.
-pub const DEFAULT_BACKEND: Backend = Backend::Generated;
-
 /// The backend a `--reference` flag selects.
 pub fn backend(reference: bool) -> Backend {
     if reference {
         Backend::Reference
     } else {
         DEFAULT_BACKEND
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_format_flag_offers_every_format_of_the_library() {
+        for format in TableFormat::ALL {
+            let flag = FormatArg::from_str(format.name(), false).unwrap();
+            assert_eq!(TableFormat::from(flag), format);
+        }
+        assert_eq!(FormatArg::value_variants().len(), TableFormat::ALL.len());
     }
 }

@@ -9,8 +9,9 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::args::{IntegratorName, RunArgs};
+use crate::args::{FormatArg, IntegratorName, RunArgs};
 use equations::Mode;
+use eulerdisk::ModelFormat;
 
 /// Euler's disk rolling and sliding on a rough plane (Saje & Zupan's model).
 #[derive(Debug, Parser)]
@@ -32,10 +33,10 @@ pub enum Command {
     Scenes,
     /// Simulate a scene and hear its rattle: a WAV of the normal-force peaks, their rate
     /// against the paper's, and a spectrogram.
-    Sound(crate::sound::args::SoundArgs),
+    Sound(crate::sound::SoundArgs),
     /// Run many scenes at once: axes over any scene key, a table of their summaries, figures;
     /// resumable, and shardable over a cluster's job array (`sweep merge` joins the shards).
-    Sweep(crate::sweep::args::SweepArgs),
+    Sweep(crate::sweep::SweepArgs),
     /// A model's equations as the compiler solved them (`model show rolling`), and a model of
     /// one's own from a DSL file: shown, evaluated or solved without compiling Rust.
     #[command(subcommand)]
@@ -54,7 +55,7 @@ pub enum ModelCommand {
         model: String,
         /// Markdown (DSL syntax) or LaTeX.
         #[arg(short, long, value_enum, default_value = "markdown")]
-        format: crate::model_show::Format,
+        format: ShowFormat,
         /// Compile the file even if the cache of compiled models holds it, and keep nothing
         /// there (the cache: `$XDG_CACHE_HOME/eulerdisk/models` or `~/.cache/eulerdisk/models`).
         #[arg(long)]
@@ -66,6 +67,24 @@ pub enum ModelCommand {
     /// Integrate a DSL file's model, interpreted, and write `t`, the states and the outputs as
     /// CSV.
     Solve(ModelSolveArgs),
+}
+
+/// How `model show` prints the equations (the library's [`ModelFormat`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ShowFormat {
+    /// Markdown, the equations in DSL syntax.
+    Markdown,
+    /// A LaTeX `align*` environment.
+    Latex,
+}
+
+impl From<ShowFormat> for ModelFormat {
+    fn from(format: ShowFormat) -> ModelFormat {
+        match format {
+            ShowFormat::Markdown => ModelFormat::Markdown,
+            ShowFormat::Latex => ModelFormat::Latex,
+        }
+    }
 }
 
 /// The model, state and parameters of `model eval` and `model solve`.
@@ -142,7 +161,7 @@ pub struct ModelSolveArgs {
     pub out: PathBuf,
     /// The format of the files (Parquet: to files only).
     #[arg(short, long, value_enum, default_value = "csv")]
-    pub format: crate::output::format::TableFormat,
+    pub format: FormatArg,
     /// The work bound, as `run`'s `solver.max_steps_per_s`: by simulated time `t` the run may
     /// have taken `MAX × (|t − t0| + 0.1)` steps; a run over it fails, keeping what it
     /// computed.

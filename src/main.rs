@@ -1,15 +1,29 @@
 //! `eulerdisk`: see `eulerdisk --help`. With no arguments it runs the paper's scene.
+//!
+//! The command line over the library `eulerdisk` (the `pipeline/` package): this program
+//! keeps the flags (`cli`, `args`, and the `sound`, `sweep` and `model` subcommands'
+//! arguments), the terminal (progress bars, `terminal`), Ctrl-C and the exit codes; the
+//! library runs the scenes and writes the files.
+
+mod args;
+mod cli;
+mod model_command;
+mod sound;
+mod sweep;
+mod terminal;
 
 use std::process::ExitCode;
 
+use args::{
+    backend, interrupt_on_ctrl_c, print_json, print_out, progress_style, RunArgs, EXIT_FAILED,
+    EXIT_INPUT, EXIT_INTERRUPTED, EXIT_STOPPED,
+};
 use clap::Parser;
+use cli::{Cli, Command, EvalArgs};
 use equations::record::StopKind;
-use eulerdisk::is_json_object;
 use eulerdisk::{
-    backend, evaluate, interrupt_on_ctrl_c, load_scene, parse_params, parse_scene, parse_state,
-    print_json, print_out, progress_style, run_scene, Cli, Command, Ending, EvalArgs, Provenance,
-    RunArgs, RunOptions, BUILTIN_SCENES, DEFAULT_SCENE, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
-    EXIT_STOPPED,
+    evaluate, is_json_object, load_scene, parse_params, parse_scene, parse_state, run_scene,
+    Ending, Provenance, RunOptions, BUILTIN_SCENES, DEFAULT_SCENE,
 };
 use model_runtime::Readable;
 
@@ -22,9 +36,9 @@ fn main() -> ExitCode {
         }),
         Some(Command::Run(args)) => run(args),
         Some(Command::Eval(args)) => eval(&args),
-        Some(Command::Sound(args)) => eulerdisk::sound_command(&args),
-        Some(Command::Sweep(args)) => eulerdisk::sweep_command(&args),
-        Some(Command::Model(command)) => eulerdisk::model_command(&command),
+        Some(Command::Sound(args)) => sound::command(&args),
+        Some(Command::Sweep(args)) => sweep::command(&args),
+        Some(Command::Model(command)) => model_command::run(&command),
         Some(Command::Scenes) => {
             for (name, text) in BUILTIN_SCENES {
                 let description = parse_scene(name, text, &[])

@@ -15,14 +15,13 @@ use crate::args::{
     EXIT_STOPPED,
 };
 use crate::cli::{ModelCommand, ModelEvalArgs, ModelPointArgs, ModelSolveArgs};
-use crate::eval::{evaluate_model, parse_model_state, parse_params};
-use crate::model_file::{event_spec, named, value_error, Arguments, ModelFileError};
-use crate::model_show::{Format, ModelName};
-use crate::model_tables::{events, trajectory};
-use crate::output::atomic::write_atomic;
-use crate::output::cells::Table;
-use crate::output::format::TableFormat;
-use clap::ValueEnum;
+use eulerdisk::{
+    evaluate_model, model_event_spec as event_spec, model_named as named,
+    model_value_error as value_error, parse_model_state, parse_params, read_model_file,
+    show_disk_model, show_model_file, solution_events as events, solution_trajectory as trajectory,
+    write_table_at, ModelArguments as Arguments, ModelFileError, ModelFormat as Format, ModelName,
+    Table, TableFormat,
+};
 use model_interpreted::{
     evaluate, initial_state, params, solve_with, Control, ModelFile, ModelRef, PointValues,
     Solution, SolveFailure, SolveRequest, Stop,
@@ -39,7 +38,7 @@ pub fn run(command: &ModelCommand) -> ExitCode {
             model,
             format,
             no_cache,
-        } => show(model, *format, *no_cache),
+        } => show(model, (*format).into(), *no_cache),
         ModelCommand::Eval(args) => eval(args),
         ModelCommand::Solve(args) => solve_file(args),
     }
@@ -51,8 +50,8 @@ fn input_error(error: impl std::fmt::Display) -> ExitCode {
 }
 
 fn show(model: &str, format: Format, no_cache: bool) -> ExitCode {
-    if let Ok(name) = ModelName::from_str(model, true) {
-        return match crate::model_show::show(name, format) {
+    if let Some(name) = ModelName::from_name(model) {
+        return match show_disk_model(name, format) {
             Ok(text) => match print_out(&text) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(code) => code,
@@ -69,7 +68,7 @@ fn show(model: &str, format: Format, no_cache: bool) -> ExitCode {
             "`{model}` is neither a model of the disk (rolling, sliding, sliding-cartesian) nor a DSL file"
         ));
     }
-    match crate::model_file::show(path, format, no_cache) {
+    match show_model_file(path, format, no_cache) {
         Ok(text) => match print_out(&text) {
             Ok(()) => ExitCode::SUCCESS,
             Err(code) => code,
@@ -81,7 +80,7 @@ fn show(model: &str, format: Format, no_cache: bool) -> ExitCode {
 /// `model eval`: the derivatives and outputs at the point the arguments give.
 fn point(args: &ModelEvalArgs) -> Result<PointValues, ModelFileError> {
     let point = &args.point;
-    let file = crate::model_file::read(Path::new(&point.model), point.no_cache)?;
+    let file = read_model_file(Path::new(&point.model), point.no_cache)?;
     let model = file.smooth(point.chart.as_deref())?;
     let params = params(ModelRef::Smooth(model), &named("--set", &point.set)?)
         .map_err(|e| value_error("--set", &point.set, e))?;
@@ -91,7 +90,7 @@ fn point(args: &ModelEvalArgs) -> Result<PointValues, ModelFileError> {
 }
 
 fn eval(args: &ModelEvalArgs) -> ExitCode {
-    if let Ok(name) = ModelName::from_str(&args.point.model, true) {
+    if let Some(name) = ModelName::from_name(&args.point.model) {
         return eval_disk(name, args);
     }
     if args.reference {
@@ -147,7 +146,7 @@ fn request(args: &ModelSolveArgs) -> Result<SolveRequest, ModelFileError> {
 
 /// `model solve`: the file's model solved as the arguments say, until `interrupt` is set.
 fn solved(args: &ModelSolveArgs, interrupt: &AtomicBool) -> Result<Solution, ModelFileError> {
-    let file = crate::model_file::read(Path::new(&args.point.model), args.point.no_cache)?;
+    let file = read_model_file(Path::new(&args.point.model), args.point.no_cache)?;
     if let ModelFile::Switched(model) = &file {
         for warning in &model.warnings {
             eprintln!("{warning}");
@@ -173,15 +172,14 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
     if args.method.is_some() {
         eprintln!("note: `--method` is deprecated: write `--integrator`");
     }
-    if ModelName::from_str(&args.point.model, true).is_ok()
-        && !Path::new(&args.point.model).exists()
-    {
+    if ModelName::from_name(&args.point.model).is_some() && !Path::new(&args.point.model).exists() {
         return input_error(format_args!(
             "`model solve` takes a DSL file; to simulate the disk's `{}` model, run a scene (`eulerdisk run`, `[modes] allowed`)",
             args.point.model
         ));
     }
-    if args.format == TableFormat::Parquet {
+    let format = TableFormat::from(args.format);
+    if format == TableFormat::Parquet {
         let to_stdout =
             args.out.as_os_str() == "-" || args.events.as_deref() == Some(Path::new("-"));
         if to_stdout {
@@ -210,10 +208,10 @@ fn solve_file(args: &ModelSolveArgs) -> ExitCode {
             return ExitCode::from(EXIT_FAILED);
         }
     };
-    let mut written = write_to(&args.out, args.format, &trajectory(&solution));
+    let mut written = write_to(&args.out, format, &trajectory(&solution));
     match &args.events {
         Some(path) if written.is_ok() => {
-            written = write_to(path, args.format, &events(&solution, failure.as_deref()));
+            written = write_to(path, format, &events(&solution, failure.as_deref()));
         }
         Some(_) => {}
         None => {
@@ -253,11 +251,7 @@ fn write_to(path: &Path, format: TableFormat, table: &Table) -> Result<(), Strin
         return (table.write_csv(&mut lock).and_then(|()| lock.flush()))
             .map_err(|err| format!("cannot write to standard output: {err}"));
     }
-    let written = match format {
-        TableFormat::Csv => write_atomic(path, |w| table.write_csv(w)),
-        TableFormat::Parquet => crate::output::parquet::write_table(path, table),
-    };
-    written.map_err(|err| err.to_string())
+    write_table_at(table, path, format).map_err(|err| err.to_string())
 }
 
 /// One line on the run: rows, events, why and when it ended (a run stopped by an event, at

@@ -106,9 +106,14 @@ pub fn run(
     run_scene(&loaded.scene, &options, interrupt).map_err(|e| e.to_string())
 }
 
-/// The command line's progress style for a run that shows progress or not.
+/// Progress as lines on standard error, or nothing (the bars are the command line's: the
+/// library draws none, so that this package links no terminal crate).
 fn progress_style(shown: bool) -> ProgressStyle {
-    eulerdisk::progress_style(!shown)
+    if shown {
+        ProgressStyle::Lines
+    } else {
+        ProgressStyle::Quiet
+    }
 }
 
 /// The file of a sweep's table in its folder.

@@ -1,10 +1,13 @@
-//! The layering ARCHITECTURE.md promises, checked against the manifests and the code.
+//! The layering ARCHITECTURE.md promises, checked against the manifests, the lock files and
+//! the code.
 //!
-//! Two invariants hold the workspace together. The compiler and the runtime are generic: they
-//! know no disk, so a user's model gets the same machinery the disk gets, and a change to the
-//! disk cannot break them. And the crates form layers with edges in one direction only, so each
-//! can be read, tested and changed with only what is below it. Both are easy to break with one
-//! innocent `use` or one line of a `Cargo.toml`; this file says where, by name.
+//! Three invariants hold the workspace together. The compiler and the runtime are generic:
+//! they know no disk, so a user's model gets the same machinery the disk gets, and a change to
+//! the disk cannot break them. The crates form layers with edges in one direction only, so each
+//! can be read, tested and changed with only what is below it. And the front ends are thin:
+//! the flags, the terminal and Ctrl-C are the command line's, so the library under it (and the
+//! Python package over that library) links none of their crates. All are easy to break with
+//! one innocent `use` or one line of a `Cargo.toml`; this file says where, by name.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -77,7 +80,22 @@ const LAYERS: &[Layer] = &[
         may_use: &["model-macros", "model-runtime"],
         generic: false,
     },
+    Layer {
+        name: "eulerdisk-pipeline",
+        dir: "pipeline",
+        may_use: &[
+            "model-dsl",
+            "model-runtime",
+            "model-interpreted",
+            "equations",
+        ],
+        generic: false,
+    },
 ];
+
+/// The command line's own crates: flags, the terminal's progress bars, Ctrl-C. Only the
+/// `eulerdisk` binary may link them.
+const COMMAND_LINE_CRATES: &[&str] = &["clap", "indicatif", "ctrlc"];
 
 /// The disk's crates: a generic crate's code may not name a path into them.
 const DISK_CRATES: &[&str] = &["equations", "eulerdisk"];
@@ -230,5 +248,130 @@ fn the_layer_check_sees_a_wrong_edge() {
     assert_eq!(
         wrong_edges(&strict),
         vec!["equations uses model-macros".to_string()]
+    );
+}
+
+/// The dependency lists of a lock file's packages, by name (every version's, joined): the
+/// names of the packages each may link.
+fn locked_dependencies(lock: &Path) -> BTreeMap<String, BTreeSet<String>> {
+    let text = std::fs::read_to_string(lock).unwrap();
+    let doc: toml::Table = toml::from_str(&text).unwrap();
+    let mut out: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for package in doc["package"].as_array().unwrap() {
+        let name = package["name"].as_str().unwrap().to_string();
+        let deps = out.entry(name).or_default();
+        for dep in package
+            .get("dependencies")
+            .and_then(|d| d.as_array())
+            .into_iter()
+            .flatten()
+        {
+            // `name` or, where two versions are locked, `name version`.
+            let dep = dep.as_str().unwrap();
+            deps.insert(dep.split(' ').next().unwrap().to_string());
+        }
+    }
+    out
+}
+
+/// The packages a workspace crate links: its normal and build dependencies from the
+/// manifests for the workspace's crates (the lock file lists their dev-dependencies too),
+/// and from `Cargo.lock` below them. Optional dependencies count, whatever the features.
+fn linked_by(name: &str) -> BTreeSet<String> {
+    let crates = workspace_crates();
+    let locked = locked_dependencies(&root().join("Cargo.lock"));
+    let mut seen = BTreeSet::new();
+    let mut todo = vec![name.to_string()];
+    while let Some(package) = todo.pop() {
+        if !seen.insert(package.clone()) {
+            continue;
+        }
+        let deps = match crates.get(&package) {
+            Some(dir) => normal_deps(&dir.join("Cargo.toml")),
+            None => locked.get(&package).cloned().unwrap_or_default(),
+        };
+        todo.extend(deps);
+    }
+    seen.remove(name);
+    seen
+}
+
+/// The packages a manifest names in its normal and build dependencies.
+fn normal_deps(manifest: &Path) -> BTreeSet<String> {
+    let doc: toml::Table = toml::from_str(&std::fs::read_to_string(manifest).unwrap()).unwrap();
+    let mut out = BTreeSet::new();
+    for table in ["dependencies", "build-dependencies"] {
+        for (key, spec) in doc
+            .get(table)
+            .and_then(|t| t.as_table())
+            .into_iter()
+            .flatten()
+        {
+            let renamed = spec.get("package").and_then(|p| p.as_str());
+            out.insert(renamed.unwrap_or(key).to_string());
+        }
+    }
+    out
+}
+
+/// The command line's crates among `packages`.
+fn command_line_crates<'a>(packages: impl IntoIterator<Item = &'a String>) -> Vec<&'a str> {
+    (packages.into_iter())
+        .map(String::as_str)
+        .filter(|p| COMMAND_LINE_CRATES.contains(p))
+        .collect()
+}
+
+#[test]
+fn the_library_links_no_command_line_crate() {
+    let linked = linked_by("eulerdisk-pipeline");
+    assert!(
+        linked.contains("equations") && linked.contains("serde"),
+        "{linked:?}"
+    );
+    let found = command_line_crates(&linked);
+    assert!(
+        found.is_empty(),
+        "the library (pipeline/) links the command line's crates {found:?}: they belong to \
+         the `eulerdisk` binary (src/)"
+    );
+}
+
+#[test]
+fn the_link_check_sees_the_command_line() {
+    // The same walk from the binary finds all three: the check above can fail.
+    let linked = linked_by("eulerdisk");
+    let mut expected = COMMAND_LINE_CRATES.to_vec();
+    expected.sort_unstable();
+    assert_eq!(command_line_crates(&linked), expected);
+}
+
+#[test]
+fn the_library_manifest_names_no_command_line_crate() {
+    // Not even as a dev-dependency or for one target: the library's own tests run without a
+    // command line.
+    let text = std::fs::read_to_string(root().join("pipeline/Cargo.toml")).unwrap();
+    let doc: toml::Table = toml::from_str(&text).unwrap();
+    let sections = ["dependencies", "dev-dependencies", "build-dependencies"];
+    let targets = doc.get("target").and_then(|t| t.as_table());
+    let owners = std::iter::once(&doc)
+        .chain((targets.into_iter().flat_map(|t| t.values())).filter_map(|t| t.as_table()));
+    let tables = owners.flat_map(|t| sections.iter().filter_map(move |s| t.get(*s)?.as_table()));
+    let named: Vec<&String> = tables.flat_map(|t| t.keys()).collect();
+    assert!(named.iter().any(|n| *n == "equations"), "{named:?}");
+    let found = command_line_crates(named);
+    assert!(found.is_empty(), "pipeline/Cargo.toml names {found:?}");
+}
+
+#[test]
+fn the_python_package_links_no_command_line_crate() {
+    // Its lock file holds exactly what it may link (it is outside the workspace).
+    let locked = locked_dependencies(&root().join("python/Cargo.lock"));
+    assert!(locked.contains_key("eulerdisk-pipeline") && locked.contains_key("pyo3"));
+    let found = command_line_crates(locked.keys());
+    assert!(
+        found.is_empty(),
+        "python/Cargo.lock holds the command line's crates {found:?}: the package must \
+         depend on the library (pipeline/), not on the binary"
     );
 }

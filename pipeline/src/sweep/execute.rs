@@ -12,7 +12,6 @@ use std::sync::mpsc;
 use std::sync::{Arc, Mutex, Weak};
 use std::time::{Duration, Instant};
 
-use indicatif::{ProgressBar, ProgressStyle as BarStyle};
 use rayon::prelude::*;
 
 use super::columns::scalar_entries;
@@ -21,7 +20,8 @@ use super::row::{PointStop, Row, Status, SweepStop};
 use super::run_point::{process_cpu_s, run_point};
 use super::shard::Shard;
 use super::store::{Store, StoreError, SCRATCH_DIR};
-use crate::run::{Ending, ProgressStyle};
+use crate::run::progress::{Bar, Counting, ProgressStyle};
+use crate::run::Ending;
 
 /// How often `sweep.csv` is rebuilt while runs finish, at most.
 pub const TABLE_EVERY: Duration = Duration::from_secs(1);
@@ -262,20 +262,15 @@ struct SweepProgress {
     total: usize,
     done: usize,
     next_tenth: usize,
-    bar: Option<ProgressBar>,
+    bar: Option<Box<dyn Bar>>,
 }
 
 impl SweepProgress {
     fn new(style: ProgressStyle, total: usize) -> SweepProgress {
-        let bar = (style == ProgressStyle::Bar).then(|| {
-            let bar = ProgressBar::new(total as u64);
-            let template = "{elapsed_precise} [{bar:40}] {pos}/{len} runs, {msg} (eta {eta})";
-            if let Ok(s) = BarStyle::with_template(template) {
-                bar.set_style(s.progress_chars("=> "));
-            }
-            bar.set_message("0 failed");
-            bar
-        });
+        let bar = style.bar(total as u64, Counting::Runs);
+        if let Some(bar) = &bar {
+            bar.show(0, "0 failed");
+        }
         SweepProgress {
             style,
             total,
@@ -288,10 +283,9 @@ impl SweepProgress {
     fn finished(&mut self, row: &Row, failed: usize) {
         self.done += 1;
         if let Some(bar) = &self.bar {
-            bar.set_message(format!("{failed} failed"));
-            bar.inc(1);
+            bar.show(self.done as u64, &format!("{failed} failed"));
         }
-        if row.status != Status::Completed && self.style != ProgressStyle::Quiet {
+        if row.status != Status::Completed && !self.style.is_quiet() {
             let line = format!(
                 "run {} {}: {} {}",
                 row.id(),
@@ -300,11 +294,11 @@ impl SweepProgress {
                 row.stop_detail
             );
             match &self.bar {
-                Some(bar) => bar.println(line),
+                Some(bar) => bar.println(&line),
                 None => eprintln!("{line}"),
             }
         }
-        if self.style == ProgressStyle::Lines {
+        if self.style.is_lines() {
             while self.next_tenth <= 10 && self.done * 10 >= self.next_tenth * self.total {
                 eprintln!("sweep: {}/{} runs, {failed} failed", self.done, self.total);
                 self.next_tenth += 1;
@@ -314,7 +308,7 @@ impl SweepProgress {
 
     fn finish(&mut self) {
         if let Some(bar) = &self.bar {
-            bar.finish_and_clear();
+            bar.finish();
         }
     }
 }

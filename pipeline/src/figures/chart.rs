@@ -24,7 +24,7 @@ use super::line::{marker_at, Axis, Line, Stroke, FAMILY};
 use crate::output::atomic::{produce_atomic, write_bytes_atomic, WriteError};
 
 /// The shipped font (DejaVu Sans, Bitstream Vera licence, see `assets/`).
-const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+const FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
 /// Pixel size of every figure.
 pub const SIZE: (u32, u32) = (1200, 720);
 /// Most points drawn per line: longer series are reduced to their min/max per bucket, which

@@ -14,10 +14,11 @@ use std::sync::atomic::AtomicBool;
 use super::row::{PointStop, SweepStop};
 use super::spec::Keep;
 use crate::analysis::summary::Summary;
-use crate::args::DEFAULT_BACKEND;
+use crate::eval::DEFAULT_BACKEND;
 use crate::output::format::TableFormat;
+use crate::run::progress::ProgressStyle;
 use crate::run::provenance::Provenance;
-use crate::run::{run_scene, Ending, ProgressStyle, RunOptions};
+use crate::run::{run_scene, Ending, RunOptions};
 use crate::scene::Scene;
 use equations::record::{Stop, StopKind};
 

@@ -13,7 +13,7 @@ pub const PARQUET_UNAVAILABLE: &str =
     "cannot be written by this build: it was built without the `parquet` feature; use \"csv\"";
 
 /// How the table files are written.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TableFormat {
     /// Comma-separated text, numbers that parse back to the same bits.

@@ -27,6 +27,10 @@ pub enum Backend {
     Reference,
 }
 
+/// The models the front ends run unless asked for the reference (`--reference`): the one
+/// line to switch.
+pub const DEFAULT_BACKEND: Backend = Backend::Generated;
+
 /// Why an evaluation failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EvalCommandError {

@@ -7,18 +7,36 @@
 
 use std::process::ExitCode;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 
-use super::peaks::PeakRule;
-use super::render::{Compression, RenderOptions, Ring};
-use super::{sound_scene, SoundOptions};
 use crate::args::{backend, RunArgs, EXIT_FAILED, EXIT_INPUT, EXIT_STOPPED};
-use crate::scene;
 use equations::record::StopKind;
+use eulerdisk::{
+    load_scene, sound_scene, Compression, PeakRule, RenderOptions, Ring, SoundError, SoundOptions,
+};
 use model_runtime::Readable;
 
 /// Where `sound` writes unless `--out` says otherwise.
 pub const DEFAULT_OUT: &str = "out/sound";
+
+/// How a peak's rise sets its knock's amplitude, as `--compression` takes it (the library's
+/// [`Compression`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum CompressionArg {
+    /// `√p`.
+    Sqrt,
+    /// `ln(1 + p)`.
+    Log,
+}
+
+impl From<CompressionArg> for Compression {
+    fn from(compression: CompressionArg) -> Compression {
+        match compression {
+            CompressionArg::Sqrt => Compression::Sqrt,
+            CompressionArg::Log => Compression::Log,
+        }
+    }
+}
 
 /// `eulerdisk sound`.
 #[derive(Debug, Args)]
@@ -40,8 +58,8 @@ pub struct SoundArgs {
     #[arg(long, default_value_t = 1.0, value_name = "K")]
     pub speed: f64,
     /// Amplitude law of a knock, from the peak's located rise p above its baseline (N/mg).
-    #[arg(long, value_enum, default_value_t = Compression::Sqrt)]
-    pub compression: Compression,
+    #[arg(long, value_enum, default_value_t = CompressionArg::Sqrt)]
+    pub compression: CompressionArg,
     /// A major peak rises at least this much above its baseline (N/mg)...
     #[arg(long, default_value_t = PeakRule::default().min_prominence)]
     pub min_prominence: f64,
@@ -77,7 +95,7 @@ impl SoundArgs {
                     hz: self.ring_hz,
                     decay_s: self.ring_decay_ms / 1e3,
                 },
-                compression: self.compression,
+                compression: self.compression.into(),
                 speed: self.speed,
                 ..RenderOptions::default()
             },
@@ -95,7 +113,7 @@ pub fn command(args: &SoundArgs) -> ExitCode {
     let scene = match args
         .run
         .overrides()
-        .and_then(|o| scene::load(&args.run.scene, &o))
+        .and_then(|o| load_scene(&args.run.scene, &o))
     {
         Ok(s) => s,
         Err(err) => {
@@ -139,10 +157,10 @@ pub fn command(args: &SoundArgs) -> ExitCode {
             eprintln!("error: {err}");
             let input = matches!(
                 err,
-                super::SoundError::Setting { .. }
-                    | super::SoundError::TraceTooLong { .. }
-                    | super::SoundError::Peaks(_)
-                    | super::SoundError::Render(_)
+                SoundError::Setting { .. }
+                    | SoundError::TraceTooLong { .. }
+                    | SoundError::Peaks(_)
+                    | SoundError::Render(_)
             );
             ExitCode::from(if input { EXIT_INPUT } else { EXIT_FAILED })
         }
@@ -164,7 +182,7 @@ mod tests {
     fn defaults_are_the_library_defaults() {
         let w = Wrapper::try_parse_from(["sound"]).unwrap();
         assert_eq!(w.sound.options(), SoundOptions::default());
-        assert_eq!(w.sound.run.scene, scene::DEFAULT_SCENE);
+        assert_eq!(w.sound.run.scene, eulerdisk::DEFAULT_SCENE);
         assert_eq!(
             w.sound.run.out_dir(DEFAULT_OUT),
             std::path::PathBuf::from("out/sound")

@@ -38,21 +38,10 @@ use equations::record::{Sample, Stop, StopKind};
 use equations::Mode;
 use model::ModelChoice;
 use plan::SamplePlan;
-use progress::Progress;
+use progress::{Progress, ProgressStyle};
 use provenance::{is_papers_scene, Provenance};
 use simulation::{Failure, Message, Outcome};
 pub use trajectory::TrajectoryFile;
-
-/// How a run reports while it runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ProgressStyle {
-    /// A progress bar (a terminal).
-    Bar,
-    /// A plain line every 10% (not a terminal).
-    Lines,
-    /// Nothing.
-    Quiet,
-}
 
 /// Options of a run besides the scene.
 #[derive(Clone, Debug)]
@@ -501,7 +490,7 @@ pub fn write_outputs(
         provisional.figures_not_drawn = FIGURE_STEMS.iter().map(|s| s.to_string()).collect();
         provisional.timings = timings;
         write_summary(&path, &provisional, opts)?;
-        if opts.progress != ProgressStyle::Quiet {
+        if !opts.progress.is_quiet() {
             eprintln!("drawing the figures (Ctrl-C skips the rest)");
         }
         let paper = summary.compared_with_paper;

@@ -6,16 +6,14 @@ use std::process::ExitCode;
 
 use clap::{Args, Subcommand};
 
-use super::execute::ExecOptions;
-use super::expand::{plan, run_arguments, FORMAT_KEY};
-use super::merge::merge;
-use super::run_sweep;
-use super::shard::Shard;
-use super::spec::{self, BUILTIN};
 use crate::args::{
-    interrupt_on_ctrl_c, print_out, progress_style, EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED,
+    interrupt_on_ctrl_c, print_out, progress_style, FormatArg, EXIT_FAILED, EXIT_INPUT,
+    EXIT_INTERRUPTED,
 };
-use crate::output::format::TableFormat;
+use eulerdisk::{
+    load_sweep, merge, parse_sweep, plan, run_arguments, run_sweep, sweep_dir, ExecOptions,
+    PointId, Shard, TableFormat, BUILTIN_SWEEPS, SWEEP_FORMAT_KEY, TABLE_STEM,
+};
 
 /// `eulerdisk sweep`.
 #[derive(Debug, Args)]
@@ -43,7 +41,7 @@ pub struct SweepArgs {
     /// The format of the table and of the runs' tables: overrides `output.format` of every
     /// point.
     #[arg(short, long, value_enum)]
-    pub format: Option<TableFormat>,
+    pub format: Option<FormatArg>,
     /// Validate every point and list them; run nothing.
     #[arg(long)]
     pub dry_run: bool,
@@ -77,8 +75,8 @@ pub fn command(args: &SweepArgs) -> ExitCode {
     match &args.command {
         Some(SweepCommand::Merge(m)) => merge_command(m),
         Some(SweepCommand::List) => {
-            for (name, text) in BUILTIN {
-                let description = spec::parse(name, text)
+            for (name, text) in BUILTIN_SWEEPS {
+                let description = parse_sweep(name, text)
                     .ok()
                     .and_then(|s| s.description)
                     .unwrap_or_default();
@@ -99,7 +97,7 @@ fn input_error(err: impl std::fmt::Display) -> ExitCode {
 
 fn sweep_command(args: &SweepArgs) -> ExitCode {
     let name = args.sweep.as_deref().unwrap_or_default();
-    let loaded = match spec::load(name) {
+    let loaded = match load_sweep(name) {
         Ok(l) => l,
         Err(e) => return input_error(e),
     };
@@ -117,7 +115,7 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
     }
     let mut sets: Vec<String> = args
         .format
-        .map(|f| format!("{FORMAT_KEY}={f}"))
+        .map(|f| format!("{SWEEP_FORMAT_KEY}={}", TableFormat::from(f)))
         .into_iter()
         .collect();
     sets.extend(args.set.iter().cloned());
@@ -130,11 +128,7 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
         for (i, values) in d.points.iter().enumerate() {
             if Shard::selects(shard, i) {
                 let sets = run_arguments(d, values).join(" --set ");
-                let line = format!(
-                    "{} run {} --set {sets}\n",
-                    super::expand::PointId(i).name(),
-                    d.scene_name
-                );
+                let line = format!("{} run {} --set {sets}\n", PointId(i).name(), d.scene_name);
                 if let Err(code) = print_out(&line) {
                     return code;
                 }
@@ -161,7 +155,7 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
             )),
             if jobs == 1 { "" } else { "s" },
             d.scene_name,
-            super::sweep_dir(&args.out, shard).display()
+            sweep_dir(&args.out, shard).display()
         );
     }
     let opts = ExecOptions {
@@ -179,7 +173,7 @@ fn sweep_command(args: &SweepArgs) -> ExitCode {
                     e.points,
                     e.failed,
                     e.skipped,
-                    report.dir.join(d.format.file(super::store::TABLE_STEM)).display()
+                    report.dir.join(d.format.file(TABLE_STEM)).display()
                 );
                 if let Err(code) = print_out(&said) {
                     return code;

@@ -19,7 +19,6 @@
 //! kill, lost node or full disk can leave half a row, and the table is rebuilt in point order,
 //! identical however many workers or shards made it.
 
-pub mod args;
 mod axes;
 pub mod columns;
 pub mod execute;

@@ -214,11 +214,11 @@ pub enum SpecError {
 pub const BUILTIN: &[(&str, &str)] = &[
     (
         "speed-accuracy",
-        include_str!("../../sweeps/speed-accuracy.toml"),
+        include_str!("../../../sweeps/speed-accuracy.toml"),
     ),
     (
         "paper-friction",
-        include_str!("../../sweeps/paper-friction.toml"),
+        include_str!("../../../sweeps/paper-friction.toml"),
     ),
 ];
 

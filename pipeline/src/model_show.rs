@@ -7,7 +7,6 @@
 //! can repeat by hand: `N/mg` at the paper's start from the generated model beside the paper's
 //! formula (13).
 
-use clap::ValueEnum;
 use equations::formulas::{rolling_normal_force_ratio, BodyRates, FormulaError};
 use equations::layout;
 use equations::models::{rolling, sliding, sliding_cartesian};
@@ -17,7 +16,7 @@ use model_runtime::{EvalError, WithOutputs as _};
 use std::fmt::Write as _;
 
 /// A model of the disk, by the name `model show` takes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModelName {
     /// Box 1: rolling without slipping.
     Rolling,
@@ -27,8 +26,31 @@ pub enum ModelName {
     SlidingCartesian,
 }
 
+impl ModelName {
+    /// Every model of the disk.
+    pub const ALL: [ModelName; 3] = [
+        ModelName::Rolling,
+        ModelName::Sliding,
+        ModelName::SlidingCartesian,
+    ];
+
+    /// The name as `model show` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelName::Rolling => "rolling",
+            ModelName::Sliding => "sliding",
+            ModelName::SlidingCartesian => "sliding-cartesian",
+        }
+    }
+
+    /// The model named `name`, in any case (`Rolling`, `SLIDING-CARTESIAN`).
+    pub fn from_name(name: &str) -> Option<ModelName> {
+        (ModelName::ALL.into_iter()).find(|model| model.name().eq_ignore_ascii_case(name))
+    }
+}
+
 /// How the equations are printed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
     /// Markdown, the equations in DSL syntax.
     Markdown,
@@ -139,6 +161,18 @@ mod tests {
         for state in sliding_cartesian::STATE_NAMES {
             assert!(sliding.contains(&format!("der({state})")), "der({state})");
         }
+    }
+
+    #[test]
+    fn disk_models_are_found_by_name_in_any_case() {
+        for model in ModelName::ALL {
+            assert_eq!(ModelName::from_name(model.name()), Some(model));
+        }
+        assert_eq!(
+            ModelName::from_name("Sliding-Cartesian"),
+            Some(ModelName::SlidingCartesian)
+        );
+        assert_eq!(ModelName::from_name("drop.dsl"), None);
     }
 
     #[test]

@@ -30,7 +30,7 @@ pub const MAX_SECONDS: f64 = 3600.0;
 pub const TAIL_DECAYS: f64 = 10.4;
 
 /// How the peak's rise sets its knock's amplitude.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Compression {
     /// `√p`.
     Sqrt,

@@ -23,34 +23,37 @@ pub use validate::Scene;
 
 /// The scenes shipped with the program: (name, TOML text).
 pub const BUILTIN: &[(&str, &str)] = &[
-    ("tangent-toy", include_str!("../../scenes/tangent-toy.toml")),
+    (
+        "tangent-toy",
+        include_str!("../../../scenes/tangent-toy.toml"),
+    ),
     (
         "tangent-toy-pruned",
-        include_str!("../../scenes/tangent-toy-pruned.toml"),
+        include_str!("../../../scenes/tangent-toy-pruned.toml"),
     ),
     (
         "pure-rolling",
-        include_str!("../../scenes/pure-rolling.toml"),
+        include_str!("../../../scenes/pure-rolling.toml"),
     ),
     (
         "spinning-in-place",
-        include_str!("../../scenes/spinning-in-place.toml"),
+        include_str!("../../../scenes/spinning-in-place.toml"),
     ),
     (
         "steady-circle",
-        include_str!("../../scenes/steady-circle.toml"),
+        include_str!("../../../scenes/steady-circle.toml"),
     ),
     (
         "upright-stable",
-        include_str!("../../scenes/upright-stable.toml"),
+        include_str!("../../../scenes/upright-stable.toml"),
     ),
     (
         "upright-unstable",
-        include_str!("../../scenes/upright-unstable.toml"),
+        include_str!("../../../scenes/upright-unstable.toml"),
     ),
     (
         "high-friction",
-        include_str!("../../scenes/high-friction.toml"),
+        include_str!("../../../scenes/high-friction.toml"),
     ),
 ];
 

@@ -10,7 +10,6 @@
 //! function of the previous stage's data, so each is tested on synthetic input with a known
 //! answer.
 
-pub mod args;
 mod figures;
 mod files;
 pub mod peaks;
