@@ -272,7 +272,7 @@ def run(
             top-level ``"name"``).
         t_end: the end time (s); the same as ``set={"run.t_end": t_end}``.
         set: scene overrides by ``"table.key"``, as ``--set table.key=value``.
-        progress: a progress bar on a terminal, lines on standard error in a notebook;
+        progress: lines on standard error (the simulated time and the work done);
             ``False`` shows nothing. By default shown on a terminal or in a notebook.
         out: a folder to write the command line's files into too (``trajectory.csv``,
             ``events.csv``, ``extrema.csv``, ``summary.json``); none by default.

@@ -81,7 +81,7 @@ pub fn scene_error_key(error: &SceneError) -> Option<String> {
 pub struct RunRequest<'a> {
     /// The output folder (`trajectory.csv` only when `trajectory_file`).
     pub out_dir: &'a Path,
-    /// A progress bar or lines on standard error.
+    /// Progress lines on standard error.
     pub progress: bool,
     /// Whether to write `trajectory.csv` too (the samples are returned in any case).
     pub trajectory_file: bool,
