@@ -3,6 +3,11 @@
 //! Every output is written under a temporary name in its final directory and renamed when it
 //! is complete and flushed, so a reader (or an interrupted run) never sees half a file: a
 //! file is either the previous complete version, the new complete version, or absent.
+//!
+//! An output that already exists as something other than a regular file (`/dev/null`,
+//! `/dev/stdout`, a named pipe) is written in place: renaming over it would replace the
+//! device or the pipe with a regular file (as root, `-o /dev/null` would turn the system's
+//! `/dev/null` into a file that keeps what is written to it).
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -35,13 +40,19 @@ where
     F: FnOnce(&Path) -> Result<(), E>,
     E: std::fmt::Display,
 {
-    let tmp = temporary_name(path);
-    let result = produce(&tmp)
-        .map_err(|e| io::Error::other(e.to_string()))
-        .and_then(|()| fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
+    let as_error = |e: E| io::Error::other(e.to_string());
+    let result = if is_special(path) {
+        produce(path).map_err(as_error)
+    } else {
+        let tmp = temporary_name(path);
+        let result = produce(&tmp)
+            .map_err(as_error)
+            .and_then(|()| fs::rename(&tmp, path));
+        if result.is_err() {
+            let _ = fs::remove_file(&tmp);
+        }
+        result
+    };
     result.map_err(|source| WriteError {
         path: path.to_path_buf(),
         source,
@@ -54,15 +65,26 @@ where
 #[derive(Debug)]
 pub struct AtomicFile {
     path: PathBuf,
-    tmp: PathBuf,
+    /// The temporary name (`None`: a device or a pipe, written in place).
+    tmp: Option<PathBuf>,
     writer: Option<BufWriter<File>>,
 }
 
+/// Whether `path` exists as something other than a regular file (a device, a pipe, a
+/// socket, followed through symbolic links): written in place, never renamed over.
+fn is_special(path: &Path) -> bool {
+    fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
 impl AtomicFile {
-    /// Starts writing `path` (under its temporary name).
+    /// Starts writing `path` (under its temporary name; a device or a pipe in place).
     pub fn create(path: &Path) -> Result<AtomicFile, WriteError> {
-        let tmp = temporary_name(path);
-        let file = File::create(&tmp).map_err(|source| WriteError {
+        let tmp = (!is_special(path)).then(|| temporary_name(path));
+        let opened = match &tmp {
+            Some(tmp) => File::create(tmp),
+            None => fs::OpenOptions::new().write(true).open(path),
+        };
+        let file = opened.map_err(|source| WriteError {
             path: path.to_path_buf(),
             source,
         })?;
@@ -86,11 +108,14 @@ impl AtomicFile {
             .writer
             .take()
             .expect("an AtomicFile is only consumed by commit");
-        let result = writer
-            .into_inner()
-            .map_err(|e| e.into_error())
-            .and_then(|file| file.sync_all())
-            .and_then(|()| fs::rename(&self.tmp, &self.path));
+        let file = writer.into_inner().map_err(|e| e.into_error());
+        let result = match &self.tmp {
+            Some(tmp) => file
+                .and_then(|file| file.sync_all())
+                .and_then(|()| fs::rename(tmp, &self.path)),
+            // A device or a pipe has nothing to sync (and a pipe refuses it).
+            None => file.map(drop),
+        };
         result.map_err(|source| WriteError {
             path: self.path.clone(),
             source,
@@ -121,8 +146,10 @@ impl Write for AtomicFile {
 impl Drop for AtomicFile {
     fn drop(&mut self) {
         // Committed files were renamed away; an uncommitted one is removed.
-        if self.writer.take().is_some() || self.tmp.exists() {
-            let _ = fs::remove_file(&self.tmp);
+        if let Some(tmp) = &self.tmp {
+            if self.writer.take().is_some() || tmp.exists() {
+                let _ = fs::remove_file(tmp);
+            }
         }
     }
 }
@@ -169,5 +196,37 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names.len(), 1, "{names:?}");
+    }
+
+    /// A named pipe (as `/dev/null` or `/dev/stdout` would be) is written in place and stays a
+    /// pipe: renamed over, it would have become a regular file.
+    #[test]
+    fn a_pipe_is_written_in_place_not_replaced() {
+        use std::os::unix::ffi::OsStrExt;
+        use std::os::unix::fs::FileTypeExt;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("pipe.csv");
+        let name = std::ffi::CString::new(path.as_os_str().as_bytes()).unwrap();
+        // SAFETY: a valid NUL-terminated path; mkfifo only creates the pipe.
+        assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
+        for round in 0..2 {
+            let reader = {
+                let path = path.clone();
+                std::thread::spawn(move || fs::read_to_string(path).unwrap())
+            };
+            if round == 0 {
+                write_atomic(&path, |w| w.write_all(b"x,y\n1,2\n")).unwrap();
+            } else {
+                produce_atomic(&path, |p| fs::write(p, b"x,y\n1,2\n")).unwrap();
+            }
+            assert_eq!(reader.join().unwrap(), "x,y\n1,2\n");
+            let kind = fs::symlink_metadata(&path).unwrap().file_type();
+            assert!(
+                kind.is_fifo(),
+                "round {round}: the pipe was replaced: {kind:?}"
+            );
+        }
+        let names: Vec<_> = fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(names.len(), 1, "no temporary file is left: {names:?}");
     }
 }
