@@ -16,7 +16,7 @@ from support import OSCILLATOR, seconds_to_interrupt
 import eulerdisk
 
 
-def test_the_interpreter_exits_cleanly_with_runs_in_flight():
+def test_the_interpreter_exits_cleanly_with_runs_in_flight(tmp_path):
     # Daemon threads inside `run` and `Model.solve` when the interpreter exits: CPython ends
     # such threads as they take the GIL back, which used to abort the process (rc 134).
     script = textwrap.dedent(
@@ -32,8 +32,14 @@ def test_the_interpreter_exits_cleanly_with_runs_in_flight():
         print("leaving")
         """
     )
+    # From another folder: `python -c` puts its working folder first on the path, and the
+    # tests run in python/, where `eulerdisk/` is the package's source without its native part.
     done = subprocess.run(
-        [sys.executable, "-c", script], capture_output=True, text=True, timeout=120
+        [sys.executable, "-c", script],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=tmp_path,
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "leaving"
