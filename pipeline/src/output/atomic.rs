@@ -219,12 +219,13 @@ mod tests {
             } else {
                 produce_atomic(&path, |p| fs::write(p, b"x,y\n1,2\n")).unwrap();
             }
-            assert_eq!(reader.join().unwrap(), "x,y\n1,2\n");
+            // First the kind: a pipe renamed over is never opened, and its reader would wait.
             let kind = fs::symlink_metadata(&path).unwrap().file_type();
             assert!(
                 kind.is_fifo(),
                 "round {round}: the pipe was replaced: {kind:?}"
             );
+            assert_eq!(reader.join().unwrap(), "x,y\n1,2\n");
         }
         let names: Vec<_> = fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(names.len(), 1, "no temporary file is left: {names:?}");
