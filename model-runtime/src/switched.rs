@@ -281,9 +281,8 @@ pub struct Switched<M> {
     /// Each mode's guards, one per event.
     specs: Vec<Vec<GuardSpec<EventId>>>,
     /// One detector per event of the current mode (its restarts since the mode was entered),
-    /// all made with `rule`.
+    /// as many as the largest mode has events.
     detectors: Vec<AccumulationDetector>,
-    rule: AccumulationRule,
     /// The mode whose restarts the detectors have seen.
     watching: Option<ModeId>,
 }
@@ -305,12 +304,12 @@ impl<M> Switched<M> {
                     })
                     .collect()
             })
-            .collect();
+            .collect::<Vec<Vec<_>>>();
+        let most = specs.iter().map(Vec::len).max().unwrap_or(0);
         Ok(Switched {
             model,
             specs,
-            detectors: Vec::new(),
-            rule: AccumulationDetector::new(rule)?.rule(),
+            detectors: vec![AccumulationDetector::new(rule)?; most],
             watching: None,
         })
     }
@@ -342,11 +341,6 @@ impl<M> Switched<M> {
         if self.watching != Some(event.mode) {
             self.forget();
             self.watching = Some(event.mode);
-        }
-        while self.detectors.len() <= event.event {
-            // The rule was checked when the system was made.
-            let detector = AccumulationDetector::new(self.rule).ok()?;
-            self.detectors.push(detector);
         }
         let accumulation = self.detectors[event.event].fire(t);
         if accumulation.is_some() {

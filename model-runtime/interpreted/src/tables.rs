@@ -179,9 +179,8 @@ impl Tables<'_> {
                 steps: Some(steps),
                 events: n_events,
                 hint: work
-                    .is_some()
-                    .then(|| WorkHint::of(steps, n_events, self.explicit))
-                    .flatten(),
+                    .as_ref()
+                    .and_then(|_| WorkHint::of(steps, n_events, self.explicit)),
                 work,
                 partial: Some(Box::new(solution)),
             })),
