@@ -46,6 +46,7 @@ mod hybrid;
 mod issue;
 pub mod models;
 mod modes;
+pub mod paper;
 mod params;
 pub mod record;
 pub mod reference;

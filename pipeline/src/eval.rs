@@ -16,7 +16,7 @@ use crate::named_numbers::{parse_assignments, NamedNumbersError};
 use equations::Mode;
 
 /// Number of states of every disk model.
-const N: usize = 12;
+const N: usize = equations::DIM;
 
 /// Which implementation of the equations answers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -51,6 +51,12 @@ const LAYERS: &[Layer] = &[
         generic: true,
     },
     Layer {
+        name: "model-macros-ui",
+        dir: "model-macros/ui",
+        may_use: &[],
+        generic: true,
+    },
+    Layer {
         name: "model-runtime",
         dir: "model-runtime",
         may_use: &["model-ops"],
@@ -374,4 +380,55 @@ fn the_python_package_links_no_command_line_crate() {
         "python/Cargo.lock holds the command line's crates {found:?}: the package must \
          depend on the library (pipeline/), not on the binary"
     );
+}
+
+/// Files `foo.rs` that sit beside a folder `foo/` under `dir`: a module written in the other
+/// style. A module with children is a folder with its `mod.rs` (ARCHITECTURE.md, "Conventions").
+fn files_beside_their_folder(dir: &Path) -> Vec<String> {
+    let mut found = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return found;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let name = entry.file_name();
+        if path.is_dir() {
+            if name != "target" && !name.to_string_lossy().starts_with('.') {
+                found.extend(files_beside_their_folder(&path));
+            }
+        } else if path.extension().is_some_and(|e| e == "rs") && path.with_extension("").is_dir() {
+            found.push(path.display().to_string());
+        }
+    }
+    found
+}
+
+#[test]
+fn every_module_with_children_is_a_folder_with_its_mod_rs() {
+    let mut found = Vec::new();
+    for dir in workspace_crates()
+        .into_values()
+        .chain([root().join("python")])
+    {
+        for part in ["src", "tests", "benches", "examples"] {
+            found.extend(files_beside_their_folder(&dir.join(part)));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "modules written as `foo.rs` beside `foo/` (move them to `foo/mod.rs`): {found:?}"
+    );
+}
+
+#[test]
+fn the_module_style_check_sees_a_file_beside_its_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("src/events")).unwrap();
+    std::fs::write(dir.path().join("src/events.rs"), "mod tracker;").unwrap();
+    std::fs::write(dir.path().join("src/events/tracker.rs"), "").unwrap();
+    std::fs::create_dir_all(dir.path().join("src/hybrid")).unwrap();
+    std::fs::write(dir.path().join("src/hybrid/mod.rs"), "").unwrap();
+    let found = files_beside_their_folder(&dir.path().join("src"));
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(found[0].ends_with("events.rs"), "{found:?}");
 }

@@ -13,4 +13,3 @@ mod rust_reset;
 mod solve;
 mod time_scale;
 mod tiny_pivot;
-mod ui;

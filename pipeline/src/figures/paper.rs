@@ -469,11 +469,15 @@ pub fn paper_charts(data: &RunData, p: &DiskParams, compared_with_paper: bool) -
         |p| {
             let omega = format!("N/mg; 2π/T = {:.1} s⁻¹", 2.0 * std::f64::consts::PI / p);
             let paper = if compared_with_paper {
-                " (paper 149 s⁻¹, recorded sound 154 s⁻¹)"
+                format!(
+                    " (paper {} s⁻¹, recorded sound {} s⁻¹)",
+                    equations::paper::THETA_OMEGA_LAST,
+                    equations::paper::RECORDED_OMEGA
+                )
             } else {
-                ""
+                String::new()
             };
-            (format!("peaks every {p:.4} s"), omega + paper)
+            (format!("peaks every {p:.4} s"), omega + &paper)
         },
     );
     let mut lines = vec![Line::new(rate, normal_curve(last.samples), colors::RED)];

@@ -8,6 +8,7 @@
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 
+use equations::paper;
 use plotters::prelude::*;
 
 use super::peaks::Peak;
@@ -19,11 +20,11 @@ use crate::figures::line::FAMILY;
 use crate::output::atomic::{produce_atomic, WriteError};
 
 /// The paper's knock "frequency" in the first second (angular, s⁻¹; period 0.14 s).
-pub const PAPER_FIRST_SECOND: f64 = 44.0;
+pub const PAPER_FIRST_SECOND: f64 = paper::THETA_OMEGA_FIRST;
 /// The paper's knock "frequency" in the last second of its 100 s run (angular, s⁻¹).
-pub const PAPER_LAST_SECOND: f64 = 149.0;
+pub const PAPER_LAST_SECOND: f64 = paper::THETA_OMEGA_LAST;
 /// The paper's figure for the recording of the real toy (s⁻¹).
-pub const RECORDED: f64 = 154.0;
+pub const RECORDED: f64 = paper::RECORDED_OMEGA;
 /// The quietest level shown (dB below the loudest cell).
 pub const SHOWN_DB: f64 = 80.0;
 
