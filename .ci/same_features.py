@@ -21,9 +21,20 @@ ROOT = Path(__file__).resolve().parent.parent
 def resolved(cwd: Path, *args: str) -> dict[str, set[str]]:
     """Every crate (`name vX.Y.Z`) of a build and the feature sets it is built with."""
     out = subprocess.run(
-        [os.environ.get("CARGO", "cargo"), "tree", "--locked", "-f", "{p}|{f}",
-         "--prefix", "none", *args],
-        cwd=cwd, check=True, capture_output=True, text=True,
+        [
+            os.environ.get("CARGO", "cargo"),
+            "tree",
+            "--locked",
+            "-f",
+            "{p}|{f}",
+            "--prefix",
+            "none",
+            *args,
+        ],
+        cwd=cwd,
+        check=True,
+        capture_output=True,
+        text=True,
     ).stdout
     crates: dict[str, set[str]] = {}
     for line in out.splitlines():
@@ -44,8 +55,11 @@ def main() -> int:
         if name in workspace and not features <= workspace[name]
     ]
     if differing:
-        print("crates the Python package builds with features the workspace's tests do not "
-              "(pin them in python/Cargo.toml or the workspace):", file=sys.stderr)
+        print(
+            "crates the Python package builds with features the workspace's tests do not "
+            "(pin them in python/Cargo.toml or the workspace):",
+            file=sys.stderr,
+        )
         print("\n".join(f"  {d}" for d in differing), file=sys.stderr)
         return 1
     shared = sum(1 for name in package if name in workspace)
