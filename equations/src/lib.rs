@@ -61,7 +61,7 @@ pub use hybrid::{
     DiskObserver, DiskRecorder, DiskSample, EmbedError, Embedded, Embedding, Extremum,
     ExtremumKind, GeneratedModels, OnsetError, PruneError, Pruned, PrunedModels, ReferenceModels,
     RunOutcome, SimError, SimFailure, SlidingModel, SlipAcceleration, SlipOnset, StopReason,
-    SwitchedDiskRun, SwitchedEvent, Trailing, TransitionRecord, Trigger, Variant, Watched,
+    SwitchedDiskRun, SwitchedEvent, Trailing, TransitionRecord, Trigger, Variant, Watched, ENGINE,
     PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use issue::{Issue, Number, Rule};

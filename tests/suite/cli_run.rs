@@ -282,6 +282,10 @@ fn the_summary_records_how_it_was_produced_and_a_rerun_leaves_no_stale_files() {
         "{by}"
     );
     assert!(!by["git_revision"].as_str().unwrap().is_empty(), "{by}");
+    // The engine that ran, named by the crate that holds it: the main job's run of the paper's
+    // scene goes through `equations::simulate`.
+    assert_eq!(by["engine"], equations::ENGINE);
+    assert_eq!(by["engine"], "hand-written hybrid system");
     assert_eq!(by["scene"], "tangent-toy");
     assert_eq!(by["scene_file"], "built-in scenes/tangent-toy.toml");
     let overrides: Vec<&str> = by["overrides"]

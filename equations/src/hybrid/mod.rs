@@ -74,7 +74,7 @@ pub use models::{
     PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
-pub use run::simulate;
+pub use run::{simulate, ENGINE};
 pub use switching_run::{simulate_switched, SwitchedDiskRun, SwitchedEvent};
 pub use system::DiskGuard;
 pub use trailing::Trailing;

@@ -27,6 +27,13 @@ use model_runtime::{
 };
 use model_runtime::{WorkExceeded, WorkMeter};
 
+/// The engine [`simulate`] runs, named for a run's provenance (`summary.json`'s
+/// `produced_by.engine`): the paper's mode rules written by hand (module `system`) over the
+/// models the DSL compiles. The same rules as the DSL's mode graph run in
+/// [`simulate_switched`](crate::simulate_switched), which a test holds to this one transition
+/// for transition.
+pub const ENGINE: &str = "hand-written hybrid system";
+
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
 /// mode decisions to `observer`.
 ///

@@ -25,6 +25,8 @@ pub struct Provenance {
     pub program: String,
     /// The git revision of the build.
     pub git_revision: String,
+    /// The simulation engine that ran ([`equations::ENGINE`]).
+    pub engine: String,
     /// The scene's name.
     pub scene: String,
     /// Where the scene was read from: the file given, or `built-in scenes/<name>.toml`.
@@ -71,6 +73,7 @@ impl Provenance {
         Provenance {
             program: format!("eulerdisk {VERSION}"),
             git_revision: GIT_REVISION.to_string(),
+            engine: equations::ENGINE.to_string(),
             scene: scene.name.clone(),
             scene_file: source_of(name_or_path, &scene.name),
             overrides: overrides
