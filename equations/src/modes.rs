@@ -119,6 +119,16 @@ impl Slip {
     }
 }
 
+/// The slip speed of a sliding state vector of `chart`: the speed of
+/// [`PhysicalState::from_sliding`]'s slip, the same bits, without the slip's direction (an
+/// `atan2`) or the no-slip velocity (two `sin_cos`) that the rest of the physical state needs.
+pub fn slip_speed(chart: SlipChart, y: &[f64; DIM]) -> f64 {
+    match chart {
+        SlipChart::Cartesian => y[U_X].hypot(y[U_Y]),
+        SlipChart::Polar => y[V_C],
+    }
+}
+
 /// The angular velocity components of a state vector (every layout).
 fn body_rates(y: &[f64; DIM]) -> BodyRates {
     BodyRates {
@@ -162,7 +172,7 @@ impl PhysicalState {
         let slip = match chart {
             SlipChart::Cartesian => Slip::from_vector([y[U_X], y[U_Y]]),
             SlipChart::Polar => Slip {
-                speed: y[V_C],
+                speed: slip_speed(chart, y),
                 direction: y[ALPHA],
             },
         };
@@ -391,6 +401,23 @@ mod tests {
         [
             0.1, -0.2, 0.02, 0.3, -0.4, 0.05, 0.7, 0.6, 1.1, 2.0, -3.0, 5.0,
         ]
+    }
+
+    #[test]
+    fn the_slip_speed_alone_is_the_physical_states() {
+        let p = DiskParams::paper();
+        let base = PhysicalState::from_rolling(&sample_state(), 0.0);
+        for chart in [SlipChart::Cartesian, SlipChart::Polar] {
+            for (speed, direction) in [(0.25, 2.0), (3e-9, -0.4), (1e-300, 3.1), (0.0, 0.0)] {
+                let y = base.sliding_vector(chart, Slip { speed, direction });
+                let full = PhysicalState::from_sliding(chart, &p, &y).slip.speed;
+                assert_eq!(slip_speed(chart, &y).to_bits(), full.to_bits(), "{chart:?}");
+                assert!(
+                    (full - speed).abs() <= 1e-15 * speed,
+                    "{chart:?}: {full} for {speed}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -28,7 +28,7 @@
 use super::models::DiskModels;
 use super::system::Phase;
 use crate::modes::layout::{OMEGA_Y, THETA};
-use crate::modes::{ContactForce, Mode, PhysicalState, DIM};
+use crate::modes::{slip_speed, ContactForce, Mode, PhysicalState, DIM};
 use model_runtime::Const;
 use model_runtime::{find_crossing, Interpolant, Model, StepView};
 
@@ -124,13 +124,12 @@ fn watched_at<R: Model<DIM>, S: Model<DIM>>(
             Err(_) => (f64::NAN, f64::NAN),
         },
         _ => {
-            let state = models.sliding_state(y);
+            // N and the slip speed need no physical state in still air (no `atan2`, no
+            // `sin_cos`): what the guards read, the same bits as through it.
+            let speed = slip_speed(models.chart, y);
             match models.sliding.rhs(t, y, &mut dy) {
-                Ok(()) => (
-                    ContactForce::sliding(p, &state, &dy).normal,
-                    state.slip.speed,
-                ),
-                Err(_) => (f64::NAN, state.slip.speed),
+                Ok(()) => (ContactForce::sliding_normal(p, models.chart, y, &dy), speed),
+                Err(_) => (f64::NAN, speed),
             }
         }
     }

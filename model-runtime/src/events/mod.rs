@@ -113,7 +113,9 @@ pub(crate) enum Probe {
 ///   others, so a guard that reads an undeclared one gets a non-finite estimate: an exact
 ///   check, never a wrong answer. Most steps need only two estimates:
 ///   with the exact end values they fit a cubic per guard, and when every cubic keeps its sign
-///   with a margin, the other sample points are skipped.
+///   with a margin, the other sample points are skipped. When they do not, each third of the
+///   step is tested the same way (two more estimates each), and only the sample points of the
+///   thirds that do not clear are screened one by one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct GuardSpec<G> {
     /// The user's name for the guard (typically a fieldless enum).

@@ -16,12 +16,36 @@ struct Walk {
     /// Interior check points (the step end is check point `points + 1`).
     points: u32,
     screened: bool,
+    /// The parts of the step that screening cleared: their check points are skipped.
+    cleared: Cleared,
     /// The next check point.
     k: u32,
     /// The last check point passed without an event.
     lo: f64,
     /// The time of the last pass in this step (`t0` before any): no event is earlier.
     floor: f64,
+}
+
+/// The parts of a screened step whose cubics kept their sign (see
+/// [`GuardTracker::cubic_clear`]): at most the step's three thirds, by their ends in time.
+#[derive(Clone, Copy, Debug, Default)]
+struct Cleared {
+    parts: [(f64, f64); 3],
+    len: usize,
+}
+
+impl Cleared {
+    fn push(&mut self, part: (f64, f64)) {
+        self.parts[self.len] = part;
+        self.len += 1;
+    }
+
+    /// Whether `t` lies in a cleared part (its ends included).
+    fn contains(&self, t: f64) -> bool {
+        self.parts[..self.len]
+            .iter()
+            .any(|&(a, b)| a <= t && t <= b)
+    }
 }
 
 /// Per-guard reference signs and the guard values at the last check point.
@@ -60,8 +84,11 @@ pub(crate) struct GuardTracker {
     walk: Walk,
     scratch: Vec<f64>,
     at_best: Vec<f64>,
-    /// Screening estimates at a third of the step.
+    /// Screening estimates at a third and at two thirds of the step.
     at_third: Vec<f64>,
+    at_two_thirds: Vec<f64>,
+    /// Screening estimates inside a third of the step.
+    inside_third: Vec<f64>,
 }
 
 impl GuardTracker {
@@ -126,6 +153,10 @@ impl GuardTracker {
         self.at_best.resize(n, 0.0);
         self.at_third.clear();
         self.at_third.resize(n, 0.0);
+        self.at_two_thirds.clear();
+        self.at_two_thirds.resize(n, 0.0);
+        self.inside_third.clear();
+        self.inside_third.resize(n, 0.0);
     }
 
     /// A guard found on its holding side without having fired, and without one of the
@@ -171,7 +202,8 @@ impl GuardTracker {
             return Ok(None);
         }
         let screened = matches!(checks, InteriorChecks::Screened(_));
-        let points = if screened && self.cubic_clear(t0, t1, end_values, &mut eval)? {
+        let mut cleared = Cleared::default();
+        let points = if screened && self.cubic_clear(t0, t1, end_values, &mut cleared, &mut eval)? {
             0
         } else {
             checks.points()
@@ -182,6 +214,7 @@ impl GuardTracker {
             t1,
             points,
             screened,
+            cleared,
             k: 1,
             lo: t0,
             floor: t0,
@@ -203,6 +236,7 @@ impl GuardTracker {
             t1,
             points,
             screened,
+            cleared,
             ..
         } = self.walk;
         if self.fresh {
@@ -235,6 +269,10 @@ impl GuardTracker {
             } else {
                 let tk = t0 + (t1 - t0) * (k as f64 / (points + 1) as f64);
                 if screened {
+                    if cleared.contains(tk) {
+                        self.walk.k += 1;
+                        continue;
+                    }
                     eval(tk, Probe::Estimate, &mut self.scratch)?;
                     if !self.may_fire() {
                         self.walk.k += 1;
@@ -401,31 +439,90 @@ impl GuardTracker {
     /// interior points are skipped. A step is short against the guards' time scales (the
     /// error control keeps the state polynomial-like across it), so a guard that does change
     /// sign inside it shows it in its cubic; the margin covers the part that is not cubic.
+    ///
+    /// When the step's cubics do not clear it, each third of it is looked at the same way
+    /// (two more estimates inside it, the values at its ends), and the check points in the
+    /// thirds that clear are skipped: the same test on a part three times shorter, where the
+    /// guards are closer still to cubics. The check points of the thirds that do not clear
+    /// are screened one by one, as in a step whose cubics did not clear.
     fn cubic_clear<E>(
         &mut self,
         t0: f64,
         t1: f64,
         end_values: &[f64],
+        cleared: &mut Cleared,
         eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
     ) -> Result<bool, E> {
         let h = t1 - t0;
-        eval(t0 + h / 3.0, Probe::Estimate, &mut self.scratch)?;
+        let (t_third, t_two_thirds) = (t0 + h / 3.0, t0 + 2.0 * h / 3.0);
+        eval(t_third, Probe::Estimate, &mut self.scratch)?;
         if self.may_fire() {
             return Ok(false);
         }
         self.at_third.copy_from_slice(&self.scratch);
-        eval(t0 + 2.0 * h / 3.0, Probe::Estimate, &mut self.scratch)?;
+        eval(t_two_thirds, Probe::Estimate, &mut self.scratch)?;
         if self.may_fire() {
             return Ok(false);
         }
-        Ok((0..self.len()).all(|i| {
-            cubic_keeps_sign(
-                self.lo_values[i],
-                self.at_third[i],
-                self.scratch[i],
-                end_values[i],
-            )
-        }))
+        self.at_two_thirds.copy_from_slice(&self.scratch);
+        let (start, third, two_thirds) = (&self.lo_values, &self.at_third, &self.at_two_thirds);
+        if (0..self.len())
+            .all(|i| cubic_keeps_sign(start[i], third[i], two_thirds[i], end_values[i]))
+        {
+            return Ok(true);
+        }
+        // The thirds, each between two of the values above.
+        let ends = [t0, t_third, t_two_thirds, t1];
+        let mut values = [
+            std::mem::take(&mut self.lo_values),
+            std::mem::take(&mut self.at_third),
+            std::mem::take(&mut self.at_two_thirds),
+        ];
+        let mut result = Ok(());
+        for part in 0..3 {
+            let (a, b) = (ends[part], ends[part + 1]);
+            let (va, vb) = match part {
+                2 => (&values[2][..], end_values),
+                _ => (&values[part][..], &values[part + 1][..]),
+            };
+            match self.part_clear(a, b, va, vb, eval) {
+                Ok(true) => cleared.push((a, b)),
+                Ok(false) => {}
+                Err(e) => {
+                    result = Err(e);
+                    break;
+                }
+            }
+        }
+        std::mem::swap(&mut self.lo_values, &mut values[0]);
+        std::mem::swap(&mut self.at_third, &mut values[1]);
+        std::mem::swap(&mut self.at_two_thirds, &mut values[2]);
+        result.map(|()| false)
+    }
+
+    /// Whether the part `[a, b]` of a step, with guard values `va` at `a` and `vb` at `b`,
+    /// clears by the cubic test of [`GuardTracker::cubic_clear`] (estimates at a third and
+    /// two thirds of it).
+    fn part_clear<E>(
+        &mut self,
+        a: f64,
+        b: f64,
+        va: &[f64],
+        vb: &[f64],
+        eval: &mut impl FnMut(f64, Probe, &mut [f64]) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        let h = b - a;
+        eval(a + h / 3.0, Probe::Estimate, &mut self.scratch)?;
+        if self.may_fire() {
+            return Ok(false);
+        }
+        self.inside_third.copy_from_slice(&self.scratch);
+        eval(a + 2.0 * h / 3.0, Probe::Estimate, &mut self.scratch)?;
+        if self.may_fire() {
+            return Ok(false);
+        }
+        let (third, two_thirds) = (&self.inside_third, &self.scratch);
+        Ok((0..self.len()).all(|i| cubic_keeps_sign(va[i], third[i], two_thirds[i], vb[i])))
     }
 
     /// Whether the values in `self.scratch` would fire a guard (or are not finite), judged
@@ -708,6 +805,57 @@ mod tests {
         assert!(run(&[Direction::Up], &[g0(g)], g, 1.0, 0).is_none());
         let f = run(&[Direction::Up], &[g0(g)], g, 1.0, 3).unwrap();
         assert!((f.t - 0.4).abs() < 1e-14, "{f:?}");
+    }
+
+    /// A screened scan of `[0, 1]` at 64 points whose estimates are the exact guard `g`: what
+    /// it found and how many estimates it made.
+    fn screened_64(g: impl Fn(f64) -> f64) -> (Option<Found>, u32) {
+        let mut tr = GuardTracker::default();
+        tr.start([Direction::Up].into_iter(), &[g(0.0)], Quiet::Start, true);
+        let mut estimates = 0;
+        let found = tr
+            .scan::<()>(
+                0.0,
+                1.0,
+                &[g(1.0)],
+                InteriorChecks::Screened(64),
+                |t, probe, out| {
+                    estimates += u32::from(probe == Probe::Estimate);
+                    out[0] = g(t);
+                    Ok(())
+                },
+            )
+            .unwrap();
+        (found, estimates)
+    }
+
+    #[test]
+    fn screening_skips_the_thirds_that_clear_and_looks_at_the_others_point_by_point() {
+        // Far below zero for two thirds of the step, then rising steeply towards it: the
+        // step's cubic does not clear, its first two thirds do.
+        let rise = |t: f64| -1.0 + 0.95 * t.powi(8);
+        // The 21 of the 64 points in the last third, after two estimates for the step and two
+        // for each third (66 for the step's 64 points before the thirds were looked at).
+        let (found, estimates) = screened_64(rise);
+        assert_eq!((found, estimates), (None, 2 + 3 * 2 + 21));
+        // A short excursion above zero in the last third (0.888 … 0.912, over two check
+        // points) is found where exact checks at all 64 points find it, to the bit (the last
+        // time before it, from another bracket, to a few ulps).
+        let bump = |t: f64| rise(t) + 0.7 * (-((t - 0.9) / 0.03).powi(2)).exp();
+        let found = screened_64(bump).0.unwrap();
+        let exact = run(
+            &[Direction::Up],
+            &[bump(0.0)],
+            |t, o| o[0] = bump(t),
+            1.0,
+            64,
+        )
+        .unwrap();
+        assert_eq!(
+            (found.index, found.t, found.direction),
+            (exact.index, exact.t, exact.direction)
+        );
+        assert!(found.t - found.before <= 8.0 * f64::EPSILON, "{found:?}");
     }
 
     #[test]
