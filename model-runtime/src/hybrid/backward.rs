@@ -13,7 +13,9 @@
 //!   `K_j = −k_j`, the very numbers an explicit method stepping `h < 0` in `t` would compute;
 //!   its error estimate is the same norm of the same numbers. Rosenbrock's
 //!   `I/(γH) − ∂(−f)/∂y` is the negated matrix of `I/(γh) − ∂f/∂y`, whose LU with partial
-//!   pivoting picks the same pivots.
+//!   pivoting picks the same pivots; the one difference is RODAS4's `∂f/∂t` of a model that
+//!   reads `t`, a forward difference in `τ`, so taken on the other side of `t` (both are
+//!   first-order differences over `√ε·|t|`).
 //! * The guards see the model's own `t` and `dy/dt` ([`HybridSystem::guard_values`] is
 //!   called at `t = −τ` with the derivative negated back), the transition map gets the event
 //!   in `t`, and the observer every step, sample, event and transition in `t`: its steps go
