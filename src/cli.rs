@@ -137,7 +137,9 @@ pub struct ModelSolveArgs {
     /// Start time.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub t0: f64,
-    /// End time.
+    /// End time; before `--t0`, a smooth model is integrated backward in time (as SciPy's
+    /// `solve_ivp` does; an event's `up` or `down` is the crossing as the run proceeds); a
+    /// switched model runs forward only.
     #[arg(long, allow_negative_numbers = true)]
     pub t_end: f64,
     /// The integrator.
@@ -152,7 +154,8 @@ pub struct ModelSolveArgs {
     /// Absolute tolerance.
     #[arg(long, default_value = "1e-10", allow_negative_numbers = true)]
     pub atol: f64,
-    /// Record every DT (and at the end time) instead of at every step.
+    /// Record every DT from the start towards the end time (and at it) instead of at every
+    /// step.
     #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// The trajectory file (`-`: standard output, as CSV): `t`, `mode` (a switched model),

@@ -263,8 +263,18 @@ pub enum InputError {
         /// Its value.
         value: f64,
     },
-    /// The end time is before the start time, or either is not finite.
+    /// A time of the span is not finite (or, for a driver that runs forward only, the end
+    /// is before the start).
     TimeSpan {
+        /// Start time.
+        t0: f64,
+        /// End time.
+        t_end: f64,
+    },
+    /// The end time is before the start time, for a run that goes forward only: a switched
+    /// model's ([`crate::run_switched`]), whose resets map the state before an event to the
+    /// state after it.
+    ForwardOnly {
         /// Start time.
         t0: f64,
         /// End time.
@@ -402,6 +412,12 @@ impl fmt::Display for InputError {
             InputError::TimeSpan { t0, t_end } => {
                 write!(f, "time span [{t0}, {t_end}] is empty or not finite")
             }
+            InputError::ForwardOnly { t0, t_end } => write!(
+                f,
+                "t_end = {t_end} is before t0 = {t0}: a switched model runs forward in time \
+                 only (its resets give the state after an event from the state before it, and \
+                 going back would need their inverses)"
+            ),
             InputError::StepSize { h } => write!(f, "step size {h} is not positive and finite"),
             InputError::SampleRate { rate } => {
                 write!(f, "sample rate {rate} is not positive and finite")

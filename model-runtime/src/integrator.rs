@@ -9,6 +9,7 @@ use crate::control::{initial_step, min_step, Controller, StepOptions};
 use crate::dense::{place_in_step, Interpolant, OwnedStep, StoredInterpolant};
 use crate::dim::{Array, Const, Dim, Vector};
 use crate::error::{InputError, SolveError};
+use crate::hybrid::backward::{solve_error_in_t, ReversedRhs};
 use crate::stats::Stats;
 use crate::stepper::{eval, Components, Rhs, StepEnd, StepStart, Stepper};
 use crate::tolerance::{LimitingComponent, Tolerance};
@@ -501,7 +502,9 @@ pub struct Solution<D: Dim> {
 
 impl<const N: usize> Copy for Solution<Const<N>> {}
 
-/// Integrates `model` from `(t0, y0)` to `t_end` without events.
+/// Integrates `model` from `(t0, y0)` to `t_end` without events; a `t_end` before `t0`
+/// integrates backward in time (exactly as [`crate::HybridSolver::run`] does: the forward
+/// run in `τ = −t`, its failure dated in `t`).
 pub fn integrate<M: Rhs<D>, S: Stepper<D>, D: Dim>(
     model: &M,
     stepper: S,
@@ -511,9 +514,28 @@ pub fn integrate<M: Rhs<D>, S: Stepper<D>, D: Dim>(
     y0: &Vector<D>,
     t_end: f64,
 ) -> Result<Solution<D>, SolveError> {
-    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+    if !(t0.is_finite() && t_end.is_finite()) {
         return Err(InputError::TimeSpan { t0, t_end }.into());
     }
+    if t_end < t0 {
+        let reversed = ReversedRhs(model);
+        let end =
+            forward(&reversed, stepper, tol, opts, -t0, y0, -t_end).map_err(solve_error_in_t)?;
+        return Ok(Solution { t: -end.t, ..end });
+    }
+    forward(model, stepper, tol, opts, t0, y0, t_end)
+}
+
+/// [`integrate`] for `t_end >= t0`.
+fn forward<M: Rhs<D>, S: Stepper<D>, D: Dim>(
+    model: &M,
+    stepper: S,
+    tol: Tolerance<D>,
+    opts: StepOptions,
+    t0: f64,
+    y0: &Vector<D>,
+    t_end: f64,
+) -> Result<Solution<D>, SolveError> {
     let mut it = Integrator::new(stepper, tol, opts)?;
     it.restart(model, t0, y0)?;
     while it.t() < t_end {

@@ -9,7 +9,8 @@
 //!   order 4), [`Dop853`] (8(5,3), dense order 7), [`Rodas4`] (stiff, uses the model's
 //!   Jacobian, dense order 3) and fixed-step [`Rk4`] (cubic Hermite dense output).
 //! * [`Problem`]: one call from a model to a [`Trajectory`] (times, states, outputs, located
-//!   events, statistics, stop reason), as `solve_ivp` does.
+//!   events, statistics, stop reason), as `solve_ivp` does, backward in time too (a span
+//!   `(t0, t_end)` with `t_end < t0`: the exact forward run in `−t`, [`HybridSolver::run`]).
 //! * [`Integrator`]: the shared adaptive loop (PI control, Hairer's initial step, typed
 //!   collapse detection); [`integrate`] for a plain run.
 //! * [`Tolerance`]: one mixed relative/absolute error norm for every method; components that

@@ -137,7 +137,7 @@ pub enum SolveFailure {
         /// The events' names, to say which event.
         events: Vec<String>,
     },
-    /// A requested output time is not finite, decreasing, or outside the time span.
+    /// A requested output time is not finite, out of the run's order, or outside the time span.
     OutputTime {
         /// Its position in the list.
         index: usize,
@@ -268,8 +268,8 @@ impl fmt::Display for SolveFailure {
                 t_end,
             } => write!(
                 f,
-                "output time {index} ({t}) is not finite, comes before the previous one, or \
-                 lies outside the time span [{t0}, {t_end}]"
+                "output time {index} ({t}) is not finite, comes before the previous one in \
+                 the run's direction, or lies outside the time span [{t0}, {t_end}]"
             ),
             SolveFailure::Output { t, source } => {
                 write!(f, "the outputs at t = {t} could not be evaluated: {source}")

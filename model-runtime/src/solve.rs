@@ -69,7 +69,8 @@ pub enum Output {
     #[default]
     Steps,
     /// At these times, interpolated on each step's dense output (of the method's order); they
-    /// must be finite, non-decreasing and inside the time span.
+    /// must be finite, inside the time span and in the run's order (non-decreasing, or
+    /// non-increasing for a span that runs backward, `t_end < t0`).
     Times(Vec<f64>),
 }
 
@@ -301,7 +302,7 @@ impl<'m, M: System<D>, D: Dim> Problem<'m, M, D> {
             events: &self.events,
             located: Vec::new(),
         };
-        let mut record = Record::new(&self.output, t0, &self.y0);
+        let mut record = Record::new(&self.output, (t0, t_end), &self.y0);
         let outcome = solver
             .run(&mut system, (), t0, &self.y0, t_end, &mut record)
             .map_err(fail)?;
@@ -323,11 +324,13 @@ impl<'m, M: System<D>, D: Dim> Problem<'m, M, D> {
     }
 }
 
-/// Output times must be finite, non-decreasing and inside the span.
+/// Output times must be finite, inside the span and in the run's order.
 fn check_times(times: &[f64], t0: f64, t_end: f64) -> Result<(), SolveFailure> {
+    let backward = t_end < t0;
     let mut previous = t0;
     for (index, &t) in times.iter().enumerate() {
-        if !(t.is_finite() && t >= previous && t <= t_end) {
+        // At or after the previous one, at or before the end, in the run's direction.
+        if !(t.is_finite() && reached(t, previous, backward) && reached(t_end, t, backward)) {
             return Err(SolveFailure::OutputTime {
                 index,
                 t,
@@ -338,6 +341,15 @@ fn check_times(times: &[f64], t0: f64, t_end: f64) -> Result<(), SolveFailure> {
         previous = t;
     }
     Ok(())
+}
+
+/// Whether a run that has reached `now` has reached `t` (is at or past it in its direction).
+fn reached(now: f64, t: f64, backward: bool) -> bool {
+    if backward {
+        t >= now
+    } else {
+        t <= now
+    }
 }
 
 /// The model as a hybrid system with one mode whose guards are the events.
@@ -408,6 +420,8 @@ impl<M: System<D>, D: Dim> HybridSystem<D> for Single<'_, M, D> {
 /// Collects the recorded points as the run streams its steps.
 struct Record<'o, D: Dim> {
     output: &'o Output,
+    /// Whether the run goes backward in time.
+    backward: bool,
     /// The next requested time not yet recorded ([`Output::Times`]).
     next: usize,
     t: Vec<f64>,
@@ -415,9 +429,11 @@ struct Record<'o, D: Dim> {
 }
 
 impl<'o, D: Dim> Record<'o, D> {
-    fn new(output: &'o Output, t0: f64, y0: &Vector<D>) -> Self {
+    fn new(output: &'o Output, (t0, t_end): (f64, f64), y0: &Vector<D>) -> Self {
+        let backward = t_end < t0;
         let mut record = Record {
             output,
+            backward,
             next: 0,
             t: Vec::new(),
             y: Vec::new(),
@@ -425,7 +441,7 @@ impl<'o, D: Dim> Record<'o, D> {
         match output {
             Output::Steps => record.push(t0, y0.clone()),
             Output::Times(times) => {
-                while record.next < times.len() && times[record.next] <= t0 {
+                while record.next < times.len() && reached(t0, times[record.next], backward) {
                     record.next += 1;
                     record.push(t0, y0.clone());
                 }
@@ -459,10 +475,10 @@ impl<D: Dim> Observer<D, (), usize> for Record<'_, D> {
         match self.output {
             Output::Steps => self.push(step.t1, step.y1.clone()),
             Output::Times(times) => {
-                while self.next < times.len() && times[self.next] <= step.t1 {
+                while self.next < times.len() && reached(step.t1, times[self.next], self.backward) {
                     let t = times[self.next];
                     let mut y = step.y1.clone();
-                    if t < step.t1 {
+                    if t != step.t1 {
                         // Always present: `wants_dense` asks the driver for it in this case.
                         if let Some(dense) = step.dense {
                             dense.at(t, &mut y);

@@ -137,7 +137,8 @@ impl<D: Dim> std::error::Error for SwitchedFailure<D> {}
 
 /// Runs `model` from `(t0, y0)` in its first mode to `t_end` with `stepper`, the tolerances
 /// and options given and the [`AccumulationRule`] for the run's span
-/// ([`AccumulationRule::for_span`]); a failure names the mode and keeps
+/// ([`AccumulationRule::for_span`]), forward in time only (a `t_end` before `t0` is an
+/// [`crate::InputError::ForwardOnly`]); a failure names the mode and keeps
 /// the work done.
 pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
     model: M,
@@ -157,6 +158,9 @@ pub fn run_switched<D: Dim, M: SwitchedModel<D>, S: Stepper<D>>(
         events: Vec::new(),
         steps: 0,
     };
+    if t_end < t0 {
+        return Err(input(crate::error::InputError::ForwardOnly { t0, t_end }));
+    }
     let rule = AccumulationRule::for_span(t_end - t0);
     let mut system = Switched::new(model, rule).map_err(input)?;
     let mut solver = HybridSolver::new(stepper, tolerance, options).map_err(input)?;

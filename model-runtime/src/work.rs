@@ -103,7 +103,8 @@ impl WorkMeter {
     pub fn step(&mut self, t0: f64, t1: f64) -> Option<WorkExceeded> {
         self.steps += 1;
         self.t = t1;
-        self.h_last = t1 - t0;
+        // A length: a run backward in time has steps of negative `t1 - t0`.
+        self.h_last = (t1 - t0).abs();
         self.exceeded()
     }
 

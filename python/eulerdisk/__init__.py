@@ -386,14 +386,16 @@ def sweep(
         out: the sweep's folder; a folder already holding some of its runs is resumed, as by
             the command line. By default a temporary folder, removed afterwards.
         set: overrides of every point's scene, as ``--set table.key=value``.
-        progress: as for :func:`run` (none with an executor).
+        progress: as for :func:`run`; with an executor, a line as each shard is done.
         executor: run the sweep's shards as this executor's tasks.
         shards: how many tasks (default: the number of cores here).
 
     Raises:
         SweepError: the sweep cannot be run; the message is the command line's.
         KeyboardInterrupt: Ctrl-C; finished runs are kept in ``out``, and running the same
-            call again resumes the sweep.
+            call again resumes the sweep. With an executor, the shards not started are
+            cancelled and those on this process's threads stop at their next step; shards
+            running elsewhere (other processes, a cluster's workers) finish into ``out``.
     """
     if jobs is not None and jobs < 1:
         raise SweepError("jobs must be at least 1")
@@ -417,7 +419,9 @@ def sweep(
         else:
             count = shards or os.cpu_count() or 1
             source = (name, toml, folder)
-            raw, runs = _shards.on_executor(executor, source, sets, target, count, jobs or 1)
+            raw, runs = _shards.on_executor(
+                executor, source, sets, target, count, jobs or 1, _progress(progress)
+            )
             raw.update(runs)
         return SweepResult(
             table=Table.read_csv(Path(raw["table"])),

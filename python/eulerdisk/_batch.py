@@ -8,14 +8,17 @@ GIL), and their results are stacked into arrays whose first axis is the row.
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Callable, Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_EXCEPTION, Future, wait
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
+from . import _native
 from ._native import ModelInputError
 from ._solution import Solution
 
@@ -87,17 +90,85 @@ def rows(
     ]
 
 
+#: How long a wait for a batch's (or a sweep's shards') results lasts before it looks at
+#: Python's signals again: a signal taken by another thread (or on a platform whose waits
+#: signals do not interrupt) is then handled within this.
+WAIT_SLICE_S = 0.1
+
+#: The token that stops the solves of one :func:`solve_many` call, set in the threads that
+#: run them (:meth:`Model.solve` passes it to the native solve). Signals reach the main
+#: thread only: Ctrl-C there sets the token, and the solves on the pool's threads stop.
+_CANCEL: ContextVar[_native.Cancel | None] = ContextVar("eulerdisk_cancel", default=None)
+
+
+def cancel_token() -> _native.Cancel | None:
+    """The token of the :func:`solve_many` call this thread solves for, if any."""
+    return _CANCEL.get()
+
+
 def solve_many(
     solve: Callable[..., Solution],
     pairs: list[tuple[dict[str, Any] | None, Array | None]],
     workers: int | None,
 ) -> Batch:
-    """Runs ``solve(params=, y0=)`` for every pair on ``workers`` threads and stacks them."""
+    """Runs ``solve(params=, y0=)`` for every pair on ``workers`` threads and stacks them.
+
+    Ctrl-C (in the main thread, waiting) or the first failed solve sets the batch's token: the
+    running solves stop at their next step, those not started are dropped, and the exception
+    is raised once the threads are done, within a second.
+    """
     workers = workers or os.cpu_count() or 1
     if workers < 1:
         raise ModelInputError(f"workers = {workers}: at least 1")
-    with ThreadPoolExecutor(min(workers, len(pairs))) as pool:
-        solutions = list(pool.map(lambda pair: solve(params=pair[0], y0=pair[1]), pairs))
+    cancel = _native.Cancel()
+    futures: list[Future[Solution]] = [Future() for _ in pairs]
+    todo = iter(range(len(pairs)))
+    taking = threading.Lock()
+
+    def worker() -> None:
+        token = _CANCEL.set(cancel)
+        try:
+            while not cancel.is_set():
+                with taking:
+                    k = next(todo, None)
+                if k is None:
+                    return
+                if not futures[k].set_running_or_notify_cancel():
+                    continue
+                try:
+                    futures[k].set_result(solve(params=pairs[k][0], y0=pairs[k][1]))
+                except BaseException as error:
+                    futures[k].set_exception(error)
+        finally:
+            _CANCEL.reset(token)
+
+    # Daemon threads, not a ThreadPoolExecutor's: an interpreter that exits while a batch
+    # runs (in a daemon thread of the caller's) does not wait for its solves, which stop
+    # where they wait, as a lone solve's thread does.
+    threads = [
+        threading.Thread(target=worker, name=f"eulerdisk-solve-{k}", daemon=True)
+        for k in range(min(workers, len(pairs)))
+    ]
+    for thread in threads:
+        thread.start()
+    try:
+        pending = set(futures)
+        while pending:
+            # In slices: a signal handled by another thread wakes no one waiting here.
+            done, pending = wait(pending, timeout=WAIT_SLICE_S, return_when=FIRST_EXCEPTION)
+            for future in done:
+                if future.exception() is not None:
+                    raise future.exception()  # type: ignore[misc]
+        solutions = [future.result() for future in futures]
+    except BaseException:
+        # The running solves stop at their next step; the others do not start.
+        cancel.set()
+        for future in futures:
+            future.cancel()
+        raise
+    finally:
+        for thread in threads:
+            thread.join()
     t = solutions[0].t
     for k, s in enumerate(solutions):
         if not np.array_equal(s.t, t):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Mapping, Sequence
+from concurrent.futures import CancelledError
 from pathlib import Path
 from typing import Any
 
@@ -13,7 +14,6 @@ import numpy.typing as npt
 
 from . import _batch, _native, _values
 from ._batch import Batch
-from ._native import ModelInputError
 from ._solution import Solution, solution
 
 PathLike = str | os.PathLike[str]
@@ -157,17 +157,25 @@ class Model:
         Numbers may be Python's or NumPy's (scalars or 0-d arrays of any float or integer
         type); the result has the shape of SciPy's ``solve_ivp`` result (:class:`Solution`).
 
+        A ``t_end`` before ``t0`` integrates backward in time, as ``solve_ivp`` does with
+        ``t_span=(t0, t1)``, ``t1 < t0``: ``sol.t`` decreases, ``t_eval`` times must
+        decrease, ``max_step`` and ``first_step`` are lengths, and an event's ``up``/``down``
+        is the crossing as the run proceeds (SciPy's ``direction``), here as ``t`` decreases.
+        The runtime integrates the model in ``-t`` (exactly the steps a method would take
+        with negative step sizes). A switched model runs forward only (its resets have no
+        inverse in the file): a ``t_end`` before ``t0`` is refused.
+
         Args:
-            t_end: the end time; not before ``t0`` (the runtime integrates forward only).
+            t_end: the end time (before ``t0``: backward in time).
             state: initial states by name, overriding the file's initial values
                 (``states { x = 2 }``); a state given neither here nor there starts at zero.
             params: parameters by name (others: the file's defaults).
             y0: instead of ``state``, every initial state, in :attr:`states` order.
             t0: the start time.
-            t_eval: a number: record every ``t_eval`` from ``t0`` (and at ``t_end``); a
-                sequence (or NumPy array) of increasing times inside ``[t0, t_end]``: record at
-                exactly those (a smooth model only), as ``solve_ivp``'s ``t_eval``; by default
-                every accepted step.
+            t_eval: a number: record every ``t_eval`` from ``t0`` towards ``t_end`` (and at
+                ``t_end``); a sequence (or NumPy array) of times inside the span, in the run's
+                order (increasing, or decreasing backward): record at exactly those (a smooth
+                model only), as ``solve_ivp``'s ``t_eval``; by default every accepted step.
             events: zero crossings to locate, a list of ``NAME[:up|:down][:stop]`` of a state
                 or an output (a switched model declares its own in the file).
             method: ``dop853`` (default, SciPy's ``DOP853``), ``dopri5`` (``RK45``) or
@@ -182,20 +190,15 @@ class Model:
             chart: solve the model in this chart of the file.
 
         Raises:
-            ModelInputError: an unknown name or method, a bad event, an unusable setting, a
-                ``t_end`` before ``t0``.
+            ModelInputError: an unknown name or method, a bad event, an unusable setting,
+                ``t_eval`` times out of the run's order, a switched model asked to run back.
             SolveError: the integration failed; the message says where and why.
             KeyboardInterrupt: Ctrl-C; the integration stops at its next step.
         """
         start, end = float(t0), float(t_end)
-        if end < start:
-            raise ModelInputError(
-                f"t_end = {end} is before t0 = {start}: the runtime integrates forward only; "
-                "to go back in time, solve the model with time reversed (every der(x) negated) "
-                f"from 0 to {start - end}"
-            )
         specs = _values.event_specs(events)
         initial = _values.initial_states(self.states, state, y0)
+        cancel = _batch.cancel_token()
         raw = self._native.solve(
             chart,
             _values.assignments(initial),
@@ -210,7 +213,10 @@ class Model:
             _values.step("first_step", first_step),
             _values.step("max_step", max_step),
             dense_output,
+            cancel,
         )
+        if cancel is not None and cancel.is_set():
+            raise CancelledError("the solve was cancelled: another solve of its batch ended it")
         return solution(raw, specs, dense_output)
 
     def solve_many(
@@ -233,7 +239,7 @@ class Model:
             params: parameters by name, each a number or a 1-d array (one value per solve),
                 or a sequence of mappings (one per solve).
             y0: the initial states, one row of :attr:`states` per solve (``(n, n_states)``).
-            t_eval: the times every solve records at: a step or increasing times.
+            t_eval: the times every solve records at: a step, or times in the run's order.
             workers: solves at once (default: the number of cores).
             options: any other keyword of :meth:`solve` (``method``, ``rtol``, ``events``...).
 
@@ -244,6 +250,10 @@ class Model:
         Raises:
             ModelInputError: rows of different lengths, solves that recorded different times
                 (a terminal event), or what :meth:`solve` raises.
+            KeyboardInterrupt: Ctrl-C; every running solve stops at its next step, the
+                others do not start, within a second.
+
+        The first solve that fails stops the others the same way, and its error is raised.
         """
         pairs = _batch.rows(params, y0, len(self.states))
 

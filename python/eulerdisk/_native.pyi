@@ -28,6 +28,16 @@ class SweepError(ValueError):
 class RunError(RuntimeError):
     """A run whose outputs could not be written."""
 
+class Cancel:
+    """A flag that stops a call running on another thread at its next step (it pickles as a
+    fresh token)."""
+
+    def set(self) -> None:
+        """Stops the calls that watch this token."""
+
+    def is_set(self) -> bool:
+        """Whether the token was set."""
+
 def run(
     scene: str,
     toml: str | None,
@@ -51,9 +61,10 @@ def sweep(
     jobs: int,
     progress: bool,
     shard: tuple[int, int] | None = None,
+    cancel: Cancel | None = None,
 ) -> dict[str, Any]:
     """Runs a sweep (or shard ``(index, count)`` of it) into ``out``; the path of its table
-    and the counts of its runs."""
+    and the counts of its runs. ``cancel`` set stops it as Ctrl-C does."""
 
 def merge_sweep(dirs: list[str], out: str) -> dict[str, Any]:
     """Joins sweep folders (shards) into ``out``; its table and the counts of points, rows,
@@ -116,5 +127,7 @@ class NativeModel:
         first_step: float | None,
         max_step: float | None,
         dense: bool,
+        cancel: Cancel | None = None,
     ) -> dict[str, Any]:
-        """Integrates the model; ``times`` as the bytes of native ``f64``."""
+        """Integrates the model; ``times`` as the bytes of native ``f64``; ``cancel`` set
+        stops it at its next step (its stop then ``interrupted``)."""

@@ -45,12 +45,15 @@ class DenseOutput:
     nodes of the step, which determine it; calling this evaluates it by barycentric
     interpolation, the same polynomial to rounding. Times outside the run extrapolate the
     first or the last step, as SciPy does. At an event that resets the state, the step that
-    ends there gives the value before the reset.
+    ends there gives the value before the reset. A run backward in time has its steps in
+    decreasing time; they are looked up the same way.
     """
 
     def __init__(self, spans: Array, values: Array) -> None:
         self._t0 = spans[:, 0]
         self._t1 = spans[:, 1]
+        # -1 for a run backward in time: its steps' ends, negated, increase.
+        self._sign = -1.0 if len(spans) and spans[-1, 1] < spans[0, 0] else 1.0
         self._values = values  # steps, nodes, states
         k = np.arange(DENSE_NODES)
         self._theta = (1.0 - np.cos(k * np.pi / (DENSE_NODES - 1))) / 2.0
@@ -60,20 +63,21 @@ class DenseOutput:
 
     @property
     def t_min(self) -> float:
-        """The start of the run."""
-        return float(self._t0[0])
+        """The earliest time of the run (its start, or its end for a run backward)."""
+        return float(min(self._t0[0], self._t1[-1]))
 
     @property
     def t_max(self) -> float:
-        """The end of the run."""
-        return float(self._t1[-1])
+        """The latest time of the run (its end, or its start for a run backward)."""
+        return float(max(self._t0[0], self._t1[-1]))
 
     def __call__(self, t: float | npt.ArrayLike) -> Array:
         """The states at ``t``: shape ``(n_states,)`` for a number, ``(n_states, len(t))``
         for a sequence of times."""
         times = np.asarray(t, dtype=np.float64)
         flat = np.atleast_1d(times)
-        step = np.clip(np.searchsorted(self._t1, flat, side="left"), 0, len(self._t1) - 1)
+        ends, wanted = self._sign * self._t1, self._sign * flat
+        step = np.clip(np.searchsorted(ends, wanted, side="left"), 0, len(self._t1) - 1)
         t0, t1 = self._t0[step], self._t1[step]
         nodes = t0[:, None] + (t1 - t0)[:, None] * self._theta[None, :]
         gap = flat[:, None] - nodes
@@ -84,7 +88,12 @@ class DenseOutput:
         hit = exact.any(axis=1)
         terms[hit] = exact[hit].astype(np.float64)
         values = self._values[step]  # queries, nodes, states
-        out = np.einsum("qk,qks->qs", terms, values) / terms.sum(axis=1)[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = np.einsum("qk,qks->qs", terms, values) / terms.sum(axis=1)[:, None]
+        # A run of no step (t_end = t0) keeps its start as one step of zero length: its
+        # state, wherever asked.
+        still = t0 == t1
+        out[still] = values[still, 0]
         return out[0] if times.ndim == 0 else out.T
 
 
@@ -93,7 +102,8 @@ class Solution:
     """What :meth:`Model.solve` gives, in the shape of SciPy's ``solve_ivp`` result.
 
     Attributes:
-        t: the recorded times, shape ``(n_t,)``.
+        t: the recorded times, shape ``(n_t,)``, in the run's order (decreasing for a run
+            backward in time).
         y: the states at those times, shape ``(n_states, n_t)``, rows in ``states`` order.
         states: the states' names (the rows of ``y``).
         columns: the states, then the outputs (and a switched model's discrete values) at
@@ -200,8 +210,12 @@ def solution(raw: Mapping[str, Any], specs: Sequence[str], dense: bool) -> Solut
     sol = None
     if dense:
         spans = np.frombuffer(raw["dense_t"], dtype=np.float64).reshape(-1, 2)
-        values = np.frombuffer(raw["dense_y"], dtype=np.float64)
-        sol = DenseOutput(spans, values.reshape(len(spans), DENSE_NODES, n))
+        values = np.frombuffer(raw["dense_y"], dtype=np.float64).reshape(-1, DENSE_NODES, n)
+        if len(spans) == 0 and len(t):
+            # No step (t_end = t0): the start, as a step of zero length.
+            spans = np.array([[t[0], t[0]]])
+            values = np.broadcast_to(y[:, 0], (1, DENSE_NODES, n))
+        sol = DenseOutput(spans, values)
     return Solution(
         t=t,
         y=y,

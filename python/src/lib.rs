@@ -10,7 +10,9 @@
 //! with the GIL released, waits in slices of [`SLICE`]: between slices it takes the GIL
 //! back to let Python handle signals, so Ctrl-C sets the run's cancellation flag and raises
 //! `KeyboardInterrupt` once the worker has stopped, within a second; other Python threads
-//! run meanwhile.
+//! run meanwhile. Python's signal handlers run in the main thread only, so a call on another
+//! thread (a worker of `Model.solve_many`, a sweep's shard on a thread pool) is stopped
+//! through a [`Cancel`] token instead, which the main thread sets on Ctrl-C.
 
 mod bridge;
 
@@ -22,7 +24,7 @@ use std::time::Duration;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBytes, PyDict, PyType};
 
 use model_interpreted::DENSE_NODES;
 
@@ -70,12 +72,16 @@ const SLICE: Duration = Duration::from_millis(50);
 
 /// Runs `work` on a worker thread; the calling thread releases the GIL and checks Python's
 /// signals every [`SLICE`]. A signal handler's exception (`KeyboardInterrupt`) sets the flag
-/// `work` watches, waits for it to stop, and is returned.
+/// `work` watches, waits for it to stop, and is returned. A `cancel` token set (before or
+/// during the call) sets the flag too, and `work`'s result, stopped at its next step, is
+/// returned: the caller that set the token knows.
 fn interruptible<T: Send>(
     py: Python<'_>,
+    cancel: Option<&Cancel>,
     work: impl FnOnce(&AtomicBool) -> T + Send,
 ) -> PyResult<T> {
-    let interrupt = AtomicBool::new(false);
+    let cancelled = || cancel.is_some_and(|c| c.flag.load(Ordering::SeqCst));
+    let interrupt = AtomicBool::new(cancelled());
     let (done_tx, done_rx) = mpsc::channel::<()>();
     // Shared with the GIL-free waits, which need a `Sync` handle on the receiver.
     let done_rx = Mutex::new(done_rx);
@@ -99,6 +105,9 @@ fn interruptible<T: Send>(
             });
             if finished {
                 break;
+            }
+            if cancelled() {
+                interrupt.store(true, Ordering::SeqCst);
             }
             if let Err(signal) = py.check_signals() {
                 interrupt.store(true, Ordering::SeqCst);
@@ -173,6 +182,38 @@ fn load(
     bridge::scene(&source, sets).map_err(|e| scene_error(py, &e))
 }
 
+/// A flag that stops a call running on another thread at its next step: `cancel.set()`, then
+/// the call returns what it computed (a solve stopped as `interrupted`, a sweep with its
+/// complete runs). It pickles as a fresh token (a process of its own cannot see this one).
+#[pyclass(frozen, module = "eulerdisk._native")]
+struct Cancel {
+    flag: AtomicBool,
+}
+
+#[pymethods]
+impl Cancel {
+    #[new]
+    fn new() -> Self {
+        Cancel {
+            flag: AtomicBool::new(false),
+        }
+    }
+
+    /// Stops the calls that watch this token, at their next step.
+    fn set(&self) {
+        self.flag.store(true, Ordering::SeqCst);
+    }
+
+    /// Whether the token was set.
+    fn is_set(&self) -> bool {
+        self.flag.load(Ordering::SeqCst)
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> (Bound<'py, PyType>, ()) {
+        (slf.get_type(), ())
+    }
+}
+
 /// Runs a scene as `eulerdisk run` does, writing its small files into `out_dir`; returns the
 /// sampled columns and how the run ended.
 #[pyfunction]
@@ -195,8 +236,10 @@ fn run<'py>(
         trajectory_file,
         figures,
     };
-    let report = interruptible(py, |interrupt| bridge::run(&loaded, &request, interrupt))?
-        .map_err(RunError::new_err)?;
+    let report = interruptible(py, None, |interrupt| {
+        bridge::run(&loaded, &request, interrupt)
+    })?
+    .map_err(RunError::new_err)?;
     let samples = &report.data.samples;
     let n = samples.len();
     let params = &loaded.scene.params;
@@ -235,8 +278,9 @@ fn default_scene() -> &'static str {
 
 /// Runs a sweep into `out` as `eulerdisk sweep` does, or shard `(index, count)` of it as
 /// `--shard index/count` does; returns the path of its table and the counts of the runs.
+/// `cancel` set stops it as Ctrl-C does (complete runs kept).
 #[pyfunction]
-#[pyo3(signature = (sweep, toml, folder, sets, out, jobs, progress, shard=None))]
+#[pyo3(signature = (sweep, toml, folder, sets, out, jobs, progress, shard=None, cancel=None))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -248,6 +292,7 @@ fn sweep<'py>(
     jobs: usize,
     progress: bool,
     shard: Option<(usize, usize)>,
+    cancel: Option<Bound<'py, Cancel>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let source = match toml {
         Some(toml) => SweepSource::Text {
@@ -257,7 +302,8 @@ fn sweep<'py>(
         },
         None => SweepSource::Named(sweep),
     };
-    let report = interruptible(py, |interrupt| {
+    let cancel = cancel.as_ref().map(|c| c.get());
+    let report = interruptible(py, cancel, |interrupt| {
         bridge::sweep(&source, &sets, (&out, shard), jobs, progress, interrupt)
     })?
     .map_err(SweepError::new_err)?;
@@ -375,8 +421,9 @@ impl NativeModel {
 
     /// Integrates the model; returns the header, the number of states, the columns, the
     /// events, the stop, the work counters, the notes and (with `dense`) every step's dense
-    /// output. `times` are native `f64` bytes.
-    #[pyo3(signature = (chart, state, sets, events, t0, t_end, dt, times, method, rtol, atol, first_step, max_step, dense))]
+    /// output. `times` are native `f64` bytes. `cancel` set stops it at its next step (its
+    /// stop then `interrupted`).
+    #[pyo3(signature = (chart, state, sets, events, t0, t_end, dt, times, method, rtol, atol, first_step, max_step, dense, cancel=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve<'py>(
         &self,
@@ -395,6 +442,7 @@ impl NativeModel {
         first_step: Option<f64>,
         max_step: Option<f64>,
         dense: bool,
+        cancel: Option<Bound<'py, Cancel>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let method = bridge::method(method).ok_or_else(|| {
             ModelInputError::new_err(format!(
@@ -418,7 +466,8 @@ impl NativeModel {
             dense,
         };
         let model = &self.model;
-        let solved = interruptible(py, |interrupt| model.solve(&request, interrupt))?
+        let cancel = cancel.as_ref().map(|c| c.get());
+        let solved = interruptible(py, cancel, |interrupt| model.solve(&request, interrupt))?
             .map_err(|e| model_error(&e))?;
         let rows = &solved.rows;
         let columns = PyDict::new(py);
@@ -469,6 +518,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(merge_sweep, m)?)?;
     m.add_class::<NativeModel>()?;
+    m.add_class::<Cancel>()?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("DslError", py.get_type::<DslError>())?;
     m.add("ModelInputError", py.get_type::<ModelInputError>())?;

@@ -1,6 +1,10 @@
 """`Model.solve_many`: a parameter array or a batch of initial states, solved on the local
 cores and stacked."""
 
+import signal
+import subprocess
+import sys
+import textwrap
 import time
 
 import numpy as np
@@ -78,3 +82,55 @@ def test_the_solves_run_at_the_same_time(oscillator):
     (a0, a1), (b0, b1) = spans
     overlap = min(a1, b1) - max(a0, b0)
     assert overlap > 0.5 * min(a1 - a0, b1 - b0), spans
+
+
+def test_ctrl_c_stops_every_solve_of_a_batch_within_a_second(tmp_path):
+    # SIGINT reaches the main thread only: there it sets the batch's token, which the solves
+    # on the pool's threads watch. In a process of its own, as a terminal sends it; each
+    # solve alone would take half a minute.
+    script = textwrap.dedent(
+        f"""
+        import eulerdisk
+        model = eulerdisk.Model.from_str({OSCILLATOR!r})
+        print("solving", flush=True)
+        try:
+            model.solve_many(
+                1e5, params={{"k": [1.0, 2.0, 3.0, 4.0]}}, state={{"x": 1.0}}, t_eval=1.0,
+                rtol=1e-13, atol=1e-15, workers=2,
+            )
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+        """
+    )
+    # From another folder, for the reason test_session's exit test gives.
+    child = subprocess.Popen(
+        [sys.executable, "-c", script],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=tmp_path,
+    )
+    try:
+        assert child.stdout is not None
+        assert child.stdout.readline().strip() == "solving"
+        time.sleep(0.5)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        said = child.stdout.readline().strip()
+        elapsed = time.monotonic() - sent
+        _, err = child.communicate(timeout=30)
+    finally:
+        child.kill()
+    assert said == "interrupted", err
+    assert elapsed < 1.0
+    assert child.returncode == 0, err
+
+
+def test_a_failed_solve_stops_the_others_at_once(oscillator):
+    # The second row cannot start (NaN); the first alone would take half a minute.
+    start = time.monotonic()
+    with pytest.raises(eulerdisk.ModelInputError, match="finite"):
+        oscillator.solve_many(
+            1e5, y0=[[1.0, 0.0], [np.nan, 0.0]], t_eval=1.0, rtol=1e-13, atol=1e-15, workers=2
+        )
+    assert time.monotonic() - start < 1.0

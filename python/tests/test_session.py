@@ -17,8 +17,9 @@ import eulerdisk
 
 
 def test_the_interpreter_exits_cleanly_with_runs_in_flight(tmp_path):
-    # Daemon threads inside `run` and `Model.solve` when the interpreter exits: CPython ends
-    # such threads as they take the GIL back, which used to abort the process (rc 134).
+    # Daemon threads inside `run`, `Model.solve` and `Model.solve_many` when the interpreter
+    # exits: CPython ends such threads as they take the GIL back, which used to abort the
+    # process (rc 134); a batch's own threads are daemons too, or the exit would wait for them.
     script = textwrap.dedent(
         f"""
         import threading, time
@@ -26,7 +27,11 @@ def test_the_interpreter_exits_cleanly_with_runs_in_flight(tmp_path):
         model = eulerdisk.Model.from_str({OSCILLATOR!r})
         solve = lambda: model.solve(1e6, state={{"x": 1.0}}, rtol=1e-12, atol=1e-14)
         run = lambda: eulerdisk.run("tangent-toy", t_end=100.0, progress=False)
-        for work in (solve, run):
+        many = lambda: model.solve_many(
+            1e6, params={{"k": [1.0, 2.0]}}, state={{"x": 1.0}}, t_eval=1.0,
+            rtol=1e-12, atol=1e-14, workers=2,
+        )
+        for work in (solve, run, many):
             threading.Thread(target=work, daemon=True).start()
         time.sleep(0.5)
         print("leaving")
@@ -34,6 +39,7 @@ def test_the_interpreter_exits_cleanly_with_runs_in_flight(tmp_path):
     )
     # From another folder: `python -c` puts its working folder first on the path, and the
     # tests run in python/, where `eulerdisk/` is the package's source without its native part.
+    start = time.monotonic()
     done = subprocess.run(
         [sys.executable, "-c", script],
         capture_output=True,
@@ -41,6 +47,8 @@ def test_the_interpreter_exits_cleanly_with_runs_in_flight(tmp_path):
         timeout=120,
         cwd=tmp_path,
     )
+    # Without waiting for the work (minutes): no thread of the package holds the exit.
+    assert time.monotonic() - start < 20.0
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "leaving"
     assert "FATAL" not in done.stderr
@@ -62,6 +70,10 @@ def test_errors_and_models_pickle():
     assert type(back) is eulerdisk.SceneError and back.key == "run.no_such_key"
     for cls in (eulerdisk.SceneError, eulerdisk.DslError, eulerdisk.SweepError):
         assert cls.__module__ == "eulerdisk"
+    token = eulerdisk._native.Cancel()
+    token.set()
+    # A cancel token crosses to another process as a fresh one (that process cannot see it).
+    assert not pickle.loads(pickle.dumps(token)).is_set()
     model = eulerdisk.Model.from_str(OSCILLATOR, "osc.dsl")
     again = pickle.loads(pickle.dumps(model))
     assert again.states == model.states

@@ -2,9 +2,11 @@
 
 import concurrent.futures
 import multiprocessing
+import time
 
 import numpy as np
 import pytest
+from support import seconds_to_interrupt
 
 import eulerdisk
 
@@ -58,7 +60,7 @@ def test_sweep_errors_are_the_command_lines():
         eulerdisk.sweep(SWEEP, jobs=0)
 
 
-def test_a_sweep_on_an_executor_gives_the_same_table_and_resumes(tmp_path):
+def test_a_sweep_on_an_executor_gives_the_same_table_and_resumes(tmp_path, capsys):
     local = eulerdisk.sweep(SWEEP, out=tmp_path / "local", progress=False)
     spawn = multiprocessing.get_context("spawn")
     executors = [
@@ -68,8 +70,12 @@ def test_a_sweep_on_an_executor_gives_the_same_table_and_resumes(tmp_path):
     for k, make in enumerate(executors):
         out = tmp_path / f"executor-{k}"
         with make() as pool:
-            done = eulerdisk.sweep(SWEEP, out=out, executor=pool, shards=2)
-            again = eulerdisk.sweep(SWEEP, out=out, executor=pool, shards=2)
+            done = eulerdisk.sweep(SWEEP, out=out, executor=pool, shards=2, progress=True)
+            again = eulerdisk.sweep(SWEEP, out=out, executor=pool, shards=2, progress=False)
+        # What a notebook shows: a line as each shard is done.
+        said = capsys.readouterr().err
+        assert "shard 1/2 done: 1 ran, 0 skipped, 0 failed" in said, said
+        assert "shard 2/2 done" in said and "(2 of 2 shards)" in said, said
         assert done.points == 2 and done.ran == 2 and done.failed == 0
         assert sorted((out).glob("shard-*")) == [out / "shard-0-of-2", out / "shard-1-of-2"]
         for column in ["friction.mu_d", "transitions", "theta_period_first_s"]:
@@ -85,3 +91,14 @@ def test_a_sweep_on_a_dask_cluster(tmp_path):
     ):
         done = eulerdisk.sweep(SWEEP, out=tmp_path, executor=client.get_executor(), shards=2)
     assert done.ran == 2 and list(done.table["status"]) == ["completed", "completed"]
+
+
+def test_ctrl_c_stops_a_sweep_on_a_thread_pool_within_a_second(tmp_path):
+    # The shards run on the pool's threads, which signals do not reach: Ctrl-C in the waiting
+    # thread stops them through the sweep's token, so the pool is free at once.
+    long = {**SWEEP, "set": {"run.t_end": 100.0}}
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        sweep = lambda: eulerdisk.sweep(long, out=tmp_path, executor=pool, shards=2)  # noqa: E731
+        assert seconds_to_interrupt(sweep) < 1.0
+        stopping = time.monotonic()
+    assert time.monotonic() - stopping < 1.0

@@ -480,14 +480,23 @@ fn bad_event_specs_are_input_errors_naming_the_problem() {
 }
 
 /// Settings `model solve` cannot use are input errors (exit 2) naming the setting, found
-/// before any integration: an end time before the start, a negative sampling step (read as
-/// the step, not as a flag), a negative tolerance. The number of states is not one of them
-/// (`solve_runs_a_chain_of_forty_states`).
+/// before any integration: an end time that is not finite, a negative sampling step (read as
+/// the step, not as a flag), a negative tolerance, a switched model asked to run backward.
+/// The number of states is not one of them (`solve_runs_a_chain_of_forty_states`), nor an
+/// end time before the start for a smooth model (`solve_runs_a_smooth_model_backward`).
 #[test]
 fn unusable_solve_settings_are_input_errors() {
     let (_dir, path) = file(DROP);
+    let ball = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/model-macros/examples/bouncing_ball.dsl"
+    );
+    let out = model(&["solve", ball, "--t0", "1", "--t-end", "0"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("runs forward in time only"), "{err}");
     for args in [
-        (&["--t-end", "-1"][..], "time span [0, -1]"),
+        (&["--t-end", "inf"][..], "time span [0, inf]"),
         (&["--t-end", "1", "--dt", "-0.1"], "dt = -0.1"),
         (&["--t-end", "1", "--rtol", "-1"], "-1"),
     ] {
@@ -500,6 +509,58 @@ fn unusable_solve_settings_are_input_errors() {
         assert!(err.contains(needle), "{args:?}: {err}");
         assert!(out.stdout.is_empty(), "{args:?}");
     }
+}
+
+/// `--t-end` before `--t0`: the model integrated backward in time, every `--dt` down from
+/// the start, on the closed form, and an event fired as the run proceeds (`x` from negative
+/// to positive as `t` decreases is `:up`).
+#[test]
+fn solve_runs_a_smooth_model_backward() {
+    let (_dir, path) = file(OSCILLATOR);
+    let (x, v) = ((3.0f64).cos(), -3.0 * (3.0f64).sin());
+    let (x, v) = (format!("x={x}"), format!("v={v}"));
+    let (header, rows) = solved_csv(&[
+        arg(&path),
+        "--state",
+        &x,
+        "--state",
+        &v,
+        "--t0",
+        "1",
+        "--t-end",
+        "0",
+        "--dt",
+        "0.25",
+        "--rtol",
+        "1e-11",
+        "--atol",
+        "1e-12",
+    ]);
+    assert_eq!(header, ["t", "x", "v", "e"]);
+    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(t, [1.0, 0.75, 0.5, 0.25, 0.0]);
+    for row in &rows {
+        assert!((row[1] - (3.0 * row[0]).cos()).abs() < 1e-9, "{row:?}");
+    }
+    let out = model(&[
+        "solve",
+        arg(&path),
+        "--state",
+        &x,
+        "--state",
+        &v,
+        "--t0",
+        "1",
+        "--t-end",
+        "0",
+        "--event",
+        "x:up:stop",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("stopped by event `x`"), "{err}");
+    let at = said_events(&err, "x");
+    assert_eq!(at.len(), 1, "{err}");
+    assert!((at[0] - std::f64::consts::PI / 6.0).abs() < 1e-8, "{err}");
 }
 
 const CHAIN: &str = concat!(

@@ -122,7 +122,8 @@ pub enum RequestError {
     /// Both a sampling step and sampling times were given.
     #[error("give a sampling step or sampling times, not both")]
     StepAndTimes,
-    /// A sampling time is not finite, outside `[t0, t_end]`, or not after the one before.
+    /// A sampling time is not finite, outside the run's span, or not after the one before in
+    /// the run's direction.
     #[error("sampling time #{index} (t = {t}) {problem} (the run goes from {t0} to {t_end})")]
     Time {
         /// Its position in the list given.
@@ -141,6 +142,21 @@ pub enum RequestError {
     TimesOfSwitched {
         /// The model.
         model: String,
+    },
+    /// A switched model asked to run backward in time.
+    #[error(
+        "`{model}` is a switched model: it runs forward in time only (t_end = {t_end} is before \
+         t0 = {t0}): its events' resets give the state after an event from the state before \
+         it, and going back would need their inverses, which a model file does not give (a \
+         reset that loses energy has none)"
+    )]
+    BackwardOfSwitched {
+        /// The model.
+        model: String,
+        /// The run's start.
+        t0: f64,
+        /// The run's end (before `t0`).
+        t_end: f64,
     },
     /// The sampling step is not positive and finite.
     #[error("dt = {dt}: the sampling step must be positive and finite")]

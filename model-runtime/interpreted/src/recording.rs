@@ -44,13 +44,22 @@ pub(crate) enum Grid {
     Steps,
     /// The runtime's samples.
     Rate,
-    /// Exactly these times (increasing).
+    /// Exactly these times (in the run's order).
     Times {
         /// The times.
         times: Vec<f64>,
         /// The next one not yet recorded.
         next: usize,
     },
+}
+
+/// Whether `a` comes before `b` in a run's direction (`backward`: decreasing time).
+fn before(a: f64, b: f64, backward: bool) -> bool {
+    if backward {
+        a > b
+    } else {
+        a < b
+    }
 }
 
 /// The discrete values as the model sets them (shared with it: written at each reset, read
@@ -70,6 +79,8 @@ pub(crate) struct Recording<'a> {
     pub(crate) steps: u64,
     /// Each accepted step's dense output, when the caller asked to keep it.
     pub(crate) dense: Option<Vec<DenseStep>>,
+    /// Whether the run goes backward in time (its points come in decreasing time).
+    backward: bool,
 }
 
 impl<'a> Recording<'a> {
@@ -90,7 +101,14 @@ impl<'a> Recording<'a> {
             halt: None,
             steps: 0,
             dense: None,
+            backward: false,
         }
+    }
+
+    /// The recording of a run backward in time when `backward`.
+    pub(crate) fn with_direction(mut self, backward: bool) -> Self {
+        self.backward = backward;
+        self
     }
 
     /// The recording, keeping every accepted step's dense output when `keep`.
@@ -127,8 +145,9 @@ impl<'a> Recording<'a> {
             Grid::Steps => self.push(t0, mode, y0),
             Grid::Rate => {}
             Grid::Times { times, next } => {
+                let backward = self.backward;
                 let mut count = 0;
-                while *next < times.len() && times[*next] <= t0 {
+                while *next < times.len() && !before(t0, times[*next], backward) {
                     *next += 1;
                     count += 1;
                 }
@@ -151,7 +170,7 @@ impl<'a> Recording<'a> {
             self.halt.get_or_insert(Halt::Work(over));
         }
         if let (Some(kept), Some(dense)) = (&mut self.dense, step.dense) {
-            if step.t1 > step.t0 {
+            if step.t1 != step.t0 {
                 kept.push(DenseStep::sampled(
                     step.t0,
                     step.t1,
@@ -160,9 +179,10 @@ impl<'a> Recording<'a> {
                 ));
             }
         }
+        let backward = self.backward;
         match &mut self.grid {
             Grid::Steps => {
-                if self.points.last().is_none_or(|p| p.t < step.t0) {
+                if (self.points.last()).is_none_or(|p| before(p.t, step.t0, backward)) {
                     self.push(step.t0, mode, step.y0);
                 }
                 self.push(step.t1, mode, step.y1);
@@ -170,13 +190,13 @@ impl<'a> Recording<'a> {
             Grid::Rate => {}
             Grid::Times { times, next } => {
                 let mut due = Vec::new();
-                while *next < times.len() && times[*next] <= step.t1 {
+                while *next < times.len() && !before(step.t1, times[*next], backward) {
                     due.push(times[*next]);
                     *next += 1;
                 }
                 for t in due {
                     let mut y = step.y1.clone();
-                    if t < step.t1 {
+                    if t != step.t1 {
                         // Always present: `wants_dense` asks the driver for it.
                         if let Some(dense) = step.dense {
                             dense.at(t, &mut y);
@@ -208,7 +228,11 @@ impl<'a> Recording<'a> {
 
     /// Closes the trajectory at the run's last point `(t, mode, y)` unless it is recorded.
     pub(crate) fn close(&mut self, t: f64, mode: usize, y: &[f64]) {
-        if self.points.last().is_none_or(|p| p.t < t) {
+        if self
+            .points
+            .last()
+            .is_none_or(|p| before(p.t, t, self.backward))
+        {
             self.push(t, mode, y);
         }
     }

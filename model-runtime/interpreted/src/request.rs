@@ -15,7 +15,9 @@ use std::sync::atomic::AtomicBool;
 pub struct SolveRequest {
     /// Start time.
     pub t0: f64,
-    /// End time.
+    /// End time; before `t0`, a smooth model is integrated backward in time (the runtime's
+    /// exact reversal, [`model_runtime::HybridSolver::run`]); a switched model runs forward
+    /// only.
     pub t_end: f64,
     /// The integration method.
     pub method: Method,
@@ -23,10 +25,11 @@ pub struct SolveRequest {
     pub rtol: f64,
     /// Absolute tolerance.
     pub atol: f64,
-    /// Record every `dt` from `t0` (and at `t_end`); `None`: at every accepted step (or at
-    /// `times`).
+    /// Record every `dt` from `t0` towards `t_end` (and at `t_end`; `dt` is a length, also
+    /// backward); `None`: at every accepted step (or at `times`).
     pub dt: Option<f64>,
-    /// Record at exactly these times (increasing, within `[t0, t_end]`; a smooth model only);
+    /// Record at exactly these times (within the span, in the run's order: increasing, or
+    /// decreasing for a backward run; a smooth model only);
     /// `None`: every `dt`, or every accepted step. Exclusive with `dt`.
     pub times: Option<Vec<f64>>,
     /// Parameter values by name; the others keep the file's defaults.
@@ -157,6 +160,15 @@ impl Resolved {
         }
         let params = params(model, &request.params).map_err(RequestError::Params)?;
         let y0 = initial_state(model, &request.state).map_err(RequestError::State)?;
+        if let ModelRef::Switched(switched) = model {
+            if request.t_end < request.t0 {
+                return Err(RequestError::BackwardOfSwitched {
+                    model: switched.name.clone(),
+                    t0: request.t0,
+                    t_end: request.t_end,
+                });
+            }
+        }
         let events = match model {
             ModelRef::Switched(_) => match request.events.first() {
                 Some(event) => {
@@ -208,8 +220,9 @@ fn resolve_event(
     })
 }
 
-/// The times a request asks to record at, checked: finite, increasing, inside the run's span,
-/// and for a smooth model (a switched model records at a rate or at every step).
+/// The times a request asks to record at, checked: finite, inside the run's span, in its
+/// order (increasing, or decreasing for a run backward in time, as SciPy's `t_eval`), and for
+/// a smooth model (a switched model records at a rate or at every step).
 fn checked_times(
     model: ModelRef<'_>,
     request: &SolveRequest,
@@ -224,13 +237,16 @@ fn checked_times(
         return Err(RequestError::TimeCount { count: times.len() });
     }
     let (t0, t_end) = (request.t0.min(request.t_end), request.t0.max(request.t_end));
+    let backward = request.t_end < request.t0;
     for (index, &t) in times.iter().enumerate() {
         let problem = if !t.is_finite() {
             Some("is not finite")
         } else if t < t0 || t > t_end {
             Some("is outside the run's span")
-        } else if index > 0 && t <= times[index - 1] {
+        } else if index > 0 && !backward && t <= times[index - 1] {
             Some("does not come after the one before")
+        } else if index > 0 && backward && t >= times[index - 1] {
+            Some("does not come before the one before (a run backward in time records at decreasing times)")
         } else {
             None
         };
@@ -247,17 +263,20 @@ fn checked_times(
     Ok(times.to_vec())
 }
 
-/// `t0, t0 + dt, ...` up to and including `t_end`.
+/// `t0, t0 + dt, ...` up to and including `t_end` (`t0, t0 − dt, ...` down to it for a run
+/// backward in time: `dt` is a length).
 fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, RequestError> {
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(RequestError::SampleStep { dt });
     }
-    let count = ((t_end - t0) / dt).floor();
+    let count = ((t_end - t0).abs() / dt).floor();
     if !(0.0..MAX_SAMPLES as f64).contains(&count) {
         return Err(RequestError::SampleCount { dt, t0, t_end });
     }
-    let mut times: Vec<f64> = (0..=count as u64).map(|k| t0 + k as f64 * dt).collect();
-    if times.last().is_some_and(|&t| t < t_end) {
+    let step = if t_end < t0 { -dt } else { dt };
+    let mut times: Vec<f64> = (0..=count as u64).map(|k| t0 + k as f64 * step).collect();
+    // Short of `t_end` in the run's direction.
+    if times.last().is_some_and(|&t| (t_end - t) * step > 0.0) {
         times.push(t_end);
     }
     Ok(times)

@@ -164,7 +164,8 @@ impl WithStepper<Dyn> for Run<'_, '_> {
         };
         let bound = (request.t0, request.work_bound());
         let mut recording = Recording::new(grid, Default::default(), bound, control.interrupt)
-            .with_dense(stepping.dense);
+            .with_dense(stepping.dense)
+            .with_direction(request.t_end < request.t0);
         recording.start(request.t0, 0, &resolved.y0);
         let options = HybridOptions {
             step: stepping.options(),

@@ -23,10 +23,11 @@ pub struct Solution {
     /// The mode in force at each row, by index into [`Solution::modes`] (empty for a smooth
     /// model).
     pub row_modes: Vec<usize>,
-    /// One row per recorded time, in time order; after a terminal event the last row is the
+    /// One row per recorded time, in the run's order (decreasing times for a run backward in
+    /// time); after a terminal event the last row is the
     /// event's. The outputs read the discrete values of the row's own time.
     pub rows: Vec<Vec<f64>>,
-    /// The events the run met, in time order.
+    /// The events the run met, in the run's order.
     pub events: Vec<SolvedEvent>,
     /// Why the run ended.
     pub stop: Stop,
@@ -38,7 +39,8 @@ pub struct Solution {
     /// What the run found legal but likely not meant (a guard reading a derivative that
     /// starts on its threshold), for a front end to say.
     pub warnings: Vec<String>,
-    /// Every accepted step's dense output, in time order, when the caller asked for it
+    /// Every accepted step's dense output, in the run's order (a step backward in time has
+    /// `t1 < t0`), when the caller asked for it
     /// ([`crate::Stepping::dense`]); empty otherwise.
     pub dense: Vec<DenseStep>,
 }

@@ -25,6 +25,7 @@
 
 // The children use this file's types; this file uses none of theirs (the crate root
 // re-exports them), so the module and its children form no import circle.
+pub(crate) mod backward;
 mod chatter;
 pub(crate) mod physical_time;
 pub(crate) mod regularised;

@@ -7,6 +7,7 @@
 //! "Passes" at [`crate::GuardSpec`]); the first event that does anything else cuts the step
 //! there and ends the segment.
 
+use super::backward::{error_in_t, outcome_in_t, InCallersTime, Reversed};
 use super::chatter::RecentTransitions;
 use super::{
     HybridError, HybridOptions, HybridOutcome, HybridResult, HybridSystem, StopReason, Transition,
@@ -63,6 +64,12 @@ impl<S: Stepper<D>, D: Dim> HybridSolver<S, D> {
 
     /// Integrates `sys` from `(t0, y0)` in `mode` until `t_end` or until the transition map
     /// stops, streaming output to `observer`.
+    ///
+    /// A `t_end` before `t0` runs backward in time: the forward run of the system in
+    /// `τ = −t`, which is exact (the same floating-point numbers a method stepping with
+    /// `h < 0` computes), everything handed to the system and the observer, and the outcome
+    /// or failure, in `t` (see the module `backward` for what holds, and for the meaning of a
+    /// guard's direction there: along the run, as SciPy's `solve_ivp` has it).
     pub fn run<H, O>(
         &mut self,
         sys: &mut H,
@@ -80,9 +87,34 @@ impl<S: Stepper<D>, D: Dim> HybridSolver<S, D> {
             mode,
             error: e.into(),
         };
-        if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+        if !(t0.is_finite() && t_end.is_finite()) {
             return Err(input(InputError::TimeSpan { t0, t_end }));
         }
+        if t_end < t0 {
+            let dim = self.integrator.dim();
+            let mut reversed = Reversed::new(sys, dim);
+            let mut in_t = InCallersTime::new(observer, dim);
+            return (self.forward(&mut reversed, mode, -t0, y0, -t_end, &mut in_t))
+                .map(outcome_in_t)
+                .map_err(error_in_t);
+        }
+        self.forward(sys, mode, t0, y0, t_end, observer)
+    }
+
+    /// [`HybridSolver::run`] for `t_end >= t0`.
+    fn forward<H, O>(
+        &mut self,
+        sys: &mut H,
+        mode: H::Mode,
+        t0: f64,
+        y0: &Vector<D>,
+        t_end: f64,
+        observer: &mut O,
+    ) -> HybridResult<D, H>
+    where
+        H: HybridSystem<D>,
+        O: Observer<D, H::Mode, H::Guard, H::Note>,
+    {
         self.integrator.reset_counters();
         let dim = self.integrator.dim();
         let mut run = Run {

@@ -141,7 +141,7 @@ fn bad_inputs_are_named() {
         SolveError::InvalidInput(InputError::InitialState { component: 1, .. })
     ));
     assert!(matches!(
-        run(ok_tol, d, Forced::Y0, -1.0),
+        run(ok_tol, d, Forced::Y0, f64::NAN),
         SolveError::InvalidInput(InputError::TimeSpan { .. })
     ));
     assert!(matches!(

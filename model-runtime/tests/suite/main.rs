@@ -1,6 +1,7 @@
 //! Every integration test of the runtime in one test binary, one module per former file: one
 //! link instead of one per file, which is most of a cold `cargo test`.
 
+mod backward;
 mod common;
 mod convergence;
 mod events;

@@ -2,6 +2,7 @@
 //! closed forms, switched models against closed forms, and every input error located.
 
 mod as_written;
+mod backward;
 mod engine;
 mod guards;
 mod oracle;
