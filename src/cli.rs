@@ -181,9 +181,10 @@ pub struct ModelSolveArgs {
     /// ended; `-`: standard output); without it, each event is said on standard error.
     #[arg(long, value_name = "PATH")]
     pub events: Option<PathBuf>,
-    /// Evaluate the model with the flat evaluator instead of compiling it to machine code
-    /// (the same results, slower; the default falls back to it on machines without a code
-    /// generator).
+    /// Evaluate the model with the flat evaluator only, never compiling it to machine code
+    /// (the same results; by default each program is compiled once it has been evaluated
+    /// often enough to pay for its compile, and machines without a code generator never
+    /// compile).
     #[arg(long)]
     pub no_jit: bool,
 }

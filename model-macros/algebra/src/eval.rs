@@ -199,12 +199,18 @@ pub fn solve_dense_in(n: usize, a: &mut [f64], b: &mut [f64], x: &mut [f64]) -> 
             b.swap(k, p);
         }
         let r = 1.0 / a[k * n + k];
-        for i in k + 1..n {
-            let f = a[i * n + k] * r;
-            for j in k + 1..n {
-                a[i * n + j] -= f * a[k * n + j];
+        // Row by row as slices (no index checked per entry, so the update vectorizes); each
+        // entry is the same `a - f * p` as written out, so the result is the same to the bit.
+        let (above, below) = a[..n * n].split_at_mut((k + 1) * n);
+        let pivot_row = &above[k * n + k + 1..(k + 1) * n];
+        let (b_above, b_below) = b[..n].split_at_mut(k + 1);
+        let bk = b_above[k];
+        for (row, bi) in below.chunks_exact_mut(n).zip(b_below.iter_mut()) {
+            let f = row[k] * r;
+            for (entry, &p) in row[k + 1..].iter_mut().zip(pivot_row) {
+                *entry -= f * p;
             }
-            b[i] -= f * b[k];
+            *bi -= f * bk;
         }
     }
     for k in (0..n).rev() {

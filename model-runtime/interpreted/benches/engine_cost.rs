@@ -152,13 +152,19 @@ fn main() {
         "| model | reference interpreter | flat evaluator | JIT | `model!` | JIT / `model!` | JIT compile (rhs + Jacobian) |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|");
+    let mut compile_rows = Vec::new();
     for case in cases() {
         let flat = FlatModel::new(&case.model, case.params.len()).unwrap();
         let mut scratch = flat.rhs.scratch();
-        let clock = std::time::Instant::now();
-        let jit = model_jit::JitProgram::new(flat.rhs.clone()).unwrap();
-        model_jit::JitProgram::new(flat.jacobian.clone()).unwrap();
-        let compile_ms = clock.elapsed().as_secs_f64() * 1e3;
+        let compile = |program: &model_algebra::FlatProgram| {
+            let clock = std::time::Instant::now();
+            let jit = model_jit::JitProgram::new(program.clone()).unwrap();
+            (jit, clock.elapsed().as_secs_f64() * 1e3)
+        };
+        let (jit, rhs_ms) = compile(&flat.rhs);
+        let jacobian_ms = compile(&flat.jacobian).1;
+        let outputs_ms = compile(&flat.outputs).1;
+        let compile_ms = rhs_ms + jacobian_ms;
         let params = case.params.clone();
         // The evaluators agree before they are timed (and the points evaluate).
         for y in &case.points {
@@ -214,5 +220,28 @@ fn main() {
             "| {} | {reference:.0} | {flat_ns:.0} | {jit_ns:.0} | {compiled} | {ratio} | {compile_ms:.1} ms |",
             case.name
         );
+        // The right-hand side's break-even: evaluations whose savings pay for its compile.
+        let break_even = rhs_ms * 1e6 / (flat_ns - jit_ns);
+        let per_op = |ms: f64, program: &model_algebra::FlatProgram| {
+            format!(
+                "{} ops, {ms:.2} ms ({:.1} µs/op)",
+                program.ops.len(),
+                ms * 1e3 / program.ops.len().max(1) as f64
+            )
+        };
+        compile_rows.push(format!(
+            "| {} | {} | {} | {} | {break_even:.0} |",
+            case.name,
+            per_op(rhs_ms, &flat.rhs),
+            per_op(jacobian_ms, &flat.jacobian),
+            per_op(outputs_ms, &flat.outputs),
+        ));
+    }
+    println!();
+    println!("JIT compile per program, and the right-hand side's break-even (its compile time over flat − JIT per evaluation)");
+    println!("| model | right-hand side | Jacobian | outputs | break-even evaluations |");
+    println!("|---|---:|---:|---:|---:|");
+    for row in compile_rows {
+        println!("{row}");
     }
 }

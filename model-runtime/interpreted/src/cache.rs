@@ -248,6 +248,38 @@ mod tests {
         }
     }
 
+    /// A text given by value goes through the cache as a file does: the first compile keeps
+    /// its entry, and a second load under another name is that entry (what it returns comes
+    /// from the entry, changed here to tell).
+    #[test]
+    fn a_text_by_value_is_kept_and_found() {
+        let cache = cache("text");
+        let first = ModelFile::from_text_with("top.dsl", TOP, Some(&cache)).unwrap();
+        assert_eq!(entries(&cache).len(), 1);
+        let source = Source::new("top.dsl", TOP);
+        let ModelFile::Smooth(models) = first else {
+            panic!("smooth")
+        };
+        let mut changed: Vec<CompiledModel> = models.iter().map(|m| m.compiled.clone()).collect();
+        changed[0].explanation.markdown = "kept".into();
+        let entry = Entry {
+            text: TOP.into(),
+            rust: false,
+            models: Models::Smooth(changed),
+        };
+        cache.write(&cache.path(&source), &encode(&entry)).unwrap();
+        let Ok(ModelFile::Smooth(again)) =
+            ModelFile::from_text_with("other.dsl", TOP, Some(&cache))
+        else {
+            panic!("a hit")
+        };
+        assert_eq!(again[0].compiled.explanation.markdown, "kept");
+        let Ok(ModelFile::Smooth(fresh)) = ModelFile::from_text_with("top.dsl", TOP, None) else {
+            panic!("compiled")
+        };
+        assert_ne!(fresh[0].compiled.explanation.markdown, "kept");
+    }
+
     #[test]
     fn what_a_hit_returns_comes_from_the_entry() {
         let cache = cache("from-entry");

@@ -32,20 +32,35 @@ impl ModelFile {
             path: path.to_path_buf(),
             source,
         })?;
-        let Some(cache) = cache else {
-            return Self::compile(&source);
-        };
-        if let Some(file) = cache.get(&source) {
-            return Ok(file);
-        }
-        let file = Self::compile(&source)?;
-        cache.put(&source, &file);
-        Ok(file)
+        Self::compile_with(&source, cache)
     }
 
     /// Compiles `text`; `name` is the source's name in the errors' locations (a file name).
     pub fn from_text(name: &str, text: &str) -> Result<Self, LoadError> {
-        Self::compile(&Source::new(name, text))
+        Self::from_text_with(name, text, None)
+    }
+
+    /// [`from_text`](Self::from_text), through `cache` as [`read_with`](Self::read_with)
+    /// (the entry is keyed by the text, whatever its name).
+    pub fn from_text_with(
+        name: &str,
+        text: &str,
+        cache: Option<&ModelCache>,
+    ) -> Result<Self, LoadError> {
+        Self::compile_with(&Source::new(name, text), cache)
+    }
+
+    /// `source` compiled, or taken from `cache` (and kept there when compiled).
+    fn compile_with(source: &Source, cache: Option<&ModelCache>) -> Result<Self, LoadError> {
+        let Some(cache) = cache else {
+            return Self::compile(source);
+        };
+        if let Some(file) = cache.get(source) {
+            return Ok(file);
+        }
+        let file = Self::compile(source)?;
+        cache.put(source, &file);
+        Ok(file)
     }
 
     pub(crate) fn compile(source: &Source) -> Result<Self, LoadError> {

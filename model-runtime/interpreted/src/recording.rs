@@ -13,16 +13,17 @@ use model_runtime::{Dyn, Observed, Sample, StepView};
 use model_runtime::{WorkBound, WorkExceeded, WorkMeter};
 use std::cell::RefCell;
 use std::ops::ControlFlow;
+use std::ops::Range;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// One recorded point: its time, the mode in force (by index), the state and the discrete
-/// values (by index into [`Recording::snapshots`]).
+/// One recorded point: its time, the mode in force (by index), where its state lies in
+/// [`Recording::states`] and the discrete values (by index into [`Recording::snapshots`]).
 #[derive(Clone, Debug)]
 pub(crate) struct Point {
     pub(crate) t: f64,
     pub(crate) mode: usize,
-    pub(crate) y: Vec<f64>,
+    y: Range<usize>,
     pub(crate) discrete: usize,
 }
 
@@ -70,6 +71,11 @@ pub(crate) type SharedValues = Rc<RefCell<Vec<f64>>>;
 pub(crate) struct Recording<'a> {
     pub(crate) grid: Grid,
     pub(crate) points: Vec<Point>,
+    /// The points' states, one after another (one vector for all: a million samples are not
+    /// a million allocations).
+    states: Vec<f64>,
+    /// A state interpolated at a given time, before it is recorded.
+    sample: Vec<f64>,
     /// Each distinct set of discrete values met, in order.
     pub(crate) snapshots: Vec<Vec<f64>>,
     discrete: SharedValues,
@@ -94,6 +100,8 @@ impl<'a> Recording<'a> {
         Recording {
             grid,
             points: Vec::new(),
+            states: Vec::new(),
+            sample: Vec::new(),
             snapshots: vec![first],
             discrete,
             meter: WorkMeter::new(bound, t0),
@@ -131,12 +139,31 @@ impl<'a> Recording<'a> {
     /// Records `(t, mode, y)` with the discrete values in force.
     pub(crate) fn push(&mut self, t: f64, mode: usize, y: &[f64]) {
         let discrete = self.values_now();
+        let start = self.states.len();
+        self.states.extend_from_slice(y);
         self.points.push(Point {
             t,
             mode,
-            y: y.to_vec(),
+            y: start..self.states.len(),
             discrete,
         });
+    }
+
+    /// The state recorded at `point`.
+    pub(crate) fn y(&self, point: &Point) -> &[f64] {
+        &self.states[point.y.clone()]
+    }
+
+    /// The next of the given times reached by `t1` (at or before it, in the run's direction),
+    /// taken off the grid.
+    fn next_time(&mut self, t1: f64) -> Option<f64> {
+        let backward = self.backward;
+        let Grid::Times { times, next } = &mut self.grid else {
+            return None;
+        };
+        let t = *times.get(*next).filter(|&&t| !before(t1, t, backward))?;
+        *next += 1;
+        Some(t)
     }
 
     /// The start, where a grid records it.
@@ -188,22 +215,20 @@ impl<'a> Recording<'a> {
                 self.push(step.t1, mode, step.y1);
             }
             Grid::Rate => {}
-            Grid::Times { times, next } => {
-                let mut due = Vec::new();
-                while *next < times.len() && !before(step.t1, times[*next], backward) {
-                    due.push(times[*next]);
-                    *next += 1;
-                }
-                for t in due {
-                    let mut y = step.y1.clone();
+            Grid::Times { .. } => {
+                // Each time due is interpolated into one reused vector, then recorded.
+                let mut sample = std::mem::take(&mut self.sample);
+                while let Some(t) = self.next_time(step.t1) {
+                    sample.clone_from(step.y1);
                     if t != step.t1 {
                         // Always present: `wants_dense` asks the driver for it.
                         if let Some(dense) = step.dense {
-                            dense.at(t, &mut y);
+                            dense.at(t, &mut sample);
                         }
                     }
-                    self.push(t, mode, &y);
+                    self.push(t, mode, &sample);
                 }
+                self.sample = sample;
             }
         }
         Ok(())

@@ -192,6 +192,7 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             states: n,
             discrete: 0,
             explicit: explicit(request.method),
+            buffers: Default::default(),
         };
         let events = (system.located.iter())
             .map(|(guard, t, y)| {

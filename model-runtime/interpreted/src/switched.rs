@@ -470,6 +470,7 @@ fn tables<'a>(
         states: slots.len(),
         discrete: discrete.len(),
         explicit: explicit(request.method),
+        buffers: Default::default(),
     }
 }
 

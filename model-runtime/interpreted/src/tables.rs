@@ -13,6 +13,7 @@ use crate::recording::{Halt, Recording};
 use crate::solution::{AccumulationPoint, EventKind, Solution, SolvedEvent, Stop};
 use model_algebra::{CompiledModel, EvalFailure};
 use model_runtime::Stats;
+use std::cell::RefCell;
 
 /// How a run ended, before its rows are made.
 pub(crate) enum Ended {
@@ -54,6 +55,18 @@ pub(crate) struct Tables<'a> {
     pub(crate) discrete: usize,
     /// Whether the method is explicit (a work bound reached then suggests an implicit one).
     pub(crate) explicit: bool,
+    /// What a row is computed in, reused from row to row.
+    pub(crate) buffers: RefCell<RowBuffers>,
+}
+
+/// The values a row's outputs are computed from and into: the parameters with the discrete
+/// values, the derivatives, the outputs. Kept by [`Tables`] so that a million rows allocate
+/// only the rows.
+#[derive(Debug, Default)]
+pub(crate) struct RowBuffers {
+    values: Vec<f64>,
+    der: Vec<f64>,
+    outputs: Vec<f64>,
 }
 
 impl Tables<'_> {
@@ -67,7 +80,14 @@ impl Tables<'_> {
         discrete: &[f64],
     ) -> Result<Vec<f64>, SolveFailure> {
         let model = self.models[mode];
-        let values: Vec<f64> = self.params.iter().chain(discrete).copied().collect();
+        let mut buffers = self.buffers.borrow_mut();
+        let RowBuffers {
+            values,
+            der,
+            outputs,
+        } = &mut *buffers;
+        values.clear();
+        values.extend(self.params.iter().chain(discrete));
         let at_t = |failure: PointError| SolveFailure::Eval { t, failure };
         let interpreter = |failure: EvalFailure| {
             at_t(PointError::Interpreter {
@@ -76,10 +96,11 @@ impl Tables<'_> {
             })
         };
         let engine = self.engines[mode];
-        let mut der = vec![0.0; y.len()];
-        engine.rhs(t, y, &values, &mut der).map_err(interpreter)?;
-        let mut outputs = vec![0.0; engine.n_outputs()];
-        (engine.outputs(t, y, &der, &values, &mut outputs)).map_err(interpreter)?;
+        der.resize(y.len(), 0.0);
+        outputs.resize(engine.n_outputs(), 0.0);
+        (engine.outputs_at(t, y, values, &mut der[..y.len()], &mut outputs[..]))
+            .map_err(interpreter)?;
+        let outputs = &outputs[..engine.n_outputs()];
         if let Some(k) = outputs.iter().position(|v| !v.is_finite()) {
             return Err(at_t(PointError::NonFinite {
                 model: model.name.clone(),
@@ -91,7 +112,7 @@ impl Tables<'_> {
         row.push(t);
         row.extend_from_slice(y);
         row.extend_from_slice(discrete);
-        row.extend(outputs);
+        row.extend_from_slice(outputs);
         Ok(row)
     }
 
@@ -129,7 +150,7 @@ impl Tables<'_> {
         let mut row_modes = Vec::with_capacity(recording.points.len());
         for point in &recording.points {
             let discrete = &recording.snapshots[point.discrete];
-            rows.push(self.row(point.mode, point.t, &point.y, discrete)?);
+            rows.push(self.row(point.mode, point.t, recording.y(point), discrete)?);
             row_modes.push(point.mode);
         }
         if self.modes.is_empty() {

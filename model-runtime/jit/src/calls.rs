@@ -10,8 +10,6 @@ use model_algebra::{solve_dense_in, Binary, Block, Func, Unary};
 pub(crate) enum Callee {
     /// A one-argument function (`sqrt` and `abs` are instructions instead).
     Unary(Func),
-    /// `x.powi(n)`.
-    Powi,
     /// `pow` or `atan2`.
     Binary(Binary),
     /// `sin_cos(x)` into `work[0]`, `work[1]`.
@@ -22,7 +20,7 @@ pub(crate) enum Callee {
 
 impl Callee {
     /// Every callee, for the module's symbol table.
-    pub(crate) const ALL: [Callee; 12] = [
+    pub(crate) const ALL: [Callee; 11] = [
         Callee::Unary(Func::Sin),
         Callee::Unary(Func::Cos),
         Callee::Unary(Func::Tan),
@@ -30,7 +28,6 @@ impl Callee {
         Callee::Unary(Func::Ln),
         Callee::Unary(Func::Sign),
         Callee::Unary(Func::Sqrt),
-        Callee::Powi,
         Callee::Binary(Binary::Powf),
         Callee::Binary(Binary::Atan2),
         Callee::SinCos,
@@ -48,7 +45,6 @@ impl Callee {
             Callee::Unary(Func::Sign) => "model_sign",
             // Only `sqrt` is left: the generator calls no other one-argument function here.
             Callee::Unary(_) => "model_sqrt",
-            Callee::Powi => "model_powi",
             Callee::Binary(Binary::Powf) => "model_pow",
             Callee::Binary(_) => "model_atan2",
             Callee::SinCos => "model_sin_cos",
@@ -66,7 +62,6 @@ impl Callee {
             Callee::Unary(Func::Ln) => ln as *const u8,
             Callee::Unary(Func::Sign) => sign as *const u8,
             Callee::Unary(_) => sqrt as *const u8,
-            Callee::Powi => powi as *const u8,
             Callee::Binary(Binary::Powf) => pow as *const u8,
             Callee::Binary(_) => atan2 as *const u8,
             Callee::SinCos => sin_cos as *const u8,
@@ -79,7 +74,6 @@ impl Callee {
         let f = AbiParam::new(types::F64);
         let (params, returns): (Vec<AbiParam>, Vec<AbiParam>) = match self {
             Callee::Unary(_) => (vec![f], vec![f]),
-            Callee::Powi => (vec![f, AbiParam::new(types::I32)], vec![f]),
             Callee::Binary(_) => (vec![f, f], vec![f]),
             Callee::SinCos => (vec![f, AbiParam::new(pointer)], vec![]),
             Callee::Solve => (
@@ -119,10 +113,6 @@ extern "C" fn sign(x: f64) -> f64 {
 /// `sqrt` (generated as an instruction; in the table so that every entry has a symbol).
 extern "C" fn sqrt(x: f64) -> f64 {
     Unary::Call(Func::Sqrt).apply(x)
-}
-
-extern "C" fn powi(x: f64, n: i32) -> f64 {
-    Unary::Powi(n).apply(x)
 }
 
 extern "C" fn pow(x: f64, y: f64) -> f64 {

@@ -6,8 +6,9 @@
 //! program becomes one function whose values live in registers. The results are the flat
 //! evaluator's to the bit: additions, subtractions, multiplications, divisions, negations,
 //! square roots, absolute values and comparisons are single IEEE operations in both (Cranelift
-//! never fuses a multiplication into an addition), and every other function (`sin`, `cos`,
-//! `tan`, `exp`, `ln`, `sign`, `powi`, `pow`, `atan2`, `sin_cos`, the numeric blocks' solve) is
+//! never fuses a multiplication into an addition), an integer power is the runtime's `powi`'s
+//! own multiplications, written out, and every other function (`sin`, `cos`,
+//! `tan`, `exp`, `ln`, `sign`, `pow`, `atan2`, `sin_cos`, the numeric blocks' solve) is
 //! called in the very Rust function the flat evaluator calls ([`Unary::apply`],
 //! [`Binary::apply`], [`Block::run`]), passed to the generated code by address. The pivot checks
 //! compute `SumCheck::cancelled` and the finiteness test with the same operations.
@@ -315,10 +316,7 @@ impl Generator<'_> {
                     Unary::Neg => b.ins().fneg(a),
                     Unary::Call(Func::Sqrt) => b.ins().sqrt(a),
                     Unary::Call(Func::Abs) => b.ins().fabs(a),
-                    Unary::Powi(n) => {
-                        let n = b.ins().iconst(types::I32, n as i64);
-                        self.call(b, Callee::Powi, &[a, n])?.expect("a result")
-                    }
+                    Unary::Powi(n) => powi(b, a, n),
                     Unary::Call(
                         f @ (Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln | Func::Sign),
                     ) => self.call(b, Callee::Unary(f), &[a])?.expect("a result"),
@@ -426,8 +424,109 @@ impl Generator<'_> {
     }
 }
 
+/// `a.powi(n)` as the multiplications and the one division the runtime's `powi` makes
+/// (`__powidf2`, by squaring: the odd bits' powers multiplied in from the lowest up, the
+/// reciprocal last for a negative `n`), so the same IEEE operations in the same order and the
+/// same result to the bit, without a call.
+fn powi(b: &mut FunctionBuilder, a: Value, n: i32) -> Value {
+    let mut bits = n.unsigned_abs();
+    let mut power = a;
+    let mut product: Option<Value> = None;
+    loop {
+        if bits & 1 != 0 {
+            product = Some(match product {
+                Some(p) => b.ins().fmul(p, power),
+                None => power,
+            });
+        }
+        bits >>= 1;
+        if bits == 0 {
+            break;
+        }
+        power = b.ins().fmul(power, power);
+    }
+    let product = product.unwrap_or_else(|| b.ins().f64const(1.0));
+    match n < 0 {
+        true => {
+            let one = b.ins().f64const(1.0);
+            b.ins().fdiv(one, product)
+        }
+        false => product,
+    }
+}
+
 /// Where a block's values start in `work`: after the failing value at `work[0]` and the
 /// sine and cosine at `work[0..2]`.
 fn solve_base(_block: &Block) -> usize {
     2
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use model_algebra::{Node, Operand, Program, Shape, Sink, Stmt, Target};
+
+    /// `x^n` for every `n` in `-12..=12` and the `n` of a few larger powers, as one program.
+    fn powers(exponents: &[i32]) -> FlatProgram {
+        let mut stmts = Vec::new();
+        for (k, &n) in exponents.iter().enumerate() {
+            stmts.push(Stmt::Let {
+                tmp: k as u32,
+                node: Node::Powi(Operand::State(0), n),
+            });
+            stmts.push(Stmt::Store {
+                target: Target::Der(k),
+                value: Operand::Tmp(k as u32),
+            });
+        }
+        let shape = Shape {
+            states: 1,
+            ..Shape::default()
+        };
+        FlatProgram::new(&Program { stmts }, shape, Sink::Ders(exponents.len())).unwrap()
+    }
+
+    /// The integer powers written out are Rust's `powi`, to the bit, on ordinary, tiny,
+    /// huge, signed-zero, infinite and NaN bases.
+    #[test]
+    fn integer_powers_are_the_runtimes_powi_to_the_bit() {
+        let exponents: Vec<i32> = (-12..=12).chain([31, -31, 64, 1023, -1075]).collect();
+        let flat = powers(&exponents);
+        let Ok(jit) = JitProgram::new(flat.clone()) else {
+            return; // No code generator for this machine: nothing compiled to compare.
+        };
+        let mut scratch = flat.scratch();
+        let bases = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.1,
+            -0.7,
+            1.0000001,
+            3.0,
+            -2.5,
+            1e-160,
+            5e-324,
+            1e154,
+            -1e200,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            std::f64::consts::PI,
+        ];
+        let mut out = vec![0.0; exponents.len()];
+        for x in bases {
+            let inputs = Inputs {
+                t: 0.0,
+                states: &[x],
+                params: &[],
+                ders: &[],
+            };
+            jit.run(&inputs, &mut scratch, &mut out).unwrap();
+            for (&n, got) in exponents.iter().zip(&out) {
+                assert_eq!(got.to_bits(), x.powi(n).to_bits(), "{x}^{n}: {got}");
+            }
+        }
+    }
 }

@@ -266,3 +266,47 @@ fn compiled_programs_match_the_flat_evaluator_on_every_example() {
         );
     }
 }
+
+/// When (and whether) a model's programs are compiled never changes a solve: every example
+/// file solved with the flat evaluator only, with every program compiled at its first
+/// evaluation, and with each compiled part way through the run (after a few dozen
+/// evaluations, so the run switches from one to the other), gives the same rows, events,
+/// counts and failures, to the bit, with an explicit and an implicit method (whose Jacobian
+/// is compiled too).
+#[test]
+fn the_evaluator_never_changes_a_solve() {
+    use model_interpreted::{set_evaluator, solve, Evaluator, SolveRequest};
+    use model_runtime::Method;
+    let evaluators = [
+        Evaluator::Flat,
+        Evaluator::Compiled,
+        Evaluator::Tiered { after: 37 },
+        Evaluator::default(),
+    ];
+    let mut compared = 0;
+    for (name, file) in example_files() {
+        if name.ends_with(".rs") {
+            continue; // The disk's models: their programs are compared above.
+        }
+        let model = file.model(None).unwrap();
+        for method in [Method::Dop853, Method::Rodas4] {
+            let mut request = SolveRequest::new(1.0);
+            request.method = method;
+            let solved: Vec<String> = (evaluators.iter())
+                .map(|&evaluator| {
+                    set_evaluator(evaluator);
+                    format!("{:?}", solve(model, &request))
+                })
+                .collect();
+            set_evaluator(Evaluator::default());
+            for (evaluator, got) in evaluators.iter().zip(&solved).skip(1) {
+                assert!(
+                    *got == solved[0],
+                    "{name}, {method:?}: {evaluator:?} differs from the flat evaluator"
+                );
+            }
+            compared += solved[0].starts_with("Ok") as usize;
+        }
+    }
+    assert!(compared >= 8, "{compared} solves compared");
+}
