@@ -185,10 +185,10 @@ impl<D: Dim, H: HybridSystem<D>> HybridSystem<D> for Reversed<'_, H, D> {
     }
 }
 
-/// A step's interpolant in `τ`, evaluated at `t`.
-struct Reflected<'a, D: Dim>(&'a dyn Interpolant<D>);
+/// An interpolant in `τ` (a live step's, or a stored one), evaluated at `t`.
+struct Reflected<I>(I);
 
-impl<D: Dim> Interpolant<D> for Reflected<'_, D> {
+impl<D: Dim, I: Interpolant<D>> Interpolant<D> for Reflected<I> {
     fn dim(&self) -> D {
         self.0.dim()
     }
@@ -206,32 +206,7 @@ impl<D: Dim> Interpolant<D> for Reflected<'_, D> {
     }
 
     fn stored(&self) -> StoredInterpolant<D> {
-        StoredInterpolant::new(ReflectedStored(self.0.stored()))
-    }
-}
-
-/// A stored interpolant in `τ`, evaluated at `t`.
-struct ReflectedStored<D: Dim>(StoredInterpolant<D>);
-
-impl<D: Dim> Interpolant<D> for ReflectedStored<D> {
-    fn dim(&self) -> D {
-        self.0.dim()
-    }
-
-    fn at(&self, t: f64, out: &mut Vector<D>) {
-        self.0.at(-t, out)
-    }
-
-    fn component_at(&self, t: f64, i: usize) -> f64 {
-        self.0.component_at(-t, i)
-    }
-
-    fn sample_at(&self, t: f64, out: &mut Vector<D>) {
-        self.0.sample_at(-t, out)
-    }
-
-    fn stored(&self) -> StoredInterpolant<D> {
-        StoredInterpolant::new(ReflectedStored(self.0.clone()))
+        StoredInterpolant::new(Reflected(self.0.stored()))
     }
 }
 
