@@ -8,7 +8,8 @@ use crate::emit::emit;
 use crate::emit_switched::emit_switched;
 use crate::placeholder::{placeholder, switched_placeholder};
 use model_dsl::{
-    compile_all, compile_switched, parse_model_recovering, validate, validate_switched, ModelAst,
+    compile_all, compile_switched, in_included_files, parse_model_in, validate, validate_switched,
+    ModelAst,
 };
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
@@ -78,8 +79,22 @@ fn millis(duration: Duration) -> f64 {
 
 /// Expands and reports how long each stage took.
 pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
+    expand_timed_in(tokens, None)
+}
+
+/// Expands a model whose source is the file `origin` (the folder its `include`s are relative
+/// to; `None`: the invoking file, as the compiler names it).
+#[cfg(test)]
+pub fn expand_in(tokens: TokenStream, origin: Option<&std::path::Path>) -> TokenStream {
+    expand_timed_in(tokens, origin).0
+}
+
+/// [`expand_timed`] with the model's source file; what the model's `include`s read is
+/// tracked by the compiler (a changed file expands the model again) and named in the errors
+/// found in it.
+fn expand_timed_in(tokens: TokenStream, origin: Option<&std::path::Path>) -> (TokenStream, Timing) {
     let mut timing = Timing::default();
-    let parsed = timing.stage("parse", || parse_model_recovering(tokens.clone()));
+    let parsed = timing.stage("parse", || parse_model_in(tokens.clone(), origin));
     let Some(ast) = parsed.model else {
         let error = parsed.errors.unwrap_or_else(|| {
             syn::Error::new(proc_macro2::Span::call_site(), "expected `mod NAME { .. }`")
@@ -88,11 +103,30 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
         return (failure(error, placeholder), timing);
     };
     timing.model = ast.name.to_string();
-    if let Some(error) = parsed.errors {
-        return (failure(error, placeholders(&ast)), timing);
+    let (mut output, timing) = expand_parsed(&ast, parsed.errors, timing);
+    output.extend(tracked(&ast));
+    (output, timing)
+}
+
+/// One `const _: &str = include_str!(..);` for each file the model's `include`s read, so that
+/// the compiler expands the model again when one of them changes.
+fn tracked(ast: &ModelAst) -> TokenStream {
+    let paths = (ast.spans.included().iter()).map(|file| file.path.display().to_string());
+    quote::quote! { #(const _: &str = include_str!(#paths);)* }
+}
+
+/// The expansion of a model that parsed (`errors`: its syntax errors).
+fn expand_parsed(
+    ast: &ModelAst,
+    errors: Option<syn::Error>,
+    mut timing: Timing,
+) -> (TokenStream, Timing) {
+    let failure = |error| failure(in_included_files(error, &ast.spans), placeholders(ast));
+    if let Some(error) = errors {
+        return (failure(error), timing);
     }
     if ast.is_switched() {
-        let plan = timing.stage("validate", || validate_switched(&ast));
+        let plan = timing.stage("validate", || validate_switched(ast));
         let compiled = plan.and_then(|plan| {
             let compiled = timing.stage("compile", || compile_switched(&plan))?;
             Ok((plan, compiled))
@@ -103,10 +137,10 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
                 let output = timing.stage("emit", || emit_switched(&plan.ast, &modes, &compiled));
                 (output, timing)
             }
-            Err(error) => (failure(error, placeholders(&ast)), timing),
+            Err(error) => (failure(error), timing),
         };
     }
-    let validated = timing.stage("validate", || validate(&ast));
+    let validated = timing.stage("validate", || validate(ast));
     let compiled = validated.and_then(|models| {
         let compiled = timing.stage("compile", || compile_all(&models))?;
         Ok((models, compiled))
@@ -120,7 +154,7 @@ pub fn expand_timed(tokens: TokenStream) -> (TokenStream, Timing) {
             });
             (output, timing)
         }
-        Err(error) => (failure(error, placeholders(&ast)), timing),
+        Err(error) => (failure(error), timing),
     }
 }
 

@@ -2,8 +2,9 @@
 //! them and the stops, as one switched model (docs/physics.md §7), beside the hand-written
 //! system it is held to.
 //!
-//! Rolling is Box 1 and sliding Box 3 in the Cartesian slip chart, row for row as in
-//! `crate::models`; the guards, clocks and first steps are those of the hand-written system
+//! Rolling is Box 1 and sliding Box 3 in the Cartesian slip chart: the modes include the rows
+//! the smooth models of `crate::models` include (`models/box1_rolling.dsl`,
+//! `models/box3_sliding.dsl`), with the air's terms zero at compile time; the guards, clocks and first steps are those of the hand-written system
 //! (module `system`), written as expressions. Sliding carries
 //! the slip `(u_X, u_Y)` in the slots where rolling carries the centre's velocity
 //! `(V_X, V_Y)` (`states { u_X, u_Y } replace { V_X, V_Y }`), so the error norm sees what it
@@ -65,23 +66,7 @@ model_macros::model! {
 
         /// Rolling without slipping (Box 1).
         mode rolling {
-            let v_z = (V_X*cos(psi) + V_Y*sin(psi))*sin(theta) + V_Z*cos(theta);
-            equations {
-                R1: der(X) = V_X;
-                R2: der(Y) = V_Y;
-                R3: der(Z) = V_Z;
-                R4: der(V_X - a*(Omega_y*cos(psi)*sin(theta) + Omega_z*sin(psi))) = 0;
-                R5: der(V_Y - a*(Omega_y*sin(psi)*sin(theta) - Omega_z*cos(psi))) = 0;
-                R6: der(V_Z - a*Omega_y*cos(theta)) = 0;
-                R7: A*der(Omega_x) - A*Omega_y*cos(theta)*der(psi) = -C*Omega_y*Omega_z - k_M*Omega_x;
-                R8: A*der(Omega_y) + A*Omega_x*cos(theta)*der(psi)
-                    + m*a*(sin(theta)*(cos(psi)*der(V_X) + sin(psi)*der(V_Y)) + cos(theta)*der(V_Z))
-                    = C*Omega_x*Omega_z - m*g*a*cos(theta) - k_F*a*(v_z - w_z) - k_M*Omega_y;
-                R9: C*der(Omega_z) + m*a*(sin(psi)*der(V_X) - cos(psi)*der(V_Y)) = 0;
-                R10: sin(theta)*der(psi) = -Omega_x;
-                R11: der(theta) = Omega_y;
-                R12: cos(theta)*der(psi) + der(phi) = Omega_z;
-            }
+            include "../models/box1_rolling.dsl";
             time_scale = lying/(lying + theta_s);
             /// Rolling would need more friction than static friction gives: the slip starts in
             /// the consistent direction, across a bridge (or at once), or the run stops.
@@ -100,31 +85,7 @@ model_macros::model! {
             states { u_X, u_Y } replace { V_X, V_Y }
             let v_C = sqrt(u_X^2 + u_Y^2);
             let alpha = atan2(-u_Y, -u_X);
-            let S = sin(alpha - psi);
-            let K = cos(alpha - psi);
-            let k = mu_d*K*sin(theta) + cos(theta);
-            let v_z = -v_C*sin(theta)*K + a*Omega_y*sin(theta)^2 + V_Z*cos(theta);
-            equations {
-                S1: der(X) = -v_C*cos(alpha) + a*(Omega_y*cos(psi)*sin(theta) + Omega_z*sin(psi));
-                S2: der(Y) = -v_C*sin(alpha) + a*(Omega_y*sin(psi)*sin(theta) - Omega_z*cos(psi));
-                S3: der(Z) = V_Z;
-                S4: m*v_C*der(alpha) + m*a*(-Omega_y*K*sin(theta) + Omega_z*S)*der(psi)
-                    + m*a*Omega_y*S*cos(theta)*der(theta) + m*a*S*sin(theta)*der(Omega_y)
-                    + m*a*K*der(Omega_z)
-                    = -k_F*(v_z - w_z)*sin(theta)*S;
-                S5: -m*der(v_C) - mu_d*m*der(V_Z) + m*a*(Omega_y*S*sin(theta) + Omega_z*K)*der(psi)
-                    + m*a*Omega_y*K*cos(theta)*der(theta) + m*a*K*sin(theta)*der(Omega_y)
-                    - m*a*S*der(Omega_z)
-                    = mu_d*m*g + k_F*(v_z - w_z)*(mu_d*cos(theta) - K*sin(theta));
-                S6: A*Omega_y*der(phi) + A*der(Omega_x) = (A - C)*Omega_y*Omega_z - k_M*Omega_x;
-                S7: m*a*k*der(V_Z) - A*Omega_x*der(phi) + A*der(Omega_y)
-                    = (C - A)*Omega_x*Omega_z - m*g*a*k - k_F*a*(v_z - w_z)*cos(theta)*k - k_M*Omega_y;
-                S8: C*der(Omega_z) - mu_d*m*a*S*der(V_Z) = mu_d*m*g*a*S + mu_d*k_F*a*(v_z - w_z)*cos(theta)*S;
-                S9: sin(theta)*der(psi) = -Omega_x;
-                S10: der(theta) = Omega_y;
-                S11: cos(theta)*der(psi) + der(phi) = Omega_z;
-                S12: der(V_Z) + a*(Omega_y*sin(theta)*der(theta) - cos(theta)*der(Omega_y)) = 0;
-            }
+            include "../models/box3_sliding.dsl";
             time_scale = lying/(lying + theta_s)*v_C/(v_C + u_s);
             /// Starting near the stick threshold the slip is stiff: the first step is a fraction
             /// of its doubling time (none further away).

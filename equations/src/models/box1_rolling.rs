@@ -1,8 +1,13 @@
 //! Box 1 of the paper: the rolling disk (docs/physics.md §3.1, rows R1–R12).
 //!
-//! The contact force is eliminated with the linear-momentum balance and the no-slip
-//! conditions are written in differential form, exactly as the paper does; the compiler
-//! applies the chain rule and solves for the derivatives.
+//! The rows are in `box1_rolling.dsl`, beside this file: the disk's mode graph
+//! (`crate::hybrid::switching`) includes the same file for its mode `rolling`, so a fix to a
+//! row is made there once. This model takes the disk's parameters, moments of inertia and the
+//! air's drag coefficients from `disk.dsl` (the mode graph sets the air's terms to zero
+//! instead), and adds the contact force and the checks as outputs and the pruned variant in
+//! still air. The contact force is eliminated with the linear-momentum balance and
+//! the no-slip conditions are written in differential form, exactly as the paper does; the
+//! compiler applies the chain rule and solves for the derivatives.
 
 model_macros::model! {
     /// Euler's disk rolling without slipping on a rough plane (paper's Box 1).
@@ -10,32 +15,12 @@ model_macros::model! {
     /// States: centre position and velocity, 3–2–3 Euler angles `psi, theta, phi`, and the
     /// angular velocity in the frame that precesses and nutates with the disk.
     pub mod rolling {
-        params { m = 0.4387, a = 0.03755, g = 9.81, mu_d = 0.115, mu_st = 0.2, mu_a = 0.0, w_z = 0.0 }
+        // The parameters, the moments of inertia `A, C` and the air's `k_F, k_M`.
+        include "disk.dsl";
         states { X, Y, Z, V_X, V_Y, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z }
 
-        let A = m*a^2/4;
-        let C = m*a^2/2;
-        let k_F = mu_a*pi*a^2;
-        let k_M = mu_a*pi*a^4/4;
-        // Normal velocity of the centre, V·e_z (air drag acts along the disk normal).
-        let v_z = (V_X*cos(psi) + V_Y*sin(psi))*sin(theta) + V_Z*cos(theta);
-
-        equations {
-            R1: der(X) = V_X;
-            R2: der(Y) = V_Y;
-            R3: der(Z) = V_Z;
-            R4: der(V_X - a*(Omega_y*cos(psi)*sin(theta) + Omega_z*sin(psi))) = 0;
-            R5: der(V_Y - a*(Omega_y*sin(psi)*sin(theta) - Omega_z*cos(psi))) = 0;
-            R6: der(V_Z - a*Omega_y*cos(theta)) = 0;
-            R7: A*der(Omega_x) - A*Omega_y*cos(theta)*der(psi) = -C*Omega_y*Omega_z - k_M*Omega_x;
-            R8: A*der(Omega_y) + A*Omega_x*cos(theta)*der(psi)
-                + m*a*(sin(theta)*(cos(psi)*der(V_X) + sin(psi)*der(V_Y)) + cos(theta)*der(V_Z))
-                = C*Omega_x*Omega_z - m*g*a*cos(theta) - k_F*a*(v_z - w_z) - k_M*Omega_y;
-            R9: C*der(Omega_z) + m*a*(sin(psi)*der(V_X) - cos(psi)*der(V_Y)) = 0;
-            R10: sin(theta)*der(psi) = -Omega_x;
-            R11: der(theta) = Omega_y;
-            R12: cos(theta)*der(psi) + der(phi) = Omega_z;
-        }
+        // Rows R1–R12, said once for this model and the mode graph's `rolling`.
+        include "box1_rolling.dsl";
 
         outputs {
             R_X = m*der(V_X) + k_F*(v_z - w_z)*sin(theta)*cos(psi);

@@ -1,7 +1,9 @@
 //! The paper's models in the equation DSL, compiled to explicit Rust at build time.
 //!
-//! Each file reads like its box in the paper (row labels R1–R12, S1–S12); docs/physics.md §12 lists
-//! where the printed boxes were damaged and what was restored. The emitted modules implement
+//! The rows of each box are a `.dsl` file that reads like its box in the paper (row labels
+//! R1–R12 in `box1_rolling.dsl`, S1–S12 in `box3_sliding.dsl`), included by the models here and
+//! by the modes of the disk's mode graph (`crate::hybrid::switching`), so the disk is said
+//! once; docs/physics.md §12 lists where the printed boxes were damaged and what was restored. The emitted modules implement
 //! `model_runtime::Model<12>` and `WithOutputs`, with the same state and output order as the
 //! hand-written reference in `crate::reference`, which the tests hold them to.
 //!

@@ -29,6 +29,7 @@ mod ast;
 mod chart;
 mod compile;
 mod expr;
+mod include;
 mod lexical;
 mod limits;
 mod located;
@@ -53,9 +54,10 @@ pub use ast::{
     When,
 };
 pub use compile::{compile, compile_all};
+pub use include::{in_included_files, IncludedFile};
 pub use limits::{MAX_DEPTH, MAX_TOKENS};
 pub use located::{Located, LocatedErrors};
-pub use parse::{parse_model, parse_model_recovering, Parsed};
+pub use parse::{parse_model, parse_model_in, parse_model_recovering, Parsed};
 pub use span::{SpanRange, Spans};
 pub use statements::is_rust_keyword;
 pub use switched::{

@@ -5,6 +5,7 @@
 
 use crate::ast::{Chart, ModelAst, Variant};
 use crate::expr::{parse_default, parse_signed_number};
+use crate::include::include_here;
 use crate::skip::skip_all;
 use crate::span::{Errors, SpanRange, Spans};
 use crate::statements::{
@@ -13,6 +14,7 @@ use crate::statements::{
 };
 use crate::switching::{parse_declared, parse_mode, parse_when, Declared, Events};
 use proc_macro2::TokenStream;
+use std::path::Path;
 use syn::parse::{ParseStream, Parser};
 use syn::Token;
 
@@ -37,8 +39,16 @@ pub struct Parsed {
 }
 
 /// Parses as much as can be read: after an error the placeholder emitted in the model's place
-/// still declares every name that did parse, so code using them reports nothing more.
+/// still declares every name that did parse, so code using them reports nothing more. Inside
+/// `model!` an `include`'s path is relative to the invoking file's folder; read as text,
+/// relative to the working folder (see [`parse_model_in`]).
 pub fn parse_model_recovering(tokens: TokenStream) -> Parsed {
+    parse_model_in(tokens, None)
+}
+
+/// [`parse_model_recovering`] for a model whose source is the file `origin` (if it has one):
+/// the paths of its `include`s are relative to that file's folder.
+pub fn parse_model_in(tokens: TokenStream, origin: Option<&Path>) -> Parsed {
     if let Err(error) = crate::limits::check_tokens(&tokens) {
         return Parsed {
             model: None,
@@ -46,7 +56,7 @@ pub fn parse_model_recovering(tokens: TokenStream) -> Parsed {
         };
     }
     let mut errors = Errors::default();
-    let parsed = (|input: ParseStream| parse_module(input, &mut errors)).parse2(tokens);
+    let parsed = (|input: ParseStream| parse_module(input, origin, &mut errors)).parse2(tokens);
     let (model, fatal) = match parsed {
         Ok(mut model) => {
             // Errors found while names were read come first: they are about declarations.
@@ -82,7 +92,11 @@ struct Seen {
     discrete: Option<SpanRange>,
 }
 
-fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst> {
+fn parse_module(
+    input: ParseStream,
+    origin: Option<&Path>,
+    errors: &mut Errors,
+) -> syn::Result<ModelAst> {
     let attrs = input.call(syn::Attribute::parse_outer)?;
     check_docs_only(&attrs, errors);
     let vis: syn::Visibility = input.parse()?;
@@ -96,6 +110,7 @@ fn parse_module(input: ParseStream, errors: &mut Errors) -> syn::Result<ModelAst
         );
     }
     let mut model = ModelAst::empty(attrs, vis, name);
+    model.spans.includes.origin = origin.map(Path::to_path_buf);
     let mut seen = Seen::default();
     while !body.is_empty() {
         if let Err(error) = parse_item(&body, &mut model, &mut seen, errors) {
@@ -128,7 +143,7 @@ fn parse_item(
     }
     let keyword: syn::Ident = input.parse().map_err(|_| {
         input.error(
-            "expected `params`, `states`, `discrete`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart` or `options`",
+            "expected `params`, `states`, `discrete`, `let`, `equations`, `outputs`, `mode`, `when`, `variant`, `chart`, `options` or `include`",
         )
     })?;
     let range = SpanRange::single(keyword.span());
@@ -215,6 +230,16 @@ fn parse_item(
                 })
             });
         }
+        "include" => {
+            no_docs_here(&attrs, "an `include`", errors);
+            include_here(
+                input,
+                model,
+                |model| &mut model.spans,
+                errors,
+                |input, model, errors| parse_item(input, model, seen, errors),
+            );
+        }
         "variant" => {
             let variant = parse_variant(input, attrs, &mut model.spans, errors)?;
             model.variants.push(variant);
@@ -268,7 +293,7 @@ fn parse_item(
             return Err(syn::Error::new(
                 keyword.span(),
                 format!(
-                    "unknown section `{other}`: expected `params`, `states`, `discrete`, `let`, `equations`, `outputs`, `mode`, `when`, `time_scale`, `first_step`, `variant`, `chart` or `options`"
+                    "unknown section `{other}`: expected `params`, `states`, `discrete`, `let`, `equations`, `outputs`, `mode`, `when`, `time_scale`, `first_step`, `variant`, `chart`, `options` or `include`"
                 ),
             ))
         }

@@ -66,6 +66,8 @@ pub struct Spans {
     /// Errors found while a name was still read (a Rust keyword used as a name), reported
     /// with the syntax errors.
     pub(crate) deferred: Vec<syn::Error>,
+    /// The files `include`s read, and those being read.
+    pub(crate) includes: crate::include::Includes,
 }
 
 impl Spans {
@@ -92,6 +94,11 @@ impl Spans {
     /// The range of `id`; `None` for an id this table never handed out.
     pub fn get(&self, id: NodeId) -> Option<SpanRange> {
         self.ranges.get(id.0 as usize).copied()
+    }
+
+    /// The files the model's `include`s read, in the order read.
+    pub fn included(&self) -> &[crate::include::IncludedFile] {
+        &self.includes.files
     }
 
     /// The range of `id`, or the macro's call site for an id this table never handed out.

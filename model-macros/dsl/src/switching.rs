@@ -13,10 +13,11 @@
 
 use crate::ast::{Accumulates, Mode, ModeStates, ModelAst, Target, When};
 use crate::expr::parse_relation;
+use crate::include::include_here;
 use crate::skip::skip_all;
 use crate::span::{Errors, SpanRange, Spans};
 use crate::statements::{
-    braced, check_docs_only, parse_binding, parse_equation, parse_list, parse_name,
+    braced, check_docs_only, no_docs_here, parse_binding, parse_equation, parse_list, parse_name,
     recover_statement,
 };
 use model_algebra::Named;
@@ -69,87 +70,109 @@ pub(crate) fn parse_mode(
     };
     let mut equations_seen = false;
     while !content.is_empty() {
-        let item_attrs = content.call(syn::Attribute::parse_outer)?;
-        check_docs_only(&item_attrs, errors);
-        if content.peek(Token![let]) {
-            recover_statement(&content, errors, |input| {
-                input.parse::<Token![let]>()?;
-                mode.lets.push(parse_binding(input, spans)?);
-                input.parse::<Token![;]>()?;
-                Ok(())
-            });
-            continue;
+        parse_mode_item(&content, &mut mode, &mut equations_seen, spans, errors)?;
+    }
+    Ok(mode)
+}
+
+/// One item of a mode's body (an `include`d file's items are items of the mode).
+fn parse_mode_item(
+    input: ParseStream,
+    mode: &mut Mode,
+    equations_seen: &mut bool,
+    spans: &mut Spans,
+    errors: &mut Errors,
+) -> syn::Result<()> {
+    let item_attrs = input.call(syn::Attribute::parse_outer)?;
+    check_docs_only(&item_attrs, errors);
+    if input.peek(Token![let]) {
+        recover_statement(input, errors, |input| {
+            input.parse::<Token![let]>()?;
+            mode.lets.push(parse_binding(input, spans)?);
+            input.parse::<Token![;]>()?;
+            Ok(())
+        });
+        return Ok(());
+    }
+    let keyword: syn::Ident = match input.parse() {
+        Ok(keyword) => keyword,
+        Err(_) => {
+            errors.push(input.error(format!(
+                "expected `let`, `states {{ .. }} replace {{ .. }}`, `equations {{ .. }}`, `when`, `time_scale`, `first_step` or `include` in mode `{}`",
+                mode.name
+            )));
+            skip_all(input);
+            return Ok(());
         }
-        let keyword: syn::Ident = match content.parse() {
-            Ok(keyword) => keyword,
-            Err(_) => {
-                errors.push(content.error(format!(
-                    "expected `let`, `states {{ .. }} replace {{ .. }}`, `equations {{ .. }}`, `when`, `time_scale` or `first_step` in mode `{}`",
-                    mode.name
-                )));
-                skip_all(&content);
-                break;
-            }
-        };
-        match keyword.to_string().as_str() {
-            "equations" => {
-                if equations_seen {
-                    errors.push(syn::Error::new(
-                        keyword.span(),
-                        format!(
-                            "`equations` is written twice in mode `{}`: declare them in one section",
-                            mode.name
-                        ),
-                    ));
-                }
-                equations_seen = true;
-                let inner = braced(&content)?;
-                while !inner.is_empty() {
-                    recover_statement(&inner, errors, |input| {
-                        mode.equations.push(parse_equation(input, spans)?);
-                        Ok(())
-                    });
-                }
-            }
-            "when" => {
-                let mut events = Events {
-                    events: &mut mode.events,
-                    accumulations: &mut mode.accumulations,
-                };
-                recover_statement(&content, errors, |input| {
-                    parse_when(input, item_attrs, spans, &mut events)
-                });
-            }
-            word if Declared::of(word).is_some() => {
-                let what = Declared::of(word).expect("matched");
-                recover_statement(&content, errors, |input| {
-                    parse_declared(input, &keyword, spans, what.slot(&mut mode), what)
-                });
-            }
-            "states" => {
-                if mode.states.is_some() {
-                    errors.push(syn::Error::new(
-                        keyword.span(),
-                        format!("`states` is written twice in mode `{}`", mode.name),
-                    ));
-                }
-                let id = spans.push(SpanRange::single(keyword.span()));
-                mode.states = Some(parse_mode_states(&content, id, spans)?);
-            }
-            other => {
+    };
+    match keyword.to_string().as_str() {
+        "equations" => {
+            if *equations_seen {
                 errors.push(syn::Error::new(
                     keyword.span(),
                     format!(
-                        "unknown section `{other}` in mode `{}`: expected `let`, `states`, `equations`, `when`, `time_scale` \
-                         or `first_step` (parameters, outputs, discrete values and options belong to the model)",
+                        "`equations` is written twice in mode `{}`: declare them in one section",
                         mode.name
                     ),
                 ));
-                skip_all(&content);
+            }
+            *equations_seen = true;
+            let inner = braced(input)?;
+            while !inner.is_empty() {
+                recover_statement(&inner, errors, |input| {
+                    mode.equations.push(parse_equation(input, spans)?);
+                    Ok(())
+                });
             }
         }
+        "include" => {
+            no_docs_here(&item_attrs, "an `include`", errors);
+            include_here(
+                input,
+                spans,
+                |spans| spans,
+                errors,
+                |input, spans, errors| parse_mode_item(input, mode, equations_seen, spans, errors),
+            );
+        }
+        "when" => {
+            let mut events = Events {
+                events: &mut mode.events,
+                accumulations: &mut mode.accumulations,
+            };
+            recover_statement(input, errors, |input| {
+                parse_when(input, item_attrs, spans, &mut events)
+            });
+        }
+        word if Declared::of(word).is_some() => {
+            let what = Declared::of(word).expect("matched");
+            recover_statement(input, errors, |input| {
+                parse_declared(input, &keyword, spans, what.slot(mode), what)
+            });
+        }
+        "states" => {
+            if mode.states.is_some() {
+                errors.push(syn::Error::new(
+                    keyword.span(),
+                    format!("`states` is written twice in mode `{}`", mode.name),
+                ));
+            }
+            let id = spans.push(SpanRange::single(keyword.span()));
+            mode.states = Some(parse_mode_states(input, id, spans)?);
+        }
+        other => {
+            errors.push(syn::Error::new(
+                keyword.span(),
+                format!(
+                    "unknown section `{other}` in mode `{}`: expected `let`, `states`, `equations`, `when`, `time_scale`, \
+                     `first_step` or `include` (parameters, outputs, discrete values and options belong to the model)",
+                    mode.name
+                ),
+            ));
+            skip_all(input);
+        }
     }
-    Ok(mode)
+    Ok(())
 }
 
 /// A number a mode declares besides its equations, `KEYWORD = EXPR;`.

@@ -7,9 +7,10 @@
 //! form compilers and editors understand.
 
 use crate::compile::compile_all;
+use crate::include::{file_of, IncludedFile};
 use crate::located::{Located, LocatedErrors};
-use crate::parse::parse_model_recovering;
-use crate::span::Errors;
+use crate::parse::parse_model_in;
+use crate::span::{Errors, Spans};
 use crate::switched::validate_switched;
 use crate::switched_compile::{compile_switched, CompiledSwitched};
 use crate::validate::validate;
@@ -18,6 +19,7 @@ use crate::ModelAst;
 extern crate proc_macro;
 use model_algebra::CompiledModel;
 use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
+use std::path::Path;
 
 /// The text of a model and the name it is reported under.
 #[derive(Clone, Debug)]
@@ -83,7 +85,7 @@ impl Source {
         let tokens = self.text.parse::<TokenStream>().map_err(|error| {
             let located = match crate::lexical::first_problem(&self.text, self.rust) {
                 Some(problem) => self.located_at(problem),
-                None => self.locate(error.span(), &error.to_string()),
+                None => locate(&self.name, &self.text, error.span(), &error.to_string()),
             };
             LocatedErrors(vec![located])
         })?;
@@ -92,16 +94,23 @@ impl Source {
         }
         macro_body(tokens).ok_or_else(|| {
             let message = "no `model! { .. }` in this file";
-            LocatedErrors(vec![self.locate(Span::call_site(), message)])
+            LocatedErrors(vec![locate(
+                &self.name,
+                &self.text,
+                Span::call_site(),
+                message,
+            )])
         })
     }
 
-    /// The model as written; every syntax error, located.
+    /// The model as written, its `include`s read (their paths relative to the folder of the
+    /// file `name` names); every syntax error, located (an included file's in that file).
     pub fn parse(&self) -> Result<ModelAst, LocatedErrors> {
-        let parsed = parse_model_recovering(self.tokens()?);
+        let parsed = parse_model_in(self.tokens()?, Some(Path::new(&self.name)));
         match (parsed.errors, parsed.model) {
             (None, Some(model)) => Ok(model),
-            (Some(errors), _) => Err(self.locate_all(errors)),
+            (Some(errors), Some(model)) => Err(self.locate_in(&model.spans, errors)),
+            (Some(errors), None) => Err(self.locate_all(errors)),
             (None, None) => Err(self.locate_all(syn::Error::new(
                 Span::call_site(),
                 "expected `mod NAME { .. }`",
@@ -113,8 +122,9 @@ impl Source {
     /// in each of its charts; every error, located.
     pub fn compile(&self) -> Result<Vec<TextModel>, LocatedErrors> {
         let ast = self.parse()?;
-        let validated = validate(&ast).map_err(|errors| self.locate_all(errors))?;
-        let compiled = compile_all(&validated).map_err(|errors| self.locate_all(errors))?;
+        let locate = |errors| self.locate_in(&ast.spans, errors);
+        let validated = validate(&ast).map_err(locate)?;
+        let compiled = compile_all(&validated).map_err(locate)?;
         Ok(validated
             .into_iter()
             .zip(compiled)
@@ -166,13 +176,14 @@ impl Source {
         if let Err(found) = &plan {
             errors.push(found.clone());
         }
-        errors.finish().map_err(|errors| self.locate_all(errors))?;
-        let plan = plan.map_err(|errors| self.locate_all(errors))?;
-        let mut compiled = compile_switched(&plan).map_err(|errors| self.locate_all(errors))?;
+        let locate = |errors| self.locate_in(&ast.spans, errors);
+        errors.finish().map_err(locate)?;
+        let plan = plan.map_err(locate)?;
+        let mut compiled = compile_switched(&plan).map_err(locate)?;
         compiled.warnings = (warnings(&plan).into_iter())
             .filter_map(|warning| {
                 let message = format!("warning: {}", warning.message);
-                let located = self.locate_all(warning.range.error(&message)).0;
+                let located = locate(warning.range.error(&message)).0;
                 located.into_iter().next()
             })
             .collect();
@@ -181,12 +192,31 @@ impl Source {
 
     /// Every error of a (combined) `syn::Error`, located in this source.
     pub fn locate_all(&self, errors: syn::Error) -> LocatedErrors {
+        self.locate_in(&Spans::default(), errors)
+    }
+
+    /// Every error of a (combined) `syn::Error` about the model read into `spans`, located in
+    /// this source or in the file an `include` read it from.
+    pub fn locate_in(&self, spans: &Spans, errors: syn::Error) -> LocatedErrors {
         LocatedErrors(
-            errors
-                .into_iter()
-                .map(|error| self.locate(error.span(), &error.to_string()))
+            (errors.into_iter())
+                .map(|error| {
+                    let message = error.to_string();
+                    match file_of(spans.included(), error.span()) {
+                        Some(file) => locate(&file.name, &file.text, error.span(), &message),
+                        None => locate(&self.name, &self.text, error.span(), &message),
+                    }
+                })
                 .collect(),
         )
+    }
+
+    /// The files this model's `include`s read (none when even its header is unreadable).
+    pub fn included(&self) -> Result<Vec<IncludedFile>, LocatedErrors> {
+        let parsed = parse_model_in(self.tokens()?, Some(Path::new(&self.name)));
+        Ok(parsed
+            .model
+            .map_or_else(Vec::new, |model| model.spans.included().to_vec()))
     }
 
     /// A lexical problem, under its one character.
@@ -205,30 +235,30 @@ impl Source {
                 .to_string(),
         }
     }
+}
 
-    /// One message under `span`. A span that is not in this text (the call site, which a
-    /// parse of text uses for "the whole model") points at the first line.
-    fn locate(&self, span: Span, message: &str) -> Located {
-        let (start, end) = (span.start(), span.end());
-        let line = start.line.max(1);
-        let source_line = self.text.lines().nth(line - 1).unwrap_or("").to_string();
-        let width = if end.line == start.line && end.column > start.column {
-            end.column - start.column
-        } else {
-            source_line
-                .chars()
-                .count()
-                .saturating_sub(start.column)
-                .max(1)
-        };
-        Located {
-            name: self.name.clone(),
-            line,
-            column: start.column + 1,
-            width,
-            message: message.to_string(),
-            source_line,
-        }
+/// One message under `span` in the text `text` named `name`. A span that is not in this text
+/// (the call site, which a parse of text uses for "the whole model") points at the first line.
+fn locate(name: &str, text: &str, span: Span, message: &str) -> Located {
+    let (start, end) = (span.start(), span.end());
+    let line = start.line.max(1);
+    let source_line = text.lines().nth(line - 1).unwrap_or("").to_string();
+    let width = if end.line == start.line && end.column > start.column {
+        end.column - start.column
+    } else {
+        source_line
+            .chars()
+            .count()
+            .saturating_sub(start.column)
+            .max(1)
+    };
+    Located {
+        name: name.to_string(),
+        line,
+        column: start.column + 1,
+        width,
+        message: message.to_string(),
+        source_line,
     }
 }
 

@@ -3,4 +3,5 @@
 
 mod emit;
 mod fuzz;
+mod include;
 mod timing;

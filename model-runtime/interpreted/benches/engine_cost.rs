@@ -73,8 +73,8 @@ fn cases() -> Vec<Case> {
         })
         .collect();
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let text = std::fs::read_to_string(format!("{root}/equations/src/models/box3_sliding.rs"));
-    let models = model_dsl::Source::rust("box3_sliding.rs", text.unwrap())
+    let path = format!("{root}/equations/src/models/box3_sliding.rs");
+    let models = (model_dsl::Source::read(path.as_ref()).unwrap())
         .compile()
         .unwrap();
     let disk = models[0].compiled.clone();

@@ -87,38 +87,43 @@ impl ModelCache {
         &self.dir
     }
 
-    /// The entry's path for `source`.
-    fn path(&self, source: &Source) -> PathBuf {
+    /// The entry's path for `key`.
+    fn path(&self, key: &Key) -> PathBuf {
         let key = |salt: u8| {
             let mut hasher = DefaultHasher::new();
-            (salt, FORMAT, COMPILER, source.rust, &source.text).hash(&mut hasher);
+            (salt, FORMAT, COMPILER, key.source.rust, &key.text).hash(&mut hasher);
             hasher.finish()
         };
         self.dir
             .join(format!("{:016x}{:016x}.json", key(1), key(2)))
     }
 
-    /// The file compiled from `source`, if a valid entry for it is kept.
-    pub(crate) fn get(&self, source: &Source) -> Option<ModelFile> {
-        let bytes = std::fs::read(self.path(source)).ok()?;
+    /// The file compiled from the source of `key`, if a valid entry for it is kept.
+    pub(crate) fn get(&self, key: &Key) -> Option<ModelFile> {
+        let source = key.source;
+        let bytes = std::fs::read(self.path(key)).ok()?;
         let entry = decode(&bytes)?;
-        if entry.text != source.text || entry.rust != source.rust {
+        if entry.text != key.text || entry.rust != source.rust {
             return None;
         }
         match entry.models {
             Models::Smooth(models) => source.with_compiled(models).map(ModelFile::Smooth),
             Models::Switched(mut model) => {
-                // The warnings name the file the entry was written from: name this one.
+                // The warnings name the file the entry was written from: name this one (an
+                // included file's keep their names, which its text fixed).
                 for warning in &mut model.warnings {
-                    warning.name.clone_from(&source.name);
+                    if !key.included.contains(&warning.name) {
+                        warning.name.clone_from(&source.name);
+                    }
                 }
                 Some(ModelFile::Switched(model))
             }
         }
     }
 
-    /// Keeps `file`, compiled from `source` (silently not, if the cache cannot be written).
-    pub(crate) fn put(&self, source: &Source, file: &ModelFile) {
+    /// Keeps `file`, compiled from the source of `key` (silently not, if the cache cannot be
+    /// written).
+    pub(crate) fn put(&self, key: &Key, file: &ModelFile) {
         let models = match file {
             ModelFile::Smooth(models) => {
                 Models::Smooth(models.iter().map(|m| m.compiled.clone()).collect())
@@ -126,11 +131,11 @@ impl ModelCache {
             ModelFile::Switched(model) => Models::Switched(model.clone()),
         };
         let entry = Entry {
-            text: source.text.clone(),
-            rust: source.rust,
+            text: key.text.clone(),
+            rust: key.source.rust,
             models,
         };
-        let _ = self.write(&self.path(source), &encode(&entry));
+        let _ = self.write(&self.path(key), &encode(&entry));
     }
 
     /// Writes `bytes` to `path` through a temporary file renamed into place.
@@ -153,6 +158,33 @@ impl ModelCache {
 }
 
 /// Creates `dir` and its parents, readable by its owner only.
+/// What an entry is kept for: a source and the whole text it is compiled from, its own and
+/// that of every file its `include`s read (so an edited included file is a miss, never a
+/// stale model). Built once per load: reading the includes lexes the text again, which
+/// releases the places of what an earlier read of it returned (`Source::tokens`).
+pub(crate) struct Key<'a> {
+    source: &'a Source,
+    text: String,
+    /// The names of the included files, as their errors and warnings give them.
+    included: Vec<String>,
+}
+
+impl<'a> Key<'a> {
+    /// The key of `source` (just its text when it includes nothing, or cannot be read).
+    pub(crate) fn of(source: &'a Source) -> Self {
+        let files = source.included().unwrap_or_default();
+        let mut text = source.text.clone();
+        for file in &files {
+            text.push_str(&format!("\n\0include {}\n{}", file.name, file.text));
+        }
+        Key {
+            source,
+            text,
+            included: files.into_iter().map(|file| file.name).collect(),
+        }
+    }
+}
+
 fn create_private(dir: &Path) -> std::io::Result<()> {
     let mut builder = std::fs::DirBuilder::new();
     builder.recursive(true);
@@ -223,15 +255,53 @@ mod tests {
         paths
     }
 
+    /// A model whose equation is in a file it includes: editing that file (and nothing of the
+    /// model's own text) must miss the cache, and the new load must see the edit.
+    #[test]
+    fn an_edited_included_file_is_a_miss() {
+        let cache = cache("included");
+        let dir = cache.dir().parent().unwrap().join("sources");
+        std::fs::create_dir_all(&dir).unwrap();
+        let rows = dir.join("rows.dsl");
+        let model = dir.join("decay.dsl");
+        std::fs::write(
+            &model,
+            "mod decay { params { k = 2 } states { x } include \"rows.dsl\"; }",
+        )
+        .unwrap();
+        let rate = |file: &ModelFile| match file {
+            ModelFile::Smooth(models) => {
+                models[0].compiled.derivatives(0.0, &[1.0], &[2.0]).unwrap()[0]
+            }
+            ModelFile::Switched(_) => unreachable!("a smooth model"),
+        };
+        std::fs::write(&rows, "equations { der(x) = -k*x; }").unwrap();
+        let first = ModelFile::read_with(&model, Some(&cache)).unwrap();
+        let again = ModelFile::read_with(&model, Some(&cache)).unwrap();
+        assert_eq!(entries(&cache).len(), 1, "one entry, hit the second time");
+        assert_eq!(compiled(&first), compiled(&again));
+        std::fs::write(&rows, "equations { der(x) = -3*k*x; }").unwrap();
+        let edited = ModelFile::read_with(&model, Some(&cache)).unwrap();
+        assert_eq!(
+            entries(&cache).len(),
+            2,
+            "the edit missed and was kept apart"
+        );
+        assert_eq!((rate(&first), rate(&edited)), (-2.0, -6.0));
+    }
+
     #[test]
     fn a_second_load_hits_and_gives_the_same_models() {
         let cache = cache("hit");
         for (name, text) in [("top.dsl", TOP), ("ball.dsl", BALL)] {
             let source = Source::new(name, text);
-            assert!(cache.get(&source).is_none(), "{name}: empty cache");
+            assert!(
+                cache.get(&Key::of(&source)).is_none(),
+                "{name}: empty cache"
+            );
             let fresh = ModelFile::compile(&source).unwrap();
-            cache.put(&source, &fresh);
-            let kept = cache.get(&source).expect("a hit");
+            cache.put(&Key::of(&source), &fresh);
+            let kept = cache.get(&Key::of(&source)).expect("a hit");
             // The compiled programs, constants and texts come back exactly.
             assert_eq!(compiled(&kept), compiled(&fresh), "{name}");
             if let (ModelFile::Smooth(a), ModelFile::Smooth(b)) = (&kept, &fresh) {
@@ -267,7 +337,9 @@ mod tests {
             rust: false,
             models: Models::Smooth(changed),
         };
-        cache.write(&cache.path(&source), &encode(&entry)).unwrap();
+        cache
+            .write(&cache.path(&Key::of(&source)), &encode(&entry))
+            .unwrap();
         let Ok(ModelFile::Smooth(again)) =
             ModelFile::from_text_with("other.dsl", TOP, Some(&cache))
         else {
@@ -294,8 +366,10 @@ mod tests {
             rust: false,
             models: Models::Smooth(changed),
         };
-        cache.write(&cache.path(&source), &encode(&entry)).unwrap();
-        let Some(ModelFile::Smooth(kept)) = cache.get(&source) else {
+        cache
+            .write(&cache.path(&Key::of(&source)), &encode(&entry))
+            .unwrap();
+        let Some(ModelFile::Smooth(kept)) = cache.get(&Key::of(&source)) else {
             panic!("a hit")
         };
         assert_eq!(kept[0].compiled.explanation.markdown, "kept");
@@ -306,12 +380,12 @@ mod tests {
         let cache = cache("bad");
         let source = Source::new("top.dsl", TOP);
         let file = ModelFile::compile(&source).unwrap();
-        cache.put(&source, &file);
-        let path = cache.path(&source);
+        cache.put(&Key::of(&source), &file);
+        let path = cache.path(&Key::of(&source));
         let good = std::fs::read(&path).unwrap();
         let check = |bytes: &[u8], what: &str| {
             std::fs::write(&path, bytes).unwrap();
-            assert!(cache.get(&source).is_none(), "{what} was trusted");
+            assert!(cache.get(&Key::of(&source)).is_none(), "{what} was trusted");
         };
         // One byte of the body changed (a digit of a constant: still valid JSON).
         let digit = good.iter().rposition(|b| b.is_ascii_digit()).unwrap();
@@ -327,15 +401,18 @@ mod tests {
         check(other.as_bytes(), "another compiler's entry");
         // A whole valid entry of another text, under this text's name.
         let ball = Source::new("ball.dsl", BALL);
-        cache.put(&ball, &ModelFile::compile(&ball).unwrap());
+        cache.put(&Key::of(&ball), &ModelFile::compile(&ball).unwrap());
         check(
-            &std::fs::read(cache.path(&ball)).unwrap(),
+            &std::fs::read(cache.path(&Key::of(&ball))).unwrap(),
             "another text's entry",
         );
         // The same text read as Rust is another source.
         std::fs::write(&path, &good).unwrap();
-        assert!(cache.get(&Source::rust("top.rs", TOP)).is_none());
-        assert!(cache.get(&source).is_some(), "the good entry is used");
+        assert!(cache.get(&Key::of(&Source::rust("top.rs", TOP))).is_none());
+        assert!(
+            cache.get(&Key::of(&source)).is_some(),
+            "the good entry is used"
+        );
     }
 
     #[test]
@@ -349,9 +426,9 @@ mod tests {
                     let source = Source::new("ball.dsl", BALL);
                     let file = ModelFile::compile(&source).unwrap();
                     for _ in 0..20 {
-                        cache.put(&source, &file);
+                        cache.put(&Key::of(&source), &file);
                         // A reader racing the writers sees a whole entry or none.
-                        if let Some(kept) = cache.get(&source) {
+                        if let Some(kept) = cache.get(&Key::of(&source)) {
                             assert_eq!(compiled(&kept), want);
                         }
                     }
@@ -361,9 +438,9 @@ mod tests {
         let source = Source::new("ball.dsl", BALL);
         assert_eq!(
             entries(&cache),
-            vec![cache.path(&source)],
+            vec![cache.path(&Key::of(&source))],
             "no temporary left"
         );
-        assert_eq!(compiled(&cache.get(&source).unwrap()), want);
+        assert_eq!(compiled(&cache.get(&Key::of(&source)).unwrap()), want);
     }
 }

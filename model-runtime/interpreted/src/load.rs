@@ -2,7 +2,7 @@
 //! equation compiler as `model!`, into a smooth model with its charts or a switched model.
 //! Every mistake in the text is a located error ([`LoadError::Dsl`]), never a panic.
 
-use crate::cache::ModelCache;
+use crate::cache::{Key, ModelCache};
 use crate::error::LoadError;
 use crate::file::ModelFile;
 use model_algebra::CompiledModel;
@@ -55,11 +55,12 @@ impl ModelFile {
         let Some(cache) = cache else {
             return Self::compile(source);
         };
-        if let Some(file) = cache.get(source) {
+        let key = Key::of(source);
+        if let Some(file) = cache.get(&key) {
             return Ok(file);
         }
         let file = Self::compile(source)?;
-        cache.put(source, &file);
+        cache.put(&key, &file);
         Ok(file)
     }
 

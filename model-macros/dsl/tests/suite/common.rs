@@ -24,10 +24,15 @@ pub fn unchecked(text: &str) -> ModelSpec {
     spec_unchecked(&ast).expect("the functions exist")
 }
 
-/// The `model!` invocation of a Rust file of the workspace's `equations/src/models`, as text.
+/// The folder of the disk's models.
+const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../equations/src/models");
+
+/// The `model!` invocation of a Rust file of the workspace's `equations/src/models`, as text
+/// that can be read from anywhere (its `include`s' paths made absolute).
 fn disk_model(name: &str, file: &str) -> String {
     let tokens = Source::rust(name, file).tokens();
-    tokens.unwrap_or_else(|e| panic!("{e}")).to_string()
+    let text = tokens.unwrap_or_else(|e| panic!("{e}")).to_string();
+    text.replace("include \"", &format!("include \"{MODELS}/"))
 }
 
 /// The rolling disk (Box 1) as the `equations` crate compiles it.

@@ -25,7 +25,7 @@ fn compile(text: &str) -> Result<Vec<CompiledModel>, Vec<Located>> {
 /// process's memory, so that it measures only its own (the tests of a binary run in parallel).
 static LARGE: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
-fn large() -> std::sync::MutexGuard<'static, ()> {
+pub(crate) fn large() -> std::sync::MutexGuard<'static, ()> {
     LARGE
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner())

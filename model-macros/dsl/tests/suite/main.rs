@@ -9,6 +9,7 @@ mod diagnostics;
 mod end_to_end;
 mod held;
 mod hostile;
+mod include;
 mod nonsmooth;
 mod op_counts;
 mod pivots;

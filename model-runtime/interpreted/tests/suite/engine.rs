@@ -112,8 +112,10 @@ pub fn example_files() -> Vec<(String, ModelFile)> {
         ));
     }
     for name in ["box1_rolling.rs", "box3_sliding.rs"] {
-        let text = std::fs::read_to_string(format!("{root}/equations/src/models/{name}")).unwrap();
-        let models = model_dsl::Source::rust(name, &text).compile().unwrap();
+        let path = format!("{root}/equations/src/models/{name}");
+        let models = (model_dsl::Source::read(path.as_ref()).unwrap())
+            .compile()
+            .unwrap();
         files.push((name.to_string(), ModelFile::Smooth(models)));
     }
     assert!(files.len() >= 8, "examples found: {}", files.len());

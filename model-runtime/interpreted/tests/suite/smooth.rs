@@ -12,8 +12,12 @@ use model_runtime::{Direction, Method, Problem};
 /// integrator code on both, so the same steps and the same trajectory.
 #[test]
 fn the_interpreted_disk_steps_like_the_compiled_one() {
-    let text = include_str!("../../../../equations/src/models/box1_rolling.rs");
-    let models = model_dsl::Source::rust("box1_rolling.rs", text)
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../equations/src/models/box1_rolling.rs"
+    );
+    let models = model_dsl::Source::read(std::path::Path::new(path))
+        .unwrap()
         .compile()
         .unwrap();
     let file = model_interpreted::ModelFile::Smooth(models);
