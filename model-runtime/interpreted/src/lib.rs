@@ -92,7 +92,7 @@ pub use error::{
     WorkHint,
 };
 pub use file::ModelFile;
-pub use load::{select_chart, ModelRef};
+pub use load::{select_chart, CacheUse, Loaded, ModelRef};
 pub use model_runtime::{WorkBound, WorkExceeded};
 pub use request::{Control, EventRequest, SolveRequest, Stepping, Watched, MAX_SAMPLES};
 pub use solution::{
