@@ -261,7 +261,7 @@ fn summary(solution: &Solution, t0: f64) -> String {
     format!(
         "`{}`: {} rows, {} events, {} at t = {}, {} steps ({} rejected), {} RHS evaluations",
         solution.model,
-        solution.rows.len(),
+        solution.len(),
         solution.events.len(),
         solution.stop,
         solution.stop_time().unwrap_or(t0),

@@ -36,8 +36,10 @@ fn cells(row: &[f64], mode: Option<&str>) -> Vec<Cell> {
 /// The trajectory table.
 pub fn trajectory(solution: &Solution) -> Table {
     let mut table = Table::new(header(solution));
-    for (k, row) in solution.rows.iter().enumerate() {
-        table.rows.push(cells(row, solution.row_mode(k)));
+    let mut row = Vec::new();
+    for k in 0..solution.len() {
+        solution.trajectory.row_into(k, &mut row);
+        table.rows.push(cells(&row, solution.row_mode(k)));
     }
     table
 }
@@ -75,14 +77,9 @@ pub fn events(solution: &Solution, failure: Option<&str>) -> Table {
         Some(message) => format!("{}: {message}", solution.stop),
         None => solution.stop.to_string(),
     };
-    match (stopped_by, solution.rows.last()) {
+    match (stopped_by, solution.last_row()) {
         (Some(event), _) => push("stop", &stop, event.mode.as_deref(), &event.row),
-        (None, Some(last)) => push(
-            "stop",
-            &stop,
-            solution.row_mode(solution.rows.len() - 1),
-            last,
-        ),
+        (None, Some(last)) => push("stop", &stop, solution.row_mode(solution.len() - 1), &last),
         (None, None) => {}
     }
     table

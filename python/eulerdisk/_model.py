@@ -39,24 +39,44 @@ class Model:
         return Model.from_str, self._source
 
     @classmethod
-    def from_file(cls, path: PathLike) -> Model:
+    def from_file(cls, path: PathLike, cache: bool = True) -> Model:
         """Compiles the model file at ``path``.
+
+        Args:
+            path: the model file.
+            cache: take the compiled models from the cache of compiled models, and keep them
+                there, as ``eulerdisk model`` does (``$XDG_CACHE_HOME/eulerdisk/models``, else
+                ``~/.cache/eulerdisk/models``; an entry is data checked against the text, never
+                code); False compiles the file, as ``--no-cache``. :attr:`cache_hit` says
+                whether the cache held it.
 
         Raises:
             DslError: the file has errors; the message gives each as ``file:line:col``, with
                 the line and a caret under the offending token.
         """
-        native = _native.NativeModel.from_file(os.fspath(path))
+        native = _native.NativeModel.from_file(os.fspath(path), cache)
         return cls(native, (Path(path).read_text(encoding="utf-8"), os.fspath(path)))
 
     @classmethod
-    def from_str(cls, text: str, name: str = "<string>") -> Model:
+    def from_str(cls, text: str, name: str = "<string>", cache: bool = True) -> Model:
         """Compiles a model given as text; ``name`` stands for the file in error messages.
+
+        Args:
+            text: the model.
+            name: the file it stands for, in messages.
+            cache: as :meth:`from_file` (the entry is keyed by the text, whatever its name:
+                a model unpickled in a worker process finds the entry its parent wrote).
 
         Raises:
             DslError: as :meth:`from_file`.
         """
-        return cls(_native.NativeModel.from_text(name, text), (text, name))
+        return cls(_native.NativeModel.from_text(name, text, cache), (text, name))
+
+    @property
+    def cache_hit(self) -> bool:
+        """Whether the compiled models came from the cache of compiled models (nothing was
+        compiled)."""
+        return self._native.cache_hit
 
     @property
     def name(self) -> str:

@@ -74,12 +74,17 @@ class NativeModel:
     """A compiled model file."""
 
     @staticmethod
-    def from_file(path: str) -> NativeModel:
-        """Compiles the model file at ``path``."""
+    def from_file(path: str, cache: bool = True) -> NativeModel:
+        """Compiles the model file at ``path`` (through the cache of compiled models when
+        ``cache``)."""
 
     @staticmethod
-    def from_text(name: str, text: str) -> NativeModel:
-        """Compiles a model given as text."""
+    def from_text(name: str, text: str, cache: bool = True) -> NativeModel:
+        """Compiles a model given as text (through the cache when ``cache``)."""
+
+    @property
+    def cache_hit(self) -> bool:
+        """Whether the compiled models came from the cache."""
 
     @property
     def name(self) -> str:

@@ -107,7 +107,8 @@ class Solution:
         y: the states at those times, shape ``(n_states, n_t)``, rows in ``states`` order.
         states: the states' names (the rows of ``y``).
         columns: the states, then the outputs (and a switched model's discrete values) at
-            those times, by name; ``sol["x"]`` reads one.
+            those times, by name; ``sol["x"]`` reads one. ``t``, ``y`` and the columns are
+            views of one ``(columns, n_t)`` array (the solve's table, copied once, whole).
         events: the located events, in time order, each with every column there.
         t_events: per event, the times it was located at: for a smooth model one array per
             entry of ``events=`` in that order; for a switched model one per event of the
@@ -188,10 +189,13 @@ def solution(raw: Mapping[str, Any], specs: Sequence[str], dense: bool) -> Solut
     """The :class:`Solution` of a native solve's result; ``specs`` are the events asked for."""
     header: list[str] = raw["header"]
     n = int(raw["states"])
-    columns = {name: np.frombuffer(data, dtype=np.float64) for name, data in raw["columns"].items()}
-    t = columns.pop("t")
+    # One (columns, rows) array, writable, from the native table without a copy: `t`, `y`
+    # and every column are views of it.
+    trajectory = np.frombuffer(raw["table"], dtype=np.float64).reshape(len(header), -1)
+    columns = {name: trajectory[k] for k, name in enumerate(header) if k > 0}
+    t = trajectory[0]
     states = header[1 : 1 + n]
-    y = np.vstack([columns[name] for name in states]) if n else np.empty((0, len(t)))
+    y = trajectory[1 : 1 + n]
     events = [
         Event(name=name, t=row[0], values=dict(zip(header, row, strict=True)))
         for name, _, row in raw["events"]

@@ -17,7 +17,8 @@ use eulerdisk::{
 use model_algebra::CompiledModel;
 use model_dsl::CompiledSwitched;
 use model_interpreted::{
-    evaluate, initial_state, Control, LoadError, ModelFile, ModelRef, Solution, Stepping, Stop,
+    evaluate, initial_state, CacheUse, Control, LoadError, Loaded, ModelCache, ModelFile, ModelRef,
+    Solution, Stepping, Stop,
 };
 use model_runtime::{Method, Stats};
 
@@ -214,14 +215,34 @@ impl FileModel {
         }
     }
 
-    /// Compiles the model file at `path`.
-    pub fn from_file(path: &Path) -> Result<FileModel, ModelFileError> {
-        Ok(FileModel::of(ModelFile::read(path)?))
+    /// Compiles the model file at `path`, through the user's cache of compiled models when
+    /// `cache` (as `eulerdisk model` without `--no-cache`); also whether the cache held it.
+    pub fn from_file(path: &Path, cache: bool) -> Result<(FileModel, bool), ModelFileError> {
+        let cache = cache.then(ModelCache::user).flatten();
+        Ok(FileModel::loaded(ModelFile::read_reporting(
+            path,
+            cache.as_ref(),
+        )?))
     }
 
-    /// Compiles a model given as text; `name` stands for the file in messages.
-    pub fn from_text(name: &str, text: &str) -> Result<FileModel, ModelFileError> {
-        Ok(FileModel::of(ModelFile::from_text(name, text)?))
+    /// Compiles a model given as text, through the cache as [`FileModel::from_file`];
+    /// `name` stands for the file in messages.
+    pub fn from_text(
+        name: &str,
+        text: &str,
+        cache: bool,
+    ) -> Result<(FileModel, bool), ModelFileError> {
+        let cache = cache.then(ModelCache::user).flatten();
+        Ok(FileModel::loaded(ModelFile::from_text_reporting(
+            name,
+            text,
+            cache.as_ref(),
+        )?))
+    }
+
+    /// The models loaded, and whether they came from the cache.
+    fn loaded(loaded: Loaded) -> (FileModel, bool) {
+        (FileModel::of(loaded.file), loaded.cache == CacheUse::Hit)
     }
 
     /// The model's name.

@@ -24,7 +24,7 @@ use std::time::Duration;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyType};
+use pyo3::types::{PyByteArray, PyBytes, PyDict, PyType};
 
 use model_interpreted::DENSE_NODES;
 
@@ -342,26 +342,38 @@ fn merge_sweep<'py>(
 #[pyclass(frozen, module = "eulerdisk._native")]
 struct NativeModel {
     model: FileModel,
+    /// Whether the compiled models came from the cache.
+    cache_hit: bool,
 }
 
 #[pymethods]
 impl NativeModel {
-    /// Compiles the model file at `path`.
+    /// Compiles the model file at `path` (through the user's cache of compiled models when
+    /// `cache`).
     #[staticmethod]
-    fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<NativeModel> {
-        let model = py
-            .detach(|| FileModel::from_file(&path))
+    #[pyo3(signature = (path, cache=true))]
+    fn from_file(py: Python<'_>, path: PathBuf, cache: bool) -> PyResult<NativeModel> {
+        let (model, cache_hit) = py
+            .detach(|| FileModel::from_file(&path, cache))
             .map_err(|e| model_error(&e))?;
-        Ok(NativeModel { model })
+        Ok(NativeModel { model, cache_hit })
     }
 
-    /// Compiles a model given as text; `name` stands for the file in messages.
+    /// Compiles a model given as text; `name` stands for the file in messages (through the
+    /// cache when `cache`).
     #[staticmethod]
-    fn from_text(py: Python<'_>, name: String, text: String) -> PyResult<NativeModel> {
-        let model = py
-            .detach(|| FileModel::from_text(&name, &text))
+    #[pyo3(signature = (name, text, cache=true))]
+    fn from_text(py: Python<'_>, name: String, text: String, cache: bool) -> PyResult<NativeModel> {
+        let (model, cache_hit) = py
+            .detach(|| FileModel::from_text(&name, &text, cache))
             .map_err(|e| model_error(&e))?;
-        Ok(NativeModel { model })
+        Ok(NativeModel { model, cache_hit })
+    }
+
+    /// Whether the compiled models came from the cache (nothing was compiled).
+    #[getter]
+    fn cache_hit(&self) -> bool {
+        self.cache_hit
     }
 
     /// The model's name.
@@ -419,7 +431,8 @@ impl NativeModel {
             .map_err(|e| model_error(&e))
     }
 
-    /// Integrates the model; returns the header, the number of states, the columns, the
+    /// Integrates the model; returns the header, the number of states, the table (its
+    /// columns one after another, native `f64`s in a `bytearray`), the
     /// events, the stop, the work counters, the notes and (with `dense`) every step's dense
     /// output. `times` are native `f64` bytes. `cancel` set stops it at its next step (its
     /// stop then `interrupted`).
@@ -469,18 +482,22 @@ impl NativeModel {
         let cancel = cancel.as_ref().map(|c| c.get());
         let solved = interruptible(py, cancel, |interrupt| model.solve(&request, interrupt))?
             .map_err(|e| model_error(&e))?;
-        let rows = &solved.rows;
-        let columns = PyDict::new(py);
-        for (k, name) in solved.columns.iter().enumerate() {
-            columns.set_item(name, column(py, rows.len(), |i| rows[i][k])?)?;
-        }
+        // The trajectory's columns one after another, as NumPy's `(columns, rows)` array:
+        // every column, and the states as SciPy's `y`, are views of it.
+        let values = solved.trajectory.values();
+        let table = PyByteArray::new_with(py, values.len() * 8, |bytes| {
+            for (chunk, value) in bytes.chunks_exact_mut(8).zip(values) {
+                chunk.copy_from_slice(&value.to_ne_bytes());
+            }
+            Ok(())
+        })?;
         let found: Vec<(String, Option<usize>, Vec<f64>)> = (solved.events.iter())
             .map(|e| (e.label(), e.request, e.row.clone()))
             .collect();
         let out = PyDict::new(py);
         out.set_item("header", &solved.columns)?;
         out.set_item("states", solved.states)?;
-        out.set_item("columns", columns)?;
+        out.set_item("table", table)?;
         out.set_item("events", found)?;
         out.set_item("stop", bridge::termination(&solved.stop))?;
         out.set_item("stats", bridge::stats(&solved.stats))?;

@@ -188,3 +188,24 @@ def test_a_singular_model_raises_a_solve_error():
     )
     with pytest.raises(eulerdisk.SolveError):
         singular.eval({"x": 0.0})
+
+
+def test_a_second_load_comes_from_the_cache_and_cache_false_bypasses_it(dsl_examples, cache_home):
+    path = dsl_examples / "heavy_top.dsl"
+    models = cache_home / "eulerdisk" / "models"
+    uncached = eulerdisk.Model.from_file(path, cache=False)
+    assert not uncached.cache_hit
+    assert not models.exists(), "cache=False writes no entry"
+    first = eulerdisk.Model.from_file(path)
+    assert not first.cache_hit
+    assert len(list(models.iterdir())) == 1
+    second = eulerdisk.Model.from_file(path)
+    assert second.cache_hit
+    # The entry is keyed by the text: the same text given by value (a model unpickled in a
+    # worker) finds it; cache=False compiles it again.
+    assert eulerdisk.Model.from_str(path.read_text(encoding="utf-8"), name="top").cache_hit
+    assert not eulerdisk.Model.from_file(path, cache=False).cache_hit
+    assert len(list(models.iterdir())) == 1
+    # What the cache gives solves as what was compiled, to the bit.
+    solved = [m.solve(0.5).y for m in (uncached, second)]
+    np.testing.assert_array_equal(solved[0], solved[1])

@@ -32,7 +32,7 @@ fn main() {
         let clock = Clock::start();
         let solution = solve(model, &request).unwrap();
         seconds.push(clock.seconds());
-        rows = solution.rows.len();
+        rows = solution.len();
         assert_eq!(rows, count + 1);
     }
     seconds.sort_by(f64::total_cmp);

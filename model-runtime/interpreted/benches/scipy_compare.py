@@ -147,7 +147,13 @@ def chain(cli: Path, repeat: int, scratch: Path) -> list[str]:
     ]
 
 
-def dense(cli: Path, repeat: int, scratch: Path) -> list[str]:
+def in_process(bench: Path) -> float:
+    """The median CPU seconds the ``dense_samples`` bench binary prints for its solves."""
+    out = subprocess.run([str(bench)], check=True, capture_output=True, text=True).stdout
+    return float(out.split("samples: ")[1].split(" s")[0])
+
+
+def dense(cli: Path, repeat: int, scratch: Path, bench: Path | None) -> list[str]:
     y0 = np.array([0.0, 0.3, 0.0, 2.0, 0.0, 150.0])
     times = np.linspace(0.0, 1.0, 1_000_001)
 
@@ -161,23 +167,41 @@ def dense(cli: Path, repeat: int, scratch: Path) -> list[str]:
     run = model_solve(cli, cache, scratch / "top.csv", [str(HEAVY_TOP), "--t-end", "1", "--dt", "1e-6"])
     run()  # fills the cache
     wall, cpu = median_of(run, repeat)
-    return [
+    rows = [
         "| heavy top, 1 s, 10^6 + 1 samples | wall (s) | CPU (s) | wall / SciPy | CPU / SciPy |",
         "|---|---:|---:|---:|---:|",
         f"| SciPy `solve_ivp(t_eval=...)` alone | {scipy_wall:.3f} | {scipy_cpu:.3f} | 1.00 | 1.00 |",
-        f"| `model solve --dt 1e-6`, whole process, CSV written, warm cache | {wall:.3f} | {cpu:.3f} | {wall / scipy_wall:.2f} | {cpu / scipy_cpu:.2f} |",
     ]
+    if bench is not None:
+        # The bench binary's own median, then SciPy's again: the two sides at the same moment.
+        solve = in_process(bench)
+        _, after = median_of(scipy, repeat, time.process_time)
+        rows.append(
+            f"| `solve` in process (`--bench dense_samples`, median of 7) | | {solve:.3f} | | {solve / scipy_cpu:.2f} |"
+        )
+        rows.append(f"| SciPy again, after it | | {after:.3f} | | {after / scipy_cpu:.2f} |")
+    rows.append(
+        f"| `model solve --dt 1e-6`, whole process, CSV written, warm cache | {wall:.3f} | {cpu:.3f} | {wall / scipy_wall:.2f} | {cpu / scipy_cpu:.2f} |"
+    )
+    return rows
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cli", type=Path, default=ROOT / "target" / "release" / "eulerdisk")
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument(
+        "--bench",
+        type=Path,
+        help="the dense_samples bench binary (cargo bench -p model-interpreted --bench dense_samples --no-run prints it), timed between two SciPy runs",
+    )
+    parser.add_argument("--only-dense", action="store_true", help="skip the chain")
     args = parser.parse_args()
     print(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}\n")
     with tempfile.TemporaryDirectory() as scratch:
-        for table in (chain(args.cli, args.repeat, Path(scratch)), dense(args.cli, args.repeat, Path(scratch))):
-            print("\n".join(table), end="\n\n")
+        if not args.only_dense:
+            print("\n".join(chain(args.cli, args.repeat, Path(scratch))), end="\n\n")
+        print("\n".join(dense(args.cli, args.repeat, Path(scratch), args.bench)), end="\n\n")
 
 
 if __name__ == "__main__":

@@ -226,6 +226,7 @@ fn decode(bytes: &[u8]) -> Option<Entry> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::load::CacheUse;
 
     const BALL: &str = include_str!("../../../model-macros/examples/bouncing_ball.dsl");
     const TOP: &str = include_str!("../../../model-macros/examples/heavy_top.dsl");
@@ -350,6 +351,30 @@ mod tests {
             panic!("compiled")
         };
         assert_ne!(fresh[0].compiled.explanation.markdown, "kept");
+    }
+
+    #[test]
+    fn a_load_says_what_the_cache_did() {
+        let cache = cache("reporting");
+        let load = |cache| ModelFile::from_text_reporting("top.dsl", TOP, cache).unwrap();
+        assert_eq!(load(None).cache, CacheUse::Off);
+        assert!(!cache.dir().exists());
+        assert_eq!(load(Some(&cache)).cache, CacheUse::Miss);
+        assert_eq!(entries(&cache).len(), 1);
+        assert_eq!(load(Some(&cache)).cache, CacheUse::Hit);
+        // A file's text is the same entry as the text given by value.
+        let dir = cache.dir().parent().unwrap().join("reporting-file");
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("top.dsl");
+        std::fs::write(&path, TOP).unwrap();
+        let read = ModelFile::read_reporting(&path, Some(&cache)).unwrap();
+        assert_eq!(read.cache, CacheUse::Hit);
+        // An entry that no longer checks is a miss, and is written again.
+        for entry in entries(&cache) {
+            std::fs::write(entry, "not an entry").unwrap();
+        }
+        assert_eq!(load(Some(&cache)).cache, CacheUse::Miss);
+        assert_eq!(load(Some(&cache)).cache, CacheUse::Hit);
     }
 
     #[test]

@@ -82,6 +82,7 @@ mod smooth;
 mod solution;
 mod switched;
 mod tables;
+mod trajectory;
 mod values;
 
 pub use cache::ModelCache;
@@ -91,11 +92,11 @@ pub use error::{
     WorkHint,
 };
 pub use file::ModelFile;
-pub use load::{select_chart, ModelRef};
+pub use load::{select_chart, CacheUse, Loaded, ModelRef};
 pub use model_runtime::{WorkBound, WorkExceeded};
 pub use request::{Control, EventRequest, SolveRequest, Stepping, Watched, MAX_SAMPLES};
 pub use solution::{
-    AccumulationPoint, DenseStep, EventKind, Solution, SolvedEvent, Stop, DENSE_NODES,
+    AccumulationPoint, DenseStep, EventKind, Solution, SolvedEvent, Stop, Trajectory, DENSE_NODES,
 };
 pub use switched::mode_graph;
 pub use values::{evaluate, initial_state, params, resolve, Named, NamedValues, PointValues};

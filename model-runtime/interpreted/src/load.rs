@@ -9,6 +9,27 @@ use model_algebra::CompiledModel;
 use model_dsl::{CompiledSwitched, Source};
 use std::path::Path;
 
+/// A file loaded, and what the cache of compiled models did for it.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The file's models.
+    pub file: ModelFile,
+    /// Whether they came from the cache.
+    pub cache: CacheUse,
+}
+
+/// What the cache of compiled models did for one load.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CacheUse {
+    /// No cache was given: the file was compiled.
+    Off,
+    /// The cache held no valid entry: the file was compiled and its entry written (or, the
+    /// cache being unwritable, not).
+    Miss,
+    /// The compiled models were the cache's entry: nothing was compiled.
+    Hit,
+}
+
 /// One model of a file, ready to evaluate or solve: a smooth model (the file's model or one
 /// of its charts) or a switched one.
 #[derive(Clone, Copy, Debug)]
@@ -28,6 +49,11 @@ impl ModelFile {
     /// Reads the file at `path` and compiles it, or takes its compiled models from `cache`
     /// when it holds a valid entry for this text (and keeps them there when not).
     pub fn read_with(path: &Path, cache: Option<&ModelCache>) -> Result<Self, LoadError> {
+        Self::read_reporting(path, cache).map(|loaded| loaded.file)
+    }
+
+    /// [`read_with`](Self::read_with), saying whether the cache held the file.
+    pub fn read_reporting(path: &Path, cache: Option<&ModelCache>) -> Result<Loaded, LoadError> {
         let source = Source::read(path).map_err(|source| LoadError::Read {
             path: path.to_path_buf(),
             source,
@@ -47,21 +73,39 @@ impl ModelFile {
         text: &str,
         cache: Option<&ModelCache>,
     ) -> Result<Self, LoadError> {
+        Self::from_text_reporting(name, text, cache).map(|loaded| loaded.file)
+    }
+
+    /// [`from_text_with`](Self::from_text_with), saying whether the cache held the text.
+    pub fn from_text_reporting(
+        name: &str,
+        text: &str,
+        cache: Option<&ModelCache>,
+    ) -> Result<Loaded, LoadError> {
         Self::compile_with(&Source::new(name, text), cache)
     }
 
     /// `source` compiled, or taken from `cache` (and kept there when compiled).
-    fn compile_with(source: &Source, cache: Option<&ModelCache>) -> Result<Self, LoadError> {
+    fn compile_with(source: &Source, cache: Option<&ModelCache>) -> Result<Loaded, LoadError> {
         let Some(cache) = cache else {
-            return Self::compile(source);
+            return Ok(Loaded {
+                file: Self::compile(source)?,
+                cache: CacheUse::Off,
+            });
         };
         let key = Key::of(source);
         if let Some(file) = cache.get(&key) {
-            return Ok(file);
+            return Ok(Loaded {
+                file,
+                cache: CacheUse::Hit,
+            });
         }
         let file = Self::compile(source)?;
         cache.put(&key, &file);
-        Ok(file)
+        Ok(Loaded {
+            file,
+            cache: CacheUse::Miss,
+        })
     }
 
     pub(crate) fn compile(source: &Source) -> Result<Self, LoadError> {

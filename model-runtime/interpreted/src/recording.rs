@@ -8,23 +8,22 @@
 //! bound or is interrupted still hands back everything computed until then; and the smooth
 //! and the switched model share this one piece instead of two copies.
 
+use crate::request::Times;
 use crate::solution::DenseStep;
+use crate::trajectory::Trajectory;
 use model_runtime::{Dyn, Observed, Sample, StepView};
 use model_runtime::{WorkBound, WorkExceeded, WorkMeter};
 use std::cell::RefCell;
 use std::ops::ControlFlow;
-use std::ops::Range;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// One recorded point: its time, the mode in force (by index), where its state lies in
-/// [`Recording::states`] and the discrete values (by index into [`Recording::snapshots`]).
-#[derive(Clone, Debug)]
+/// What a recorded row's outputs are evaluated with: the mode in force (by index) and the
+/// discrete values (by index into [`Recording::snapshots`]).
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Point {
-    pub(crate) t: f64,
-    pub(crate) mode: usize,
-    y: Range<usize>,
-    pub(crate) discrete: usize,
+    pub(crate) mode: u32,
+    pub(crate) discrete: u32,
 }
 
 /// Why the observer ended a run early.
@@ -40,7 +39,7 @@ pub(crate) enum Halt {
 /// rate, [`model_runtime::HybridOptions::sample_rate`]), or at given times read off each
 /// step's dense output.
 #[derive(Clone, Debug)]
-pub(crate) enum Grid {
+pub(crate) enum Grid<'a> {
     /// Every accepted step.
     Steps,
     /// The runtime's samples.
@@ -48,7 +47,7 @@ pub(crate) enum Grid {
     /// Exactly these times (in the run's order).
     Times {
         /// The times.
-        times: Vec<f64>,
+        times: Times<'a>,
         /// The next one not yet recorded.
         next: usize,
     },
@@ -69,11 +68,12 @@ pub(crate) type SharedValues = Rc<RefCell<Vec<f64>>>;
 
 /// The points and the state of a run being recorded.
 pub(crate) struct Recording<'a> {
-    pub(crate) grid: Grid,
+    pub(crate) grid: Grid<'a>,
+    /// Each row's mode and discrete values.
     pub(crate) points: Vec<Point>,
-    /// The points' states, one after another (one vector for all: a million samples are not
-    /// a million allocations).
-    states: Vec<f64>,
+    /// The rows: `t`, the state and the discrete values written as they are recorded, the
+    /// outputs' columns left for the end ([`crate::tables::Tables::finish`]).
+    pub(crate) table: Trajectory,
     /// A state interpolated at a given time, before it is recorded.
     sample: Vec<f64>,
     /// Each distinct set of discrete values met, in order.
@@ -91,16 +91,23 @@ pub(crate) struct Recording<'a> {
 
 impl<'a> Recording<'a> {
     pub(crate) fn new(
-        grid: Grid,
+        grid: Grid<'a>,
         discrete: SharedValues,
         (t0, bound): (f64, WorkBound),
         interrupt: &'a AtomicBool,
+        width: usize,
     ) -> Self {
         let first = discrete.borrow().clone();
+        // Room for every row where the grid says how many (given times): a million samples
+        // then grow nothing.
+        let rows = match &grid {
+            Grid::Times { times, .. } => times.len(),
+            Grid::Steps | Grid::Rate => 0,
+        };
         Recording {
             grid,
-            points: Vec::new(),
-            states: Vec::new(),
+            points: Vec::with_capacity(rows),
+            table: Trajectory::with_capacity(width, rows),
             sample: Vec::new(),
             snapshots: vec![first],
             discrete,
@@ -139,19 +146,16 @@ impl<'a> Recording<'a> {
     /// Records `(t, mode, y)` with the discrete values in force.
     pub(crate) fn push(&mut self, t: f64, mode: usize, y: &[f64]) {
         let discrete = self.values_now();
-        let start = self.states.len();
-        self.states.extend_from_slice(y);
+        (self.table).push(&[&[t], y, &self.snapshots[discrete]]);
         self.points.push(Point {
-            t,
-            mode,
-            y: start..self.states.len(),
-            discrete,
+            mode: mode as u32,
+            discrete: discrete as u32,
         });
     }
 
-    /// The state recorded at `point`.
-    pub(crate) fn y(&self, point: &Point) -> &[f64] {
-        &self.states[point.y.clone()]
+    /// The time of the last row recorded.
+    fn last_t(&self) -> Option<f64> {
+        self.table.last_first()
     }
 
     /// The next of the given times reached by `t1` (at or before it, in the run's direction),
@@ -161,7 +165,7 @@ impl<'a> Recording<'a> {
         let Grid::Times { times, next } = &mut self.grid else {
             return None;
         };
-        let t = *times.get(*next).filter(|&&t| !before(t1, t, backward))?;
+        let t = times.get(*next).filter(|&t| !before(t1, t, backward))?;
         *next += 1;
         Some(t)
     }
@@ -174,7 +178,7 @@ impl<'a> Recording<'a> {
             Grid::Times { times, next } => {
                 let backward = self.backward;
                 let mut count = 0;
-                while *next < times.len() && !before(t0, times[*next], backward) {
+                while times.get(*next).is_some_and(|t| !before(t0, t, backward)) {
                     *next += 1;
                     count += 1;
                 }
@@ -209,7 +213,7 @@ impl<'a> Recording<'a> {
         let backward = self.backward;
         match &mut self.grid {
             Grid::Steps => {
-                if (self.points.last()).is_none_or(|p| before(p.t, step.t0, backward)) {
+                if self.last_t().is_none_or(|t| before(t, step.t0, backward)) {
                     self.push(step.t0, mode, step.y0);
                 }
                 self.push(step.t1, mode, step.y1);
@@ -254,9 +258,8 @@ impl<'a> Recording<'a> {
     /// Closes the trajectory at the run's last point `(t, mode, y)` unless it is recorded.
     pub(crate) fn close(&mut self, t: f64, mode: usize, y: &[f64]) {
         if self
-            .points
-            .last()
-            .is_none_or(|p| before(p.t, t, self.backward))
+            .last_t()
+            .is_none_or(|last| before(last, t, self.backward))
         {
             self.push(t, mode, y);
         }

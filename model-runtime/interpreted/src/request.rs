@@ -141,19 +141,69 @@ pub(crate) struct ResolvedEvent {
     pub(crate) watched: Watched,
 }
 
+/// The times a run records at, in its order, read one by one as the run reaches them: the
+/// request's own, borrowed (a million times are not copied), or every `dt`, computed when
+/// reached (never stored).
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Times<'r> {
+    /// The request's times, checked.
+    Given(&'r [f64]),
+    /// `t0 + k × step` for `k` in `0..=count`, then `end` if that falls short of it.
+    Every {
+        /// The first.
+        t0: f64,
+        /// `dt`, negative for a run backward in time.
+        step: f64,
+        /// The last `k`.
+        count: u64,
+        /// The run's end, where the steps fall short of it.
+        end: Option<f64>,
+    },
+}
+
+impl Times<'_> {
+    /// How many times there are.
+    pub(crate) fn len(&self) -> usize {
+        match *self {
+            Times::Given(times) => times.len(),
+            Times::Every { count, end, .. } => count as usize + 1 + usize::from(end.is_some()),
+        }
+    }
+
+    /// The `k`th time, if there are as many.
+    pub(crate) fn get(&self, k: usize) -> Option<f64> {
+        match *self {
+            Times::Given(times) => times.get(k).copied(),
+            Times::Every {
+                t0,
+                step,
+                count,
+                end,
+            } => match (k as u64).cmp(&(count + 1)) {
+                std::cmp::Ordering::Less => Some(t0 + k as f64 * step),
+                std::cmp::Ordering::Equal => end,
+                std::cmp::Ordering::Greater => None,
+            },
+        }
+    }
+}
+
 /// A request resolved against one model: the values in the model's order, the events by
 /// index, the sampling times.
 #[derive(Clone, Debug)]
-pub(crate) struct Resolved {
+pub(crate) struct Resolved<'r> {
     pub(crate) params: Vec<f64>,
     pub(crate) y0: Vec<f64>,
     pub(crate) events: Vec<ResolvedEvent>,
-    pub(crate) times: Option<Vec<f64>>,
+    pub(crate) times: Option<Times<'r>>,
 }
 
-impl Resolved {
+impl<'r> Resolved<'r> {
     /// Resolves `request` for `model`; every problem is a [`RequestError`].
-    pub(crate) fn new(model: ModelRef<'_>, request: &SolveRequest) -> Result<Self, RequestError> {
+    pub(crate) fn new(
+        model: ModelRef<'_>,
+        request: &'r SolveRequest,
+    ) -> Result<Self, RequestError> {
         let bound = request.max_steps_per_s;
         if !(bound.is_finite() && bound > 0.0) {
             return Err(RequestError::WorkBound { steps_per_s: bound });
@@ -223,11 +273,11 @@ fn resolve_event(
 /// The times a request asks to record at, checked: finite, inside the run's span, in its
 /// order (increasing, or decreasing for a run backward in time, as SciPy's `t_eval`), and for
 /// a smooth model (a switched model records at a rate or at every step).
-fn checked_times(
+fn checked_times<'r>(
     model: ModelRef<'_>,
     request: &SolveRequest,
-    times: &[f64],
-) -> Result<Vec<f64>, RequestError> {
+    times: &'r [f64],
+) -> Result<Times<'r>, RequestError> {
     if let ModelRef::Switched(model) = model {
         return Err(RequestError::TimesOfSwitched {
             model: model.name.clone(),
@@ -260,12 +310,12 @@ fn checked_times(
             });
         }
     }
-    Ok(times.to_vec())
+    Ok(Times::Given(times))
 }
 
 /// `t0, t0 + dt, ...` up to and including `t_end` (`t0, t0 − dt, ...` down to it for a run
 /// backward in time: `dt` is a length).
-fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, RequestError> {
+fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Times<'static>, RequestError> {
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(RequestError::SampleStep { dt });
     }
@@ -274,10 +324,53 @@ fn sample_times(t0: f64, t_end: f64, dt: f64) -> Result<Vec<f64>, RequestError> 
         return Err(RequestError::SampleCount { dt, t0, t_end });
     }
     let step = if t_end < t0 { -dt } else { dt };
-    let mut times: Vec<f64> = (0..=count as u64).map(|k| t0 + k as f64 * step).collect();
+    let count = count as u64;
+    let last = t0 + count as f64 * step;
     // Short of `t_end` in the run's direction.
-    if times.last().is_some_and(|&t| (t_end - t) * step > 0.0) {
-        times.push(t_end);
+    let end = ((t_end - last) * step > 0.0).then_some(t_end);
+    Ok(Times::Every {
+        t0,
+        step,
+        count,
+        end,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The times of `sample_times`, listed.
+    fn listed(times: Times<'_>) -> Vec<f64> {
+        (0..).map_while(|k| times.get(k)).collect()
     }
-    Ok(times)
+
+    #[test]
+    fn every_dt_is_the_list_it_stands_for() {
+        // The list as it was built before the times became a stream: `t0 + k dt` up to the
+        // last not past `t_end`, then `t_end` if short of it.
+        let list = |t0: f64, t_end: f64, dt: f64| {
+            let count = ((t_end - t0).abs() / dt).floor() as u64;
+            let step = if t_end < t0 { -dt } else { dt };
+            let mut times: Vec<f64> = (0..=count).map(|k| t0 + k as f64 * step).collect();
+            if times.last().is_some_and(|&t| (t_end - t) * step > 0.0) {
+                times.push(t_end);
+            }
+            times
+        };
+        for (t0, t_end, dt) in [
+            (0.0, 1.0, 0.1),
+            (0.0, 1.0, 0.3),
+            (0.5, 0.5, 0.1),
+            (2.0, -1.0, 0.25),
+            (2.0, -1.0, 0.7),
+            (1e-3, 7.0, 1e-2),
+        ] {
+            let times = sample_times(t0, t_end, dt).unwrap();
+            let got = listed(times);
+            assert_eq!(times.len(), got.len(), "{t0} {t_end} {dt}");
+            assert_eq!(got, list(t0, t_end, dt), "{t0} {t_end} {dt}");
+            assert!(got.len() > 1 || t0 == t_end, "{t0} {t_end} {dt}");
+        }
+    }
 }

@@ -28,7 +28,7 @@ use std::ops::ControlFlow;
 /// its index in the request, with its time and state).
 struct WithEvents<'a> {
     interpreted: Interpreted<'a>,
-    resolved: &'a Resolved,
+    resolved: &'a Resolved<'a>,
     guards: Vec<GuardSpec<usize>>,
     located: Vec<(usize, f64, Vec<f64>)>,
     /// The outputs, evaluated into where an event watches one.
@@ -122,7 +122,7 @@ impl Observer<Dyn, (), usize> for Recording<'_> {
 /// The run, waiting for the method's stepper.
 struct Run<'a, 'b> {
     model: &'a CompiledModel,
-    resolved: &'a Resolved,
+    resolved: &'a Resolved<'a>,
     request: &'a SolveRequest,
     control: &'b Control<'b>,
     stepping: &'b Stepping,
@@ -155,17 +155,16 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             located: Vec::new(),
             outputs: RefCell::new(vec![0.0; engine.n_outputs()]),
         };
-        let grid = match &resolved.times {
-            Some(times) => Grid::Times {
-                times: times.clone(),
-                next: 0,
-            },
+        let grid = match resolved.times {
+            Some(times) => Grid::Times { times, next: 0 },
             None => Grid::Steps,
         };
         let bound = (request.t0, request.work_bound());
-        let mut recording = Recording::new(grid, Default::default(), bound, control.interrupt)
-            .with_dense(stepping.dense)
-            .with_direction(request.t_end < request.t0);
+        let width = 1 + n + model.outputs.len();
+        let mut recording =
+            Recording::new(grid, Default::default(), bound, control.interrupt, width)
+                .with_dense(stepping.dense)
+                .with_direction(request.t_end < request.t0);
         recording.start(request.t0, 0, &resolved.y0);
         let options = HybridOptions {
             step: stepping.options(),
@@ -261,7 +260,7 @@ pub(crate) fn columns<'a>(names: impl Iterator<Item = &'a String>) -> Vec<String
 /// Integrates `model` as `request` says; the outputs are evaluated at every recorded point.
 pub(crate) fn solve_smooth(
     model: &CompiledModel,
-    resolved: Resolved,
+    resolved: Resolved<'_>,
     request: &SolveRequest,
     (control, stepping): (&Control<'_>, &Stepping),
 ) -> Result<Solution, SolveFailure> {

@@ -4,6 +4,7 @@
 //! done. A front end formats these (a CSV, a sentence, a NumPy array); it matches on types,
 //! never on text.
 
+pub use crate::trajectory::Trajectory;
 use model_runtime::Stats;
 
 /// A solved trajectory of a model given as text.
@@ -24,9 +25,9 @@ pub struct Solution {
     /// model).
     pub row_modes: Vec<usize>,
     /// One row per recorded time, in the run's order (decreasing times for a run backward in
-    /// time); after a terminal event the last row is the
+    /// time), stored column after column; after a terminal event the last row is the
     /// event's. The outputs read the discrete values of the row's own time.
-    pub rows: Vec<Vec<f64>>,
+    pub trajectory: Trajectory,
     /// The events the run met, in the run's order.
     pub events: Vec<SolvedEvent>,
     /// Why the run ended.
@@ -46,10 +47,35 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// The column called `name` (`t`, a state or an output), over all rows.
-    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+    /// The column called `name` (`t`, a state, a discrete value or an output), over all rows.
+    pub fn column(&self, name: &str) -> Option<&[f64]> {
         let k = self.columns.iter().position(|c| c == name)?;
-        Some(self.rows.iter().map(|row| row[k]).collect())
+        Some(self.trajectory.column(k))
+    }
+
+    /// The recorded times (the column `t`).
+    pub fn times(&self) -> &[f64] {
+        self.trajectory.column(0)
+    }
+
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        self.trajectory.len()
+    }
+
+    /// Whether nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.trajectory.is_empty()
+    }
+
+    /// Row `k`: `t`, the states, the discrete values, the outputs (gathered from the columns).
+    pub fn row(&self, k: usize) -> Vec<f64> {
+        self.trajectory.row(k)
+    }
+
+    /// The last row, if any.
+    pub fn last_row(&self) -> Option<Vec<f64>> {
+        self.len().checked_sub(1).map(|k| self.row(k))
     }
 
     /// The state names.
@@ -74,7 +100,7 @@ impl Solution {
 
     /// The time of the last row.
     pub fn t_end(&self) -> Option<f64> {
-        self.rows.last().map(|row| row[0])
+        self.times().last().copied()
     }
 
     /// The time the run ended: the time of the event that stopped it (for an accumulation,

@@ -272,7 +272,7 @@ impl Observer<Dyn, ModeId, EventId, SwitchedNote> for SwitchedRecording<'_> {
 /// The run, waiting for the method's stepper.
 struct Run<'a, 'c> {
     model: &'a CompiledSwitched,
-    resolved: &'a Resolved,
+    resolved: &'a Resolved<'a>,
     request: &'a SolveRequest,
     control: &'a Control<'c>,
     stepping: &'a Stepping,
@@ -303,8 +303,10 @@ impl WithStepper<Dyn> for Run<'_, '_> {
             None => Grid::Steps,
         };
         let bound = (request.t0, request.work_bound());
+        let outputs = model.modes[0].model.outputs.len();
+        let width = 1 + n + model.discrete.len() + outputs;
         let mut observer = SwitchedRecording {
-            recording: Recording::new(grid, discrete, bound, control.interrupt)
+            recording: Recording::new(grid, discrete, bound, control.interrupt, width)
                 .with_dense(stepping.dense),
             met: Vec::new(),
             known: 0,
@@ -450,7 +452,7 @@ fn on_threshold(model: &InterpretedSwitched<'_>, t0: f64, y0: &[f64]) -> Vec<Str
 fn tables<'a>(
     model: &'a CompiledSwitched,
     engines: Vec<&'a Engine>,
-    resolved: &'a Resolved,
+    resolved: &'a Resolved<'a>,
     request: &SolveRequest,
 ) -> Tables<'a> {
     let first: &CompiledModel = &model.modes[0].model;
@@ -479,7 +481,7 @@ fn tables<'a>(
 /// accumulation at its extrapolated point, and a terminal event last.
 pub(crate) fn solve_switched(
     model: &CompiledSwitched,
-    resolved: Resolved,
+    resolved: Resolved<'_>,
     request: &SolveRequest,
     (control, stepping): (&Control<'_>, &Stepping),
 ) -> Result<Solution, SolveFailure> {

@@ -61,7 +61,7 @@ pub(crate) struct Tables<'a> {
 
 /// The values a row's outputs are computed from and into: the parameters with the discrete
 /// values, the derivatives, the outputs. Kept by [`Tables`] so that a million rows allocate
-/// only the rows.
+/// only the trajectory's buffer.
 #[derive(Debug, Default)]
 pub(crate) struct RowBuffers {
     values: Vec<f64>,
@@ -70,15 +70,15 @@ pub(crate) struct RowBuffers {
 }
 
 impl Tables<'_> {
-    /// `t`, the states, the discrete values and the outputs of mode `mode` at `(t, y)` with
-    /// the discrete values `discrete`.
-    pub(crate) fn row(
+    /// The outputs of mode `mode` at `(t, y)` with the discrete values `discrete`, handed to
+    /// `use_outputs` in the buffer they were computed in; a NaN or infinite output is the
+    /// error `model eval` gives there.
+    fn with_outputs<R>(
         &self,
         mode: usize,
-        t: f64,
-        y: &[f64],
-        discrete: &[f64],
-    ) -> Result<Vec<f64>, SolveFailure> {
+        (t, y, discrete): (f64, &[f64], &[f64]),
+        use_outputs: impl FnOnce(&[f64]) -> R,
+    ) -> Result<R, SolveFailure> {
         let model = self.models[mode];
         let mut buffers = self.buffers.borrow_mut();
         let RowBuffers {
@@ -108,12 +108,26 @@ impl Tables<'_> {
                 value: outputs[k],
             }));
         }
-        let mut row = Vec::with_capacity(self.columns.len());
-        row.push(t);
-        row.extend_from_slice(y);
-        row.extend_from_slice(discrete);
-        row.extend_from_slice(outputs);
-        Ok(row)
+        Ok(use_outputs(outputs))
+    }
+
+    /// `t`, the states, the discrete values and the outputs of mode `mode` at `(t, y)` with
+    /// the discrete values `discrete`.
+    pub(crate) fn row(
+        &self,
+        mode: usize,
+        t: f64,
+        y: &[f64],
+        discrete: &[f64],
+    ) -> Result<Vec<f64>, SolveFailure> {
+        self.with_outputs(mode, (t, y, discrete), |outputs| {
+            let mut row = Vec::with_capacity(self.columns.len());
+            row.push(t);
+            row.extend_from_slice(y);
+            row.extend_from_slice(discrete);
+            row.extend_from_slice(outputs);
+            row
+        })
     }
 
     /// An event's row: `(t, y)` in `mode` with the discrete values `discrete`, named.
@@ -146,16 +160,26 @@ impl Tables<'_> {
         accumulations: Vec<AccumulationPoint>,
         ended: Ended,
     ) -> Result<Solution, SolveFailure> {
-        let mut rows = Vec::with_capacity(recording.points.len());
-        let mut row_modes = Vec::with_capacity(recording.points.len());
-        for point in &recording.points {
-            let discrete = &recording.snapshots[point.discrete];
-            rows.push(self.row(point.mode, point.t, recording.y(point), discrete)?);
-            row_modes.push(point.mode);
+        let mut trajectory = recording.table;
+        debug_assert_eq!(trajectory.width(), self.columns.len());
+        // A smooth model has no modes to say.
+        let switched = !self.modes.is_empty();
+        let mut row_modes = Vec::with_capacity(if switched { trajectory.len() } else { 0 });
+        let outputs_from = 1 + self.states + self.discrete;
+        let mut y = Vec::with_capacity(self.states);
+        for (k, point) in recording.points.iter().enumerate() {
+            let (mode, discrete) = (point.mode as usize, point.discrete as usize);
+            let discrete = &recording.snapshots[discrete];
+            let t = trajectory.get(k, 0);
+            trajectory.read(k, 1, self.states, &mut y);
+            self.with_outputs(mode, (t, &y, discrete), |outputs| {
+                trajectory.set(k, outputs_from, outputs);
+            })?;
+            if switched {
+                row_modes.push(mode);
+            }
         }
-        if self.modes.is_empty() {
-            row_modes.clear();
-        }
+        let trajectory = trajectory.compacted();
         let steps = recording.steps;
         let dense = recording.dense.unwrap_or_default();
         let (stop, stats, failure) = match (ended, recording.halt) {
@@ -185,7 +209,7 @@ impl Tables<'_> {
             discrete: self.discrete,
             modes: self.modes.clone(),
             row_modes,
-            rows,
+            trajectory,
             events,
             stop,
             stats,

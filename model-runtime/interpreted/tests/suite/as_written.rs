@@ -28,8 +28,8 @@ fn a_smooth_model_starts_at_its_written_initial_values() {
         let file = compile("decay.dsl", text);
         assert_eq!(initial_state(model(&file), &[]).unwrap(), [2.0, 3.0]);
         let solved = solve(model(&file), &tight(SolveRequest::new(1.0))).unwrap();
-        assert_eq!(solved.rows[0][1..3], [2.0, 3.0], "{text}");
-        let last = solved.rows.last().unwrap();
+        assert_eq!(solved.row(0)[1..3], [2.0, 3.0], "{text}");
+        let last = solved.last_row().unwrap();
         assert_eq!(last[0], 1.0);
         assert!((last[1] - 2.0 * (-1.0f64).exp()).abs() < 1e-11, "{last:?}");
         assert_eq!(last[2], 3.0);
@@ -38,7 +38,7 @@ fn a_smooth_model_starts_at_its_written_initial_values() {
             state: vec![("x".into(), 1.0)],
             ..tight(SolveRequest::new(1.0))
         };
-        let last = solve(model(&file), &request).unwrap().rows.pop().unwrap();
+        let last = solve(model(&file), &request).unwrap().last_row().unwrap();
         assert!((last[1] - (-1.0f64).exp()).abs() < 1e-11, "{last:?}");
         assert_eq!(last[2], 3.0);
     }

@@ -34,7 +34,7 @@ fn a_smooth_model_runs_backward_to_its_closed_form() {
     // Every 0.25 from 2 down to -1, the end included.
     let want: Vec<f64> = (0..=12).map(|k| 2.0 - 0.25 * k as f64).collect();
     assert_eq!(t, want);
-    for row in &solution.rows {
+    for row in solution.trajectory.rows() {
         assert!((row[1] - (3.0 * row[0]).cos()).abs() < 1e-10, "{row:?}");
     }
     assert_eq!(solution.stop, Stop::EndTime);

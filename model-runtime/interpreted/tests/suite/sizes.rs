@@ -82,7 +82,7 @@ fn the_chain_runs_in_its_own_forty_states_and_keeps_its_energy() {
     assert_eq!(solved.states, 2 * LINKS);
     assert_eq!(solved.columns.len(), 1 + 2 * LINKS + 1);
     assert_eq!(solved.stop, Stop::EndTime);
-    assert_eq!(solved.rows.len(), 21);
+    assert_eq!(solved.len(), 21);
     let energy = solved.column("energy").unwrap();
     let e0 = energy[0];
     // At rest: the potential alone, -(g / l) sum_i c_ii cos(q_i).
@@ -97,7 +97,7 @@ fn the_chain_runs_in_its_own_forty_states_and_keeps_its_energy() {
     let drift = energy.iter().map(|e| (e - e0).abs()).fold(0.0, f64::max);
     assert!(drift <= 1e-9 * e0.abs(), "energy drifts by {drift} of {e0}");
     // It moved: the chain falls.
-    let last = solved.rows.last().unwrap();
+    let last = solved.last_row().unwrap();
     assert!(last[1 + LINKS..1 + 2 * LINKS].iter().any(|w| w.abs() > 0.1));
 }
 
@@ -120,14 +120,14 @@ fn a_model_of_three_states_follows_its_closed_form() {
         };
         let solved = solve(model(&file), &request).unwrap();
         assert_eq!(solved.states, 3);
-        assert_eq!(solved.rows.len(), 3);
+        assert_eq!(solved.len(), 3);
         // Rodas4 is of order 4 with a dense output of order 3: looser than the explicit pair.
         let within = if method == Method::Rodas4 {
             1e-7
         } else {
             1e-10
         };
-        for row in &solved.rows {
+        for row in solved.trajectory.rows() {
             let t = row[0];
             let exact = [(2.0 * t).cos(), (2.0 * t).sin(), 3.0 * (-0.5 * t).exp()];
             for (got, want) in row[1..4].iter().zip(exact) {

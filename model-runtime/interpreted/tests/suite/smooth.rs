@@ -45,7 +45,7 @@ fn the_interpreted_disk_steps_like_the_compiled_one() {
             .unwrap();
         assert_eq!(solved.stats.steps, compiled.stats.steps, "{method:?}");
         assert_eq!(solved.stats.rejected, compiled.stats.rejected, "{method:?}");
-        let last = solved.rows.last().unwrap();
+        let last = solved.last_row().unwrap();
         let want = compiled.last().unwrap();
         for (k, (got, want)) in last[1..=12].iter().zip(want).enumerate() {
             assert!(
@@ -120,9 +120,9 @@ fn a_terminal_event_closes_the_trajectory_and_outputs_read_by_name() {
             kind: EventKind::Crossing
         }
     );
-    assert_eq!(solved.rows.last(), Some(&solved.events[0].row));
+    assert_eq!(solved.last_row().as_ref(), Some(&solved.events[0].row));
     let (t, speed) = (solved.column("t").unwrap(), solved.column("speed").unwrap());
-    for (t, speed) in t.iter().zip(&speed) {
+    for (t, speed) in t.iter().zip(speed) {
         assert!((speed + 3.0 * (3.0 * t).sin()).abs() < 1e-9, "{t}: {speed}");
     }
     assert_eq!(solved.output_names(), ["speed", "position"]);

@@ -36,13 +36,13 @@ fn the_largest_and_the_first_step_bound_the_steps() {
         },
     );
     let widest = |s: &Solution| {
-        (s.rows.windows(2))
-            .map(|w| w[1][0] - w[0][0])
+        (s.times().windows(2))
+            .map(|w| w[1] - w[0])
             .fold(0.0, f64::max)
     };
     assert!(widest(&free) > 0.05, "{}", widest(&free));
     assert!(widest(&bounded) <= 0.01 + 1e-12, "{}", widest(&bounded));
-    assert_eq!(bounded.rows[1][0], 1e-6);
+    assert_eq!(bounded.times()[1], 1e-6);
     assert!(free.dense.is_empty());
 }
 
@@ -84,7 +84,7 @@ fn each_steps_dense_output_gives_what_sampling_gives() {
         },
         Stepping::default(),
     );
-    for (row, t) in sampled.rows.iter().zip(&times) {
+    for (row, t) in sampled.trajectory.rows().zip(&times) {
         let step = (dense.dense.iter())
             .find(|s| s.t0 <= *t && *t <= s.t1)
             .unwrap();

@@ -97,7 +97,7 @@ fn compare_with(model: &Model, ties: Ties) -> Verdict {
         (RefEnd::Unresolved(why), _) => Verdict::AgreeUntil(why),
         (RefEnd::Chatter, Err(SolveFailure::Run(_))) => Verdict::Agree,
         (RefEnd::EndTime(y), Ok(s)) if s.stop == Stop::EndTime && extra.is_none() => {
-            let last = s.rows.last().unwrap();
+            let last = s.last_row().unwrap();
             if (last[1] - y[0]).abs() < 1e-6 && (last[2] - y[1]).abs() < 1e-6 {
                 Verdict::Agree
             } else {
