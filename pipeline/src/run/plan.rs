@@ -181,32 +181,31 @@ impl SamplePlan {
         self.is_written(t) || self.window(t).is_some()
     }
 
-    /// A time at or before the first sample after `t` that [`SamplePlan::wants`]: `t` itself
-    /// within half a fine grid step of a window, else the earlier of the next trajectory
-    /// point and the next window's start, each less half a fine grid step (the grid's times
-    /// are rounded, the bound must not pass the point it stands for). Infinite when no sample
-    /// after `t` is wanted. What lets the run skip the fine grid between the trajectory's
-    /// points instead of asking about each.
+    /// A time at or before the first sample after `t` that [`SamplePlan::wants`]: the
+    /// earliest of the next trajectory point, the next point of a window's own grid for a
+    /// window around `t`, and the start of each window after `t`, each less half a fine grid
+    /// step (the grid's times are rounded, and the bound must not pass the point it stands
+    /// for). Infinite when no sample after `t` is wanted. What lets the run skip the fine
+    /// grid between the points it keeps instead of asking about each.
     pub fn next_wanted(&self, t: f64) -> f64 {
         let fine = self.fine_rate();
         let half = 0.5 / fine;
-        let windows =
-            (self.first.iter().chain(&self.last)).chain(self.windows.iter().map(|w| &w.0));
+        let before_point = |every: u64| {
+            let point = self.index(t).div_ceil(every).saturating_mul(every);
+            self.t0 + (point as f64 - 0.5) / fine
+        };
+        let figures = (self.first.iter().chain(&self.last)).map(|w| (w, self.figure_every));
+        let windows = figures.chain(self.windows.iter().map(|(w, every)| (w, *every)));
         let mut next = f64::INFINITY;
-        for w in windows {
-            if w.start - half <= t && t <= w.end + half {
-                return t;
-            }
-            if w.start > t {
+        for (w, every) in windows {
+            if t < w.start - half {
                 next = next.min(w.start - half);
+            } else if t <= w.end + half {
+                next = next.min(before_point(every));
             }
         }
         if self.coarse {
-            let point = self
-                .index(t)
-                .div_ceil(self.every)
-                .saturating_mul(self.every);
-            next = next.min(self.t0 + (point as f64 - 0.5) / fine);
+            next = next.min(before_point(self.every));
         }
         next.max(t)
     }
@@ -308,6 +307,9 @@ mod tests {
             } else {
                 let from = plan.next_wanted(t);
                 assert!(from >= t, "{from} before {t}");
+                if from > t_end {
+                    break;
+                }
                 while time(k) < from {
                     k += 1;
                 }
