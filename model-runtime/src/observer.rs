@@ -183,11 +183,12 @@ impl<D: Dim, Md: Copy, G, Nt> Observer<D, Md, G, Nt> for Recorder<D, Md, G, Nt> 
 /// computed as the drivers compute them, so no sample at or after `from` is skipped.
 pub(crate) fn first_sample_from(t_first: f64, rate: f64, next: u64, from: f64) -> u64 {
     let time = |k: u64| t_first + k as f64 / rate;
-    if !(from > time(next)) {
+    // A NaN bound skips nothing; one past the grid's reach skips everything.
+    if from.is_nan() || from <= time(next) {
         return next;
     }
     let guess = ((from - t_first) * rate).floor();
-    if !(guess < 1e15) {
+    if guess >= 1e15 {
         return u64::MAX;
     }
     let mut k = (guess as u64).max(next);
