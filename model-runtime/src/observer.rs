@@ -111,6 +111,14 @@ pub trait Observer<D: Dim, Md, G, Nt = ()> {
     fn wants_sample(&self, _t: f64) -> bool {
         true
     }
+    /// After [`Observer::wants_sample`] declined the sample due at `t`: a time at or before
+    /// the next sample it may want (default `t`: ask about each). The driver skips the grid's
+    /// samples before it without asking about each, so an observer that wants a coarse grid
+    /// and a fine one in a window is not asked about every point of the fine grid. A bound
+    /// too early costs questions; one too late loses samples.
+    fn next_wanted_sample(&self, t: f64) -> f64 {
+        t
+    }
     /// A dense sample at a requested time.
     fn on_sample(&mut self, _sample: &Sample<'_, D, Md>) -> Observed {
         Ok(())
@@ -166,5 +174,59 @@ impl<D: Dim, Md: Copy, G, Nt> Observer<D, Md, G, Nt> for Recorder<D, Md, G, Nt> 
     fn on_transition(&mut self, r: TransitionRecord<D, Md, G, Nt>) -> Observed {
         self.transitions.push(r);
         Ok(())
+    }
+}
+
+/// The first index `k ≥ next` of the sample grid `t_first + k / rate` whose time is at or
+/// after `from` (`u64::MAX` when none is: `from` infinite or past the grid's reach): where a
+/// driver resumes after [`Observer::next_wanted_sample`] said `from`. The grid's times are
+/// computed as the drivers compute them, so no sample at or after `from` is skipped.
+pub(crate) fn first_sample_from(t_first: f64, rate: f64, next: u64, from: f64) -> u64 {
+    let time = |k: u64| t_first + k as f64 / rate;
+    // A NaN bound skips nothing; one past the grid's reach skips everything.
+    if from.is_nan() || from <= time(next) {
+        return next;
+    }
+    let guess = ((from - t_first) * rate).floor();
+    if guess >= 1e15 {
+        return u64::MAX;
+    }
+    let mut k = (guess as u64).max(next);
+    while k > next && time(k - 1) >= from {
+        k -= 1;
+    }
+    while time(k) < from {
+        k += 1;
+    }
+    k
+}
+
+#[cfg(test)]
+mod tests {
+    use super::first_sample_from;
+
+    #[test]
+    fn the_first_sample_from_a_time_is_the_first_at_or_after_it() {
+        // Grids whose times round (a rate of 3 and of 20 kHz, a start off zero), bounds on
+        // grid points, between them and an ulp either side of one.
+        for (t_first, rate) in [(0.0, 3.0), (0.1, 20_000.0), (-2.5, 7.0)] {
+            let time = |k: u64| t_first + k as f64 / rate;
+            for next in [0u64, 5, 40] {
+                for j in 0..200u64 {
+                    let on = time(j);
+                    for from in [on, on.next_down(), on.next_up(), on + 0.37 / rate] {
+                        let k = first_sample_from(t_first, rate, next, from);
+                        assert!(k >= next);
+                        assert!(time(k) >= from || k == next, "{from}: {k}");
+                        assert!(
+                            k == next || time(k - 1) < from,
+                            "{from}: {k} is not the first"
+                        );
+                    }
+                }
+            }
+        }
+        assert_eq!(first_sample_from(0.0, 10.0, 3, f64::INFINITY), u64::MAX);
+        assert_eq!(first_sample_from(0.0, 10.0, 3, f64::NAN), 3);
     }
 }

@@ -218,6 +218,12 @@ pub trait DiskObserver {
     fn wants_sample(&self, _t: f64) -> bool {
         true
     }
+    /// After [`DiskObserver::wants_sample`] declined the sample due at `t`: a time at or
+    /// before the next sample it may want (default `t`). The samples due before it are skipped
+    /// without asking about each.
+    fn next_wanted_sample(&self, t: f64) -> f64 {
+        t
+    }
     /// A sample at a requested time.
     fn on_sample(&mut self, _sample: &DiskSample) {}
     /// Whether [`DiskObserver::on_step`] should be called (each call costs a model evaluation).

@@ -470,6 +470,10 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
         self.user.wants_sample(t)
     }
 
+    fn next_wanted_sample(&self, t: f64) -> f64 {
+        self.user.next_wanted_sample(t)
+    }
+
     fn wants_dense(&self) -> bool {
         self.user.wants_extrema() || self.ring.is_some()
     }

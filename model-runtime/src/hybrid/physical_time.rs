@@ -8,7 +8,9 @@
 use super::regularised::{head, physical_hit, physical_rate, ClockGuard};
 use crate::dense::{Interpolant, StoredInterpolant};
 use crate::dim::Const;
-use crate::observer::{Observed, Observer, Sample, StepView, TransitionKind, TransitionRecord};
+use crate::observer::{
+    first_sample_from, Observed, Observer, Sample, StepView, TransitionKind, TransitionRecord,
+};
 use crate::root::find_crossing;
 
 /// An observer of `H` (in physical time) fed by a run of [`crate::Regularised`] (in `τ`).
@@ -56,12 +58,15 @@ where
         // sample due exactly there.
         let slack = 8.0 * f64::EPSILON * t1.abs().max(1.0);
         let mut z = [0.0; M];
-        while let (Some(ts), Some(dense)) = (self.sample_time(), step.dense) {
+        while let (Some(ts), Some(dense), Some(rate)) = (self.sample_time(), step.dense, self.rate)
+        {
             if ts > t1 + slack {
                 break;
             }
             self.next_sample += 1;
             if !self.inner.wants_sample(ts) {
+                let from = self.inner.next_wanted_sample(ts);
+                self.next_sample = first_sample_from(self.t_first, rate, self.next_sample, from);
                 continue;
             }
             let tau = grid_tau::<_, N, M>(dense, (step.t0, step.t1), (t0, t1), self.t_seg, ts);

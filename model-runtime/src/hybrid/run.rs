@@ -18,7 +18,7 @@ use crate::error::{at, EvalError, InputError, SolveError};
 use crate::events::{EventHit, Found, GuardInputs, GuardTracker, Probe, Quiet};
 use crate::integrator::Integrator;
 use crate::observer::{
-    Observer, ObserverError, Sample, StepView, TransitionKind, TransitionRecord,
+    first_sample_from, Observer, ObserverError, Sample, StepView, TransitionKind, TransitionRecord,
 };
 use crate::stats::Stats;
 use crate::stepper::{eval, Rhs, Stepper};
@@ -592,6 +592,8 @@ impl<S: Stepper<D>, D: Dim, Md: Copy + PartialEq + Debug> Run<'_, S, D, Md> {
             }
             self.next_sample += 1;
             if !obs.wants_sample(ts) {
+                let from = obs.next_wanted_sample(ts);
+                self.next_sample = first_sample_from(self.t_first, rate, self.next_sample, from);
                 continue;
             }
             self.it

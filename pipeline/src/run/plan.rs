@@ -180,6 +180,35 @@ impl SamplePlan {
     pub fn wants(&self, t: f64) -> bool {
         self.is_written(t) || self.window(t).is_some()
     }
+
+    /// A time at or before the first sample after `t` that [`SamplePlan::wants`]: the
+    /// earliest of the next trajectory point, the next point of a window's own grid for a
+    /// window around `t`, and the start of each window after `t`, each less half a fine grid
+    /// step (the grid's times are rounded, and the bound must not pass the point it stands
+    /// for). Infinite when no sample after `t` is wanted. What lets the run skip the fine
+    /// grid between the points it keeps instead of asking about each.
+    pub fn next_wanted(&self, t: f64) -> f64 {
+        let fine = self.fine_rate();
+        let half = 0.5 / fine;
+        let before_point = |every: u64| {
+            let point = self.index(t).div_ceil(every).saturating_mul(every);
+            self.t0 + (point as f64 - 0.5) / fine
+        };
+        let figures = (self.first.iter().chain(&self.last)).map(|w| (w, self.figure_every));
+        let windows = figures.chain(self.windows.iter().map(|(w, every)| (w, *every)));
+        let mut next = f64::INFINITY;
+        for (w, every) in windows {
+            if t < w.start - half {
+                next = next.min(w.start - half);
+            } else if t <= w.end + half {
+                next = next.min(before_point(every));
+            }
+        }
+        if self.coarse {
+            next = next.min(before_point(self.every));
+        }
+        next.max(t)
+    }
 }
 
 /// The least common multiple of `a` and `b` (both > 0), `u64::MAX` where it does not fit
@@ -262,6 +291,64 @@ mod tests {
         assert_eq!(plan.window(9.5), Some(Window::Last));
         assert_eq!(plan.window(5.0), None);
         assert!(!plan.wants(5.0 + 1.0 / 20_000.0));
+    }
+
+    /// The samples a run gets when it skips to [`SamplePlan::next_wanted`] after each declined
+    /// one, and how many it asked about, on the grid `k / fine_rate` up to `t_end`.
+    fn skipping(plan: &SamplePlan, t_end: f64) -> (Vec<f64>, usize) {
+        let (mut kept, mut asked, mut k) = (Vec::new(), 0, 0u64);
+        let time = |k: u64| k as f64 / plan.fine_rate();
+        while time(k) <= t_end {
+            let t = time(k);
+            asked += 1;
+            k += 1;
+            if plan.wants(t) {
+                kept.push(t);
+            } else {
+                let from = plan.next_wanted(t);
+                assert!(from >= t, "{from} before {t}");
+                if from > t_end {
+                    break;
+                }
+                while time(k) < from {
+                    k += 1;
+                }
+            }
+        }
+        (kept, asked)
+    }
+
+    #[test]
+    fn skipping_to_the_next_wanted_sample_keeps_every_wanted_one() {
+        let window = SampleWindow {
+            from: 5.0,
+            to: 5.01,
+            sample_rate: 200_000.0,
+        };
+        let plain = SamplePlan::new(0.0, 10.0, 100.0);
+        for (plan, t_end) in [
+            (plain.clone(), 10.0),
+            (
+                SamplePlan::new(0.0, 10.0, 1000.0).with_windows(&[window]),
+                10.0,
+            ),
+            (plain.last_second_before(7.3), 10.0),
+            (SamplePlan::new(0.0, 10.0, 30_000.0), 10.0),
+        ] {
+            let grid = (0..).map(|k| k as f64 / plan.fine_rate());
+            let wanted: Vec<f64> = grid
+                .take_while(|&t| t <= t_end)
+                .filter(|&t| plan.wants(t))
+                .collect();
+            let (kept, asked) = skipping(&plan, t_end);
+            assert_eq!(kept, wanted, "{plan:?}");
+            // Between two wanted samples the run asks about one declined sample at most.
+            assert!(
+                asked <= 2 * wanted.len() + 1,
+                "{asked} asked, {}",
+                wanted.len()
+            );
+        }
     }
 
     #[test]

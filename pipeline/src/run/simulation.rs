@@ -166,6 +166,10 @@ impl<O: Outlet> DiskObserver for ChannelObserver<'_, O> {
         self.plan.wants(t)
     }
 
+    fn next_wanted_sample(&self, t: f64) -> f64 {
+        self.plan.next_wanted(t)
+    }
+
     fn on_sample(&mut self, sample: &DiskSample) {
         let s = self.record(sample);
         self.batch.push(s);
