@@ -30,6 +30,7 @@ mod chart;
 mod compile;
 mod expr;
 mod include;
+mod included;
 mod lexical;
 mod limits;
 mod located;
@@ -54,7 +55,8 @@ pub use ast::{
     When,
 };
 pub use compile::{compile, compile_all};
-pub use include::{in_included_files, IncludedFile};
+pub use include::in_included_files;
+pub use included::IncludedFile;
 pub use limits::{MAX_DEPTH, MAX_TOKENS};
 pub use located::{Located, LocatedErrors};
 pub use parse::{parse_model, parse_model_in, parse_model_recovering, Parsed};

@@ -67,7 +67,7 @@ pub struct Spans {
     /// with the syntax errors.
     pub(crate) deferred: Vec<syn::Error>,
     /// The files `include`s read, and those being read.
-    pub(crate) includes: crate::include::Includes,
+    pub(crate) includes: crate::included::Includes,
 }
 
 impl Spans {
@@ -97,7 +97,7 @@ impl Spans {
     }
 
     /// The files the model's `include`s read, in the order read.
-    pub fn included(&self) -> &[crate::include::IncludedFile] {
+    pub fn included(&self) -> &[crate::included::IncludedFile] {
         &self.includes.files
     }
 

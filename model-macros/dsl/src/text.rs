@@ -7,7 +7,8 @@
 //! form compilers and editors understand.
 
 use crate::compile::compile_all;
-use crate::include::{file_of, IncludedFile};
+use crate::include::file_of;
+use crate::included::IncludedFile;
 use crate::located::{Located, LocatedErrors};
 use crate::parse::parse_model_in;
 use crate::span::{Errors, Spans};
