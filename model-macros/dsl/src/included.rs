@@ -94,4 +94,3 @@ fn invoking_file() -> Option<PathBuf> {
         .then(|| Span::call_site().local_file())
         .flatten()
 }
-
