@@ -1,7 +1,7 @@
 //! Runs the paper's scene (docs/physics.md §11) on the hybrid driver and prints what it cost.
 //!
 //! ```text
-//! cargo run --release -p equations --example paper_scene -- [t_end] [dopri5|dop853]
+//! cargo run --release -p equations --features measure --example paper_scene -- [t_end] [dopri5|dop853]
 //! [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N]
 //! [components|vectors] [pi-gustafsson|pi-hairer|integral] [physical|regularised]
 //! ```

@@ -13,7 +13,7 @@
 //! (`components` or `vectors`, `equations::ErrorNorm`) would change.
 //!
 //! ```text
-//! cargo run --release -p equations --example step_profile -- \
+//! cargo run --release -p equations --features measure --example step_profile -- \
 //!     [t_end] [rtol] [atol] [none|exact:N|screened:N] [sample_hz] [components|vectors] [pi-gustafsson|pi-hairer|integral] [dopri5|dop853] [physical|regularised]
 //! ```
 
