@@ -47,19 +47,13 @@ def resolved(cwd: Path, *args: str) -> dict[str, set[str]]:
     return crates
 
 
-# Built differently on purpose: the package is built without the Parquet writer (it returns
-# its tables as arrays), while `cargo test --workspace` builds the command line's Parquet
-# output. Only this library and the package itself are compiled a second time.
-DIFFERENT_ON_PURPOSE = {"eulerdisk-pipeline v0.1.0"}
-
-
 def main() -> int:
     workspace = resolved(ROOT, "--workspace", "-e", "normal,build,dev")
     package = resolved(ROOT, "-p", "eulerdisk-python", "-e", "normal,build")
     differing = [
         f"{name}: package {sorted(features - workspace[name])}, workspace {sorted(workspace[name])}"
         for name, features in sorted(package.items())
-        if name in workspace and not features <= workspace[name] and name not in DIFFERENT_ON_PURPOSE
+        if name in workspace and not features <= workspace[name]
     ]
     if differing:
         print(

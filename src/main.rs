@@ -28,6 +28,8 @@ use eulerdisk::{
 use model_runtime::Readable;
 
 fn main() -> ExitCode {
+    #[cfg(feature = "parquet")]
+    eulerdisk_parquet::install();
     let cli = Cli::parse();
     match cli.command {
         None => run(RunArgs {

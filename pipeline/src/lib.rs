@@ -62,9 +62,10 @@
 //!   numbers, [`parse_named_numbers`], [`parse_assignments`], [`is_json_object`].
 //! * **Writing and reading the outputs**: [`EVENTS_HEADER`], [`split_fields`]; the tables'
 //!   format, [`TableFormat`]; a table as cells, [`Table`] ([`Cell`]), written whole or not at
-//!   all, [`write_table_at`], [`write_atomic`] ([`WriteError`]); and a Parquet file read back
-//!   into one, `read_parquet` (`ParquetReadError`), with the default feature `parquet`. A build
-//!   without it (the Python package's) refuses `output.format = "parquet"` by its key.
+//!   all, [`write_table_at`], [`write_atomic`] ([`WriteError`]). Parquet is written by the
+//!   writer a front end installs ([`install_parquet`], [`ParquetWriter`], [`ParquetRows`]; the
+//!   command line installs `eulerdisk-parquet`'s, which also reads a file back); a front end
+//!   without one (the Python package) refuses `output.format = "parquet"` by its key.
 //!
 //! ```
 //! use eulerdisk::{load_scene, split_fields, Override, DEFAULT_SCENE};
@@ -161,10 +162,9 @@ pub use named_numbers::{is_json_object, parse_assignments, parse_named_numbers};
 
 // Writing and reading the outputs: tables as cells, written atomically in a format; the
 // events table's header and one CSV line's fields.
-pub use output::atomic::{write_atomic, WriteError};
+pub use output::atomic::{write_atomic, AtomicFile, WriteError};
 pub use output::cells::{Cell, Table};
 pub use output::files::write_table_at;
 pub use output::format::TableFormat;
-#[cfg(feature = "parquet")]
-pub use output::parquet::{read_table as read_parquet, ReadError as ParquetReadError};
+pub use output::parquet::{install_parquet, parquet_writer, ParquetRows, ParquetWriter};
 pub use output::tables::{split_fields, EVENTS_HEADER};

@@ -86,8 +86,8 @@ def test_overrides_are_the_command_lines_sets():
         ("tangent-toy", {"run.no_such_key": 1}, "run.no_such_key", "no_such_key"),
         ("tangent-toy", {"friction.mu_st": "high"}, "friction.mu_st", "friction.mu_st"),
         ("no-such-scene", {}, None, "neither a file nor a built-in scene"),
-        # The package is built without the Parquet writer (its tables are arrays).
-        ("tangent-toy", {"output.format": "parquet"}, "output.format", "`parquet` feature"),
+        # The package installs no Parquet writer (its tables are arrays).
+        ("tangent-toy", {"output.format": "parquet"}, "output.format", "installs no Parquet writer"),
     ],
 )
 def test_scene_errors_carry_the_key_and_the_command_lines_message(scene, sets, key, said):

@@ -97,6 +97,12 @@ const LAYERS: &[Layer] = &[
         ],
         generic: false,
     },
+    Layer {
+        name: "eulerdisk-parquet",
+        dir: "pipeline/parquet",
+        may_use: &["eulerdisk-pipeline", "equations"],
+        generic: false,
+    },
 ];
 
 /// The command line's own crates: flags, the terminal's progress bars, Ctrl-C. Only the

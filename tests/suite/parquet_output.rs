@@ -8,13 +8,16 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use arrow_schema::DataType;
-use eulerdisk::{load_scene, read_parquet, split_fields, Cell, Override, Scene};
+use eulerdisk::{load_scene, split_fields, Cell, Override, Scene};
+use eulerdisk_parquet::read_table as read_parquet;
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 
 use super::quiet_run::{run_quietly, Quiet};
 
-/// `tangent-toy-pruned` for `t_end` seconds at `rate`, with `extra` overrides.
+/// `tangent-toy-pruned` for `t_end` seconds at `rate`, with `extra` overrides; the command
+/// line's Parquet writer installed, as the command line installs it.
 fn scene(t_end: f64, rate: f64, extra: &[Override]) -> (Scene, Vec<Override>) {
+    eulerdisk_parquet::install();
     let mut overrides = vec![
         Override::new("run", "t_end", t_end),
         Override::new("run", "sample_rate", rate),

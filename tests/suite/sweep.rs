@@ -772,6 +772,7 @@ fn merge_takes_the_sweep_lock() {
 #[cfg(feature = "parquet")]
 #[test]
 fn a_parquet_sweep_writes_a_typed_table() {
+    eulerdisk_parquet::install();
     let tmp = tempfile::tempdir().unwrap();
     let text = "scene = \"tangent-toy-pruned\"\nkeep = \"events\"\n[set]\nrun.t_end = 0.02\n[[axis]]\nkey = \"friction.mu_d\"\nvalues = [0.1, 0.12]\n";
     let sets = ["output.format=parquet".to_string()];
@@ -779,7 +780,7 @@ fn a_parquet_sweep_writes_a_typed_table() {
     let out = tmp.path().join("out");
     go(&plan, &out, 1, None);
     assert!(!out.join(TABLE_FILE).exists());
-    let table = eulerdisk::read_parquet(&out.join("sweep.parquet")).unwrap();
+    let table = eulerdisk_parquet::read_table(&out.join("sweep.parquet")).unwrap();
     let col = |name: &str| table.header.iter().position(|h| h == name).unwrap();
     assert_eq!(table.rows.len(), 2);
     assert_eq!(

@@ -13,8 +13,10 @@ use model_runtime::Model;
 
 use super::toml::sets;
 
-/// Checks one scene input (a scene's text with `#set` lines).
+/// Checks one scene input (a scene's text with `#set` lines), with the command line's Parquet
+/// writer installed, as `eulerdisk run` has it.
 pub fn check(text: &str) -> Result<(), String> {
+    eulerdisk_parquet::install();
     let parsed: Result<Vec<Override>, _> = sets(text).into_iter().map(Override::parse).collect();
     let Ok(overrides) = parsed else {
         return Ok(()); // a malformed `--set`: a clear error

@@ -16,8 +16,10 @@ use super::toml::sets;
 /// The most points of one plan whose listing is checked (the first and the last half).
 const CHECKED_POINTS: usize = 64;
 
-/// Checks one sweep input (a sweep file's text with `#set` lines).
+/// Checks one sweep input (a sweep file's text with `#set` lines), with the command line's
+/// Parquet writer installed, as `eulerdisk sweep` has it.
 pub fn check(text: &str) -> Result<(), String> {
+    eulerdisk_parquet::install();
     let file = match parse_sweep("fuzz", text) {
         Ok(file) => file,
         Err(e) => return proportionate(&e.to_string(), text),

@@ -23,6 +23,6 @@ pub fn write_table(
 pub fn write_table_at(table: &Table, path: &Path, format: TableFormat) -> Result<(), WriteError> {
     match format {
         TableFormat::Csv => write_atomic(path, |w| table.write_csv(w)),
-        TableFormat::Parquet => super::parquet::write_table(path, table),
+        TableFormat::Parquet => super::parquet::writer_for(path)?.write_table(path, table),
     }
 }

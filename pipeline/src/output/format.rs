@@ -8,9 +8,10 @@
 
 use serde::{Deserialize, Serialize};
 
-/// Why a build without the `parquet` feature refuses the format, as the refusal says it.
+/// Why a front end without a Parquet writer refuses the format, as the refusal says it
+/// (`output::parquet`).
 pub const PARQUET_UNAVAILABLE: &str =
-    "cannot be written by this build: it was built without the `parquet` feature; use \"csv\"";
+    "cannot be written here: this front end installs no Parquet writer (the command line does); use \"csv\"";
 
 /// How the table files are written.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

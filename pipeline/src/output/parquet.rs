@@ -1,346 +1,64 @@
-//! Parquet files, written with the Apache Arrow crates, and read back.
-//!
-//! A table of cells ([`Table`]) becomes one Parquet file whose columns have the type their
-//! cells have: integers `Int64`, numbers `Float64` (integers among numbers are widened), yes/no
-//! `Boolean`, anything else `Utf8`; an empty cell is a null, and a column without any value is
-//! a `Float64` of nulls. A trajectory is streamed instead ([`ParquetFile`]): batches of
-//! columns as the run produces them, so memory stays bounded by one row group. Pages are
-//! Snappy-compressed (fast, and the only codec built in, to keep the build small). Like every
-//! output, a file is written under a temporary name and appears only when complete.
+//! Parquet as a writer a front end installs: the format is a name every scene and flag may
+//! write, and the tables and the trajectory reach it through [`ParquetWriter`], but the Arrow
+//! and Parquet crates that write it are not this library's. They are the largest part of the
+//! build, and only the command line writes Parquet files (the Python package returns arrays,
+//! which pandas writes as Parquet): `eulerdisk-parquet` (folder `pipeline/parquet`) holds the
+//! writer, and the `eulerdisk` binary installs it at its start, as a program installs a logger.
+//! One build of this library then serves every front end. Without a writer installed, a scene
+//! that asks for Parquet is refused by its key (`output.format`) before anything is written.
 
-use std::fs::File;
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::path::Path;
+use std::sync::OnceLock;
 
-use arrow_array::{
-    Array, ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, RecordBatchReader,
-    StringArray,
-};
-use arrow_schema::{DataType, Field, Schema, SchemaRef};
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
-use parquet::arrow::ArrowWriter;
-use parquet::basic::Compression;
-use parquet::file::properties::WriterProperties;
+use super::atomic::WriteError;
+use super::cells::Table;
+use super::format::PARQUET_UNAVAILABLE;
 
-use super::atomic::{AtomicFile, WriteError};
-use super::cells::{Cell, Table};
-use equations::Number;
+/// Writes Parquet files: whole tables, and a trajectory streamed row by row.
+pub trait ParquetWriter: Send + Sync {
+    /// Writes `table` as the Parquet file `path`, atomically, each column typed by its cells.
+    fn write_table(&self, path: &Path, table: &Table) -> Result<(), WriteError>;
 
-/// Rows per row group: a reader can skip or read groups apart, and a streamed trajectory
-/// holds at most one group in memory.
-pub const ROW_GROUP_ROWS: usize = 128 * 1024;
-
-/// A Parquet file being written batch by batch; it appears under its name on
-/// [`ParquetFile::commit`] and, dropped before, leaves nothing.
-pub struct ParquetFile {
-    writer: ArrowWriter<AtomicFile>,
-    schema: SchemaRef,
-    path: PathBuf,
+    /// Starts streaming `path` with the columns `t_s`, `mode` and `columns` (numbers).
+    fn rows(&self, path: &Path, columns: &[String]) -> Result<Box<dyn ParquetRows>, WriteError>;
 }
 
-impl std::fmt::Debug for ParquetFile {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("ParquetFile")
-            .field("path", &self.path)
-            .field("schema", &self.schema)
-            .finish_non_exhaustive()
-    }
-}
-
-impl ParquetFile {
-    /// Starts writing `path` with these columns.
-    pub fn create(path: &Path, fields: Vec<Field>) -> Result<ParquetFile, WriteError> {
-        let schema = Arc::new(Schema::new(fields));
-        let file = AtomicFile::create(path)?;
-        let props = WriterProperties::builder()
-            .set_compression(Compression::SNAPPY)
-            .set_max_row_group_row_count(Some(ROW_GROUP_ROWS))
-            .build();
-        let writer =
-            ArrowWriter::try_new(file, schema.clone(), Some(props)).map_err(|e| error(path, e))?;
-        Ok(ParquetFile {
-            writer,
-            schema,
-            path: path.to_path_buf(),
-        })
-    }
-
-    /// Appends one batch: one array per column, in the schema's order, all equally long.
-    pub fn write(&mut self, columns: Vec<ArrayRef>) -> Result<(), WriteError> {
-        let batch =
-            RecordBatch::try_new(self.schema.clone(), columns).map_err(|e| error(&self.path, e))?;
-        self.writer.write(&batch).map_err(|e| error(&self.path, e))
-    }
-
-    /// Writes the footer, flushes the file and gives it its name.
-    pub fn commit(self) -> Result<(), WriteError> {
-        let path = self.path;
-        self.writer
-            .into_inner()
-            .map_err(|e| error(&path, e))?
-            .commit()
-    }
-}
-
-/// Rows gathered before a batch goes to a streamed file.
-pub const BATCH_ROWS: usize = 8192;
-
-/// A table streamed row by row: a time column `t_s`, a `mode` column of names, then one
-/// `Float64` column per value. Rows are gathered into batches of [`BATCH_ROWS`] and handed to
-/// the file, which keeps at most one row group in memory.
-#[derive(Debug)]
-pub struct ParquetRows {
-    file: ParquetFile,
-    t: Vec<f64>,
-    modes: Vec<&'static str>,
-    values: Vec<Vec<f64>>,
-}
-
-impl ParquetRows {
-    /// Starts writing `path` with the columns `t_s`, `mode` and `columns`.
-    pub fn create(path: &Path, columns: &[String]) -> Result<ParquetRows, WriteError> {
-        let mut fields = vec![
-            Field::new("t_s", DataType::Float64, false),
-            Field::new("mode", DataType::Utf8, false),
-        ];
-        fields.extend(
-            columns
-                .iter()
-                .map(|c| Field::new(c.as_str(), DataType::Float64, false)),
-        );
-        Ok(ParquetRows {
-            file: ParquetFile::create(path, fields)?,
-            t: Vec::with_capacity(BATCH_ROWS),
-            modes: Vec::with_capacity(BATCH_ROWS),
-            values: vec![Vec::with_capacity(BATCH_ROWS); columns.len()],
-        })
-    }
-
+/// A Parquet table being streamed: it appears under its name on [`ParquetRows::commit`] and,
+/// dropped before, leaves nothing.
+pub trait ParquetRows: Send + std::fmt::Debug {
     /// Appends one row: its time, its mode's name and one value per column.
-    pub fn push(
+    fn push(
         &mut self,
         t: f64,
         mode: &'static str,
-        values: impl IntoIterator<Item = f64>,
-    ) -> Result<(), WriteError> {
-        self.t.push(t);
-        self.modes.push(mode);
-        for (column, v) in self.values.iter_mut().zip(values) {
-            column.push(v);
-        }
-        if self.t.len() >= BATCH_ROWS {
-            self.flush()?;
-        }
-        Ok(())
-    }
-
-    /// Writes the rows gathered so far.
-    fn flush(&mut self) -> Result<(), WriteError> {
-        if self.t.is_empty() {
-            return Ok(());
-        }
-        let mut columns: Vec<ArrayRef> = vec![
-            Arc::new(Float64Array::from(std::mem::take(&mut self.t))),
-            Arc::new(StringArray::from_iter_values(self.modes.drain(..))),
-        ];
-        for column in &mut self.values {
-            columns.push(Arc::new(Float64Array::from(std::mem::take(column))));
-        }
-        self.file.write(columns)
-    }
+        values: &mut dyn Iterator<Item = f64>,
+    ) -> Result<(), WriteError>;
 
     /// Writes the last rows and the footer, and gives the file its name.
-    pub fn commit(mut self) -> Result<(), WriteError> {
-        self.flush()?;
-        self.file.commit()
-    }
+    fn commit(self: Box<Self>) -> Result<(), WriteError>;
 }
 
-/// A Parquet or Arrow error while writing `path`.
-fn error(path: &Path, e: impl std::error::Error + Send + Sync + 'static) -> WriteError {
-    WriteError {
+/// The writer installed, if any.
+static WRITER: OnceLock<&'static dyn ParquetWriter> = OnceLock::new();
+
+/// Installs `writer` for the rest of the process; `false` if one was installed already (which
+/// stays).
+pub fn install_parquet(writer: &'static dyn ParquetWriter) -> bool {
+    WRITER.set(writer).is_ok()
+}
+
+/// The writer installed, if any.
+pub fn parquet_writer() -> Option<&'static dyn ParquetWriter> {
+    WRITER.get().copied()
+}
+
+/// The installed writer, or the error of a write to `path` that no writer can make (a scene
+/// asking for Parquet is refused before it gets here; a direct call is not).
+pub(crate) fn writer_for(path: &Path) -> Result<&'static dyn ParquetWriter, WriteError> {
+    parquet_writer().ok_or_else(|| WriteError {
         path: path.to_path_buf(),
-        source: std::io::Error::other(e),
-    }
-}
-
-/// The type a column of cells gets.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
-    Int,
-    Float,
-    Bool,
-    Text,
-}
-
-impl Kind {
-    /// The type of a column holding `cells` (see the module docs).
-    fn of<'c>(cells: impl IntoIterator<Item = &'c Cell>) -> Kind {
-        let mut kind = None;
-        for cell in cells {
-            let this = match cell {
-                Cell::Null => continue,
-                Cell::Int(_) => Kind::Int,
-                Cell::Float(_) => Kind::Float,
-                Cell::Bool(_) => Kind::Bool,
-                Cell::Text(_) => Kind::Text,
-            };
-            kind = Some(match (kind, this) {
-                (None, k) => k,
-                (Some(a), b) if a == b => a,
-                (Some(Kind::Int | Kind::Float), Kind::Int | Kind::Float) => Kind::Float,
-                _ => Kind::Text,
-            });
-        }
-        kind.unwrap_or(Kind::Float)
-    }
-
-    fn data_type(self) -> DataType {
-        match self {
-            Kind::Int => DataType::Int64,
-            Kind::Float => DataType::Float64,
-            Kind::Bool => DataType::Boolean,
-            Kind::Text => DataType::Utf8,
-        }
-    }
-
-    /// The cells as an array of this type (every cell fits it, by [`Kind::of`]).
-    fn array<'c>(self, cells: impl Iterator<Item = &'c Cell>) -> ArrayRef {
-        match self {
-            Kind::Int => Arc::new(Int64Array::from_iter(cells.map(|c| match c {
-                Cell::Int(i) => Some(*i),
-                _ => None,
-            }))),
-            Kind::Float => Arc::new(Float64Array::from_iter(cells.map(|c| match c {
-                Cell::Int(i) => Some(*i as f64),
-                Cell::Float(f) => Some(*f),
-                _ => None,
-            }))),
-            Kind::Bool => Arc::new(BooleanArray::from_iter(cells.map(|c| match c {
-                Cell::Bool(b) => Some(*b),
-                _ => None,
-            }))),
-            Kind::Text => Arc::new(StringArray::from_iter(cells.map(|c| match c {
-                Cell::Null => None,
-                Cell::Int(i) => Some(i.to_string()),
-                Cell::Float(f) => Some(Number(*f).to_string()),
-                Cell::Bool(b) => Some(b.to_string()),
-                Cell::Text(s) => Some(s.clone()),
-            }))),
-        }
-    }
-}
-
-/// Writes `table` as the Parquet file `path`, atomically, each column typed by its cells.
-pub fn write_table(path: &Path, table: &Table) -> Result<(), WriteError> {
-    let kinds: Vec<Kind> = (0..table.header.len())
-        .map(|i| Kind::of(table.column(i)))
-        .collect();
-    let fields = table
-        .header
-        .iter()
-        .zip(&kinds)
-        .map(|(name, kind)| Field::new(name.as_str(), kind.data_type(), true))
-        .collect();
-    let mut file = ParquetFile::create(path, fields)?;
-    let columns = kinds
-        .iter()
-        .enumerate()
-        .map(|(i, kind)| kind.array(table.column(i)))
-        .collect();
-    file.write(columns)?;
-    file.commit()
-}
-
-/// Why a Parquet file could not be read back.
-#[derive(Debug, thiserror::Error)]
-pub enum ReadError {
-    /// The file cannot be opened.
-    #[error("cannot read {}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// The file is not Parquet, or is damaged.
-    #[error("{} is not a readable Parquet file: {message}", path.display())]
-    Parquet {
-        /// The file.
-        path: PathBuf,
-        /// The reader's message.
-        message: String,
-    },
-    /// A column has a type that no table of this program has.
-    #[error("{}: column `{column}` has type {data_type}, not one this program writes", path.display())]
-    Type {
-        /// The file.
-        path: PathBuf,
-        /// The column.
-        column: String,
-        /// Its type.
-        data_type: DataType,
-    },
-}
-
-/// Reads a Parquet file this program wrote back into a table of cells (for checks, and for
-/// comparing it with the CSV of the same table).
-pub fn read_table(path: &Path) -> Result<Table, ReadError> {
-    let parquet = |e: &dyn std::fmt::Display| ReadError::Parquet {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let file = File::open(path).map_err(|source| ReadError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let reader = ParquetRecordBatchReaderBuilder::try_new(file)
-        .and_then(|b| b.build())
-        .map_err(|e| parquet(&e))?;
-    let mut table = Table::new(reader.schema().fields().iter().map(|f| f.name().clone()));
-    for batch in reader {
-        let batch = batch.map_err(|e| parquet(&e))?;
-        let mut rows = vec![Vec::with_capacity(batch.num_columns()); batch.num_rows()];
-        for (field, column) in batch.schema().fields().iter().zip(batch.columns()) {
-            let cells = cells(column.as_ref()).ok_or_else(|| ReadError::Type {
-                path: path.to_path_buf(),
-                column: field.name().clone(),
-                data_type: field.data_type().clone(),
-            })?;
-            for (row, cell) in rows.iter_mut().zip(cells) {
-                row.push(cell);
-            }
-        }
-        table.rows.extend(rows);
-    }
-    Ok(table)
-}
-
-/// An array's values as cells (`None` for a type no table of this program has).
-fn cells(array: &dyn Array) -> Option<Vec<Cell>> {
-    let any = array.as_any();
-    let at = |i: usize, cell: &dyn Fn(usize) -> Cell| {
-        if array.is_null(i) {
-            Cell::Null
-        } else {
-            cell(i)
-        }
-    };
-    let n = array.len();
-    let out = if let Some(a) = any.downcast_ref::<Float64Array>() {
-        (0..n)
-            .map(|i| at(i, &|i| Cell::Float(a.value(i))))
-            .collect()
-    } else if let Some(a) = any.downcast_ref::<Int64Array>() {
-        (0..n).map(|i| at(i, &|i| Cell::Int(a.value(i)))).collect()
-    } else if let Some(a) = any.downcast_ref::<BooleanArray>() {
-        (0..n).map(|i| at(i, &|i| Cell::Bool(a.value(i)))).collect()
-    } else if let Some(a) = any.downcast_ref::<StringArray>() {
-        (0..n).map(|i| at(i, &|i| Cell::text(a.value(i)))).collect()
-    } else {
-        return None;
-    };
-    Some(out)
+        source: std::io::Error::new(std::io::ErrorKind::Unsupported, PARQUET_UNAVAILABLE),
+    })
 }
 
 #[cfg(test)]
@@ -348,49 +66,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_table_round_trips_with_typed_columns() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("t.parquet");
-        let mut t = Table::new(["n", "x", "mixed", "ok", "word", "empty"]);
-        t.rows.push(vec![
-            Cell::Int(1),
-            Cell::Float(0.1),
-            Cell::Int(2),
-            Cell::Bool(true),
-            Cell::text("a, \"b\""),
-            Cell::Null,
-        ]);
-        t.rows.push(vec![
-            Cell::Null,
-            Cell::Float(f64::MIN_POSITIVE),
-            Cell::Float(2.5),
-            Cell::Null,
-            Cell::Int(3),
-            Cell::Null,
-        ]);
-        write_table(&path, &t).unwrap();
-        let back = read_table(&path).unwrap();
-        assert_eq!(back.header, t.header);
-        // Integers among numbers are widened; a number in a text column is its text.
-        assert_eq!(back.rows[0][2], Cell::Float(2.0));
-        assert_eq!(back.rows[1][4], Cell::text("3"));
-        assert_eq!(back.rows[1][1], Cell::Float(f64::MIN_POSITIVE));
-        assert_eq!(back.rows[0][..2], t.rows[0][..2]);
-        assert_eq!(back.rows[0][3..5], t.rows[0][3..5]);
-        assert_eq!(back.rows[1][5], Cell::Null);
-        let names: Vec<String> = std::fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        assert_eq!(names, ["t.parquet"], "no temporary file left");
+    fn without_a_writer_a_parquet_file_is_an_error_naming_it() {
+        // No test of this library installs a writer (the writer's crate depends on this one).
+        let path = Path::new("out/events.parquet");
+        let err = writer_for(path).err().expect("no writer is installed");
+        assert_eq!(err.path, path);
+        assert!(err.to_string().contains("Parquet writer"), "{err}");
     }
 
     #[test]
-    fn a_file_that_is_not_parquet_is_an_error_naming_it() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("x.parquet");
-        std::fs::write(&path, "t_s\n1\n").unwrap();
-        let err = read_table(&path).unwrap_err();
-        assert!(err.to_string().contains("x.parquet"), "{err}");
+    fn without_a_writer_a_scene_asking_for_parquet_is_refused_by_its_key() {
+        let parquet = crate::Override::parse("output.format=parquet").unwrap();
+        let err = crate::load_scene(crate::DEFAULT_SCENE, &[parquet]).unwrap_err();
+        assert_eq!(err.keys(), ["output.format"], "{err}");
+        assert!(err.to_string().contains("Parquet writer"), "{err}");
+        let csv = crate::Override::parse("output.format=csv").unwrap();
+        assert!(crate::load_scene(crate::DEFAULT_SCENE, &[csv]).is_ok());
     }
 }

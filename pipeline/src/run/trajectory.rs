@@ -12,7 +12,7 @@ use equations::DiskParams;
 
 use crate::output::atomic::{AtomicFile, WriteError};
 use crate::output::format::TableFormat;
-use crate::output::parquet::ParquetRows;
+use crate::output::parquet::{writer_for, ParquetRows};
 use crate::output::tables::{trajectory_header, write_trajectory_row};
 use equations::record::Quantity;
 use equations::record::Sample;
@@ -24,7 +24,7 @@ pub const STEM: &str = "trajectory";
 #[derive(Debug)]
 enum Sink {
     Csv(AtomicFile),
-    Parquet(Box<ParquetRows>),
+    Parquet(Box<dyn ParquetRows>),
 }
 
 /// The trajectory file of a run, being written.
@@ -54,7 +54,7 @@ impl TrajectoryFile {
             }
             TableFormat::Parquet => {
                 let columns: Vec<String> = quantities.iter().map(|q| q.column()).collect();
-                Sink::Parquet(Box::new(ParquetRows::create(&path, &columns)?))
+                Sink::Parquet(writer_for(&path)?.rows(&path, &columns)?)
             }
         };
         Ok(TrajectoryFile {
@@ -72,8 +72,8 @@ impl TrajectoryFile {
                     .map_err(|e| file.error(e))
             }
             Sink::Parquet(rows) => {
-                let values = self.quantities.iter().map(|q| q.value(s, &self.params));
-                rows.push(s.t, s.mode.name(), values)
+                let mut values = self.quantities.iter().map(|q| q.value(s, &self.params));
+                rows.push(s.t, s.mode.name(), &mut values)
             }
         }
     }

@@ -9,6 +9,7 @@ use equations::{DiskConfig, DiskParams, InitialState, Issue, Number, Rule, STATE
 
 use super::schema::SceneFile;
 use crate::output::format::{TableFormat, PARQUET_UNAVAILABLE};
+use crate::output::parquet::parquet_writer;
 use crate::run::plan::{SamplePlan, MAX_GRID_POINTS, MIN_RATE_WITH_WINDOWS};
 use equations::record::Quantity;
 
@@ -98,11 +99,11 @@ fn check_quantities(issues: &mut Vec<Issue>, names: &[String]) -> Vec<Quantity> 
     out
 }
 
-/// `output.format` names a writer this build has: without the `parquet` feature, Parquet is
-/// refused here, before any file is written.
+/// `output.format` names a writer this front end has: without a Parquet writer installed
+/// (`output::parquet`), Parquet is refused here, before any file is written.
 fn check_format(issues: &mut Vec<Issue>, file: &SceneFile) {
     let format = file.cli.output.format;
-    if format == TableFormat::Parquet && !cfg!(feature = "parquet") {
+    if format == TableFormat::Parquet && parquet_writer().is_none() {
         issues.push(Issue::new(
             "output.format",
             Rule::Incompatible {
