@@ -271,12 +271,13 @@ impl TimeScale<DIM> for GraphSystem {
 }
 
 /// The engines that run the disk.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Engine {
     /// The DSL's mode graph ([`crate::simulate_graph`]).
     ModeGraph,
     /// The hand-written hybrid system ([`crate::simulate`]): the reference, and what runs
-    /// where the graph cannot.
+    /// where the graph cannot (the default).
+    #[default]
     HandWritten,
 }
 
@@ -289,9 +290,9 @@ impl Engine {
         }
     }
 
-    /// The engine for a run of the full models under `params` and `config`: the mode graph
-    /// where it models the run ([`Engine::graph_refusals`] is empty), else the hand-written
-    /// system.
+    /// The engine a run of the full models under `params` and `config` can use: the mode
+    /// graph where it models the run ([`Engine::graph_refusals`] is empty), else the
+    /// hand-written system.
     pub fn for_run(params: &DiskParams, config: &DiskConfig) -> Engine {
         if Engine::graph_refusals(params, config, config.chart()).is_empty() {
             Engine::ModeGraph

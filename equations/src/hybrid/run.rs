@@ -1,6 +1,8 @@
 //! One simulation from start to stop: checking the inputs, deciding the initial mode, driving
 //! the disk's system, and turning the driver's raw phase states into disk samples for the
-//! caller.
+//! caller. The system is either engine of the disk ([`DiskEngine`]): the hand-written one
+//! ([`simulate`]) or the DSL's mode graph ([`simulate_graph`]); the stages below serve both,
+//! so that the observer cannot tell them apart but by their round-off.
 //!
 //! A run goes in four stages, each one function: `begin` decides where the driver starts (or
 //! that the run ends before a step); `drive` (module `drive`) integrates in the configured time

@@ -4,23 +4,24 @@
 //!
 //! Rolling is Box 1 and sliding Box 3 in the Cartesian slip chart: the modes include the rows
 //! the smooth models of `crate::models` include (`models/box1_rolling.dsl`,
-//! `models/box3_sliding.dsl`), with the air's terms zero at compile time; the guards, clocks and first steps are those of the hand-written system
-//! (module `system`), written as expressions. Sliding carries
+//! `models/box3_sliding.dsl`), with the air's terms made of the parameters `mu_a`, `w_z` as
+//! there (a run holds them at zero: the graph models the disk in still air), so that the
+//! right-hand sides are the smooth models' to the bit. The guards, clocks and first steps are
+//! those of the hand-written system (module `system`), written as expressions. Sliding carries
 //! the slip `(u_X, u_Y)` in the slots where rolling carries the centre's velocity
 //! `(V_X, V_Y)` (`states { u_X, u_Y } replace { V_X, V_Y }`), so the error norm sees what it
 //! sees in the hand-written run. The bridges are modes whose right-hand side is a constant
 //! derivative held in discrete values (`b_*`) until a held end time; the maps that no
 //! expression gives (the onset direction is a search, sticking is a decision of the rolling
 //! equations) are the hand-written ones, called as Rust functions: each builds the
-//! hand-written system at the event and asks it (`DiskSystem::on_event`), so both runs make
-//! every decision by the same code.
+//! hand-written system at the event and asks it (`DiskSystem::on_event`, through [`ask`]), so
+//! both runs make every decision by the same code, and writes what the map told its observer
+//! (the decision record, the bridge's slip) into the discrete values `n_*`, which the run of
+//! the graph (module `graph`) reads back for its observer.
 //!
-//! The model is the disk in still air (`mu_a = w_z = 0`, the default scenes): with the air
-//! on, its terms would be paid for in every guard evaluation of a run in still air, and a
-//! switched model cannot have variants yet that fix them. What the DSL cannot say yet, the
-//! hand-written system still does alone: the air, the polar slip chart and the paper's slip
-//! sign, the pruned variants, projection after steps, and the decision records (`TransitionRecord`) with their triggers (model-macros/DSL.md, "What the
-//! disk still needs").
+//! What the DSL cannot say yet, the hand-written system still does alone: the air at compile
+//! time, the polar slip chart and the paper's slip sign, the pruned variants and projection
+//! after steps (model-macros/DSL.md, "The disk, said in the DSL").
 
 use super::system::{
     AfterBridge, BridgePlan, DiskGuard, DiskNote, DiskSystem, DiskTransition, Phase,

@@ -1,6 +1,7 @@
 //! A run of the disk's switched model (module `switching`) on the same driver, settings and
-//! start as the hand-written run, reporting its events and its mode decisions: what the
-//! tests and the bench hold against [`super::simulate`].
+//! start as the hand-written run, reporting its events by name and its mode decisions: what
+//! the tests and the bench hold against [`super::simulate`] event by event. The run that
+//! feeds a [`super::DiskObserver`] as [`super::simulate`] does is [`super::simulate_graph`].
 
 use super::drive::{drive, Drive, Failed, Start};
 use super::graph::Engine;
