@@ -103,7 +103,7 @@ impl GraphSystem {
 
     /// The note of a transition the event of `role` made at `t`, with the decision counted
     /// (or the chattering stop it leads to).
-    fn noted(&mut self, role: Role, t: f64) -> Result<DiskNote, Halted> {
+    fn noted(&mut self, role: Role, t: f64) -> Noted {
         let note = match role {
             Role::Decision(_) | Role::StartsSliding => self.switched.model().last_note(),
             Role::Stop(_) => DiskNote::default(),
@@ -113,11 +113,11 @@ impl GraphSystem {
             // window counted before the decision takes effect.
             self.ledger.note_drift(decision.drift);
             if self.ledger.chattering(t) {
-                return Err(self.ledger.chatter_stop(t));
+                return Noted::Stops(self.ledger.chatter_stop(t));
             }
             self.ledger.transitions += 1;
         }
-        Ok(note)
+        Noted::Goes(note)
     }
 
     /// Why the run stops at the event `hit` of `role` in `mode`, where the graph stopped with
@@ -169,6 +169,15 @@ impl GraphSystem {
             (Role::StartsSliding, _) => Err(undecided(self, hit.guard)),
         }
     }
+}
+
+/// What a transition of the graph becomes for the run: a transition with the disk's note,
+/// or the stop for chattering the decision it made leads to.
+enum Noted {
+    /// The transition goes ahead with this note.
+    Goes(DiskNote),
+    /// The decision exceeded the chattering limit: the run stops.
+    Stops(Halted),
 }
 
 /// The error of an event whose outcome is not one its role allows.
@@ -241,12 +250,12 @@ impl HybridSystem<Const<DIM>> for GraphSystem {
         let role = self.role(hit.guard)?;
         Ok(match self.switched.on_event(mode, hit)? {
             Transition::Switch { to, y, .. } => match self.noted(role, hit.t) {
-                Ok(note) => Transition::Switch { to, y, note },
-                Err(halted) => Transition::Stop(halted),
+                Noted::Goes(note) => Transition::Switch { to, y, note },
+                Noted::Stops(halted) => Transition::Stop(halted),
             },
             Transition::Continue { y, .. } => match self.noted(role, hit.t) {
-                Ok(note) => Transition::Continue { y, note },
-                Err(halted) => Transition::Stop(halted),
+                Noted::Goes(note) => Transition::Continue { y, note },
+                Noted::Stops(halted) => Transition::Stop(halted),
             },
             Transition::Pass { .. } => Transition::Pass {
                 note: DiskNote::default(),
