@@ -286,7 +286,7 @@ fn the_summary_records_how_it_was_produced_and_a_rerun_leaves_no_stale_files() {
     // scene goes through `equations::simulate` unless asked for the mode graph.
     assert_eq!(by["engine"], equations::ENGINE);
     assert_eq!(by["engine"], "hand-written hybrid system");
-    let graph = out.join("graph");
+    let graph = dir.path().join("graph");
     let g = run(&[
         "--t-end",
         "0.1",
