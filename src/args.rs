@@ -27,7 +27,8 @@ use std::sync::Arc;
 use clap::{Args, ValueEnum};
 
 use eulerdisk::{
-    Backend, Override, ProgressStyle, SceneError, TableFormat, DEFAULT_BACKEND, DEFAULT_SCENE,
+    Backend, EngineChoice, Override, ProgressStyle, SceneError, TableFormat, DEFAULT_BACKEND,
+    DEFAULT_ENGINE, DEFAULT_SCENE,
 };
 
 use crate::terminal::TERMINAL_BARS;
@@ -158,6 +159,11 @@ pub struct RunArgs {
     /// Run the hand-written reference models instead of the generated ones.
     #[arg(long)]
     pub reference: bool,
+    /// Run on the DSL's mode graph where it models the scene (still air, `slip_sign =
+    /// "physical"`, dop853 or dopri5, the full models); the hand-written hybrid system
+    /// elsewhere. `summary.json` names the engine that ran.
+    #[arg(long)]
+    pub mode_graph: bool,
     /// Skip the figures.
     #[arg(long)]
     pub no_figures: bool,
@@ -235,6 +241,15 @@ pub fn backend(reference: bool) -> Backend {
         Backend::Reference
     } else {
         DEFAULT_BACKEND
+    }
+}
+
+/// The engine a `--mode-graph` flag selects.
+pub fn engine(mode_graph: bool) -> EngineChoice {
+    if mode_graph {
+        EngineChoice::ModeGraph
+    } else {
+        DEFAULT_ENGINE
     }
 }
 

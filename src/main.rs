@@ -15,8 +15,8 @@ mod terminal;
 use std::process::ExitCode;
 
 use args::{
-    backend, interrupt_on_ctrl_c, print_json, print_out, progress_style, RunArgs, EXIT_FAILED,
-    EXIT_INPUT, EXIT_INTERRUPTED, EXIT_STOPPED,
+    backend, engine, interrupt_on_ctrl_c, print_json, print_out, progress_style, RunArgs,
+    EXIT_FAILED, EXIT_INPUT, EXIT_INTERRUPTED, EXIT_STOPPED,
 };
 use clap::Parser;
 use cli::{Cli, Command, EvalArgs};
@@ -98,6 +98,7 @@ fn run(args: RunArgs) -> ExitCode {
         out_dir: out.clone(),
         progress,
         backend: backend(args.reference),
+        engine: engine(args.mode_graph),
         figures: !args.no_figures,
         trajectory: true,
         provenance: Provenance::new(&scene, &args.scene, &overrides),

@@ -103,7 +103,7 @@ pub use scene::{
 };
 
 // Running a scene: options, report, the model chosen, one simulation and what it keeps.
-pub use run::model::{choose, ModelChoice, RunModel};
+pub use run::model::{choose, EngineChoice, ModelChoice, RunModel, DEFAULT_ENGINE};
 pub use run::plan::SamplePlan;
 pub use run::progress::{Bar, Bars, Counting, Progress, ProgressStyle};
 pub use run::provenance::Provenance;

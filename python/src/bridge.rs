@@ -100,6 +100,7 @@ pub fn run(
         out_dir: request.out_dir.to_path_buf(),
         progress: progress_style(request.progress),
         backend: Backend::Generated,
+        engine: eulerdisk::DEFAULT_ENGINE,
         figures: request.figures,
         trajectory: request.trajectory_file,
         provenance: loaded.provenance.clone(),

@@ -119,6 +119,7 @@ fn parquet_tables_hold_the_csv_values_typed() {
         out_dir: pq_dir.path().to_path_buf(),
         progress: eulerdisk::ProgressStyle::Quiet,
         backend: eulerdisk::Backend::Generated,
+        engine: eulerdisk::DEFAULT_ENGINE,
         figures: false,
         trajectory: true,
         provenance: eulerdisk::Provenance::new(&csv_scene, "tangent-toy-pruned", &csv_sets),

@@ -41,6 +41,7 @@ pub fn run_quietly(
         out_dir: dir.path().to_path_buf(),
         progress: ProgressStyle::Quiet,
         backend: how.backend,
+        engine: eulerdisk::DEFAULT_ENGINE,
         figures: how.figures,
         trajectory: how.trajectory,
         provenance: Provenance::new(scene, &scene.name, overrides),

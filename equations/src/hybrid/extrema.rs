@@ -151,11 +151,11 @@ impl Scanner {
     }
 
     /// Scans one accepted step of `phase` over its dense output.
-    pub(crate) fn step<R: Model<DIM>, S: Model<DIM>>(
+    pub(crate) fn step<R: Model<DIM>, S: Model<DIM>, Md>(
         &mut self,
         models: &DiskModels<R, S>,
         phase: Phase,
-        step: &StepView<'_, Const<DIM>, Phase>,
+        step: &StepView<'_, Const<DIM>, Md>,
         out: &mut impl FnMut(Extremum),
     ) {
         let Some(dense) = step.dense else { return };

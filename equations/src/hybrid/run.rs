@@ -1,6 +1,8 @@
 //! One simulation from start to stop: checking the inputs, deciding the initial mode, driving
 //! the disk's system, and turning the driver's raw phase states into disk samples for the
-//! caller.
+//! caller. The system is either engine of the disk ([`DiskEngine`]): the hand-written one
+//! ([`simulate`]) or the DSL's mode graph ([`simulate_graph`]); the stages below serve both,
+//! so that the observer cannot tell them apart but by their round-off.
 //!
 //! A run goes in four stages, each one function: `begin` decides where the driver starts (or
 //! that the run ends before a step); `drive` (module `drive`) integrates in the configured time
@@ -11,8 +13,10 @@
 
 use super::drive::{drive, Drive, Driven, Failed, Start};
 use super::extrema::Scanner;
-use super::models::DiskModels;
-use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Phase};
+use super::graph::{DiskPhase, Engine, GraphSystem};
+use super::models::{DiskModels, GeneratedModels};
+use super::switching::disk;
+use super::system::{DiskNote, DiskSystem, Entry, Halt, Halted, Ledger, Phase};
 use super::trailing::{StepRing, Trailing};
 use super::{
     DiskObserver, DiskSample, RunOutcome, SimError, SimFailure, StopReason, TransitionRecord,
@@ -22,17 +26,21 @@ use crate::config::{AllowedModes, DiskConfig};
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, DIM};
 use crate::start::InitialState;
 use model_runtime::{
-    Const, EvalError, HybridOutcome, Model, Observed, Observer, ObserverError, Sample, Stats,
-    StepView,
+    Const, EvalError, HybridOutcome, HybridSystem, Model, Observed, Observer, ObserverError,
+    Sample, Stats, StepView, TimeScale,
 };
 use model_runtime::{WorkExceeded, WorkMeter};
 
 /// The engine [`simulate`] runs, named for a run's provenance (`summary.json`'s
 /// `produced_by.engine`): the paper's mode rules written by hand (module `system`) over the
-/// models the DSL compiles. The same rules as the DSL's mode graph run in
-/// [`simulate_switched`](crate::simulate_switched), which a test holds to this one transition
-/// for transition.
+/// models the DSL compiles. It is the reference the DSL's mode graph ([`simulate_graph`],
+/// [`GRAPH_ENGINE`]) is held to, transition for transition, and it runs what the graph cannot
+/// model ([`Engine::for_run`]).
 pub const ENGINE: &str = "hand-written hybrid system";
+
+/// The engine [`simulate_graph`] runs: the disk's mode graph said in the DSL (module
+/// `switching`), its decisions the hand-written maps'.
+pub const GRAPH_ENGINE: &str = "dsl mode graph";
 
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
 /// mode decisions to `observer`.
@@ -62,10 +70,145 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
         Begun::Running(entry) => entry,
         Begun::Stopped(outcome) => return Ok(*outcome),
     };
+    let start = Start {
+        t: initial.t,
+        mode: entry.phase,
+        y: entry.y,
+    };
+    let run = Run {
+        models,
+        config,
+        initial,
+    };
+    run_on(
+        &mut system,
+        &PHASES,
+        start,
+        entry.bridge,
+        run,
+        gate,
+        observer,
+    )
+}
+
+/// Runs the disk's mode graph (module `switching`) from `initial` until `config.t_end` or a
+/// stop, streaming to `observer` what [`simulate`] streams: the same samples, steps, extrema,
+/// trailing steps and decision records, the same gate of allowed modes and work bound, the
+/// same outcome (the decisions counted as the hand-written run counts them, its largest
+/// constraint drift). `models` evaluate the output (forces, energy) as in [`simulate`]; the
+/// start is decided as there.
+///
+/// The graph models the disk in still air, in the Cartesian slip chart, with DOP853 or DP5
+/// and no projection after steps: other settings are refused by key in
+/// [`SimError::Invalid`] ([`Engine::for_run`] says which engine a run can use).
+pub fn simulate_graph<O: DiskObserver>(
+    models: &GeneratedModels,
+    config: &DiskConfig,
+    initial: &InitialState,
+    observer: &mut O,
+) -> Result<RunOutcome, SimFailure> {
+    validate(models, config, initial)?;
+    let refused = Engine::graph_refusals(&models.params, config, models.chart);
+    if !refused.is_empty() {
+        return Err(SimError::Invalid { issues: refused }.into());
+    }
+    // The start is decided by the hand-written rules (it is no event of the graph).
+    let mut decider = DiskSystem::new(models, config);
+    let mut gate = Gate {
+        allowed: config.allowed,
+        forbidden: None,
+    };
+    let entry = match begin(&mut decider, models, config, initial, &mut gate, observer)? {
+        Begun::Running(entry) => entry,
+        Begun::Stopped(outcome) => return Ok(*outcome),
+    };
+    let mut model = disk::Model::for_run(&models.params, config);
+    let first = match entry.phase {
+        Phase::Rolling => disk::mode::rolling,
+        Phase::Sliding => disk::mode::sliding,
+        Phase::Bridge => model.hold(&decider.bridge),
+    };
+    let mut system = GraphSystem::new(model, config).map_err(|e| SimError::Solve {
+        mode: entry.phase.mode(),
+        error: e.into(),
+    })?;
+    let modes = system.modes();
+    let start = Start {
+        t: initial.t,
+        mode: modes[first],
+        y: entry.y,
+    };
+    let run = Run {
+        models,
+        config,
+        initial,
+    };
+    run_on(
+        &mut system,
+        &modes,
+        start,
+        entry.bridge,
+        run,
+        gate,
+        observer,
+    )
+}
+
+/// A system of the disk that a run drives: the hand-written one or the mode graph. It keeps
+/// the run's [`Ledger`]; [`run_on`] asks the rest of it (its modes seen as phases, the disk's
+/// stops and notes).
+pub(crate) trait DiskEngine {
+    /// The decisions and the drift so far.
+    fn ledger(&self) -> &Ledger;
+}
+
+impl<R: Model<DIM>, S: Model<DIM>> DiskEngine for DiskSystem<'_, R, S> {
+    fn ledger(&self) -> &Ledger {
+        &self.ledger
+    }
+}
+
+impl DiskEngine for GraphSystem {
+    fn ledger(&self) -> &Ledger {
+        &self.ledger
+    }
+}
+
+/// The modes of an engine.
+type ModeOf<H> = <H as HybridSystem<Const<DIM>>>::Mode;
+
+/// What a run is of: the models that evaluate its output, its settings and its start.
+struct Run<'a, R, S> {
+    models: &'a DiskModels<R, S>,
+    config: &'a DiskConfig,
+    initial: &'a InitialState,
+}
+
+/// The stages after the start, for either engine: `system` driven from `start` (through
+/// `modes`; `bridge` is the slip a starting bridge starts from), its output turned into the
+/// disk's for `observer` by the [`Adaptor`], and the outcome concluded.
+fn run_on<H, R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
+    system: &mut H,
+    modes: &[ModeOf<H>],
+    start: Start<ModeOf<H>>,
+    bridge: Option<Slip>,
+    Run {
+        models,
+        config,
+        initial,
+    }: Run<'_, R, S>,
+    gate: Gate,
+    observer: &mut O,
+) -> Result<RunOutcome, SimFailure>
+where
+    H: DiskEngine + TimeScale<DIM>,
+    H: HybridSystem<Const<DIM>, Stop = Halted, Note = DiskNote>,
+    ModeOf<H>: DiskPhase,
+{
     let tolerance = config
         .tolerance(models.chart)
         .map_err(|e| SimError::Solve {
-            mode: entry.phase.mode(),
+            mode: start.mode.phase().mode(),
             error: e.into(),
         })?;
     let how = Drive {
@@ -73,15 +216,10 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
         tolerance,
         sample_rate: config.sample_rate,
     };
-    let start = Start {
-        t: initial.t,
-        mode: entry.phase,
-        y: entry.y,
-    };
     let ring = observer_ring(observer, (initial.t, config.sample_rate));
     let mut adaptor = Adaptor {
         models,
-        bridge: entry.bridge,
+        bridge,
         user: observer,
         gate,
         scanner: Scanner::default(),
@@ -89,9 +227,9 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
         ring,
         last: None,
     };
-    let driven = drive(how, &mut system, &PHASES, start, &mut adaptor);
+    let driven = drive(how, system, modes, start, &mut adaptor);
     let closing = adaptor.close(&driven);
-    conclude(models, &system, driven, closing)
+    conclude(models, system.ledger(), driven, closing)
 }
 
 /// The disk's modes, for the clocked system's guard lists.
@@ -158,16 +296,16 @@ fn begin<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
 
 /// The last stage: the driver's outcome as the disk's, or its failure with the work done and
 /// the last state reached.
-fn conclude<R: Model<DIM>, S: Model<DIM>>(
+fn conclude<R: Model<DIM>, S: Model<DIM>, Md: DiskPhase>(
     models: &DiskModels<R, S>,
-    system: &DiskSystem<'_, R, S>,
-    driven: Driven<Phase, Halted>,
+    ledger: &Ledger,
+    driven: Driven<Md, Halted>,
     closing: Closing,
 ) -> Result<RunOutcome, SimFailure> {
     let out = match driven {
         Ok(out) => out,
         Err(Failed { error, stats }) => {
-            let error = SimError::from_driver(error, Phase::mode);
+            let error = SimError::from_driver(error, |m: Md| m.phase().mode());
             return Err(closing.failure(error, stats));
         }
     };
@@ -187,21 +325,22 @@ fn conclude<R: Model<DIM>, S: Model<DIM>>(
             }
         },
     };
-    let mode = out.mode.mode();
-    let last = sample_at(models, closing.bridge, out.t, out.mode, &out.y).map_err(|source| {
-        let error = SimError::Transition {
-            mode,
-            t: out.t,
-            source,
-        };
-        closing.failure(error, Box::new(out.stats))
-    })?;
+    let mode = out.mode.phase().mode();
+    let last =
+        sample_at(models, closing.bridge, out.t, out.mode.phase(), &out.y).map_err(|source| {
+            let error = SimError::Transition {
+                mode,
+                t: out.t,
+                source,
+            };
+            closing.failure(error, Box::new(out.stats))
+        })?;
     Ok(RunOutcome {
         stop,
         last,
-        transitions: system.transitions,
+        transitions: ledger.transitions,
         stats: out.stats,
-        max_drift: system.max_drift(),
+        max_drift: ledger.max_drift(),
     })
 }
 
@@ -421,7 +560,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
     /// The third stage, once the driver has returned `driven`: the last scanned segment ends,
     /// the kept steps go to the observer, and a decision made at the stop (no segment
     /// followed to carry it) is told; what is left for the outcome comes back.
-    fn close(mut self, driven: &Driven<Phase, Halted>) -> Closing {
+    fn close<Md>(mut self, driven: &Driven<Md, Halted>) -> Closing {
         let last = (self.last.as_ref())
             .and_then(|l| sample_at(self.models, l.bridge, l.t, l.phase, &l.y).ok())
             .map(Box::new);
@@ -463,8 +602,10 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
     }
 }
 
-impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
-    Observer<Const<DIM>, Phase, super::DiskGuard, DiskNote> for Adaptor<'_, R, S, O>
+/// The adaptor observes either engine: their modes are seen as phases, their guards are
+/// not read.
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver, Md: DiskPhase, G>
+    Observer<Const<DIM>, Md, G, DiskNote> for Adaptor<'_, R, S, O>
 {
     fn wants_sample(&self, t: f64) -> bool {
         self.user.wants_sample(t)
@@ -485,30 +626,31 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
         self.user.proceed()
     }
 
-    fn on_sample(&mut self, s: &Sample<'_, Const<DIM>, Phase>) -> Observed {
-        let sample = self.sample(s.t, s.mode, s.y)?;
+    fn on_sample(&mut self, s: &Sample<'_, Const<DIM>, Md>) -> Observed {
+        let sample = self.sample(s.t, s.mode.phase(), s.y)?;
         self.user.on_sample(&sample);
         Ok(())
     }
 
-    fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Phase>) -> Observed {
+    fn on_step(&mut self, step: &StepView<'_, Const<DIM>, Md>) -> Observed {
+        let phase = step.mode.phase();
         self.work.step(step.t0, step.t1);
         if let (Some(ring), Some(dense)) = (&mut self.ring, step.dense) {
-            ring.push(dense, (step.t0, step.t1), step.mode, self.bridge);
+            ring.push(dense, (step.t0, step.t1), phase, self.bridge);
         }
         self.last = Some(StepEnd {
             t: step.t1,
-            phase: step.mode,
+            phase,
             bridge: self.bridge,
             y: *step.y1,
         });
         if self.user.wants_extrema() {
             let user = &mut *self.user;
             self.scanner
-                .step(self.models, step.mode, step, &mut |e| user.on_extremum(&e));
+                .step(self.models, phase, step, &mut |e| user.on_extremum(&e));
         }
         if self.user.wants_steps() {
-            let sample = self.sample(step.t1, step.mode, step.y1)?;
+            let sample = self.sample(step.t1, phase, step.y1)?;
             self.user.on_step(&sample);
         }
         Ok(())
@@ -516,7 +658,7 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>
 
     fn on_transition(
         &mut self,
-        record: model_runtime::TransitionRecord<Const<DIM>, Phase, super::DiskGuard, DiskNote>,
+        record: model_runtime::TransitionRecord<Const<DIM>, Md, G, DiskNote>,
     ) -> Observed {
         if !matches!(record.kind, model_runtime::TransitionKind::Pass) {
             self.end_segment();

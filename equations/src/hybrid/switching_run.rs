@@ -1,17 +1,17 @@
 //! A run of the disk's switched model (module `switching`) on the same driver, settings and
-//! start as the hand-written run, reporting its events and its mode decisions: what the
-//! tests and the bench hold against [`super::simulate`].
+//! start as the hand-written run, reporting its events by name and its mode decisions: what
+//! the tests and the bench hold against [`super::simulate`] event by event. The run that
+//! feeds a [`super::DiskObserver`] as [`super::simulate`] does is [`super::simulate_graph`].
 
 use super::drive::{drive, Drive, Failed, Start};
+use super::graph::Engine;
 use super::run::{initial_phase, validate};
 use super::switching::disk;
 use super::system::{DiskSystem, Phase};
 use super::{GeneratedModels, SimError, SimFailure};
 use crate::config::DiskConfig;
-use crate::issue::{Issue, Rule};
 use crate::modes::{SlipChart, DIM};
 use crate::params::DiskParams;
-use crate::settings::Integrator;
 use crate::start::InitialState;
 use model_runtime::{
     AccumulationRule, Const, EventId, HybridError, InputError, ModeGraph, ModeId, Observed,
@@ -79,42 +79,11 @@ pub fn simulate_switched(
     let models = GeneratedModels::generated(*params, SlipChart::Cartesian)
         .map_err(|e| SimFailure::from(SimError::Params(e)))?;
     validate(&models, config, initial)?;
-    // What the switched disk supports, said like any other broken rule of the settings.
-    let unsupported = |key: &str, name: String, expected: &str| {
-        let rule = Rule::Unknown {
-            name,
-            expected: expected.to_string(),
-        };
-        let issues = vec![Issue::new(key, rule)];
-        SimFailure::from(SimError::Invalid { issues })
-    };
-    // The switched disk is the disk in still air (module `switching`).
-    let still = |value: f64| Rule::OutOfRange {
-        value,
-        min: 0.0,
-        max: 0.0,
-        open: false,
-    };
-    let air: Vec<Issue> = [("air.mu_a", params.mu_a), ("air.w_z", params.w_z)]
-        .into_iter()
-        .filter(|&(_, value)| value != 0.0)
-        .map(|(key, value)| Issue::new(key, still(value)))
-        .collect();
-    if !air.is_empty() {
-        return Err(SimFailure::from(SimError::Invalid { issues: air }));
+    let refused = Engine::graph_refusals(params, config, config.chart());
+    if !refused.is_empty() {
+        return Err(SimFailure::from(SimError::Invalid { issues: refused }));
     }
-    if config.chart() != SlipChart::Cartesian {
-        let sign = format!("{:?}", config.slip_sign);
-        return Err(unsupported("run.slip_sign", sign, "physical"));
-    }
-    match config.integrator {
-        Integrator::Dop853 | Integrator::Dopri5 => run(&models, config, initial),
-        other => Err(unsupported(
-            "solver.integrator",
-            format!("{other:?}"),
-            "dop853, dopri5",
-        )),
-    }
+    run(&models, config, initial)
 }
 
 fn run(

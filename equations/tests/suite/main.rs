@@ -12,6 +12,7 @@ mod extremes_spin;
 mod extremes_tolerance;
 mod extremes_upright;
 mod generated_vs_reference;
+mod graph_engine;
 mod hybrid_paper;
 mod hybrid_states;
 mod invariants;

@@ -52,6 +52,8 @@ pub struct RunOptions {
     pub progress: ProgressStyle,
     /// Which models run.
     pub backend: Backend,
+    /// Which engine runs them ([`model::DEFAULT_ENGINE`] unless asked otherwise).
+    pub engine: model::EngineChoice,
     /// Whether to draw the figures.
     pub figures: bool,
     /// Whether to write `trajectory.csv` (a sweep that keeps only summaries does not: the
@@ -118,7 +120,7 @@ pub fn run_scene(
     // among them, are being written from the start.
     owned::clear_owned(&opts.out_dir)?;
     let started = Instant::now();
-    let choice = model::choose(scene, opts.backend, opts.figures);
+    let choice = model::choose(scene, opts.backend, opts.figures).on_engine(opts.engine, scene);
     let file = opts
         .trajectory
         .then(|| {
@@ -489,7 +491,7 @@ pub fn write_outputs(
         let mut provisional = summary.clone();
         provisional.figures_not_drawn = FIGURE_STEMS.iter().map(|s| s.to_string()).collect();
         provisional.timings = timings;
-        write_summary(&path, &provisional, opts)?;
+        write_summary(&path, &provisional, data, opts)?;
         if !opts.progress.is_quiet() {
             eprintln!("drawing the figures (Ctrl-C skips the rest)");
         }
@@ -504,16 +506,26 @@ pub fn write_outputs(
     timings.figures_s = lap(&mut clock);
     timings.total_s = clock;
     summary.timings = timings;
-    write_summary(&path, &summary, opts)?;
+    write_summary(&path, &summary, data, opts)?;
     files.push(path);
     Ok((summary, files))
 }
 
-/// Writes `summary` with the run's provenance to `path` (`summary.json`), atomically.
-fn write_summary(path: &Path, summary: &Summary, opts: &RunOptions) -> Result<(), WriteError> {
+/// Writes `summary` with the run's provenance to `path` (`summary.json`), atomically; the
+/// engine named is the one that ran `data`.
+fn write_summary(
+    path: &Path,
+    summary: &Summary,
+    data: &RunData,
+    opts: &RunOptions,
+) -> Result<(), WriteError> {
+    let produced_by = Provenance {
+        engine: data.model.engine.name().to_string(),
+        ..opts.provenance.clone()
+    };
     let file = SummaryFile {
         summary,
-        produced_by: &opts.provenance,
+        produced_by: &produced_by,
     };
     let json = serde_json::to_string_pretty(&file).map_err(|e| WriteError {
         path: path.to_path_buf(),

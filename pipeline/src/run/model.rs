@@ -15,7 +15,7 @@
 use equations::{
     DiskModels, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
 };
-use equations::{DiskParams, ParamError};
+use equations::{DiskParams, Engine, ParamError};
 use equations::{SlipChart, DIM};
 use model_runtime::Model;
 
@@ -65,9 +65,43 @@ pub struct ModelChoice {
     pub frozen: Vec<&'static str>,
     /// Why these models (one line, for the user).
     pub reason: String,
+    /// The engine that runs them ([`ModelChoice::on_engine`]; the hand-written system unless
+    /// asked otherwise).
+    pub engine: Engine,
 }
 
+/// Which engine a front end asks for.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EngineChoice {
+    /// The hand-written hybrid system (`equations::simulate`).
+    #[default]
+    HandWritten,
+    /// The DSL's mode graph (`equations::simulate_graph`) where it models the run: the full
+    /// models in still air, the Cartesian slip chart, DOP853 or DP5, no projection after steps
+    /// ([`Engine::for_run`]); the hand-written system elsewhere.
+    ModeGraph,
+}
+
+/// The engine the front ends ask for unless told otherwise (`eulerdisk run --mode-graph`):
+/// the one line to switch. The hand-written system, until the mode graph's output is the
+/// same to the byte (ARCHITECTURE.md, "The engines").
+pub const DEFAULT_ENGINE: EngineChoice = EngineChoice::HandWritten;
+
 impl ModelChoice {
+    /// These models on the engine `asked` for `scene`: the mode graph only for the full
+    /// models and where it models the scene.
+    pub fn on_engine(self, asked: EngineChoice, scene: &Scene) -> ModelChoice {
+        let graph = asked == EngineChoice::ModeGraph
+            && self.model == RunModel::Full
+            && Engine::for_run(&scene.params, &scene.config) == Engine::ModeGraph;
+        let engine = if graph {
+            Engine::ModeGraph
+        } else {
+            Engine::HandWritten
+        };
+        ModelChoice { engine, ..self }
+    }
+
     /// Whether the run computes `q`.
     pub fn computes(&self, q: Quantity) -> bool {
         q.computed_without(&self.frozen)
@@ -91,6 +125,7 @@ fn full(model: RunModel, reason: String) -> ModelChoice {
         model,
         frozen: Vec::new(),
         reason,
+        engine: Engine::HandWritten,
     }
 }
 
@@ -152,6 +187,7 @@ pub fn choose_for<'q>(
             frozen.join(", ")
         ),
         frozen,
+        engine: Engine::HandWritten,
     }
 }
 
@@ -186,4 +222,60 @@ pub fn with_models<T: ModelsTask>(
         RunModel::Full => task.run(&GeneratedModels::generated(params, chart)?),
         RunModel::Pruned => task.run(&PrunedModels::pruned(params, chart)?),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{self, Override};
+
+    fn load(name: &str, overrides: &[Override]) -> Scene {
+        scene::load(name, overrides).unwrap()
+    }
+
+    /// The mode graph runs only when asked, only the full models, and only where it models
+    /// the scene; the hand-written system everywhere else.
+    #[test]
+    fn the_mode_graph_runs_where_asked_and_where_it_models_the_scene() {
+        let paper = load("tangent-toy", &[]);
+        let engine = |scene: &Scene, backend, asked| {
+            choose(scene, backend, false).on_engine(asked, scene).engine
+        };
+        let graph = EngineChoice::ModeGraph;
+        assert_eq!(DEFAULT_ENGINE, EngineChoice::HandWritten);
+        let full = choose(&paper, Backend::Generated, false);
+        assert_eq!(full.model, RunModel::Full);
+        assert_eq!(
+            engine(&paper, Backend::Generated, DEFAULT_ENGINE),
+            Engine::HandWritten
+        );
+        assert_eq!(engine(&paper, Backend::Generated, graph), Engine::ModeGraph);
+        // The reference models and the pruned ones keep the hand-written system.
+        assert_eq!(
+            engine(&paper, Backend::Reference, graph),
+            Engine::HandWritten
+        );
+        let pruned = load("tangent-toy-pruned", &[]);
+        assert_eq!(
+            choose(&pruned, Backend::Generated, false).model,
+            RunModel::Pruned
+        );
+        assert_eq!(
+            engine(&pruned, Backend::Generated, graph),
+            Engine::HandWritten
+        );
+        // Air, the paper's slip sign, an implicit integrator: the graph does not model them.
+        for o in [
+            "air.mu_a=0.001",
+            "run.slip_sign=paper",
+            "solver.integrator=rodas4",
+        ] {
+            let other = load("tangent-toy", &[Override::parse(o).unwrap()]);
+            assert_eq!(
+                engine(&other, Backend::Generated, graph),
+                Engine::HandWritten,
+                "{o}"
+            );
+        }
+    }
 }

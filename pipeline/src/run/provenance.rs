@@ -25,7 +25,8 @@ pub struct Provenance {
     pub program: String,
     /// The git revision of the build.
     pub git_revision: String,
-    /// The simulation engine that ran ([`equations::ENGINE`]).
+    /// The simulation engine that ran ([`equations::Engine::name`]: the hand-written system
+    /// until a run says which ran, in its `summary.json`).
     pub engine: String,
     /// The scene's name.
     pub scene: String,

@@ -16,8 +16,8 @@ use std::thread::Scope;
 use equations::record::{FrictionLaw, Sample, Stop};
 use equations::DIM;
 use equations::{
-    simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, Extremum, InitialState, Trailing,
-    TransitionRecord,
+    simulate, simulate_graph, DiskConfig, DiskModels, DiskObserver, DiskSample, Engine, Extremum,
+    GeneratedModels, InitialState, SimFailure, Trailing, TransitionRecord,
 };
 use model_runtime::Model;
 
@@ -237,8 +237,25 @@ impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
 
     fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
         let result = simulate(models, self.config, self.initial, self.observer);
+        self.concluded(result, FrictionLaw::of(&models.params))
+    }
+}
+
+impl<O: Outlet> Streamed<'_, '_, O> {
+    /// The run on the DSL's mode graph, with the full generated `models`.
+    fn on_graph(self, models: &GeneratedModels) -> Result<Outcome, Failure> {
+        let result = simulate_graph(models, self.config, self.initial, self.observer);
+        self.concluded(result, FrictionLaw::of(&models.params))
+    }
+
+    /// The simulation's `result` as the worker reports it.
+    fn concluded(
+        self,
+        result: Result<equations::RunOutcome, SimFailure>,
+        law: FrictionLaw,
+    ) -> Result<Outcome, Failure> {
         result
-            .map(|o| outcome(&o, self.config, FrictionLaw::of(&models.params)))
+            .map(|o| outcome(&o, self.config, law))
             .map_err(|failure| Failure {
                 message: failure.to_string(),
                 steps: failure.stats.steps,
@@ -282,8 +299,14 @@ pub fn simulate_into<O: Outlet>(
         initial: &scene.initial,
         observer: &mut observer,
     };
-    let result = with_models(choice.model, scene.params, scene.config.chart(), task)
-        .unwrap_or_else(|e| Err(Failure::before_start(e.to_string())));
+    let result = match choice.engine {
+        Engine::ModeGraph => GeneratedModels::generated(scene.params, scene.config.chart())
+            .map(|models| task.on_graph(&models))
+            .map_err(|e| e.to_string()),
+        Engine::HandWritten => with_models(choice.model, scene.params, scene.config.chart(), task)
+            .map_err(|e| e.to_string()),
+    }
+    .unwrap_or_else(|e| Err(Failure::before_start(e)));
     observer.flush();
     result.map(|mut o| {
         if observer.interrupted {

@@ -43,6 +43,7 @@ pub fn run_options(scene: &Scene, dir: &Path, keep: Keep) -> RunOptions {
         out_dir: dir.to_path_buf(),
         progress: ProgressStyle::Quiet,
         backend: DEFAULT_BACKEND,
+        engine: crate::run::model::DEFAULT_ENGINE,
         figures: keep == Keep::All,
         trajectory: keep.files(format).contains(&format.file("trajectory")),
         provenance: Provenance::new(scene, &scene.name, &[]),

@@ -19,13 +19,14 @@ use model_runtime::{
     Transition,
 };
 use std::cell::Cell;
-use std::collections::VecDeque;
 
 mod bridge;
 mod inputs;
+mod ledger;
 
 pub(crate) use bridge::{AfterBridge, BridgePlan};
 pub(crate) use bridge::{BridgeStart, Entry};
+pub(crate) use ledger::Ledger;
 
 /// What the integrator is doing: one of the two modes, or a bridge between zero slip and the
 /// stick threshold (part of sliding).
@@ -100,7 +101,7 @@ pub(crate) struct Halted {
 
 impl Halted {
     /// A stop with no decision before it.
-    fn plain(reason: StopReason) -> Self {
+    pub(crate) fn plain(reason: StopReason) -> Self {
         Halted {
             halt: Halt::Stop(reason),
             decision: None,
@@ -119,7 +120,7 @@ pub(crate) struct DiskNote {
 }
 
 /// A transition of the disk.
-type DiskTransition = Transition<Const<DIM>, Phase, Halted, DiskNote>;
+pub(crate) type DiskTransition = Transition<Const<DIM>, Phase, Halted, DiskNote>;
 
 /// A mode decision that starts sliding, and where it leads: the next segment, or a stop.
 pub(crate) struct SlidingStart {
@@ -153,18 +154,14 @@ struct Settings {
     sign: SlipSign,
     min_inclination: f64,
     project_each_step: bool,
-    chatter_max: usize,
-    chatter_window: f64,
 }
 
 pub(crate) struct DiskSystem<'a, R, S> {
     models: &'a DiskModels<R, S>,
     settings: Settings,
     pub(crate) bridge: BridgePlan,
-    /// Event-driven mode decisions so far.
-    pub transitions: u64,
-    recent: VecDeque<f64>,
-    max_drift: Cell<ConstraintResiduals>,
+    /// The decisions so far and the largest drift.
+    pub(crate) ledger: Ledger,
     /// Sign of the polar slip speed in the current sliding segment.
     speed_sign: Cell<f64>,
 }
@@ -178,32 +175,15 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                 sign: config.slip_sign,
                 min_inclination: config.min_inclination,
                 project_each_step: config.project_each_step,
-                chatter_max: config.chatter.max_transitions,
-                chatter_window: config.chatter.window,
             },
             bridge: BridgePlan {
                 t_end: f64::NEG_INFINITY,
                 slope: [0.0; DIM],
                 then: AfterBridge::StickDecision,
             },
-            transitions: 0,
-            recent: VecDeque::new(),
-            max_drift: Cell::new(ConstraintResiduals::default()),
+            ledger: Ledger::new(config),
             speed_sign: Cell::new(1.0),
         }
-    }
-
-    pub(crate) fn max_drift(&self) -> ConstraintResiduals {
-        self.max_drift.get()
-    }
-
-    fn note_drift(&self, r: ConstraintResiduals) {
-        let m = self.max_drift.get();
-        self.max_drift.set(ConstraintResiduals {
-            height: m.height.max(r.height.abs()),
-            vertical_speed: m.vertical_speed.max(r.vertical_speed.abs()),
-            no_slip: m.no_slip.max(r.no_slip),
-        });
     }
 
     /// The slip speed the stick guard watches. In the polar chart `v_C` is signed and passes
@@ -231,22 +211,9 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
     /// A mode decision, counted in [`Self::transitions`] when `counted`.
     fn decide(&mut self, record: TransitionRecord, counted: bool) -> Option<TransitionRecord> {
         if counted {
-            self.transitions += 1;
+            self.ledger.transitions += 1;
         }
         Some(record)
-    }
-
-    /// Counts a mode decision; true when the chattering limit is exceeded.
-    fn chattering(&mut self, t: f64) -> bool {
-        self.recent.push_back(t);
-        while self
-            .recent
-            .front()
-            .is_some_and(|&t0| t0 < t - self.settings.chatter_window)
-        {
-            self.recent.pop_front();
-        }
-        self.recent.len() > self.settings.chatter_max
     }
 
     /// Starts sliding from zero slip at `state` (rolling variables, on the constraints): finds
@@ -302,7 +269,7 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
     fn decide_at_stop(&mut self, t: f64, y: &[f64; DIM]) -> Result<DiskTransition, EvalError> {
         let before = self.models.sliding_state(y);
         let drift = before.residuals(&self.models.params, Mode::Sliding);
-        self.note_drift(drift);
+        self.ledger.note_drift(drift);
         let mut state = before;
         // v_C = 0: the centre's velocity is the no-slip one (S1/S2 with v_C = 0).
         state.project(&self.models.params, Mode::Rolling);
@@ -312,8 +279,8 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
             rolling_ratio: force.ratio(),
             rolling_normal: force.normal,
         };
-        if self.chattering(t) {
-            return Ok(self.chatter_stop(t));
+        if self.ledger.chattering(t) {
+            return Ok(Transition::Stop(self.ledger.chatter_stop(t)));
         }
         if force.admits_rolling(self.models.params.mu_st) {
             state.slip.direction = force.direction();
@@ -370,14 +337,6 @@ impl<'a, R: Model<DIM>, S: Model<DIM>> DiskSystem<'a, R, S> {
                 Ok(SlidingStart { decision, next }.into_transition())
             }
         }
-    }
-
-    fn chatter_stop(&self, t: f64) -> DiskTransition {
-        Transition::Stop(Halted::plain(StopReason::Chattering {
-            t,
-            transitions: self.recent.len(),
-            window: self.settings.chatter_window,
-        }))
     }
 
     /// The bridge into sliding is over: sliding proper starts with the planned slip.
@@ -501,10 +460,10 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<Const<DIM>> for DiskSystem<'_, R
                 let mut state = PhysicalState::from_rolling(&hit.y, 0.0);
                 let force = ContactForce::rolling(&self.models.params, &state, &hit.dy);
                 let drift = state.residuals(&self.models.params, Mode::Rolling);
-                self.note_drift(drift);
+                self.ledger.note_drift(drift);
                 state.project(&self.models.params, Mode::Rolling);
-                if self.chattering(hit.t) {
-                    return Ok(self.chatter_stop(hit.t));
+                if self.ledger.chattering(hit.t) {
+                    return Ok(Transition::Stop(self.ledger.chatter_stop(hit.t)));
                 }
                 let trigger = Trigger::FrictionLimit {
                     ratio: force.ratio(),
@@ -559,17 +518,14 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<Const<DIM>> for DiskSystem<'_, R
     }
 
     fn project(&self, phase: Phase, _t: f64, y: &mut [f64; DIM]) -> bool {
-        if phase == Phase::Bridge {
+        let Some(mut state) = self.ledger.note_step(&self.models.params, phase, y) else {
             return false;
-        }
-        let mode = phase.mode();
-        let mut state = PhysicalState::from_rolling(y, 0.0);
-        self.note_drift(state.residuals(&self.models.params, mode));
+        };
         if !self.settings.project_each_step {
             return false;
         }
         // In sliding only Z and V_Z move, which sit at the same indices in every layout.
-        state.project(&self.models.params, mode);
+        state.project(&self.models.params, phase.mode());
         let changed = state.y != *y;
         *y = state.y;
         changed
