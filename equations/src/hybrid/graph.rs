@@ -290,12 +290,23 @@ pub enum Engine {
     HandWritten,
 }
 
+/// The engine [`crate::simulate`] runs, named for a run's provenance (`summary.json`'s
+/// `produced_by.engine`): the paper's mode rules written by hand (module `system`) over the
+/// models the DSL compiles. It is the reference the DSL's mode graph ([`crate::simulate_graph`],
+/// [`GRAPH_ENGINE`]) is held to, transition for transition, and it runs what the graph cannot
+/// model ([`Engine::for_run`]).
+pub const ENGINE: &str = "hand-written hybrid system";
+
+/// The engine [`crate::simulate_graph`] runs: the disk's mode graph said in the DSL (module
+/// `switching`), its decisions the hand-written maps'.
+pub const GRAPH_ENGINE: &str = "dsl mode graph";
+
 impl Engine {
     /// Its name in a run's provenance (`summary.json`'s `produced_by.engine`).
     pub fn name(self) -> &'static str {
         match self {
-            Engine::ModeGraph => super::run::GRAPH_ENGINE,
-            Engine::HandWritten => super::run::ENGINE,
+            Engine::ModeGraph => GRAPH_ENGINE,
+            Engine::HandWritten => ENGINE,
         }
     }
 

@@ -70,13 +70,13 @@ pub mod trailing;
 
 pub use embedded::{EmbedError, Embedded, Embedding, Variant};
 pub use extrema::{Extremum, ExtremumKind, Watched};
-pub use graph::Engine;
+pub use graph::{Engine, ENGINE, GRAPH_ENGINE};
 pub use models::{
     DiskModels, GeneratedModels, PruneError, Pruned, PrunedModels, ReferenceModels, SlidingModel,
     PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
-pub use run::{simulate, simulate_graph, ENGINE, GRAPH_ENGINE};
+pub use run::{simulate, simulate_graph};
 pub use switching_run::{simulate_switched, SwitchedDiskRun, SwitchedEvent};
 pub use system::DiskGuard;
 pub use trailing::Trailing;

@@ -31,17 +31,6 @@ use model_runtime::{
 };
 use model_runtime::{WorkExceeded, WorkMeter};
 
-/// The engine [`simulate`] runs, named for a run's provenance (`summary.json`'s
-/// `produced_by.engine`): the paper's mode rules written by hand (module `system`) over the
-/// models the DSL compiles. It is the reference the DSL's mode graph ([`simulate_graph`],
-/// [`GRAPH_ENGINE`]) is held to, transition for transition, and it runs what the graph cannot
-/// model ([`Engine::for_run`]).
-pub const ENGINE: &str = "hand-written hybrid system";
-
-/// The engine [`simulate_graph`] runs: the disk's mode graph said in the DSL (module
-/// `switching`), its decisions the hand-written maps'.
-pub const GRAPH_ENGINE: &str = "dsl mode graph";
-
 /// Runs the hybrid disk from `initial` until `config.t_end` or a stop, streaming samples and
 /// mode decisions to `observer`.
 ///
