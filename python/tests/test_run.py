@@ -87,7 +87,7 @@ def test_overrides_are_the_command_lines_sets():
         ("tangent-toy", {"friction.mu_st": "high"}, "friction.mu_st", "friction.mu_st"),
         ("no-such-scene", {}, None, "neither a file nor a built-in scene"),
         # The package installs no Parquet writer (its tables are arrays).
-        ("tangent-toy", {"output.format": "parquet"}, "output.format", "installs no Parquet writer"),
+        ("tangent-toy", {"output.format": "parquet"}, "output.format", "no Parquet writer"),
     ],
 )
 def test_scene_errors_carry_the_key_and_the_command_lines_message(scene, sets, key, said):
