@@ -59,11 +59,6 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
         Begun::Running(entry) => entry,
         Begun::Stopped(outcome) => return Ok(*outcome),
     };
-    let start = Start {
-        t: initial.t,
-        mode: entry.phase,
-        y: entry.y,
-    };
     let run = Run {
         models,
         config,
@@ -72,8 +67,8 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     run_on(
         &mut system,
         &PHASES,
-        start,
-        entry.bridge,
+        entry.phase,
+        entry,
         run,
         gate,
         observer,
@@ -122,11 +117,6 @@ pub fn simulate_graph<O: DiskObserver>(
         error: e.into(),
     })?;
     let modes = system.modes();
-    let start = Start {
-        t: initial.t,
-        mode: modes[first],
-        y: entry.y,
-    };
     let run = Run {
         models,
         config,
@@ -135,8 +125,8 @@ pub fn simulate_graph<O: DiskObserver>(
     run_on(
         &mut system,
         &modes,
-        start,
-        entry.bridge,
+        modes[first],
+        entry,
         run,
         gate,
         observer,
@@ -173,14 +163,14 @@ struct Run<'a, R, S> {
     initial: &'a InitialState,
 }
 
-/// The stages after the start, for either engine: `system` driven from `start` (through
-/// `modes`; `bridge` is the slip a starting bridge starts from), its output turned into the
-/// disk's for `observer` by the [`Adaptor`], and the outcome concluded.
+/// The stages after the start, for either engine: `system` driven from `entry` in its mode
+/// `first` (through `modes`; the entry's bridge is the slip a starting bridge starts from), its
+/// output turned into the disk's for `observer` by the [`Adaptor`], and the outcome concluded.
 fn run_on<H, R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     system: &mut H,
     modes: &[ModeOf<H>],
-    start: Start<ModeOf<H>>,
-    bridge: Option<Slip>,
+    first: ModeOf<H>,
+    entry: Entry,
     Run {
         models,
         config,
@@ -194,6 +184,12 @@ where
     H: HybridSystem<Const<DIM>, Stop = Halted, Note = DiskNote>,
     ModeOf<H>: DiskPhase,
 {
+    let start = Start {
+        t: initial.t,
+        mode: first,
+        y: entry.y,
+    };
+    let bridge = entry.bridge;
     let tolerance = config
         .tolerance(models.chart)
         .map_err(|e| SimError::Solve {
