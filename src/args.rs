@@ -124,6 +124,25 @@ impl From<FormatArg> for TableFormat {
     }
 }
 
+/// The engine, as `--engine` takes it (the library's [`EngineChoice`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EngineArg {
+    /// The DSL's mode graph, where it models the scene (still air, `slip_sign = "physical"`,
+    /// dop853 or dopri5, the full models); the hand-written system elsewhere.
+    Graph,
+    /// The hand-written hybrid system, the graph's reference.
+    HandWritten,
+}
+
+impl From<EngineArg> for EngineChoice {
+    fn from(engine: EngineArg) -> EngineChoice {
+        match engine {
+            EngineArg::Graph => EngineChoice::ModeGraph,
+            EngineArg::HandWritten => EngineChoice::HandWritten,
+        }
+    }
+}
+
 /// `eulerdisk run`.
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {
@@ -159,11 +178,11 @@ pub struct RunArgs {
     /// Run the hand-written reference models instead of the generated ones.
     #[arg(long)]
     pub reference: bool,
-    /// Run on the DSL's mode graph where it models the scene (still air, `slip_sign =
-    /// "physical"`, dop853 or dopri5, the full models); the hand-written hybrid system
-    /// elsewhere. `summary.json` names the engine that ran.
-    #[arg(long)]
-    pub mode_graph: bool,
+    /// The engine that runs the disk: the DSL's mode graph (the default, where it models the
+    /// scene) or the hand-written hybrid system it is held to. `summary.json` names the
+    /// engine that ran.
+    #[arg(long, value_enum)]
+    pub engine: Option<EngineArg>,
     /// Skip the figures.
     #[arg(long)]
     pub no_figures: bool,
@@ -244,13 +263,9 @@ pub fn backend(reference: bool) -> Backend {
     }
 }
 
-/// The engine a `--mode-graph` flag selects.
-pub fn engine(mode_graph: bool) -> EngineChoice {
-    if mode_graph {
-        EngineChoice::ModeGraph
-    } else {
-        DEFAULT_ENGINE
-    }
+/// The engine an `--engine` flag selects (the library's default without one).
+pub fn engine(asked: Option<EngineArg>) -> EngineChoice {
+    asked.map_or(DEFAULT_ENGINE, EngineChoice::from)
 }
 
 #[cfg(test)]

@@ -98,7 +98,7 @@ fn run(args: RunArgs) -> ExitCode {
         out_dir: out.clone(),
         progress,
         backend: backend(args.reference),
-        engine: engine(args.mode_graph),
+        engine: engine(args.engine),
         figures: !args.no_figures,
         trajectory: true,
         provenance: Provenance::new(&scene, &args.scene, &overrides),

@@ -2,13 +2,17 @@
 //!
 //! ```text
 //! cargo run --release -p equations --features measure --example paper_scene -- [t_end] [dopri5|dop853]
-//! [cartesian|polar] [physical|paper] [rtol] [atol] [generated|reference] [none|exact:N|screened:N]
+//! [cartesian|polar] [physical|paper] [rtol] [atol] [generated|graph|reference] [none|exact:N|screened:N]
 //! [components|vectors] [pi-gustafsson|pi-hairer|integral] [physical|regularised]
 //! ```
+//!
+//! `generated` runs the hand-written hybrid system over the generated models (`simulate`),
+//! `graph` the DSL's mode graph (`simulate_graph`, the main job's default engine), `reference`
+//! the hand-written system over the hand-written models.
 
 use equations::DiskParams;
 use equations::{
-    simulate, DiskModels, DiskObserver, GeneratedModels, ReferenceModels, RunOutcome,
+    simulate, simulate_graph, DiskModels, DiskObserver, GeneratedModels, ReferenceModels, RunOutcome,
     TransitionRecord,
 };
 use equations::{DiskConfig, InitialState, Integrator, SlipSign};
@@ -111,6 +115,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out: RunOutcome = if which == "reference" {
         let models = ReferenceModels::reference(params, chart)?;
         simulate(&models, &config, &initial, &mut counter)?
+    } else if which == "graph" {
+        let models: GeneratedModels = DiskModels::generated(params, chart)?;
+        simulate_graph(&models, &config, &initial, &mut counter)?
     } else {
         let models: GeneratedModels = DiskModels::generated(params, chart)?;
         simulate(&models, &config, &initial, &mut counter)?

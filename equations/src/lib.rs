@@ -58,7 +58,7 @@ mod work;
 pub use config::{AllowedModes, DiskConfig, ATOL_MAX, MAX_DELIVERED_SAMPLES, RTOL_MAX, RTOL_MIN};
 pub use hybrid::{
     consistent_slip_direction, disk, simulate, simulate_graph, simulate_switched, DiskGuard,
-    DiskModels, DiskObserver, DiskRecorder, DiskSample, EmbedError, Embedded, Embedding, Engine,
+    AirModel, DiskModels, DiskObserver, DiskRecorder, DiskSample, EmbedError, Embedded, Embedding, Engine,
     Extremum, ExtremumKind, GeneratedModels, OnsetError, PruneError, Pruned, PrunedModels,
     ReferenceModels, RunOutcome, SimError, SimFailure, SlidingModel, SlipAcceleration, SlipOnset,
     StopReason, SwitchedDiskRun, SwitchedEvent, Trailing, TransitionRecord, Trigger, Variant,

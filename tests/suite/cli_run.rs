@@ -283,23 +283,25 @@ fn the_summary_records_how_it_was_produced_and_a_rerun_leaves_no_stale_files() {
     );
     assert!(!by["git_revision"].as_str().unwrap().is_empty(), "{by}");
     // The engine that ran, named by the crate that holds it: the main job's run of the paper's
-    // scene goes through `equations::simulate` unless asked for the mode graph.
-    assert_eq!(by["engine"], equations::ENGINE);
-    assert_eq!(by["engine"], "hand-written hybrid system");
-    let graph = dir.path().join("graph");
-    let g = run(&[
+    // scene goes through the DSL's mode graph (`equations::simulate_graph`) unless asked for
+    // the hand-written system.
+    assert_eq!(by["engine"], equations::GRAPH_ENGINE);
+    assert_eq!(by["engine"], "dsl mode graph");
+    let hand = dir.path().join("hand-written");
+    let h = run(&[
         "--t-end",
         "0.1",
-        "--mode-graph",
+        "--engine",
+        "hand-written",
         "--no-figures",
         "--quiet",
         "--out",
-        graph.to_str().unwrap(),
+        hand.to_str().unwrap(),
     ]);
-    assert!(g.status.success(), "{}", String::from_utf8_lossy(&g.stderr));
-    let produced_by = &read_summary(&graph)["produced_by"];
-    assert_eq!(produced_by["engine"], equations::GRAPH_ENGINE);
-    assert_eq!(produced_by["engine"], "dsl mode graph");
+    assert!(h.status.success(), "{}", String::from_utf8_lossy(&h.stderr));
+    let produced_by = &read_summary(&hand)["produced_by"];
+    assert_eq!(produced_by["engine"], equations::ENGINE);
+    assert_eq!(produced_by["engine"], "hand-written hybrid system");
     assert_eq!(by["scene"], "tangent-toy");
     assert_eq!(by["scene_file"], "built-in scenes/tangent-toy.toml");
     let overrides: Vec<&str> = by["overrides"]

@@ -70,6 +70,51 @@ impl<C: Model<DIM>, P: Model<DIM>> Model<DIM> for SlidingModel<C, P> {
     }
 }
 
+/// A generated model for a disk in moving air, or its variant with still air compiled in
+/// (`still`: every state kept, `mu_a = 0` and `w_z = 0` fixed), chosen at run time by the
+/// parameters.
+///
+/// A disk in still air integrates the variant, whose air terms vanished at compile time, so it
+/// pays nothing for air it does not have ("model only what the scene requires"); it is also
+/// what the mode graph integrates (`crate::hybrid::switching`, whose air is still), to the bit.
+/// Dispatch is one `match` per evaluation, as for [`SlidingModel`].
+#[derive(Clone, Copy, Debug)]
+pub enum AirModel<M, S> {
+    /// Any air: `mu_a` and `w_z` are parameters.
+    Moving(M),
+    /// Still air, compiled in.
+    Still(S),
+}
+
+impl<M: Model<DIM>, S: Model<DIM>> Model<DIM> for AirModel<M, S> {
+    fn info(&self) -> &'static ModelInfo {
+        match self {
+            AirModel::Moving(m) => m.info(),
+            AirModel::Still(m) => m.info(),
+        }
+    }
+
+    #[inline]
+    fn rhs(&self, t: f64, y: &[f64; DIM], dy: &mut [f64; DIM]) -> Result<(), EvalError> {
+        match self {
+            AirModel::Moving(m) => m.rhs(t, y, dy),
+            AirModel::Still(m) => m.rhs(t, y, dy),
+        }
+    }
+
+    fn jacobian(
+        &self,
+        t: f64,
+        y: &[f64; DIM],
+        jac: &mut [[f64; DIM]; DIM],
+    ) -> Result<(), EvalError> {
+        match self {
+            AirModel::Moving(m) => m.jacobian(t, y, jac),
+            AirModel::Still(m) => m.jacobian(t, y, jac),
+        }
+    }
+}
+
 /// The disk's parameters, its rolling model and its sliding model.
 #[derive(Clone, Copy, Debug)]
 pub struct DiskModels<R, S> {
@@ -105,26 +150,59 @@ impl ReferenceModels {
     }
 }
 
-/// The models the equation compiler generated from the paper's boxes (the default for runs).
-pub type GeneratedModels =
-    DiskModels<rolling::Model, SlidingModel<sliding_cartesian::Model, sliding::Model>>;
+/// The models the equation compiler generated from the paper's boxes (the default for runs):
+/// in still air their `still` variants, else the models with the air as parameters
+/// ([`AirModel`]).
+pub type GeneratedModels = DiskModels<
+    AirModel<rolling::Model, rolling::still::Model>,
+    SlidingModel<
+        AirModel<sliding_cartesian::Model, sliding_cartesian::still::Model>,
+        AirModel<sliding::Model, sliding::still::Model>,
+    >,
+>;
 
 impl GeneratedModels {
-    /// The generated models for `params`, sliding in `chart`.
+    /// The generated models for `params`, sliding in `chart`: the still-air variants when
+    /// `mu_a` and `w_z` are zero.
     pub fn generated(params: DiskParams, chart: SlipChart) -> Result<Self, ParamError> {
         let params = params.validated()?;
         let values = params.to_array();
-        let sliding = match chart {
-            SlipChart::Cartesian => SlidingModel::Cartesian(sliding_cartesian::Model::new(values)),
-            SlipChart::Polar => SlidingModel::Polar(sliding::Model::new(values)),
+        let still = params.mu_a == 0.0 && params.w_z == 0.0;
+        let (rolling, sliding) = if still {
+            let p = still_params(&params);
+            let sliding = match chart {
+                SlipChart::Cartesian => SlidingModel::Cartesian(AirModel::Still(
+                    sliding_cartesian::still::Model::new(p),
+                )),
+                SlipChart::Polar => SlidingModel::Polar(AirModel::Still(sliding::still::Model::new(p))),
+            };
+            (AirModel::Still(rolling::still::Model::new(p)), sliding)
+        } else {
+            let sliding = match chart {
+                SlipChart::Cartesian => SlidingModel::Cartesian(AirModel::Moving(
+                    sliding_cartesian::Model::new(values),
+                )),
+                SlipChart::Polar => SlidingModel::Polar(AirModel::Moving(sliding::Model::new(values))),
+            };
+            (AirModel::Moving(rolling::Model::new(values)), sliding)
         };
         Ok(DiskModels {
             params,
-            rolling: rolling::Model::new(values),
+            rolling,
             sliding,
             chart,
         })
     }
+}
+
+/// Number of parameters of the still-air variants: the disk's less the air's two.
+const STILL_PARAMS: usize = rolling::still::N_PARAMS;
+
+/// A still-air variant's parameters: the disk's without `mu_a` and `w_z`, which come last
+/// (test `still_variants_take_the_disks_parameters_without_the_air`).
+fn still_params(params: &DiskParams) -> [f64; STILL_PARAMS] {
+    let values = params.to_array();
+    std::array::from_fn(|i| values[i])
 }
 
 /// A pruned variant of a generated model, run in the 12-state layout.
@@ -284,5 +362,89 @@ impl<R: Model<DIM>, S: Model<DIM>> DiskModels<R, S> {
         let mut dy = [0.0; DIM];
         self.sliding.rhs(t, &y, &mut dy)?;
         Ok((self.slip_acceleration_of(slip, &dy), dy))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modes::layout::{OMEGA_X, OMEGA_Y, OMEGA_Z, PSI, THETA, V_X, V_Y, V_Z, Z};
+
+    #[test]
+    fn still_variants_take_the_disks_parameters_without_the_air() {
+        for info in [
+            &rolling::still::INFO,
+            &sliding::still::INFO,
+            &sliding_cartesian::still::INFO,
+        ] {
+            let names: [&str; STILL_PARAMS] = std::array::from_fn(|i| DiskParams::NAMES[i]);
+            assert_eq!(info.param_names, names, "{}", info.name);
+        }
+    }
+
+    /// A state with every term of the boxes alive: `V_X, V_Y` rolling, the slip in those slots
+    /// sliding (`(u_X, u_Y)`, or `(v_C, alpha)` in the polar chart).
+    fn state(k: usize) -> [f64; DIM] {
+        let mut y = [0.0; DIM];
+        let theta = 0.2 + 0.13 * k as f64;
+        y[THETA] = theta;
+        y[Z] = 0.03755 * theta.sin();
+        y[PSI] = 0.7 * k as f64;
+        y[V_X] = 0.01 * (k as f64 - 2.0) + 0.005;
+        y[V_Y] = -0.02 + 0.005 * k as f64;
+        y[V_Z] = 0.001 * k as f64;
+        y[OMEGA_X] = 0.3;
+        y[OMEGA_Y] = -0.2 * k as f64;
+        y[OMEGA_Z] = 5.0 + 11.0 * k as f64;
+        y
+    }
+
+    /// `a` and `b` agree to round-off, row by row.
+    fn agree(what: &str, a: &dyn Model<DIM>, b: &dyn Model<DIM>, y: &[f64; DIM]) {
+        let (mut da, mut db) = ([0.0; DIM], [0.0; DIM]);
+        a.rhs(0.0, y, &mut da).unwrap();
+        b.rhs(0.0, y, &mut db).unwrap();
+        for i in 0..DIM {
+            let scale = da[i].abs().max(db[i].abs()).max(1e-300);
+            assert!(
+                (da[i] - db[i]).abs() <= 1e-13 * scale,
+                "{what} row {i}: {} vs {}",
+                da[i],
+                db[i]
+            );
+        }
+    }
+
+    /// In still air the generated models are the `still` variants, which give the full models'
+    /// derivatives at `mu_a = w_z = 0` (to round-off: the simplifier may order the sums
+    /// differently once the air's terms are gone); with air, the full models.
+    #[test]
+    fn still_air_runs_the_still_variants_and_they_agree_with_the_full_models() {
+        let params = DiskParams::paper();
+        let values = params.to_array();
+        for chart in [SlipChart::Cartesian, SlipChart::Polar] {
+            let models = GeneratedModels::generated(params, chart).unwrap();
+            assert!(models.rolling.info().name.ends_with("::still"));
+            assert!(models.sliding.info().name.ends_with("::still"));
+            let full_sliding: SlidingModel<sliding_cartesian::Model, sliding::Model> = match chart
+            {
+                SlipChart::Cartesian => {
+                    SlidingModel::Cartesian(sliding_cartesian::Model::new(values))
+                }
+                SlipChart::Polar => SlidingModel::Polar(sliding::Model::new(values)),
+            };
+            for k in 0..8 {
+                let y = state(k);
+                agree("rolling", &models.rolling, &rolling::Model::new(values), &y);
+                agree("sliding", &models.sliding, &full_sliding, &y);
+            }
+        }
+        let air = DiskParams {
+            mu_a: 1e-3,
+            ..params
+        };
+        let models = GeneratedModels::generated(air, SlipChart::Cartesian).unwrap();
+        assert!(!models.rolling.info().name.ends_with("::still"));
+        assert!(!models.sliding.info().name.ends_with("::still"));
     }
 }

@@ -4,9 +4,9 @@
 //!
 //! Rolling is Box 1 and sliding Box 3 in the Cartesian slip chart: the modes include the rows
 //! the smooth models of `crate::models` include (`models/box1_rolling.dsl`,
-//! `models/box3_sliding.dsl`), with the air's terms made of the parameters `mu_a`, `w_z` as
-//! there (a run holds them at zero: the graph models the disk in still air), so that the
-//! right-hand sides are the smooth models' to the bit. The guards, clocks and first steps are
+//! `models/box3_sliding.dsl`), with the air's terms zero at compile time (the graph models the
+//! disk in still air), as in the smooth models' `still` variants, which a hand-written run in
+//! still air integrates: the right-hand sides are theirs to the bit. The guards, clocks and first steps are
 //! those of the hand-written system (module `system`), written as expressions. Sliding carries
 //! the slip `(u_X, u_Y)` in the slots where rolling carries the centre's velocity
 //! `(V_X, V_Y)` (`states { u_X, u_Y } replace { V_X, V_Y }`), so the error norm sees what it
@@ -36,7 +36,7 @@ model_macros::model! {
     /// Euler's disk rolling and sliding on a rough plane, with the paper's transition rules.
     pub mod disk {
         params {
-            m = 0.4387, a = 0.03755, g = 9.81, mu_d = 0.115, mu_st = 0.2, mu_a = 0.0, w_z = 0.0,
+            m = 0.4387, a = 0.03755, g = 9.81, mu_d = 0.115, mu_st = 0.2,
             /// The stick threshold δ (m/s): sliding ends when the slip speed falls below it.
             delta = 1e-9,
             /// The lowest inclination (rad) from either face before the run stops.
@@ -69,10 +69,13 @@ model_macros::model! {
 
         let A = m*a^2/4;
         let C = m*a^2/2;
-        // Still air: the boxes' air terms vanish at compile time (`k_F`, `k_M` and the air's
-        // velocity `w_z` are zero), as in the pruned variants of the smooth models.
-        let k_F = mu_a*pi*a^2;
-        let k_M = mu_a*pi*a^4/4;
+        // Still air: the boxes' air terms vanish at compile time (the drag coefficients `k_F`,
+        // `k_M` and the air's vertical speed `w_z` are zero), as in the `still` variants of the
+        // smooth models, which a hand-written run in still air integrates: the right-hand
+        // sides are theirs to the bit.
+        let k_F = 0;
+        let k_M = 0;
+        let w_z = 0;
         // The distance from lying flat on either face.
         let lying = min(theta, pi - theta);
 
@@ -151,10 +154,16 @@ const fn slot(index: usize) -> usize {
 
 impl disk::Model {
     /// The switched disk for `params` and the run settings of `config` (the stick threshold
-    /// and the inclination floor; the clock's scales are the hand-written run's).
+    /// and the inclination floor; the clock's scales are the hand-written run's). The graph's
+    /// air is still whatever `params` say: a run with air is the hand-written system's
+    /// (`Engine::graph_refusals` names `air.mu_a`, `air.w_z`).
     pub fn for_run(params: &DiskParams, config: &DiskConfig) -> Self {
         let mut values = disk::Params::default().to_array();
-        values[..7].copy_from_slice(&params.to_array()[..7]);
+        values[disk::param::m] = params.m;
+        values[disk::param::a] = params.a;
+        values[disk::param::g] = params.g;
+        values[disk::param::mu_d] = params.mu_d;
+        values[disk::param::mu_st] = params.mu_st;
         values[disk::param::delta] = config.stick_threshold;
         values[disk::param::theta_min] = config.min_inclination;
         values[disk::param::theta_s] = crate::settings::TimeVariable::THETA_SCALE;
@@ -162,7 +171,7 @@ impl disk::Model {
         disk::Model::new(values)
     }
 
-    /// The disk's parameters (the first seven of the model's).
+    /// The disk's parameters, in still air.
     pub fn disk_params(&self) -> DiskParams {
         let p = &self.params;
         DiskParams {
@@ -516,5 +525,49 @@ pub(crate) fn start_sliding(
             event: "starting.slides".to_string(),
             mode: other,
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modes::layout::{OMEGA_X, OMEGA_Y, OMEGA_Z, PSI, THETA, U_X, U_Y, V_Z, Z};
+    use model_runtime::{Model, SwitchedModel};
+
+    /// The graph's rolling and sliding integrate what a hand-written run in still air
+    /// integrates (the generated models' `still` variants), to the bit, over states spread
+    /// through both modes' terms: the one source of the rows, and the air compiled out the same
+    /// way on both sides.
+    #[test]
+    fn the_modes_right_hand_sides_are_the_still_variants_to_the_bit() {
+        let params = DiskParams::paper();
+        let graph = disk::Model::for_run(&params, &DiskConfig::default());
+        let models = GeneratedModels::generated(params, SlipChart::Cartesian).unwrap();
+        let mut compared = 0;
+        for k in 0..64 {
+            let x = k as f64;
+            let mut y = [0.0; DIM];
+            y[THETA] = 0.05 + 0.047 * x;
+            y[Z] = params.a * y[THETA].sin();
+            y[PSI] = 0.37 * x;
+            // `(V_X, V_Y)` rolling, the slip `(u_X, u_Y)` sliding.
+            y[U_X] = 0.013 * (x - 31.5);
+            y[U_Y] = -0.4 + 0.011 * x;
+            y[V_Z] = 1e-3 * (x - 20.0);
+            y[OMEGA_X] = 0.1 * (x - 7.0);
+            y[OMEGA_Y] = -0.05 * x;
+            y[OMEGA_Z] = 2.0 + 3.0 * x;
+            for (mode, hand) in [
+                (disk::mode::rolling, &models.rolling as &dyn Model<DIM>),
+                (disk::mode::sliding, &models.sliding),
+            ] {
+                let (mut a, mut b) = ([0.0; DIM], [0.0; DIM]);
+                graph.rhs(mode, 0.0, &y, &mut a).unwrap();
+                hand.rhs(0.0, &y, &mut b).unwrap();
+                assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "mode {mode}, state {k}");
+                compared += 1;
+            }
+        }
+        assert_eq!(compared, 128);
     }
 }

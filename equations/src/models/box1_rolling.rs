@@ -42,5 +42,12 @@ model_macros::model! {
             keep { theta, N, T, nu, alpha_r }
             fix { mu_a = 0.0, w_z = 0.0 }
         }
+
+        /// Every state, in still air: the air's terms vanish at compile time. Runs of a disk in
+        /// still air integrate this (`crate::hybrid::GeneratedModels`), as the mode graph does.
+        variant still {
+            keep { X, Y, Z, V_X, V_Y, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z }
+            fix { mu_a = 0.0, w_z = 0.0 }
+        }
     }
 }

@@ -37,6 +37,13 @@ model_macros::model! {
             fix { mu_a = 0.0, w_z = 0.0 }
         }
 
+        /// Every state, in still air: the air's terms vanish at compile time. Runs of a disk in
+        /// still air integrate this (`crate::hybrid::GeneratedModels`), as the mode graph does.
+        variant still {
+            keep { X, Y, Z, v_C, alpha, V_Z, psi, theta, phi, Omega_x, Omega_y, Omega_z }
+            fix { mu_a = 0.0, w_z = 0.0 }
+        }
+
         /// Euler's disk sliding on a rough plane, Cartesian slip chart (paper's Box 3).
         chart sliding_cartesian {
             states { u_X, u_Y } replace { v_C, alpha }

@@ -73,19 +73,19 @@ pub struct ModelChoice {
 /// Which engine a front end asks for.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EngineChoice {
-    /// The hand-written hybrid system (`equations::simulate`).
-    #[default]
-    HandWritten,
     /// The DSL's mode graph (`equations::simulate_graph`) where it models the run: the full
     /// models in still air, the Cartesian slip chart, DOP853 or DP5, no projection after steps
     /// ([`Engine::for_run`]); the hand-written system elsewhere.
+    #[default]
     ModeGraph,
+    /// The hand-written hybrid system (`equations::simulate`), the graph's reference.
+    HandWritten,
 }
 
-/// The engine the front ends ask for unless told otherwise (`eulerdisk run --mode-graph`):
-/// the one line to switch. The hand-written system, until the mode graph's output is the
-/// same to the byte (ARCHITECTURE.md, "The engines").
-pub const DEFAULT_ENGINE: EngineChoice = EngineChoice::HandWritten;
+/// The engine the front ends ask for unless told otherwise (`eulerdisk run --engine`): the
+/// one line to switch. The mode graph, which runs the scenes it models as the hand-written
+/// system does, to the byte (ARCHITECTURE.md, "The engines").
+pub const DEFAULT_ENGINE: EngineChoice = EngineChoice::ModeGraph;
 
 impl ModelChoice {
     /// These models on the engine `asked` for `scene`: the mode graph only for the full
@@ -233,23 +233,26 @@ mod tests {
         scene::load(name, overrides).unwrap()
     }
 
-    /// The mode graph runs only when asked, only the full models, and only where it models
-    /// the scene; the hand-written system everywhere else.
+    /// The mode graph runs by default, only the full models, and only where it models the
+    /// scene; the hand-written system where asked and everywhere else.
     #[test]
-    fn the_mode_graph_runs_where_asked_and_where_it_models_the_scene() {
+    fn the_mode_graph_runs_by_default_where_it_models_the_scene() {
         let paper = load("tangent-toy", &[]);
         let engine = |scene: &Scene, backend, asked| {
             choose(scene, backend, false).on_engine(asked, scene).engine
         };
         let graph = EngineChoice::ModeGraph;
-        assert_eq!(DEFAULT_ENGINE, EngineChoice::HandWritten);
+        assert_eq!(DEFAULT_ENGINE, graph);
         let full = choose(&paper, Backend::Generated, false);
         assert_eq!(full.model, RunModel::Full);
         assert_eq!(
             engine(&paper, Backend::Generated, DEFAULT_ENGINE),
+            Engine::ModeGraph
+        );
+        assert_eq!(
+            engine(&paper, Backend::Generated, EngineChoice::HandWritten),
             Engine::HandWritten
         );
-        assert_eq!(engine(&paper, Backend::Generated, graph), Engine::ModeGraph);
         // The reference models and the pruned ones keep the hand-written system.
         assert_eq!(
             engine(&paper, Backend::Reference, graph),
