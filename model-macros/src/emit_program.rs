@@ -148,7 +148,7 @@ fn node(node: &Node) -> String {
                 Func::Exp => "exp",
                 Func::Ln => "ln",
                 Func::Abs => "abs",
-                Func::Atan2 | Func::Min | Func::Max | Func::Sign => {
+                Func::Atan2 | Func::Hypot | Func::Min | Func::Max | Func::Sign => {
                     return format!(
                     "::core::compile_error!(\"the equation compiler emitted a one-argument `{}`\")",
                     func.name()
@@ -157,7 +157,8 @@ fn node(node: &Node) -> String {
             };
             format!("{}.{method}()", operand(a))
         }
-        Node::Atan2(a, b) => format!("{}.atan2({})", operand(a), operand(b)),
+        // `f64::atan2`, `f64::hypot`: the method has the function's name.
+        Node::Call2(func, a, b) => format!("{}.{}({})", operand(a), func.name(), operand(b)),
         // NaN when the comparison has no answer, so a NaN input is not hidden by the branch
         // taken (`f64::max(NaN, 1.0)` would be 1.0): the finiteness checks still see it.
         Node::Select(a, b, then, otherwise) => {

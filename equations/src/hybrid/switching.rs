@@ -106,7 +106,9 @@ model_macros::model! {
             time_scale = max(lying/(lying + theta_s), 0)*v_C/(v_C + u_s);
             /// Starting near the stick threshold the slip is stiff: the first step is a fraction
             /// of its doubling time (none further away).
-            first_step = if(v_C > 4*delta, 0, 3*v_C/sqrt(der(u_X)^2 + der(u_Y)^2));
+            // `max(3*v_C, 0)` (`3*v_C`: v_C >= 0) is multiplied before the division, as the
+            // hand-written `3 v_C / hypot(..)` is; a bare `3*v_C/..` would divide first.
+            first_step = if(v_C > 4*delta, 0, max(3*v_C, 0)/hypot(der(u_X), der(u_Y)));
             /// The slip falls to the stick threshold: a bridge carries it to its exact zero,
             /// where the rolling equations decide (at once when the bridge would be degenerate).
             when sticks: v_C < delta -> stopping | rolling | starting | sliding | stop by slip_stops;

@@ -164,6 +164,7 @@ pub const VOCABULARY: Vocabulary = Vocabulary {
         "ln",
         "abs",
         "atan2",
+        "hypot",
         "sign",
         "min",
         "max",

@@ -137,11 +137,22 @@ fn node_derivative(
                 // Piecewise constant: its derivative is zero wherever it exists.
                 Func::Sign => return ExprId::ZERO,
                 // Two-argument functions are never a `Call`.
-                Func::Atan2 | Func::Min | Func::Max => ExprId::ZERO,
+                Func::Atan2 | Func::Hypot | Func::Min | Func::Max => ExprId::ZERO,
             };
             pool.mul2(outer, da)
         }
-        Node::Atan2([y, x]) => {
+        Node::Call2(Func::Hypot, [x, y]) => {
+            // (x dx + y dy) / hypot(x, y), dividing by the node itself (computed anyway). At
+            // x = y = 0, where the cone has no tangent plane, it is 0/0, NaN, as `sqrt`'s
+            // derivative at a zero argument is not finite: the finiteness checks report it.
+            let (dx, dy) = (d(&x), d(&y));
+            let a = pool.mul2(x, dx);
+            let b = pool.mul2(y, dy);
+            let num = pool.add2(a, b);
+            pool.div(num, id)
+        }
+        Node::Call2(f, [y, x]) => {
+            debug_assert_eq!(f, Func::Atan2, "not a `Call2` function");
             // (x dy - y dx) / (x² + y²)
             let (dy, dx) = (d(&y), d(&x));
             let a = pool.mul2(x, dy);
@@ -213,5 +224,47 @@ mod tests {
         let dy = partial(&mut p, a, Sym::State(0));
         let v = p.eval(dy, &|s| if s == Sym::State(0) { 0.3 } else { 0.7 });
         assert!((v - 0.7 / (0.49 + 0.09)).abs() < 1e-15);
+    }
+
+    /// `∂ hypot(x, y)/∂x = x / hypot(x, y)`: against that formula, against a central finite
+    /// difference of `f64::hypot` far from the tip, and NaN at the tip `x = y = 0`, where the
+    /// cone has no derivative (as `sqrt`'s derivative at zero is not finite).
+    #[test]
+    fn hypot_derivative_matches_formula_and_finite_differences() {
+        let mut p = Pool::new();
+        let x = p.sym(Sym::State(0));
+        let y = p.sym(Sym::State(1));
+        let three = p.num(3.0);
+        let x3 = p.mul2(three, x);
+        let h = p.hypot(x3, y);
+        let dx = partial(&mut p, h, Sym::State(0));
+        let dy = partial(&mut p, h, Sym::State(1));
+        for (xv, yv) in [
+            (0.3f64, 0.7f64),
+            (-2.0, 0.5),
+            (1e-3, -4.0),
+            (5.0, 0.0),
+            (1e150, 3e150),
+        ] {
+            let at = |s: Sym| if s == Sym::State(0) { xv } else { yv };
+            let r = (3.0 * xv).hypot(yv);
+            let (gx, gy) = (p.eval(dx, &at), p.eval(dy, &at));
+            assert!(
+                (gx - 9.0 * xv / r).abs() <= 1e-15 * 3.0,
+                "{gx} at ({xv}, {yv})"
+            );
+            assert!((gy - yv / r).abs() <= 1e-15, "{gy} at ({xv}, {yv})");
+            let e = 1e-6 * xv.abs().max(yv.abs());
+            let fx = ((3.0 * (xv + e)).hypot(yv) - (3.0 * (xv - e)).hypot(yv)) / (2.0 * e);
+            let fy = ((3.0 * xv).hypot(yv + e) - (3.0 * xv).hypot(yv - e)) / (2.0 * e);
+            assert!((gx - fx).abs() < 1e-6, "{gx} vs {fx} at ({xv}, {yv})");
+            assert!((gy - fy).abs() < 1e-6, "{gy} vs {fy} at ({xv}, {yv})");
+        }
+        assert!(p.eval(dx, &|_| 0.0).is_nan());
+        assert!(p.eval(dy, &|_| 0.0).is_nan());
+        // Along one axis only: zero where the other argument does not move.
+        let t = p.sym(Sym::Time);
+        let ht = p.hypot(t, y);
+        assert_eq!(partial(&mut p, ht, Sym::State(0)), ExprId::ZERO);
     }
 }

@@ -29,7 +29,7 @@ impl fmt::Display for Node {
             Node::Powi(a, n) => write!(f, "{a}.powi({n})"),
             Node::Powf(a, b) => write!(f, "{a}.powf({b})"),
             Node::Call(func, a) => write!(f, "{a}.{}()", func.name()),
-            Node::Atan2(a, b) => write!(f, "{a}.atan2({b})"),
+            Node::Call2(func, a, b) => write!(f, "{a}.{}({b})", func.name()),
             Node::Select(a, b, c, d) => write!(f, "if {a} > {b} {{ {c} }} else {{ {d} }}"),
         }
     }

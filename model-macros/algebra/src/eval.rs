@@ -6,7 +6,7 @@
 
 use crate::hash::HashMap;
 
-use crate::expr::{call_value, pow_value, select_value};
+use crate::expr::{call2_value, call_value, pow_value, select_value};
 use crate::program::{Node, Operand, Program, Stmt, SumCheck, Target};
 
 /// The values a program reads.
@@ -112,7 +112,7 @@ impl Program {
                         Node::Powi(a, n) => r(a)?.powi(n),
                         Node::Powf(a, b) => pow_value(r(a)?, r(b)?),
                         Node::Call(f, a) => call_value(f, r(a)?),
-                        Node::Atan2(a, b) => r(a)?.atan2(r(b)?),
+                        Node::Call2(f, a, b) => call2_value(f, r(a)?, r(b)?),
                         Node::Select(a, b, c, d) => select_value(r(a)?, r(b)?, r(c)?, r(d)?),
                     };
                     tmps.insert(*tmp, v);

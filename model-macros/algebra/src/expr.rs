@@ -55,10 +55,11 @@ pub enum Node {
     Mul(Box<[ExprId]>),
     /// `[base, exponent]`.
     Pow([ExprId; 2]),
-    /// A one-argument function (never `sqrt`, which is a power, nor `atan2`).
+    /// A one-argument function (never `sqrt`, which is a power, nor a two-argument one).
     Call(Func, [ExprId; 1]),
-    /// `[y, x]` of `atan2(y, x)`.
-    Atan2([ExprId; 2]),
+    /// A two-argument function, `atan2` (`[y, x]` of `atan2(y, x)`) or `hypot` (`[x, y]`),
+    /// with its arguments in the order written (`min` and `max` are [`Node::Select`]s).
+    Call2(Func, [ExprId; 2]),
     /// `[lhs, rhs, then, otherwise]`: `then` where `lhs > rhs`, else `otherwise`; NaN when
     /// `lhs` or `rhs` is NaN (see [`select_value`]). Every condition of the DSL, and `min` and
     /// `max`, are this one comparison, with the operands or the branches swapped.
@@ -71,7 +72,7 @@ impl Node {
         match self {
             Node::Const(_) | Node::Sym(_) => &[],
             Node::Add(ts) | Node::Mul(ts) => ts,
-            Node::Pow(ab) | Node::Atan2(ab) => ab,
+            Node::Pow(ab) | Node::Call2(_, ab) => ab,
             Node::Call(_, a) => a,
             Node::Select(s) => s,
         }
@@ -91,7 +92,7 @@ impl Node {
         match self {
             Node::Const(_) | Node::Sym(_) => 0,
             Node::Add(ts) | Node::Mul(ts) => ts.len() as u32 - 1,
-            Node::Pow(_) | Node::Call(..) | Node::Atan2(_) | Node::Select(_) => 1,
+            Node::Pow(_) | Node::Call(..) | Node::Call2(..) | Node::Select(_) => 1,
         }
     }
 }
@@ -265,7 +266,7 @@ impl Pool {
                 Node::Mul(fs) => fs.iter().map(|f| memo[f]).product(),
                 Node::Pow(_) => pow_value(arg(0), arg(1)),
                 Node::Call(f, _) => call_value(*f, arg(0)),
-                Node::Atan2(_) => arg(0).atan2(arg(1)),
+                Node::Call2(f, _) => call2_value(*f, arg(0), arg(1)),
                 Node::Select(_) => select_value(arg(0), arg(1), arg(2), arg(3)),
             };
             memo.insert(id, v);
@@ -307,7 +308,27 @@ pub fn call_value(f: Func, x: f64) -> f64 {
         Func::Abs => x.abs(),
         Func::Sign => sign_value(x),
         // Not one-argument functions; never built as a `Call`.
-        Func::Atan2 | Func::Min | Func::Max => f64::NAN,
+        Func::Atan2 | Func::Hypot | Func::Min | Func::Max => f64::NAN,
+    }
+}
+
+/// The value of a two-argument function of a [`Node::Call2`], as emitted code computes it:
+/// `atan2(a, b)` is `a.atan2(b)`, `hypot(a, b)` is `a.hypot(b)`.
+pub fn call2_value(f: Func, a: f64, b: f64) -> f64 {
+    match f {
+        Func::Atan2 => a.atan2(b),
+        Func::Hypot => a.hypot(b),
+        // One-argument functions, and `min`/`max` (selects): never built as a `Call2`.
+        Func::Sin
+        | Func::Cos
+        | Func::Tan
+        | Func::Sqrt
+        | Func::Exp
+        | Func::Ln
+        | Func::Abs
+        | Func::Sign
+        | Func::Min
+        | Func::Max => f64::NAN,
     }
 }
 

@@ -18,7 +18,7 @@
 use crate::hash::HashMap;
 
 use crate::eval::{solve_dense_in, EvalFailure, Inputs};
-use crate::expr::{call_value, pow_value, select_value};
+use crate::expr::{call2_value, call_value, pow_value, select_value};
 use crate::program::{Node, Operand, Program, Stmt, SumCheck, Target};
 use crate::spec::Func;
 
@@ -135,8 +135,9 @@ pub enum Binary {
     Div,
     /// `pow(a, b)` by [`pow_value`](crate::expr::pow_value).
     Powf,
-    /// `a.atan2(b)`
-    Atan2,
+    /// A two-argument function (`atan2`, `hypot`), by
+    /// [`call2_value`](crate::expr::call2_value).
+    Call(Func),
 }
 
 /// A pivot check: its value and the sums tested for cancellation.
@@ -339,7 +340,7 @@ impl FlatProgram {
                         Node::Mul(x, y) => binary(Binary::Mul, b.read(x)?, b.read(y)?),
                         Node::Div(x, y) => binary(Binary::Div, b.read(x)?, b.read(y)?),
                         Node::Powf(x, y) => binary(Binary::Powf, b.read(x)?, b.read(y)?),
-                        Node::Atan2(x, y) => binary(Binary::Atan2, b.read(x)?, b.read(y)?),
+                        Node::Call2(f, x, y) => binary(Binary::Call(f), b.read(x)?, b.read(y)?),
                         Node::Select(w, x, y, z) => {
                             let args = [b.read(w)?, b.read(x)?, b.read(y)?, b.read(z)?];
                             Box::new(move |dst| Op::Select { dst, args })
@@ -522,7 +523,7 @@ impl Binary {
             Binary::Mul => a * b,
             Binary::Div => a / b,
             Binary::Powf => pow_value(a, b),
-            Binary::Atan2 => a.atan2(b),
+            Binary::Call(f) => call2_value(f, a, b),
         }
     }
 }

@@ -79,7 +79,7 @@ mod variant;
 pub use compile::compile;
 pub use eval::{solve_dense_in, EvalFailure, Inputs, Stores};
 pub use explain::{is_internal, latex_name};
-pub use expr::{call_value, pow_value, select_value};
+pub use expr::{call2_value, call_value, pow_value, select_value};
 pub use flat::{
     Binary, Block, Check, FlatError, FlatProgram, Layout, Op, Scratch, Shape, Sink, Slot, Unary,
 };

@@ -227,7 +227,7 @@ impl<'s> Lowerer<'s> {
                     nonlinear.push(nonlinear_at(id, &what));
                 }
                 match f {
-                    Func::Atan2 => self.pool.atan2(e[0], e[1]),
+                    Func::Atan2 | Func::Hypot => self.pool.call2(*f, e[0], e[1]),
                     Func::Min | Func::Max => self.pool.min_max(*f, e[0], e[1]),
                     _ => self.pool.call(*f, e[0]),
                 }

@@ -11,7 +11,8 @@ use crate::OpCounts;
 fn count_call(ops: &mut OpCounts, f: Func) {
     match f {
         Func::Sin | Func::Cos | Func::Tan | Func::Atan2 => ops.trig += 1,
-        Func::Sqrt => ops.sqrt += 1,
+        // `hypot` is a square root of a sum of squares, scaled against overflow.
+        Func::Sqrt | Func::Hypot => ops.sqrt += 1,
         Func::Exp | Func::Ln => ops.transcendental += 1,
         // A comparison (two for `sign`, taken as one) costs what a subtraction does.
         Func::Sign | Func::Min | Func::Max => ops.add += 1,
@@ -69,7 +70,7 @@ impl Program {
                     }
                     Node::Powf(..) => ops.transcendental += 1,
                     Node::Call(f, _) => count_call(&mut ops, *f),
-                    Node::Atan2(..) => ops.trig += 1,
+                    Node::Call2(f, ..) => count_call(&mut ops, *f),
                     Node::Select(..) => ops.add += 1,
                 },
                 Stmt::SinCos { .. } => ops.trig += 1,
@@ -137,6 +138,26 @@ mod tests {
             program.ops(),
             OpCounts {
                 add: 2,
+                ..OpCounts::default()
+            }
+        );
+    }
+
+    #[test]
+    fn two_argument_calls_count_as_their_functions() {
+        use crate::program::Operand;
+        let call2 = |tmp, f| Stmt::Let {
+            tmp,
+            node: Node::Call2(f, Operand::State(0), Operand::State(1)),
+        };
+        let program = Program {
+            stmts: vec![call2(0, Func::Hypot), call2(1, Func::Atan2)],
+        };
+        assert_eq!(
+            program.ops(),
+            OpCounts {
+                sqrt: 1,
+                trig: 1,
                 ..OpCounts::default()
             }
         );

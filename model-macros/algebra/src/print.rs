@@ -76,7 +76,7 @@ impl Notation {
                 }
                 Func::Sqrt => ("\\sqrt{".into(), "}"),
                 Func::Abs => ("\\left|".into(), "\\right|"),
-                Func::Atan2 | Func::Sign => (
+                Func::Atan2 | Func::Hypot | Func::Sign => (
                     format!("\\operatorname{{{}}}\\left(", func.name()),
                     "\\right)",
                 ),
@@ -139,7 +139,7 @@ impl<'a> Printer<'a> {
                 Some(v) if v < 0.0 => Prec::Product,
                 _ => Prec::Power,
             },
-            Node::Call(..) | Node::Atan2(_) | Node::Select(_) => Prec::Atom,
+            Node::Call(..) | Node::Call2(..) | Node::Select(_) => Prec::Atom,
         }
     }
 
@@ -221,7 +221,7 @@ impl<'a> Printer<'a> {
                 self.push(close);
             }
             Node::Call(f, [a]) => self.call(*f, &[*a]),
-            Node::Atan2([y, x]) => self.call(Func::Atan2, &[*y, *x]),
+            Node::Call2(f, [a, b]) => self.call(*f, &[*a, *b]),
             Node::Select([l, r, a, b]) => {
                 if let Some((f, x, y)) = pool.as_min_max(id) {
                     return self.call(f, &[x, y]);
@@ -442,6 +442,29 @@ mod tests {
         let prod = p.mul(&[two, a2, th]);
         let diff = p.sub(ExprId::ONE, prod);
         assert_eq!(to_latex(&p, diff, &names), "1 - 2 theta {p0}^{2}");
+    }
+
+    #[test]
+    fn prints_hypot_and_atan2() {
+        let mut p = Pool::new();
+        let th = p.sym(Sym::State(0));
+        let a = p.sym(Sym::Param(0));
+        let two = p.num(2.0);
+        let ta = p.mul2(two, a);
+        let h = p.hypot(th, ta);
+        assert_eq!(to_dsl(&p, h, &names), "hypot(theta, 2*p0)");
+        assert_eq!(
+            to_latex(&p, h, &names),
+            "\\operatorname{hypot}\\left(theta, 2 p0\\right)"
+        );
+        let q = p.div(a, h);
+        assert_eq!(to_dsl(&p, q, &names), "p0/hypot(theta, 2*p0)");
+        let at = p.atan2(a, th);
+        assert_eq!(to_dsl(&p, at, &names), "atan2(p0, theta)");
+        assert_eq!(
+            to_latex(&p, at, &names),
+            "\\operatorname{atan2}\\left(p0, theta\\right)"
+        );
     }
 
     #[test]

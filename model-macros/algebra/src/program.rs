@@ -43,10 +43,11 @@ pub enum Node {
     Powi(Operand, i32),
     /// `a.powf(b)`
     Powf(Operand, Operand),
-    /// A one-argument function (never `Atan2`, `Min` or `Max`).
+    /// A one-argument function (never `Atan2`, `Hypot`, `Min` or `Max`).
     Call(crate::spec::Func, Operand),
-    /// `a.atan2(b)` (that is, `atan2(a, b)` in the DSL)
-    Atan2(Operand, Operand),
+    /// A two-argument function, `Atan2` or `Hypot`: `a.atan2(b)`, `a.hypot(b)` (that is,
+    /// `atan2(a, b)`, `hypot(a, b)` in the DSL), by [`crate::expr::call2_value`].
+    Call2(crate::spec::Func, Operand, Operand),
     /// `if a > b { c } else if a <= b { d } else { NaN }`: a condition, `min` or `max`, NaN when
     /// `a` or `b` is NaN (`crate::expr::select_value`).
     Select(Operand, Operand, Operand, Operand),

@@ -124,7 +124,7 @@ fn node_operands(node: &Node) -> Vec<Operand> {
         | Node::Mul(a, b)
         | Node::Div(a, b)
         | Node::Powf(a, b)
-        | Node::Atan2(a, b) => vec![*a, *b],
+        | Node::Call2(_, a, b) => vec![*a, *b],
         Node::Select(a, b, c, d) => vec![*a, *b, *c, *d],
     }
 }

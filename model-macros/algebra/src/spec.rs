@@ -29,6 +29,9 @@ pub enum Func {
     Abs,
     /// `atan2(y, x)` (two arguments)
     Atan2,
+    /// `hypot(x, y)`: `sqrt(x^2 + y^2)` without overflow or underflow, as `f64::hypot` rounds
+    /// it (two arguments)
+    Hypot,
     /// `sign(x)`: `-1`, `0` or `1` (`0` at zero, NaN stays NaN)
     Sign,
     /// `min(a, b)` (two arguments; NaN if either is NaN)
@@ -49,6 +52,7 @@ impl Func {
             Func::Ln => "ln",
             Func::Abs => "abs",
             Func::Atan2 => "atan2",
+            Func::Hypot => "hypot",
             Func::Sign => "sign",
             Func::Min => "min",
             Func::Max => "max",
@@ -66,6 +70,7 @@ impl Func {
             "ln" => Func::Ln,
             "abs" => Func::Abs,
             "atan2" => Func::Atan2,
+            "hypot" => Func::Hypot,
             "sign" => Func::Sign,
             "min" => Func::Min,
             "max" => Func::Max,
@@ -76,7 +81,7 @@ impl Func {
     /// How many arguments the function takes.
     pub fn arity(self) -> usize {
         match self {
-            Func::Atan2 | Func::Min | Func::Max => 2,
+            Func::Atan2 | Func::Hypot | Func::Min | Func::Max => 2,
             _ => 1,
         }
     }

@@ -189,7 +189,7 @@ impl<'p> Identities<'p> {
                 Node::Mul(_) => self.pool.mul(&kids),
                 Node::Pow(_) => self.pool.pow(kids[0], kids[1]),
                 Node::Call(f, _) => self.pool.call(f, kids[0]),
-                Node::Atan2(_) => self.pool.atan2(kids[0], kids[1]),
+                Node::Call2(f, _) => self.pool.call2(f, kids[0], kids[1]),
                 Node::Select(_) => self.pool.select(kids[0], kids[1], kids[2], kids[3]),
             };
             self.memo.insert(n, new);
@@ -200,7 +200,7 @@ impl<'p> Identities<'p> {
     /// The sine and cosine of `angle` without a call, if an identity gives them cheaply.
     fn rotation(&mut self, angle: ExprId) -> Option<Rotation> {
         match self.pool.node(angle).clone() {
-            Node::Atan2([y, x]) => Some(self.direction(y, x)),
+            Node::Call2(Func::Atan2, [y, x]) => Some(self.direction(y, x)),
             Node::Add(terms) => self.sum_rotation(&terms),
             _ => None,
         }
@@ -229,7 +229,7 @@ impl<'p> Identities<'p> {
                 Part::Constant
             } else if c.abs() != 1.0 {
                 return None;
-            } else if matches!(self.pool.node(base), Node::Atan2(_)) {
+            } else if matches!(self.pool.node(base), Node::Call2(Func::Atan2, _)) {
                 Part::Direction
             } else if self.free.contains(&base) {
                 Part::Free
@@ -253,7 +253,7 @@ impl<'p> Identities<'p> {
                 },
                 _ => {
                     let mut r = match self.pool.node(base).clone() {
-                        Node::Atan2([y, x]) => self.direction(y, x),
+                        Node::Call2(Func::Atan2, [y, x]) => self.direction(y, x),
                         _ => Rotation {
                             scale: ExprId::ONE,
                             sin: self.pool.call(Func::Sin, base),
@@ -314,7 +314,7 @@ mod tests {
     fn calls(pool: &Pool, e: ExprId) -> usize {
         pool.reachable(&[e])
             .iter()
-            .filter(|&&n| matches!(pool.node(n), Node::Call(..) | Node::Atan2(_)))
+            .filter(|&&n| matches!(pool.node(n), Node::Call(..) | Node::Call2(..)))
             .count()
     }
 

@@ -181,7 +181,7 @@ impl Default for Names {
 }
 
 /// Every function of the DSL except `der`.
-pub const ALL_FUNCS: [Func; 11] = [
+pub const ALL_FUNCS: [Func; 12] = [
     Func::Sin,
     Func::Cos,
     Func::Tan,
@@ -190,6 +190,7 @@ pub const ALL_FUNCS: [Func; 11] = [
     Func::Ln,
     Func::Abs,
     Func::Atan2,
+    Func::Hypot,
     Func::Sign,
     Func::Min,
     Func::Max,

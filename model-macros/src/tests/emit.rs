@@ -68,7 +68,7 @@ fn compiled() -> CompiledModel {
         stmts: vec![
             Stmt::Let {
                 tmp: 0,
-                node: Node::Atan2(Operand::Der(0), Operand::State(1)),
+                node: Node::Call2(Func::Atan2, Operand::Der(0), Operand::State(1)),
             },
             Stmt::Let {
                 tmp: 1,
@@ -83,9 +83,13 @@ fn compiled() -> CompiledModel {
                     Operand::Param(0),
                 ),
             },
+            Stmt::Let {
+                tmp: 3,
+                node: Node::Call2(Func::Hypot, Operand::Tmp(2), Operand::Der(1)),
+            },
             Stmt::Store {
                 target: Target::Output(0),
-                value: Operand::Tmp(2),
+                value: Operand::Tmp(3),
             },
         ],
     };
@@ -174,6 +178,7 @@ fn each_statement_kind_is_translated() {
         "let t0 : f64 = dy [0] . atan2 (y [1]) ;",
         "let t1 : f64 = if y [0] > 0.0 { 1.0 } else if y [0] < 0.0 { - 1.0 } else { y [0] } ;",
         "let t2 : f64 = if t0 > 0.5_f64 { t1 } else if t0 <= 0.5_f64 { p [0] } else { f64 :: NAN } ;",
+        "let t3 : f64 = t2 . hypot (dy [1]) ;",
         "jac [0] [0] = 0.0 ;",
         "jac [1] [0] = 0.5_f64 ;",
         "pub const a : usize = 0usize ;",

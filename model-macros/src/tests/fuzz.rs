@@ -47,6 +47,7 @@ const ALPHABET: &[&str] = &[
     "der",
     "sin",
     "atan2",
+    "hypot",
     "sign",
     "min",
     "max",

@@ -10,7 +10,7 @@ use model_algebra::{solve_dense_in, Binary, Block, Func, Unary};
 pub(crate) enum Callee {
     /// A one-argument function (`sqrt` and `abs` are instructions instead).
     Unary(Func),
-    /// `pow` or `atan2`.
+    /// `pow`, `atan2` or `hypot`.
     Binary(Binary),
     /// `sin_cos(x)` into `work[0]`, `work[1]`.
     SinCos,
@@ -20,7 +20,7 @@ pub(crate) enum Callee {
 
 impl Callee {
     /// Every callee, for the module's symbol table.
-    pub(crate) const ALL: [Callee; 11] = [
+    pub(crate) const ALL: [Callee; 12] = [
         Callee::Unary(Func::Sin),
         Callee::Unary(Func::Cos),
         Callee::Unary(Func::Tan),
@@ -29,7 +29,8 @@ impl Callee {
         Callee::Unary(Func::Sign),
         Callee::Unary(Func::Sqrt),
         Callee::Binary(Binary::Powf),
-        Callee::Binary(Binary::Atan2),
+        Callee::Binary(Binary::Call(Func::Atan2)),
+        Callee::Binary(Binary::Call(Func::Hypot)),
         Callee::SinCos,
         Callee::Solve,
     ];
@@ -46,6 +47,8 @@ impl Callee {
             // Only `sqrt` is left: the generator calls no other one-argument function here.
             Callee::Unary(_) => "model_sqrt",
             Callee::Binary(Binary::Powf) => "model_pow",
+            Callee::Binary(Binary::Call(Func::Hypot)) => "model_hypot",
+            // Only `atan2` is left: the generator calls no other two-argument function here.
             Callee::Binary(_) => "model_atan2",
             Callee::SinCos => "model_sin_cos",
             Callee::Solve => "model_solve",
@@ -63,6 +66,7 @@ impl Callee {
             Callee::Unary(Func::Sign) => sign as *const u8,
             Callee::Unary(_) => sqrt as *const u8,
             Callee::Binary(Binary::Powf) => pow as *const u8,
+            Callee::Binary(Binary::Call(Func::Hypot)) => hypot as *const u8,
             Callee::Binary(_) => atan2 as *const u8,
             Callee::SinCos => sin_cos as *const u8,
             Callee::Solve => solve as *const u8,
@@ -120,7 +124,11 @@ extern "C" fn pow(x: f64, y: f64) -> f64 {
 }
 
 extern "C" fn atan2(x: f64, y: f64) -> f64 {
-    Binary::Atan2.apply(x, y)
+    Binary::Call(Func::Atan2).apply(x, y)
+}
+
+extern "C" fn hypot(x: f64, y: f64) -> f64 {
+    Binary::Call(Func::Hypot).apply(x, y)
 }
 
 /// # Safety

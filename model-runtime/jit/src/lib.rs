@@ -8,7 +8,7 @@
 //! square roots, absolute values and comparisons are single IEEE operations in both (Cranelift
 //! never fuses a multiplication into an addition), an integer power is the runtime's `powi`'s
 //! own multiplications, written out, and every other function (`sin`, `cos`,
-//! `tan`, `exp`, `ln`, `sign`, `pow`, `atan2`, `sin_cos`, the numeric blocks' solve) is
+//! `tan`, `exp`, `ln`, `sign`, `pow`, `atan2`, `hypot`, `sin_cos`, the numeric blocks' solve) is
 //! called in the very Rust function the flat evaluator calls ([`Unary::apply`],
 //! [`Binary::apply`], [`Block::run`]), passed to the generated code by address. The pivot checks
 //! compute `SumCheck::cancelled` and the finiteness test with the same operations.
@@ -336,9 +336,14 @@ impl Generator<'_> {
                     Binary::Sub => b.ins().fsub(x, y),
                     Binary::Mul => b.ins().fmul(x, y),
                     Binary::Div => b.ins().fdiv(x, y),
-                    Binary::Powf | Binary::Atan2 => self
+                    Binary::Powf | Binary::Call(Func::Atan2 | Func::Hypot) => self
                         .call(b, Callee::Binary(op), &[x, y])?
                         .expect("a result"),
+                    // A one-argument function as a binary operation is a compiler bug: refused
+                    // here, as above.
+                    Binary::Call(f) => {
+                        return Err(JitError::Codegen(format!("`{f:?}` as a two-argument call")))
+                    }
                 };
                 self.set(dst, v);
             }

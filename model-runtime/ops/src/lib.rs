@@ -26,7 +26,7 @@ pub struct OpCounts {
     pub mul: u32,
     /// Divisions.
     pub div: u32,
-    /// Square roots.
+    /// Square roots (`hypot`, a square root of a sum of squares, counts as one).
     pub sqrt: u32,
     /// Trigonometric calls (`sin`, `cos`, `tan`, `atan2`); a shared `sin_cos` counts once.
     pub trig: u32,

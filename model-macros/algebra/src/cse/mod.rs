@@ -188,9 +188,9 @@ impl<'a> Emitter<'a> {
                 }
                 self.let_(Op::Call(f, a_op))
             }
-            Node::Atan2([y, x]) => {
-                let (y, x) = (self.operand(y)?, self.operand(x)?);
-                self.let_(Op::Atan2(y, x))
+            Node::Call2(f, [a, b]) => {
+                let (a, b) = (self.operand(a)?, self.operand(b)?);
+                self.let_(Op::Call2(f, a, b))
             }
             Node::Select(s) => {
                 let [a, b, c, d] = s.map(|x| self.operand(x));
@@ -421,6 +421,7 @@ enum ValueKey {
     Binary(u8, OperandKey, OperandKey),
     Powi(OperandKey, i32),
     Call(Func, OperandKey),
+    Call2(Func, OperandKey, OperandKey),
     Select([OperandKey; 4]),
 }
 
@@ -462,9 +463,9 @@ impl ValueKey {
             Op::Sub(a, b) => ValueKey::Binary(4, k(a), k(b)),
             Op::Div(a, b) => ValueKey::Binary(5, k(a), k(b)),
             Op::Powf(a, b) => ValueKey::Binary(6, k(a), k(b)),
-            Op::Atan2(a, b) => ValueKey::Binary(7, k(a), k(b)),
             Op::Powi(a, n) => ValueKey::Powi(k(a), n),
             Op::Call(f, a) => ValueKey::Call(f, k(a)),
+            Op::Call2(f, a, b) => ValueKey::Call2(f, k(a), k(b)),
             Op::Select(a, b, c, d) => ValueKey::Select([a, b, c, d].map(k)),
         }
     }

@@ -72,8 +72,12 @@ pub fn ast(with_der: bool, weird: bool) -> BoxedStrategy<Ast> {
                 (inner.clone(), func())
                     .prop_map(|(a, f)| Ast::Call(NodeId(5), f, vec![a]))
                     .boxed(),
-                (inner.clone(), inner.clone())
-                    .prop_map(|(a, c)| Ast::Call(NodeId(6), Func::Atan2, vec![a, c]))
+                (
+                    inner.clone(),
+                    inner.clone(),
+                    prop::sample::select(vec![Func::Atan2, Func::Hypot]),
+                )
+                    .prop_map(|(a, c, f)| Ast::Call(NodeId(6), f, vec![a, c]))
                     .boxed(),
                 (
                     inner.clone(),
@@ -132,7 +136,7 @@ const ROUND_OFF: f64 = 1e-9;
 
 /// Whether evaluating `a` at `v` passes a point where the value is not determined to
 /// round-off by its inputs: a comparison (`sign`, `min`, `max`, `if`) of values equal to
-/// round-off, `atan2` on its branch cut (`y = 0`, `x ≤ 0`, where the sign of a
+/// round-off, `hypot` at its tip (both arguments round-off), `atan2` on its branch cut (`y = 0`, `x ≤ 0`, where the sign of a
 /// zero, which `-(a - b)` and `b - a` give differently, picks `±π`), a square root, logarithm,
 /// fractional power or division of a round-off-sized number, or `tan` next to a pole. Two
 /// correct evaluation orders may disagree there by far more than any tolerance.
@@ -161,6 +165,8 @@ pub fn ill_conditioned(a: &Ast, v: &[f64; 3]) -> bool {
                     let along = eval_ast(&args[1], v);
                     tiny(x) && along <= ROUND_OFF
                 }
+                // The cone's tip, where `hypot` has no derivative.
+                Func::Hypot => tiny(x) && tiny(eval_ast(&args[1], v)),
                 Func::Sqrt | Func::Ln | Func::Sign => tiny(x),
                 Func::Min | Func::Max => near(x, eval_ast(&args[1], v)),
                 Func::Tan => tiny(x.cos()),
@@ -187,6 +193,7 @@ fn eval_signed(a: &Ast, v: &[f64; 3]) -> f64 {
             }
         }
         Ast::Call(_, Func::Atan2, args) => eval_ast(&args[0], v).atan2(eval_ast(&args[1], v)),
+        Ast::Call(_, Func::Hypot, args) => eval_ast(&args[0], v).hypot(eval_ast(&args[1], v)),
         Ast::Call(_, f @ (Func::Min | Func::Max), args) => {
             let (x, y) = (eval_ast(&args[0], v), eval_ast(&args[1], v));
             match (x.is_nan() || y.is_nan(), f) {

@@ -100,7 +100,7 @@ rejects! {
     } => ["`sign` takes 1 argument, found 2"];
     unknown_functions_list_the_new_ones: {
         states { x } equations { der(x) = clamp(x); }
-    } => ["`atan2`, `sign`, `min`, `max`, `der` and `if(x > y, a, b)`"];
+    } => ["`atan2`, `hypot`, `sign`, `min`, `max`, `der` and `if(x > y, a, b)`"];
     names_in_conditions_are_resolved: {
         states { x } equations { der(x) = if(x > x0, 1, z); }
     } => ["unknown name `x0`", "unknown name `z`"];

@@ -68,9 +68,12 @@ rejects! {
     wrong_number_of_arguments: {
         states { x } equations { der(x) = atan2(x) + sin(x, x); }
     } => ["`atan2` takes 2 arguments, found 1", "`sin` takes 1 argument, found 2"];
+    hypot_takes_two_arguments: {
+        states { x } equations { der(x) = hypot(x) + hypot(x, x, x); }
+    } => ["`hypot` takes 2 arguments, found 1", "`hypot` takes 2 arguments, found 3"];
     unknown_function: {
         states { x } equations { der(x) = sine(x); }
-    } => ["unknown function `sine` (did you mean `sin`?); the functions are `sin`, `cos`, `tan`, `sqrt`, `exp`, `ln`, `abs`, `atan2`, `sign`, `min`, `max`, `der` and `if(x > y, a, b)`"];
+    } => ["unknown function `sine` (did you mean `sin`?); the functions are `sin`, `cos`, `tan`, `sqrt`, `exp`, `ln`, `abs`, `atan2`, `hypot`, `sign`, `min`, `max`, `der` and `if(x > y, a, b)`"];
     a_misspelt_name_gets_a_suggestion: {
         states { theta, omega } equations { der(theta) = omgea; der(omega) = -sin(theta); }
     } => ["unknown name `omgea` (did you mean `omega`?); usable here: states `theta`, `omega`"];

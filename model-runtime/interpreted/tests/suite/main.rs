@@ -5,6 +5,7 @@ mod as_written;
 mod backward;
 mod engine;
 mod guards;
+mod hypot;
 mod oracle;
 mod requests;
 mod sizes;
