@@ -12,8 +12,8 @@
 
 use equations::DiskParams;
 use equations::{
-    simulate, simulate_graph, DiskModels, DiskObserver, GeneratedModels, ReferenceModels, RunOutcome,
-    TransitionRecord,
+    simulate, simulate_graph, DiskModels, DiskObserver, GeneratedModels, ReferenceModels,
+    RunOutcome, TransitionRecord,
 };
 use equations::{DiskConfig, InitialState, Integrator, SlipSign};
 use equations::{Mode, SlipChart};

@@ -282,10 +282,11 @@ impl TimeScale<DIM> for GraphSystem {
 /// The engines that run the disk.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Engine {
-    /// The DSL's mode graph ([`crate::simulate_graph`]).
+    /// The DSL's mode graph ([`crate::simulate_graph`]): the main job's engine wherever it
+    /// models the run ([`Engine::for_run`]).
     ModeGraph,
-    /// The hand-written hybrid system ([`crate::simulate`]): the reference, and what runs
-    /// where the graph cannot (the default).
+    /// The hand-written hybrid system ([`crate::simulate`]): the graph's reference, and what
+    /// runs where the graph cannot (the default here, as it runs every scene).
     #[default]
     HandWritten,
 }
@@ -293,8 +294,8 @@ pub enum Engine {
 /// The engine [`crate::simulate`] runs, named for a run's provenance (`summary.json`'s
 /// `produced_by.engine`): the paper's mode rules written by hand (module `system`) over the
 /// models the DSL compiles. It is the reference the DSL's mode graph ([`crate::simulate_graph`],
-/// [`GRAPH_ENGINE`]) is held to, transition for transition, and it runs what the graph cannot
-/// model ([`Engine::for_run`]).
+/// [`GRAPH_ENGINE`]) is held to, to the bit, and it runs what the graph cannot model
+/// ([`Engine::for_run`]).
 pub const ENGINE: &str = "hand-written hybrid system";
 
 /// The engine [`crate::simulate_graph`] runs: the disk's mode graph said in the DSL (module

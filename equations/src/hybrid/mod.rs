@@ -72,8 +72,8 @@ pub use embedded::{EmbedError, Embedded, Embedding, Variant};
 pub use extrema::{Extremum, ExtremumKind, Watched};
 pub use graph::{Engine, ENGINE, GRAPH_ENGINE};
 pub use models::{
-    AirModel, DiskModels, GeneratedModels, PruneError, Pruned, PrunedModels, ReferenceModels, SlidingModel,
-    PROBE_SLIP_SPEED, PRUNED_STATES,
+    AirModel, DiskModels, GeneratedModels, PruneError, Pruned, PrunedModels, ReferenceModels,
+    SlidingModel, PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
 pub use run::{simulate, simulate_graph};

@@ -174,15 +174,19 @@ impl GeneratedModels {
                 SlipChart::Cartesian => SlidingModel::Cartesian(AirModel::Still(
                     sliding_cartesian::still::Model::new(p),
                 )),
-                SlipChart::Polar => SlidingModel::Polar(AirModel::Still(sliding::still::Model::new(p))),
+                SlipChart::Polar => {
+                    SlidingModel::Polar(AirModel::Still(sliding::still::Model::new(p)))
+                }
             };
             (AirModel::Still(rolling::still::Model::new(p)), sliding)
         } else {
             let sliding = match chart {
-                SlipChart::Cartesian => SlidingModel::Cartesian(AirModel::Moving(
-                    sliding_cartesian::Model::new(values),
-                )),
-                SlipChart::Polar => SlidingModel::Polar(AirModel::Moving(sliding::Model::new(values))),
+                SlipChart::Cartesian => {
+                    SlidingModel::Cartesian(AirModel::Moving(sliding_cartesian::Model::new(values)))
+                }
+                SlipChart::Polar => {
+                    SlidingModel::Polar(AirModel::Moving(sliding::Model::new(values)))
+                }
             };
             (AirModel::Moving(rolling::Model::new(values)), sliding)
         };
@@ -426,8 +430,7 @@ mod tests {
             let models = GeneratedModels::generated(params, chart).unwrap();
             assert!(models.rolling.info().name.ends_with("::still"));
             assert!(models.sliding.info().name.ends_with("::still"));
-            let full_sliding: SlidingModel<sliding_cartesian::Model, sliding::Model> = match chart
-            {
+            let full_sliding: SlidingModel<sliding_cartesian::Model, sliding::Model> = match chart {
                 SlipChart::Cartesian => {
                     SlidingModel::Cartesian(sliding_cartesian::Model::new(values))
                 }

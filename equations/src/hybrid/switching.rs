@@ -83,14 +83,18 @@ model_macros::model! {
         mode rolling {
             include "../models/box1_rolling.dsl";
             time_scale = lying/(lying + theta_s);
+            // The friction rolling needs and the normal force.
+            let T = sqrt((m*der(V_X) + k_F*(v_z - w_z)*sin(theta)*cos(psi))^2
+                + (m*der(V_Y) + k_F*(v_z - w_z)*sin(theta)*sin(psi))^2);
+            let N = m*(der(V_Z) + g) + k_F*(v_z - w_z)*cos(theta);
             /// Rolling would need more friction than static friction gives: the slip starts in
-            /// the consistent direction, across a bridge (or at once), or the run stops.
-            when slips: sqrt((m*der(V_X) + k_F*(v_z - w_z)*sin(theta)*cos(psi))^2
-                    + (m*der(V_Y) + k_F*(v_z - w_z)*sin(theta)*sin(psi))^2)
-                > mu_st*(m*(der(V_Z) + g) + k_F*(v_z - w_z)*cos(theta))
+            /// the consistent direction, across a bridge (or at once), or the run stops. Above
+            /// `mu_st = 1` the margin is divided by `mu_st`, so that a grip as large as
+            /// `1.8e308` never overflows it (the same zero).
+            when slips: if(mu_st > 1, T/mu_st - N, T - mu_st*N) > 0
                 -> starting | sliding | stop by slip_onset;
             /// The floor would have to pull.
-            when lifts_off: m*(der(V_Z) + g) + k_F*(v_z - w_z)*cos(theta) < 0 -> stop;
+            when lifts_off: N < 0 -> stop;
             /// The disk lies flat.
             when lies_flat: lying < theta_min -> stop;
         }
@@ -566,7 +570,11 @@ mod tests {
                 let (mut a, mut b) = ([0.0; DIM], [0.0; DIM]);
                 graph.rhs(mode, 0.0, &y, &mut a).unwrap();
                 hand.rhs(0.0, &y, &mut b).unwrap();
-                assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "mode {mode}, state {k}");
+                assert_eq!(
+                    a.map(f64::to_bits),
+                    b.map(f64::to_bits),
+                    "mode {mode}, state {k}"
+                );
                 compared += 1;
             }
         }

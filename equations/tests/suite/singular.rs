@@ -242,7 +242,13 @@ fn a_hybrid_run_at_the_painleve_root_reports_the_pivot_and_the_time() {
         } => (*t, source.clone()),
         other => panic!("expected the β0 pivot, got {other:?}"),
     };
-    let info = &equations::models::sliding_cartesian::INFO;
+    // In still air the run integrates the Cartesian chart's `still` variant: its pivot, by
+    // its name.
+    let info = model_runtime::Model::info(&models.sliding);
+    assert_eq!(
+        info.name,
+        equations::models::sliding_cartesian::still::INFO.name
+    );
     match source {
         EvalError::SingularPivot { pivot, model, .. } => {
             assert_eq!(pivot, beta0_pivot(info));

@@ -10,7 +10,7 @@ use super::models::DiskModels;
 use super::onset::{consistent_slip_direction, OnsetError};
 use super::{StopReason, TransitionRecord, Trigger};
 use crate::config::DiskConfig;
-use crate::modes::layout::{THETA, U_X, U_Y, V_C};
+use crate::modes::layout::{THETA, U_X, U_Y, V_C, V_X, V_Y, V_Z};
 use crate::modes::{ConstraintResiduals, ContactForce, Mode, PhysicalState, Slip, SlipChart, DIM};
 use crate::settings::{SlipSign, TimeVariable};
 use model_runtime::Const;
@@ -424,7 +424,11 @@ impl<R: Model<DIM>, S: Model<DIM>> HybridSystem<Const<DIM>> for DiskSystem<'_, R
         match phase {
             Phase::Rolling => {
                 let f = ContactForce::rolling(p, &PhysicalState::from_rolling(y, 0.0), dy);
-                values[0] = f.friction_margin(p.mu_st);
+                values[0] = if p.k_F() == 0.0 {
+                    still_friction_margin(p, dy)
+                } else {
+                    f.friction_margin(p.mu_st)
+                };
                 values[1] = f.normal;
                 values[2] = floor;
             }
@@ -546,5 +550,20 @@ impl<R: Model<DIM>, S: Model<DIM>> TimeScale<DIM> for DiskSystem<'_, R, S> {
             }
             Phase::Bridge => 1.0,
         }
+    }
+}
+
+/// [`ContactForce::friction_margin`] of rolling in still air (`T - mu_st N`, or `T/mu_st - N`
+/// above `mu_st = 1`), rounded as the mode graph's compiled guard `slips` is, whose friction
+/// is `sqrt(der(V_X)^2*m^2 + m^2*der(V_Y)^2)` and whose second term is `m*mu_st*(der(V_Z) + g)`
+/// (`m*(der(V_Z) + g)` above 1): the same zero, and the same bits as the graph's, so that either
+/// engine locates a crossing at the same instant (`equations/tests/suite/graph_engine.rs`).
+fn still_friction_margin(p: &crate::params::DiskParams, dy: &[f64; DIM]) -> f64 {
+    let m2 = p.m * p.m;
+    let friction = (dy[V_X] * dy[V_X] * m2 + m2 * (dy[V_Y] * dy[V_Y])).sqrt();
+    if p.mu_st > 1.0 {
+        friction / p.mu_st - p.m * (dy[V_Z] + p.g)
+    } else {
+        friction - p.m * p.mu_st * (dy[V_Z] + p.g)
     }
 }
