@@ -41,35 +41,6 @@ impl<C, P> SlidingModel<C, P> {
     }
 }
 
-impl<C: Model<DIM>, P: Model<DIM>> Model<DIM> for SlidingModel<C, P> {
-    fn info(&self) -> &'static ModelInfo {
-        match self {
-            SlidingModel::Cartesian(m) => m.info(),
-            SlidingModel::Polar(m) => m.info(),
-        }
-    }
-
-    #[inline]
-    fn rhs(&self, t: f64, y: &[f64; DIM], dy: &mut [f64; DIM]) -> Result<(), EvalError> {
-        match self {
-            SlidingModel::Cartesian(m) => m.rhs(t, y, dy),
-            SlidingModel::Polar(m) => m.rhs(t, y, dy),
-        }
-    }
-
-    fn jacobian(
-        &self,
-        t: f64,
-        y: &[f64; DIM],
-        jac: &mut [[f64; DIM]; DIM],
-    ) -> Result<(), EvalError> {
-        match self {
-            SlidingModel::Cartesian(m) => m.jacobian(t, y, jac),
-            SlidingModel::Polar(m) => m.jacobian(t, y, jac),
-        }
-    }
-}
-
 /// A generated model for a disk in moving air, or its variant with still air compiled in
 /// (`still`: every state kept, `mu_a = 0` and `w_z = 0` fixed), chosen at run time by the
 /// parameters.
@@ -86,34 +57,43 @@ pub enum AirModel<M, S> {
     Still(S),
 }
 
-impl<M: Model<DIM>, S: Model<DIM>> Model<DIM> for AirModel<M, S> {
-    fn info(&self) -> &'static ModelInfo {
-        match self {
-            AirModel::Moving(m) => m.info(),
-            AirModel::Still(m) => m.info(),
-        }
-    }
+/// `Model<DIM>` for an enum holding one of two models (`$a` or `$b`), dispatched by one
+/// `match` per call: the sliding model in either chart, a model with or without air.
+macro_rules! one_of_two_models {
+    ($name:ident, $a:ident, $b:ident) => {
+        impl<A: Model<DIM>, B: Model<DIM>> Model<DIM> for $name<A, B> {
+            fn info(&self) -> &'static ModelInfo {
+                match self {
+                    $name::$a(m) => m.info(),
+                    $name::$b(m) => m.info(),
+                }
+            }
 
-    #[inline]
-    fn rhs(&self, t: f64, y: &[f64; DIM], dy: &mut [f64; DIM]) -> Result<(), EvalError> {
-        match self {
-            AirModel::Moving(m) => m.rhs(t, y, dy),
-            AirModel::Still(m) => m.rhs(t, y, dy),
-        }
-    }
+            #[inline]
+            fn rhs(&self, t: f64, y: &[f64; DIM], dy: &mut [f64; DIM]) -> Result<(), EvalError> {
+                match self {
+                    $name::$a(m) => m.rhs(t, y, dy),
+                    $name::$b(m) => m.rhs(t, y, dy),
+                }
+            }
 
-    fn jacobian(
-        &self,
-        t: f64,
-        y: &[f64; DIM],
-        jac: &mut [[f64; DIM]; DIM],
-    ) -> Result<(), EvalError> {
-        match self {
-            AirModel::Moving(m) => m.jacobian(t, y, jac),
-            AirModel::Still(m) => m.jacobian(t, y, jac),
+            fn jacobian(
+                &self,
+                t: f64,
+                y: &[f64; DIM],
+                jac: &mut [[f64; DIM]; DIM],
+            ) -> Result<(), EvalError> {
+                match self {
+                    $name::$a(m) => m.jacobian(t, y, jac),
+                    $name::$b(m) => m.jacobian(t, y, jac),
+                }
+            }
         }
-    }
+    };
 }
+
+one_of_two_models!(SlidingModel, Cartesian, Polar);
+one_of_two_models!(AirModel, Moving, Still);
 
 /// The disk's parameters, its rolling model and its sliding model.
 #[derive(Clone, Copy, Debug)]

@@ -142,6 +142,16 @@ fn the_paper_scene_from_a_bridge_runs_alike() {
     assert_same(&reference, &main);
 }
 
+/// The paper's start with a slip well above the stick threshold (0.05 m/s).
+fn sliding_start(params: &DiskParams) -> InitialState {
+    let paper = InitialState::paper(params);
+    let slip = Slip {
+        speed: 0.05,
+        direction: 1.0,
+    };
+    InitialState::sliding(params, 0.0, paper.state.y, slip)
+}
+
 /// The paper's scene with the paper's settings (DP5, physical time), from a sliding start
 /// (a slip well above the stick threshold), 10 s.
 #[test]
@@ -152,12 +162,7 @@ fn a_sliding_start_runs_alike() {
         sample_rate: Some(200.0),
         ..DiskConfig::paper()
     };
-    let paper = InitialState::paper(&params);
-    let slip = Slip {
-        speed: 0.05,
-        direction: 1.0,
-    };
-    let initial = InitialState::sliding(&params, 0.0, paper.state.y, slip);
+    let initial = sliding_start(&params);
     let (reference, main) = both(params, &config, &initial);
     assert_same(&reference, &main);
 }
@@ -197,12 +202,7 @@ fn a_high_grip_runs_alike() {
         sample_rate: Some(200.0),
         ..DiskConfig::default()
     };
-    let paper = InitialState::paper(&params);
-    let slip = Slip {
-        speed: 0.05,
-        direction: 1.0,
-    };
-    let initial = InitialState::sliding(&params, 0.0, paper.state.y, slip);
+    let initial = sliding_start(&params);
     let (reference, main) = both(params, &config, &initial);
     assert_same(&reference, &main);
 }
