@@ -57,6 +57,21 @@ pub enum AirModel<M, S> {
     Still(S),
 }
 
+impl<M, S> AirModel<M, S> {
+    /// The still variant built from `still`'s parameters (the disk's without the air's) where
+    /// there are some, else the model with air.
+    fn of(
+        still: Option<[f64; STILL_PARAMS]>,
+        moving: impl FnOnce() -> M,
+        variant: impl FnOnce([f64; STILL_PARAMS]) -> S,
+    ) -> Self {
+        match still {
+            Some(p) => AirModel::Still(variant(p)),
+            None => AirModel::Moving(moving()),
+        }
+    }
+}
+
 /// `Model<DIM>` for an enum holding one of two models (`$a` or `$b`), dispatched by one
 /// `match` per call: the sliding model in either chart, a model with or without air.
 macro_rules! one_of_two_models {
@@ -147,29 +162,24 @@ impl GeneratedModels {
     pub fn generated(params: DiskParams, chart: SlipChart) -> Result<Self, ParamError> {
         let params = params.validated()?;
         let values = params.to_array();
-        let still = params.mu_a == 0.0 && params.w_z == 0.0;
-        let (rolling, sliding) = if still {
-            let p = still_params(&params);
-            let sliding = match chart {
-                SlipChart::Cartesian => SlidingModel::Cartesian(AirModel::Still(
-                    sliding_cartesian::still::Model::new(p),
-                )),
-                SlipChart::Polar => {
-                    SlidingModel::Polar(AirModel::Still(sliding::still::Model::new(p)))
-                }
-            };
-            (AirModel::Still(rolling::still::Model::new(p)), sliding)
-        } else {
-            let sliding = match chart {
-                SlipChart::Cartesian => {
-                    SlidingModel::Cartesian(AirModel::Moving(sliding_cartesian::Model::new(values)))
-                }
-                SlipChart::Polar => {
-                    SlidingModel::Polar(AirModel::Moving(sliding::Model::new(values)))
-                }
-            };
-            (AirModel::Moving(rolling::Model::new(values)), sliding)
+        let still = (params.mu_a == 0.0 && params.w_z == 0.0).then(|| still_params(&params));
+        let sliding = match chart {
+            SlipChart::Cartesian => SlidingModel::Cartesian(AirModel::of(
+                still,
+                || sliding_cartesian::Model::new(values),
+                sliding_cartesian::still::Model::new,
+            )),
+            SlipChart::Polar => SlidingModel::Polar(AirModel::of(
+                still,
+                || sliding::Model::new(values),
+                sliding::still::Model::new,
+            )),
         };
+        let rolling = AirModel::of(
+            still,
+            || rolling::Model::new(values),
+            rolling::still::Model::new,
+        );
         Ok(DiskModels {
             params,
             rolling,

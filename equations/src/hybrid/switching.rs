@@ -6,8 +6,9 @@
 //! the smooth models of `crate::models` include (`models/box1_rolling.dsl`,
 //! `models/box3_sliding.dsl`), with the air's terms zero at compile time (the graph models the
 //! disk in still air), as in the smooth models' `still` variants, which a hand-written run in
-//! still air integrates: the right-hand sides are theirs to the bit. The guards, clocks and first steps are
-//! those of the hand-written system (module `system`), written as expressions. Sliding carries
+//! still air integrates: the right-hand sides are theirs to the bit. The guards, clocks and
+//! first steps are those of the hand-written system (module `system`), written as expressions,
+//! rounded as it rounds them. Sliding carries
 //! the slip `(u_X, u_Y)` in the slots where rolling carries the centre's velocity
 //! `(V_X, V_Y)` (`states { u_X, u_Y } replace { V_X, V_Y }`), so the error norm sees what it
 //! sees in the hand-written run. The bridges are modes whose right-hand side is a constant
