@@ -57,7 +57,7 @@ mod work;
 
 pub use config::{AllowedModes, DiskConfig, ATOL_MAX, MAX_DELIVERED_SAMPLES, RTOL_MAX, RTOL_MIN};
 pub use hybrid::{
-    consistent_slip_direction, disk, simulate, simulate_graph, simulate_switched, AirModel,
+    consistent_slip_direction, disk, simulate, simulate_graph, simulate_switched, AirModel, DiskRunner,
     DiskGuard, DiskModels, DiskObserver, DiskRecorder, DiskSample, EmbedError, Embedded, Embedding,
     Engine, Extremum, ExtremumKind, GeneratedModels, OnsetError, PruneError, Pruned, PrunedModels,
     ReferenceModels, RunOutcome, SimError, SimFailure, SlidingModel, SlipAcceleration, SlipOnset,

@@ -76,7 +76,7 @@ pub use models::{
     SlidingModel, PROBE_SLIP_SPEED, PRUNED_STATES,
 };
 pub use onset::{consistent_slip_direction, OnsetError, SlipAcceleration, SlipOnset};
-pub use run::{simulate, simulate_graph};
+pub use run::{simulate, simulate_graph, DiskRunner};
 pub use switching_run::{simulate_switched, SwitchedDiskRun, SwitchedEvent};
 pub use system::DiskGuard;
 pub use trailing::Trailing;

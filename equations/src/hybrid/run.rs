@@ -23,6 +23,7 @@ use super::{
     Trigger,
 };
 use crate::config::{AllowedModes, DiskConfig};
+use crate::params::DiskParams;
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, DIM};
 use crate::start::InitialState;
 use model_runtime::{
@@ -48,6 +49,53 @@ pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
     config: &DiskConfig,
     initial: &InitialState,
     observer: &mut O,
+) -> Result<RunOutcome, SimFailure> {
+    simulate_observed(models, config, initial, observer)
+}
+
+/// A set of the disk's models, run with an observer behind a trait object.
+///
+/// [`simulate`] is generic in the models and in the observer, so a crate that calls it with
+/// three observers compiles the engine (integrators, guards, extrema) three times for each set
+/// of models. Through `&dyn DiskRunner` the observer is a trait object: the engine is compiled
+/// once per set of models, whatever observes it, and a front end holds any of the sets as one
+/// type. The hot path, the models' evaluations, is not behind an object.
+pub trait DiskRunner {
+    /// The disk's parameters the models were built for.
+    fn params(&self) -> &DiskParams;
+
+    /// [`simulate`] with these models.
+    fn simulate(
+        &self,
+        config: &DiskConfig,
+        initial: &InitialState,
+        observer: &mut dyn DiskObserver,
+    ) -> Result<RunOutcome, SimFailure>;
+}
+
+impl<R: Model<DIM>, S: Model<DIM>> DiskRunner for DiskModels<R, S> {
+    fn params(&self) -> &DiskParams {
+        &self.params
+    }
+
+    fn simulate(
+        &self,
+        config: &DiskConfig,
+        initial: &InitialState,
+        observer: &mut dyn DiskObserver,
+    ) -> Result<RunOutcome, SimFailure> {
+        simulate_observed(self, config, initial, observer)
+    }
+}
+
+/// [`simulate`] with the observer behind a trait object: the engine is compiled once per set
+/// of models, not again for every observer (a handful of calls per step go through the
+/// object; the models' evaluations, the hot path, do not).
+fn simulate_observed<R: Model<DIM>, S: Model<DIM>>(
+    models: &DiskModels<R, S>,
+    config: &DiskConfig,
+    initial: &InitialState,
+    observer: &mut dyn DiskObserver,
 ) -> Result<RunOutcome, SimFailure> {
     validate(models, config, initial)?;
     let mut system = DiskSystem::new(models, config);
@@ -90,6 +138,16 @@ pub fn simulate_graph<O: DiskObserver>(
     config: &DiskConfig,
     initial: &InitialState,
     observer: &mut O,
+) -> Result<RunOutcome, SimFailure> {
+    simulate_graph_observed(models, config, initial, observer)
+}
+
+/// [`simulate_graph`] with the observer behind a trait object: compiled once, in this crate.
+fn simulate_graph_observed(
+    models: &GeneratedModels,
+    config: &DiskConfig,
+    initial: &InitialState,
+    observer: &mut dyn DiskObserver,
 ) -> Result<RunOutcome, SimFailure> {
     validate(models, config, initial)?;
     let refused = Engine::graph_refusals(&models.params, config, models.chart);
@@ -166,7 +224,7 @@ struct Run<'a, R, S> {
 /// The stages after the start, for either engine: `system` driven from `entry` in its mode
 /// `first` (through `modes`; the entry's bridge is the slip a starting bridge starts from), its
 /// output turned into the disk's for `observer` by the [`Adaptor`], and the outcome concluded.
-fn run_on<H, R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
+fn run_on<H, R: Model<DIM>, S: Model<DIM>>(
     system: &mut H,
     modes: &[ModeOf<H>],
     first: ModeOf<H>,
@@ -177,7 +235,7 @@ fn run_on<H, R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
         initial,
     }: Run<'_, R, S>,
     gate: Gate,
-    observer: &mut O,
+    observer: &mut dyn DiskObserver,
 ) -> Result<RunOutcome, SimFailure>
 where
     H: DiskEngine + TimeScale<DIM>,
@@ -245,13 +303,13 @@ enum Begun {
 
 /// The first stage: the initial mode decided (and told to the observer and the gate), the
 /// start sampled, and the ends before any step.
-fn begin<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
+fn begin<R: Model<DIM>, S: Model<DIM>>(
     system: &mut DiskSystem<'_, R, S>,
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
     gate: &mut Gate,
-    observer: &mut O,
+    observer: &mut dyn DiskObserver,
 ) -> Result<Begun, SimError> {
     let (entry, decision) = initial_phase(system, models, config, initial)?;
     gate.admit(initial.t, entry.phase.mode());
@@ -331,7 +389,7 @@ fn conclude<R: Model<DIM>, S: Model<DIM>, Md: DiskPhase>(
 
 /// The ring of latest steps `observer` asks for, if any, on the run's sample `grid` (origin,
 /// rate).
-fn observer_ring<O: DiskObserver>(observer: &O, grid: (f64, Option<f64>)) -> Option<StepRing> {
+fn observer_ring(observer: &dyn DiskObserver, grid: (f64, Option<f64>)) -> Option<StepRing> {
     observer
         .keeps_trailing()
         .map(|span| StepRing::new(span, grid))
@@ -427,7 +485,7 @@ impl Gate {
     }
 
     /// Forwards a mode decision to the caller's observer, noting the mode it enters.
-    fn forward<O: DiskObserver>(&mut self, record: &TransitionRecord, observer: &mut O) {
+    fn forward(&mut self, record: &TransitionRecord, observer: &mut dyn DiskObserver) {
         self.admit(record.t, record.to);
         observer.on_transition(record);
     }
@@ -478,11 +536,11 @@ pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
 }
 
 /// Turns the driver's output into disk samples and decisions for the caller.
-struct Adaptor<'a, R, S, O> {
+struct Adaptor<'a, R, S> {
     models: &'a DiskModels<R, S>,
     /// The slip the current bridge started from (from the note of the transition into it).
     bridge: Option<Slip>,
-    user: &'a mut O,
+    user: &'a mut dyn DiskObserver,
     gate: Gate,
     /// Locates extrema, when the user asks for them.
     scanner: Scanner,
@@ -526,7 +584,7 @@ impl Closing {
     }
 }
 
-impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
+impl<R: Model<DIM>, S: Model<DIM>> Adaptor<'_, R, S> {
     /// Ends the scanned segment (a transition or the end of the run).
     fn end_segment(&mut self) {
         if self.user.wants_extrema() {
@@ -589,8 +647,8 @@ impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver> Adaptor<'_, R, S, O> {
 
 /// The adaptor observes either engine: their modes are seen as phases, their guards are
 /// not read.
-impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver, Md: DiskPhase, G>
-    Observer<Const<DIM>, Md, G, DiskNote> for Adaptor<'_, R, S, O>
+impl<R: Model<DIM>, S: Model<DIM>, Md: DiskPhase, G> Observer<Const<DIM>, Md, G, DiskNote>
+    for Adaptor<'_, R, S>
 {
     fn wants_sample(&self, t: f64) -> bool {
         self.user.wants_sample(t)

@@ -13,11 +13,10 @@
 //! a [`ModelsTask`], so a caller states once what it does with models, whichever they are.
 
 use equations::{
-    DiskModels, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
+    DiskRunner, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
 };
 use equations::{DiskParams, Engine, ParamError};
 use equations::{SlipChart, DIM};
-use model_runtime::Model;
 
 use crate::eval::Backend;
 use crate::figures::FIGURE_QUANTITIES;
@@ -196,7 +195,7 @@ pub trait ModelsTask {
     /// What the work returns.
     type Output;
     /// Does the work with `models`.
-    fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output;
+    fn run(self, models: &dyn DiskRunner) -> Self::Output;
 }
 
 /// Why the chosen models could not be built.

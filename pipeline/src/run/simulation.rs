@@ -14,12 +14,10 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::Scope;
 
 use equations::record::{FrictionLaw, Sample, Stop};
-use equations::DIM;
 use equations::{
-    simulate, simulate_graph, DiskConfig, DiskModels, DiskObserver, DiskSample, Engine, Extremum,
+    simulate_graph, DiskConfig, DiskObserver, DiskRunner, DiskSample, Engine, Extremum,
     GeneratedModels, InitialState, SimFailure, Trailing, TransitionRecord,
 };
-use model_runtime::Model;
 
 use super::model::{with_models, ModelChoice, ModelsTask};
 use super::plan::{SamplePlan, WINDOW};
@@ -235,9 +233,9 @@ struct Streamed<'a, 'b, O> {
 impl<O: Outlet> ModelsTask for Streamed<'_, '_, O> {
     type Output = Result<Outcome, Failure>;
 
-    fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
-        let result = simulate(models, self.config, self.initial, self.observer);
-        self.concluded(result, FrictionLaw::of(&models.params))
+    fn run(self, models: &dyn DiskRunner) -> Self::Output {
+        let result = models.simulate(self.config, self.initial, self.observer);
+        self.concluded(result, FrictionLaw::of(models.params()))
     }
 }
 

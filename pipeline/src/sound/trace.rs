@@ -10,9 +10,8 @@
 //! a peak's height, and the minima between peaks, are then exact whatever the sampling rate.
 
 use equations::record::{Stop, StopKind};
-use equations::{simulate, DiskConfig, DiskModels, DiskObserver, DiskSample, SimError};
-use equations::{Extremum, Watched, DIM};
-use model_runtime::Model;
+use equations::{DiskConfig, DiskObserver, DiskRunner, DiskSample, SimError};
+use equations::{Extremum, Watched};
 
 use super::SoundError;
 use crate::eval::Backend;
@@ -272,12 +271,12 @@ struct Recording<'a> {
 impl ModelsTask for Recording<'_> {
     type Output = Result<(StopKind, String), SimError>;
 
-    fn run<R: Model<DIM>, S: Model<DIM>>(self, models: &DiskModels<R, S>) -> Self::Output {
+    fn run(self, models: &dyn DiskRunner) -> Self::Output {
         let config = DiskConfig {
             sample_rate: Some(self.rate),
             ..self.scene.config
         };
-        let outcome = simulate(models, &config, &self.scene.initial, self.observer)?;
+        let outcome = models.simulate(&config, &self.scene.initial, self.observer)?;
         let stop = Stop::of(&outcome, config.allowed);
         Ok((stop.kind, stop.detail))
     }
