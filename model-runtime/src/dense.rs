@@ -40,6 +40,18 @@ pub trait Interpolant<D: Dim> {
         self.at(t, out)
     }
 
+    /// The point a fraction `u ∈ [0, 1]` of the way from `t0` to `t1` (times in the step,
+    /// `t0 < t1`) measured in the variable the run integrates in (the time itself, or
+    /// regularised time's `τ`): its state in `out`, its time returned. The time rises with
+    /// `u`. Where the run's variable is not the time, this is how a scan of a step reads it
+    /// cheaply: [`Interpolant::at`] first finds where the clock reads `t`, this reads the clock
+    /// where it is (at the step's reported ends `t0` and `t1` the run's variable is known).
+    fn at_fraction(&self, (t0, t1): (f64, f64), u: f64, out: &mut Vector<D>) -> f64 {
+        let t = t0 + u * (t1 - t0);
+        self.at(t, out);
+        t
+    }
+
     /// An owned copy that outlives the step and evaluates to the same bits
     /// ([`StoredInterpolant`]): it copies the method's coefficients, so ask only for the steps
     /// kept.
@@ -61,6 +73,10 @@ impl<D: Dim, I: Interpolant<D> + ?Sized> Interpolant<D> for &I {
 
     fn sample_at(&self, t: f64, out: &mut Vector<D>) {
         (**self).sample_at(t, out)
+    }
+
+    fn at_fraction(&self, span: (f64, f64), u: f64, out: &mut Vector<D>) -> f64 {
+        (**self).at_fraction(span, u, out)
     }
 
     fn stored(&self) -> StoredInterpolant<D> {
@@ -168,6 +184,10 @@ impl<D: Dim> Interpolant<D> for StoredInterpolant<D> {
 
     fn sample_at(&self, t: f64, out: &mut Vector<D>) {
         self.0.sample_at(t, out)
+    }
+
+    fn at_fraction(&self, span: (f64, f64), u: f64, out: &mut Vector<D>) -> f64 {
+        self.0.at_fraction(span, u, out)
     }
 
     fn stored(&self) -> StoredInterpolant<D> {

@@ -9,15 +9,21 @@
 //!   step it is evaluated (interpolated state, one model evaluation) at the step's ends, at
 //!   [`INTERIOR`] interior points and a hair ([`EDGE`] of the step) inside either end; a point
 //!   of that sequence above (below) both neighbours brackets a maximum (minimum), which Brent's
-//!   method refines to [`X_TOL`] of the bracket. The two points beside each end give the slope
+//!   method refines to [`X_TOL`] of the bracket.
+//!
+//! The scan's points and Brent's iterates are fractions of the step in the variable the run
+//! integrates in ([`Interpolant::at_fraction`]): in regularised time fractions of the step in
+//! `τ`, whose physical time is read off the clock there, so no point is first placed on the
+//! clock by a root search; only the located extrema's times are read, once each. Since the
+//! time rises with `τ`, an extremum in `τ` is one in `t`, at the same instant. The two points beside each end give the slope
 //!   there, so an extremum within a hair of a step boundary is still seen (as the boundary,
 //!   the value then off by the curvature times a hair squared). At a mode switch N jumps: the
 //!   value at either side of the switch that lies above (below) its neighbour within the
 //!   segment is reported as a maximum (minimum) too;
 //! * the slip speed, while sliding, as N (only interior extrema: it is continuous).
 //!
-//! A pair of extrema of N or v_C less than two thirds of a step apart can be missed (farther
-//! apart, never): see [`bracketed`]. θ's extrema are the zeros of Ω_y found by sign changes
+//! A pair of extrema of N or v_C less than two thirds of a step apart (in the run's variable)
+//! can be missed (farther apart, never): see [`bracketed`]. θ's extrema are the zeros of Ω_y found by sign changes
 //! on the same points, so a pair of them inside one gap between scan points (a third of the
 //! step) is missed (Ω_y has the same sign at the gap's ends); a pair with a point between
 //! them is found.
@@ -164,40 +170,34 @@ impl Scanner {
             return;
         }
         let mode = phase.mode();
-        let h = t1 - t0;
-        // The scan's times: ends, hairs inside them, interior points.
-        let mut ts = [0.0; INTERIOR + 4];
-        ts[0] = t0;
-        ts[1] = t0 + EDGE * h;
-        for (k, t) in ts[2..INTERIOR + 2].iter_mut().enumerate() {
-            *t = t0 + h * (k + 1) as f64 / (INTERIOR + 1) as f64;
-        }
-        ts[INTERIOR + 2] = t1 - EDGE * h;
-        ts[INTERIOR + 3] = t1;
-        let eval = |t: f64| {
-            let mut y = [0.0; DIM];
-            dense.at(t, &mut y);
-            (watched_at(models, phase, t, &y), y[OMEGA_Y])
-        };
+        let span = (t0, t1);
+        // The scan's points, as fractions of the step in the run's variable (in regularised
+        // time `τ`, so that no point has to be placed on the clock): ends, hairs inside them,
+        // interior points.
+        let us = scan_fractions();
         let mut n = [0.0; INTERIOR + 4];
         let mut slip = [0.0; INTERIOR + 4];
         let mut w = [0.0; INTERIOR + 4];
         let continued = self.last.filter(|e| e.t == t0 && self.mode == Some(mode));
-        for (i, &t) in ts.iter().enumerate() {
+        for (i, &u) in us.iter().enumerate() {
             let ((ni, si), wi) = match (i, continued) {
                 (0, Some(e)) => ((e.n.0, e.slip.0), step.y0[OMEGA_Y]),
-                (0, None) => (watched_at(models, phase, t, step.y0), step.y0[OMEGA_Y]),
-                _ if i == INTERIOR + 3 => (watched_at(models, phase, t, step.y1), step.y1[OMEGA_Y]),
-                _ => eval(t),
+                (0, None) => (watched_at(models, phase, t0, step.y0), step.y0[OMEGA_Y]),
+                _ if i == INTERIOR + 3 => {
+                    (watched_at(models, phase, t1, step.y1), step.y1[OMEGA_Y])
+                }
+                _ => {
+                    let (t, y) = at_fraction(dense, span, u);
+                    (watched_at(models, phase, t, &y), y[OMEGA_Y])
+                }
             };
             n[i] = ni;
             slip[i] = si;
             w[i] = wi;
         }
-        self.theta(dense, &ts, &w, mode, out);
-        let value = |q: Watched, t: f64| {
-            let mut y = [0.0; DIM];
-            dense.at(t, &mut y);
+        self.theta(dense, span, &us, &w, mode, out);
+        let value = |q: Watched, u: f64| {
+            let (t, y) = at_fraction(dense, span, u);
             let (n, s) = watched_at(models, phase, t, &y);
             match q {
                 Watched::NormalForce => n,
@@ -226,11 +226,11 @@ impl Scanner {
             }
             for (j, kind) in bracketed(v) {
                 let sign = if kind == ExtremumKind::Max { -1.0 } else { 1.0 };
-                let (t, f) = brent(ts[j - 1], ts[j], ts[j + 1], sign * v[j], |t| {
-                    sign * value(q, t)
+                let (u, f) = brent(us[j - 1], us[j], us[j + 1], sign * v[j], |u| {
+                    sign * value(q, u)
                 });
-                let theta = dense.component_at(t, THETA);
-                out(found(q, kind, (t, sign * f, theta), mode));
+                let (t, y) = at_fraction(dense, span, u);
+                out(found(q, kind, (t, sign * f, y[THETA]), mode));
             }
         };
         series(Watched::NormalForce, &n, continued.map(|e| e.n));
@@ -247,17 +247,19 @@ impl Scanner {
         self.mode = Some(mode);
     }
 
-    /// The extrema of θ in the step: the sign changes of Ω_y over the scan's times, each
-    /// root refined on the interpolant (a zero at a step's end counts in the step it ends).
+    /// The extrema of θ in the step: the sign changes of Ω_y over the scan's points (`us`,
+    /// fractions of the step `span`), each root refined on the interpolant (a zero at a step's end
+    /// counts in the step it ends).
     fn theta(
         &self,
         dense: &dyn Interpolant<Const<DIM>>,
-        ts: &[f64],
+        span: (f64, f64),
+        us: &[f64],
         w: &[f64],
         mode: Mode,
         out: &mut impl FnMut(Extremum),
     ) {
-        for j in 0..ts.len() - 1 {
+        for j in 0..us.len() - 1 {
             let (a, b) = (w[j], w[j + 1]);
             let kind = if a > 0.0 && b <= 0.0 {
                 ExtremumKind::Max
@@ -267,18 +269,39 @@ impl Scanner {
                 continue;
             };
             let sign = a.signum();
-            let root = find_crossing(ts[j], a, ts[j + 1], b, sign, |t| {
-                Ok::<f64, std::convert::Infallible>(dense.component_at(t, OMEGA_Y))
+            let root = find_crossing(us[j], a, us[j + 1], b, sign, |u| {
+                Ok::<f64, std::convert::Infallible>(at_fraction(dense, span, u).1[OMEGA_Y])
             })
             .unwrap_or_else(|never| match never {});
-            let theta = dense.component_at(root.t, THETA);
-            out(found(Watched::Theta, kind, (root.t, theta, theta), mode));
+            let (t, y) = at_fraction(dense, span, root.t);
+            out(found(Watched::Theta, kind, (t, y[THETA], y[THETA]), mode));
         }
     }
 }
 
+/// The scan's points as fractions of a step: its start, a hair ([`EDGE`]) inside it,
+/// [`INTERIOR`] points evenly spaced, a hair before the end, the end.
+fn scan_fractions() -> [f64; INTERIOR + 4] {
+    let mut us = [0.0; INTERIOR + 4];
+    us[1] = EDGE;
+    for (k, u) in us[2..INTERIOR + 2].iter_mut().enumerate() {
+        *u = (k + 1) as f64 / (INTERIOR + 1) as f64;
+    }
+    us[INTERIOR + 2] = 1.0 - EDGE;
+    us[INTERIOR + 3] = 1.0;
+    us
+}
+
+/// The time and the state a fraction `u` through the step `span` of `dense`, in the run's
+/// variable.
+fn at_fraction(dense: &dyn Interpolant<Const<DIM>>, span: (f64, f64), u: f64) -> (f64, [f64; DIM]) {
+    let mut y = [0.0; DIM];
+    let t = dense.at_fraction(span, u, &mut y);
+    (t, y)
+}
+
 /// The scan points `j` whose value is above (a maximum) or below (a minimum) both neighbours:
-/// each brackets an extremum in `[ts[j − 1], ts[j + 1]]`.
+/// each brackets an extremum between the points `j − 1` and `j + 1`.
 ///
 /// This is what bounds the scan. A maximum and the minimum after it (or the reverse), both
 /// between the hairs, are both bracketed when two scan points lie between them (the values
@@ -424,15 +447,6 @@ mod tests {
         assert!(evals < 60, "{evals} evaluations");
     }
 
-    /// The scan's times on a step `[0, 1]`, as [`Scanner::step`] lays them out.
-    fn scan_times() -> [f64; INTERIOR + 4] {
-        let mut ts = [0.0, EDGE, 0.0, 0.0, 1.0 - EDGE, 1.0];
-        for (k, t) in ts[2..INTERIOR + 2].iter_mut().enumerate() {
-            *t = (k + 1) as f64 / (INTERIOR + 1) as f64;
-        }
-        ts
-    }
-
     /// A rising line with a bump: a maximum near `a` and a minimum near `a + d` (a cubic
     /// with those turning points, on a slope that keeps the rest of the step rising).
     fn pair(a: f64, d: f64) -> impl Fn(f64) -> f64 {
@@ -442,7 +456,7 @@ mod tests {
     }
 
     fn found(f: impl Fn(f64) -> f64) -> Vec<(usize, ExtremumKind)> {
-        let v: Vec<f64> = scan_times().iter().map(|&t| f(t)).collect();
+        let v: Vec<f64> = scan_fractions().iter().map(|&t| f(t)).collect();
         bracketed(&v).collect()
     }
 
@@ -450,7 +464,7 @@ mod tests {
     fn pairs_two_gaps_apart_are_always_bracketed() {
         // The widest two neighbouring gaps between the hairs: two thirds of the step, less a
         // hair. A pair farther apart has two scan points between its extrema.
-        let ts = scan_times();
+        let ts = scan_fractions();
         let two_gaps = ts[1..INTERIOR + 3]
             .windows(3)
             .map(|w| w[2] - w[0])

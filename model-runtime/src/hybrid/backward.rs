@@ -205,6 +205,10 @@ impl<D: Dim, I: Interpolant<D>> Interpolant<D> for Reflected<I> {
         self.0.sample_at(-t, out)
     }
 
+    fn at_fraction(&self, (t0, t1): (f64, f64), u: f64, out: &mut Vector<D>) -> f64 {
+        -self.0.at_fraction((-t0, -t1), u, out)
+    }
+
     fn stored(&self) -> StoredInterpolant<D> {
         StoredInterpolant::new(Reflected(self.0.stored()))
     }

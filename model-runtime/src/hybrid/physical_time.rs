@@ -229,6 +229,25 @@ impl<I: Interpolant<Const<M>>, const N: usize, const M: usize> Interpolant<Const
         *out = head(&z);
     }
 
+    /// The fraction in `τ`: the clock is read, not solved for (at the step's ends `τ` is
+    /// known; elsewhere it is found once for each end).
+    fn at_fraction(&self, (t0, t1): (f64, f64), u: f64, out: &mut [f64; N]) -> f64 {
+        let tau_of = |t: f64| {
+            if t == self.t_seg + self.clock.0 {
+                self.tau.0
+            } else if t == self.t_seg + self.clock.1 {
+                self.tau.1
+            } else {
+                self.tau_at(t)
+            }
+        };
+        let (a, b) = (tau_of(t0), tau_of(t1));
+        let mut z = [0.0; M];
+        self.dense.at(a + u * (b - a), &mut z);
+        *out = head(&z);
+        self.t_seg + z[N]
+    }
+
     fn stored(&self) -> StoredInterpolant<Const<N>> {
         StoredInterpolant::new(InPhysicalTime::<_, N, M> {
             dense: self.dense.stored(),

@@ -681,6 +681,55 @@ mod tests {
     }
 
     #[test]
+    fn a_steps_fractions_are_taken_in_tau() {
+        /// Reads every step at fractions of its span: `y = 1 − τ/2` is a straight line in `τ`
+        /// (and not in `t`), so the point a fraction `u` through the step in `τ` has `y` a
+        /// fraction `u` of the way from `y0` to `y1`; its time is where `y = sqrt(1 − t)`.
+        struct Fractions(usize, f64, f64);
+        impl Observer<Const<1>, (), &'static str> for Fractions {
+            fn wants_dense(&self) -> bool {
+                true
+            }
+            fn on_step(
+                &mut self,
+                step: &crate::observer::StepView<'_, Const<1>, ()>,
+            ) -> crate::observer::Observed {
+                let dense = step.dense.expect("asked for");
+                let span = (step.t0, step.t1);
+                let mut y = [0.0];
+                let mut before = f64::NEG_INFINITY;
+                for k in 0..=8 {
+                    let u = k as f64 / 8.0;
+                    let t = dense.at_fraction(span, u, &mut y);
+                    assert!(t > before, "time {t} after {before}");
+                    before = t;
+                    let line = step.y0[0] + u * (step.y1[0] - step.y0[0]);
+                    self.1 = self.1.max((y[0] - line).abs());
+                    self.2 = self.2.max((y[0] - (1.0 - t).sqrt()).abs());
+                }
+                assert_eq!(dense.at_fraction(span, 0.0, &mut y), step.t0);
+                assert_eq!(dense.at_fraction(span, 1.0, &mut y), step.t1);
+                self.0 += 1;
+                Ok(())
+            }
+        }
+        let mut sys = Root;
+        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
+        let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
+        let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+        let mut seen = Fractions(0, 0.0, 0.0);
+        let mut observer = PhysicalTime::<_, 1, 2>::new(&mut seen, 0.0, None);
+        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
+        solver
+            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut observer)
+            .unwrap();
+        assert!(seen.0 > 2, "{} steps", seen.0);
+        // On the line in τ to round-off; in t, sqrt(1 − t) to the interpolant's error.
+        assert!(seen.1 < 1e-14, "off the line in τ by {:e}", seen.1);
+        assert!(seen.2 < 1e-9, "off sqrt(1 − t) by {:e}", seen.2);
+    }
+
+    #[test]
     fn declined_samples_cost_nothing_and_are_not_delivered() {
         struct Even(Vec<f64>);
         impl Observer<Const<1>, (), &'static str> for Even {
