@@ -57,12 +57,13 @@ mod work;
 
 pub use config::{AllowedModes, DiskConfig, ATOL_MAX, MAX_DELIVERED_SAMPLES, RTOL_MAX, RTOL_MIN};
 pub use hybrid::{
-    consistent_slip_direction, disk, simulate, simulate_graph, simulate_switched, AirModel, DiskRunner,
-    DiskGuard, DiskModels, DiskObserver, DiskRecorder, DiskSample, EmbedError, Embedded, Embedding,
-    Engine, Extremum, ExtremumKind, GeneratedModels, OnsetError, PruneError, Pruned, PrunedModels,
-    ReferenceModels, RunOutcome, SimError, SimFailure, SlidingModel, SlipAcceleration, SlipOnset,
-    StopReason, SwitchedDiskRun, SwitchedEvent, Trailing, TransitionRecord, Trigger, Variant,
-    Watched, ENGINE, GRAPH_ENGINE, PROBE_SLIP_SPEED, PRUNED_STATES,
+    consistent_slip_direction, disk, simulate, simulate_graph, simulate_switched, AirModel,
+    DiskGuard, DiskModels, DiskObserver, DiskRecorder, DiskRunner, DiskSample, EmbedError,
+    Embedded, Embedding, Engine, Extremum, ExtremumKind, GeneratedModels, OnsetError, PruneError,
+    Pruned, PrunedModels, ReferenceModels, RunOutcome, SimError, SimFailure, SlidingModel,
+    SlipAcceleration, SlipOnset, StopReason, SwitchedDiskRun, SwitchedEvent, Trailing,
+    TransitionRecord, Trigger, Variant, Watched, ENGINE, GRAPH_ENGINE, PROBE_SLIP_SPEED,
+    PRUNED_STATES,
 };
 pub use issue::{Issue, Number, Rule};
 /// Where a step's interior is searched for guard crossings (re-exported from the runtime).

@@ -23,8 +23,8 @@ use super::{
     Trigger,
 };
 use crate::config::{AllowedModes, DiskConfig};
-use crate::params::DiskParams;
 use crate::modes::{ContactForce, Mode, PhysicalState, Slip, DIM};
+use crate::params::DiskParams;
 use crate::start::InitialState;
 use model_runtime::{
     Const, EvalError, HybridOutcome, HybridSystem, Model, Observed, Observer, ObserverError,

@@ -10,12 +10,13 @@
 //! `eulerdisk sound` asks the same question for the one quantity it keeps, `N`.
 //!
 //! The three model sets are three types; [`with_models`] builds the chosen one and hands it to
-//! a [`ModelsTask`], so a caller states once what it does with models, whichever they are.
+//! a [`ModelsTask`] as a `&dyn DiskRunner`, so a caller states once what it does with models,
+//! whichever they are, and the engine is compiled once per set of models, not per task.
 
+use equations::{DiskParams, Engine, ParamError};
 use equations::{
     DiskRunner, GeneratedModels, PruneError, PrunedModels, ReferenceModels, PRUNED_STATES,
 };
-use equations::{DiskParams, Engine, ParamError};
 use equations::{SlipChart, DIM};
 
 use crate::eval::Backend;

@@ -205,7 +205,10 @@ mod tests {
             assert_eq!(row.len(), direct.len());
             for (&db, &p) in row.iter().zip(direct) {
                 let expected = ((10.0 * (p / largest).log10()) as f32).max(FLOOR_DB);
-                assert!((db - expected).abs() < 1e-3, "{db} dB against {expected} dB");
+                assert!(
+                    (db - expected).abs() < 1e-3,
+                    "{db} dB against {expected} dB"
+                );
             }
         }
         // The tone's bin: 123.4 Hz at 1000/90 Hz per bin.
