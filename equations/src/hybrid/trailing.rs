@@ -116,6 +116,11 @@ impl Trailing<'_> {
         Some((first.t0, last.t1))
     }
 
+    /// The kept steps' spans `(t0, t1)` (s), in time order, bridges included.
+    pub fn step_spans(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.ring.steps.iter().map(|s| (s.t0, s.t1))
+    }
+
     /// How many steps are kept.
     pub fn steps(&self) -> usize {
         self.ring.len()

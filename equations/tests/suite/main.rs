@@ -4,6 +4,7 @@
 mod charts;
 mod common;
 mod error_norm;
+mod extrema_scan;
 mod extremes_flat;
 mod extremes_friction;
 mod extremes_input;
