@@ -9,24 +9,27 @@
 //!   step it is evaluated (interpolated state, one model evaluation) at the step's ends, at
 //!   [`INTERIOR`] interior points and a hair ([`EDGE`] of the step) inside either end; a point
 //!   of that sequence above (below) both neighbours brackets a maximum (minimum), which Brent's
-//!   method refines to [`X_TOL`] of the bracket.
-//!
-//! The scan's points and Brent's iterates are fractions of the step in the variable the run
-//! integrates in ([`Interpolant::at_fraction`]): in regularised time fractions of the step in
-//! `τ`, whose physical time is read off the clock there, so no point is first placed on the
-//! clock by a root search; only the located extrema's times are read, once each. Since the
-//! time rises with `τ`, an extremum in `τ` is one in `t`, at the same instant. The two points beside each end give the slope
+//!   method refines to [`X_TOL`] of the bracket. The two points beside each end give the slope
 //!   there, so an extremum within a hair of a step boundary is still seen (as the boundary,
 //!   the value then off by the curvature times a hair squared). At a mode switch N jumps: the
 //!   value at either side of the switch that lies above (below) its neighbour within the
 //!   segment is reported as a maximum (minimum) too;
 //! * the slip speed, while sliding, as N (only interior extrema: it is continuous).
 //!
+//! The scan's points and Brent's iterates are fractions of the step in the variable the run
+//! integrates in ([`Interpolant::at_fraction`]): in regularised time fractions of the step in
+//! `τ`, whose physical time is read off the clock there, so no point is first placed on the
+//! clock by a root search; only the located extrema's times are read, once each. Since the
+//! time rises with `τ`, an extremum in `τ` is one in `t`, at the same instant.
+//!
 //! A pair of extrema of N or v_C less than two thirds of a step apart (in the run's variable)
-//! can be missed (farther apart, never): see [`bracketed`]. θ's extrema are the zeros of Ω_y found by sign changes
-//! on the same points, so a pair of them inside one gap between scan points (a third of the
-//! step) is missed (Ω_y has the same sign at the gap's ends); a pair with a point between
-//! them is found.
+//! can be missed (farther apart, never): see [`bracketed`]. So in the chatter before a stick,
+//! where N and the slip speed ripple many times within a step, which ripples are listed
+//! depends on where the points fall and on the run's last bits (docs/physics.md §13; the
+//! suite's `extrema_scan` holds the scan to a brute-force one elsewhere). θ's extrema are the
+//! zeros of Ω_y found by sign changes on the same points, so a pair of them inside one gap
+//! between scan points (a third of the step) is missed (Ω_y has the same sign at the gap's
+//! ends); a pair with a point between them is found.
 //!
 //! Bridges (about 1e-9 s at zero slip) are not scanned. The cost is `INTERIOR + 3` model
 //! evaluations per step and about twenty per extremum; a run that does not ask pays nothing.
