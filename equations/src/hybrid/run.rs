@@ -44,58 +44,11 @@ use model_runtime::{WorkExceeded, WorkMeter};
 /// transition with [`Trigger::InitialFriction`], not counted in [`RunOutcome::transitions`]).
 /// A decision for a mode `config.allowed` does not list ends the run there with
 /// [`StopReason::ModeNotAllowed`].
-pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver>(
+pub fn simulate<R: Model<DIM>, S: Model<DIM>, O: DiskObserver + ?Sized>(
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
     observer: &mut O,
-) -> Result<RunOutcome, SimFailure> {
-    simulate_observed(models, config, initial, observer)
-}
-
-/// A set of the disk's models, run with an observer behind a trait object.
-///
-/// [`simulate`] is generic in the models and in the observer, so a crate that calls it with
-/// three observers compiles the engine (integrators, guards, extrema) three times for each set
-/// of models. Through `&dyn DiskRunner` the observer is a trait object: the engine is compiled
-/// once per set of models, whatever observes it, and a front end holds any of the sets as one
-/// type. The hot path, the models' evaluations, is not behind an object.
-pub trait DiskRunner {
-    /// The disk's parameters the models were built for.
-    fn params(&self) -> &DiskParams;
-
-    /// [`simulate`] with these models.
-    fn simulate(
-        &self,
-        config: &DiskConfig,
-        initial: &InitialState,
-        observer: &mut dyn DiskObserver,
-    ) -> Result<RunOutcome, SimFailure>;
-}
-
-impl<R: Model<DIM>, S: Model<DIM>> DiskRunner for DiskModels<R, S> {
-    fn params(&self) -> &DiskParams {
-        &self.params
-    }
-
-    fn simulate(
-        &self,
-        config: &DiskConfig,
-        initial: &InitialState,
-        observer: &mut dyn DiskObserver,
-    ) -> Result<RunOutcome, SimFailure> {
-        simulate_observed(self, config, initial, observer)
-    }
-}
-
-/// [`simulate`] with the observer behind a trait object: the engine is compiled once per set
-/// of models, not again for every observer (a handful of calls per step go through the
-/// object; the models' evaluations, the hot path, do not).
-fn simulate_observed<R: Model<DIM>, S: Model<DIM>>(
-    models: &DiskModels<R, S>,
-    config: &DiskConfig,
-    initial: &InitialState,
-    observer: &mut dyn DiskObserver,
 ) -> Result<RunOutcome, SimFailure> {
     validate(models, config, initial)?;
     let mut system = DiskSystem::new(models, config);
@@ -123,6 +76,43 @@ fn simulate_observed<R: Model<DIM>, S: Model<DIM>>(
     )
 }
 
+/// A set of the disk's models, run with an observer behind a trait object.
+///
+/// [`simulate`] is generic in the models and in the observer, so a crate that calls it with
+/// three observers compiles the engine (integrators, guards, extrema) three times for each set
+/// of models. Through `&dyn DiskRunner` the observer is a trait object (`O = dyn
+/// DiskObserver`): the engine is compiled once per set of models, whatever observes it, and a
+/// front end holds any of the sets as one type. The hot path, the models' evaluations, is not
+/// behind an object; a caller that wants the observer's calls inlined too (a benchmark with
+/// `()`) calls [`simulate`] with its own type.
+pub trait DiskRunner {
+    /// The disk's parameters the models were built for.
+    fn params(&self) -> &DiskParams;
+
+    /// [`simulate`] with these models.
+    fn simulate(
+        &self,
+        config: &DiskConfig,
+        initial: &InitialState,
+        observer: &mut dyn DiskObserver,
+    ) -> Result<RunOutcome, SimFailure>;
+}
+
+impl<R: Model<DIM>, S: Model<DIM>> DiskRunner for DiskModels<R, S> {
+    fn params(&self) -> &DiskParams {
+        &self.params
+    }
+
+    fn simulate(
+        &self,
+        config: &DiskConfig,
+        initial: &InitialState,
+        observer: &mut dyn DiskObserver,
+    ) -> Result<RunOutcome, SimFailure> {
+        simulate(self, config, initial, observer)
+    }
+}
+
 /// Runs the disk's mode graph (module `switching`) from `initial` until `config.t_end` or a
 /// stop, streaming to `observer` what [`simulate`] streams: the same samples, steps, extrema,
 /// trailing steps and decision records, the same gate of allowed modes and work bound, the
@@ -133,17 +123,11 @@ fn simulate_observed<R: Model<DIM>, S: Model<DIM>>(
 /// The graph models the disk in still air, in the Cartesian slip chart, with DOP853 or DP5
 /// and no projection after steps: other settings are refused by key in
 /// [`SimError::Invalid`] ([`Engine::for_run`] says which engine a run can use).
-pub fn simulate_graph<O: DiskObserver>(
-    models: &GeneratedModels,
-    config: &DiskConfig,
-    initial: &InitialState,
-    observer: &mut O,
-) -> Result<RunOutcome, SimFailure> {
-    simulate_graph_observed(models, config, initial, observer)
-}
-
-/// [`simulate_graph`] with the observer behind a trait object: compiled once, in this crate.
-fn simulate_graph_observed(
+///
+/// Not generic: its one set of models is this crate's, so the graph's engine is compiled
+/// here, once, with the observer behind the object (a handful of calls a step), and no crate
+/// that runs it compiles it again.
+pub fn simulate_graph(
     models: &GeneratedModels,
     config: &DiskConfig,
     initial: &InitialState,
@@ -224,7 +208,7 @@ struct Run<'a, R, S> {
 /// The stages after the start, for either engine: `system` driven from `entry` in its mode
 /// `first` (through `modes`; the entry's bridge is the slip a starting bridge starts from), its
 /// output turned into the disk's for `observer` by the [`Adaptor`], and the outcome concluded.
-fn run_on<H, R: Model<DIM>, S: Model<DIM>>(
+fn run_on<H, R: Model<DIM>, S: Model<DIM>, O: DiskObserver + ?Sized>(
     system: &mut H,
     modes: &[ModeOf<H>],
     first: ModeOf<H>,
@@ -235,7 +219,7 @@ fn run_on<H, R: Model<DIM>, S: Model<DIM>>(
         initial,
     }: Run<'_, R, S>,
     gate: Gate,
-    observer: &mut dyn DiskObserver,
+    observer: &mut O,
 ) -> Result<RunOutcome, SimFailure>
 where
     H: DiskEngine + TimeScale<DIM>,
@@ -303,13 +287,13 @@ enum Begun {
 
 /// The first stage: the initial mode decided (and told to the observer and the gate), the
 /// start sampled, and the ends before any step.
-fn begin<R: Model<DIM>, S: Model<DIM>>(
+fn begin<R: Model<DIM>, S: Model<DIM>, O: DiskObserver + ?Sized>(
     system: &mut DiskSystem<'_, R, S>,
     models: &DiskModels<R, S>,
     config: &DiskConfig,
     initial: &InitialState,
     gate: &mut Gate,
-    observer: &mut dyn DiskObserver,
+    observer: &mut O,
 ) -> Result<Begun, SimError> {
     let (entry, decision) = initial_phase(system, models, config, initial)?;
     gate.admit(initial.t, entry.phase.mode());
@@ -389,7 +373,10 @@ fn conclude<R: Model<DIM>, S: Model<DIM>, Md: DiskPhase>(
 
 /// The ring of latest steps `observer` asks for, if any, on the run's sample `grid` (origin,
 /// rate).
-fn observer_ring(observer: &dyn DiskObserver, grid: (f64, Option<f64>)) -> Option<StepRing> {
+fn observer_ring<O: DiskObserver + ?Sized>(
+    observer: &O,
+    grid: (f64, Option<f64>),
+) -> Option<StepRing> {
     observer
         .keeps_trailing()
         .map(|span| StepRing::new(span, grid))
@@ -485,7 +472,7 @@ impl Gate {
     }
 
     /// Forwards a mode decision to the caller's observer, noting the mode it enters.
-    fn forward(&mut self, record: &TransitionRecord, observer: &mut dyn DiskObserver) {
+    fn forward<O: DiskObserver + ?Sized>(&mut self, record: &TransitionRecord, observer: &mut O) {
         self.admit(record.t, record.to);
         observer.on_transition(record);
     }
@@ -536,11 +523,11 @@ pub(crate) fn sample_at<R: Model<DIM>, S: Model<DIM>>(
 }
 
 /// Turns the driver's output into disk samples and decisions for the caller.
-struct Adaptor<'a, R, S> {
+struct Adaptor<'a, R, S, O: ?Sized> {
     models: &'a DiskModels<R, S>,
     /// The slip the current bridge started from (from the note of the transition into it).
     bridge: Option<Slip>,
-    user: &'a mut dyn DiskObserver,
+    user: &'a mut O,
     gate: Gate,
     /// Locates extrema, when the user asks for them.
     scanner: Scanner,
@@ -584,7 +571,7 @@ impl Closing {
     }
 }
 
-impl<R: Model<DIM>, S: Model<DIM>> Adaptor<'_, R, S> {
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver + ?Sized> Adaptor<'_, R, S, O> {
     /// Ends the scanned segment (a transition or the end of the run).
     fn end_segment(&mut self) {
         if self.user.wants_extrema() {
@@ -647,8 +634,8 @@ impl<R: Model<DIM>, S: Model<DIM>> Adaptor<'_, R, S> {
 
 /// The adaptor observes either engine: their modes are seen as phases, their guards are
 /// not read.
-impl<R: Model<DIM>, S: Model<DIM>, Md: DiskPhase, G> Observer<Const<DIM>, Md, G, DiskNote>
-    for Adaptor<'_, R, S>
+impl<R: Model<DIM>, S: Model<DIM>, O: DiskObserver + ?Sized, Md: DiskPhase, G>
+    Observer<Const<DIM>, Md, G, DiskNote> for Adaptor<'_, R, S, O>
 {
     fn wants_sample(&self, t: f64) -> bool {
         self.user.wants_sample(t)
