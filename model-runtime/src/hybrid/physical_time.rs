@@ -229,8 +229,8 @@ impl<I: Interpolant<Const<M>>, const N: usize, const M: usize> Interpolant<Const
         *out = head(&z);
     }
 
-    /// The fraction in `τ`: the clock is read, not solved for (at the step's ends `τ` is
-    /// known; elsewhere it is found once for each end).
+    /// The fraction in `τ`: the clock is read, not solved for. At the step's own ends `τ` is
+    /// known; a span ending elsewhere (a step cut short) has its ends' `τ` found on each call.
     fn at_fraction(&self, (t0, t1): (f64, f64), u: f64, out: &mut [f64; N]) -> f64 {
         let tau_of = |t: f64| {
             if t == self.t_seg + self.clock.0 {

@@ -643,6 +643,20 @@ mod tests {
         }
     }
 
+    /// Runs `Root` in regularised time to `t = 0.75` (DOP853, rtol 1e-10) with `seen`
+    /// observing in physical time, without a sample grid.
+    fn observe_clocked(seen: &mut impl Observer<Const<1>, (), &'static str>) {
+        let mut sys = Root;
+        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
+        let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
+        let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
+        let mut observer = PhysicalTime::<_, 1, 2>::new(seen, 0.0, None);
+        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
+        solver
+            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut observer)
+            .unwrap();
+    }
+
     #[test]
     fn steps_carry_their_dense_output_in_physical_time() {
         /// Checks the interpolant of every step against `y = sqrt(1 - t)` in physical time.
@@ -665,16 +679,8 @@ mod tests {
                 Ok(())
             }
         }
-        let mut sys = Root;
-        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
-        let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
-        let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
         let mut seen = Dense(0, 0.0);
-        let mut observer = PhysicalTime::<_, 1, 2>::new(&mut seen, 0.0, None);
-        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
-        solver
-            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut observer)
-            .unwrap();
+        observe_clocked(&mut seen);
         assert!(seen.0 > 2, "{} steps", seen.0);
         // The interpolant's error at rtol 1e-10, and the clock's root to a few ulps.
         assert!(seen.1 < 1e-9, "largest error {:e}", seen.1);
@@ -713,16 +719,8 @@ mod tests {
                 Ok(())
             }
         }
-        let mut sys = Root;
-        let mut clocked = Regularised::<_, 1, 2>::new(&mut sys, &[()], 0.0, 0.75);
-        let tol = clocked.tolerance(&tol(), (1e-10, 1e-12));
-        let mut solver = HybridSolver::new(Dop853::new(), tol, HybridOptions::default()).unwrap();
         let mut seen = Fractions(0, 0.0, 0.0);
-        let mut observer = PhysicalTime::<_, 1, 2>::new(&mut seen, 0.0, None);
-        let z0 = Regularised::<Root, 1, 2>::start(&[1.0]);
-        solver
-            .run(&mut clocked, (), 0.0, &z0, f64::MAX, &mut observer)
-            .unwrap();
+        observe_clocked(&mut seen);
         assert!(seen.0 > 2, "{} steps", seen.0);
         // On the line in τ to round-off; in t, sqrt(1 − t) to the interpolant's error.
         assert!(seen.1 < 1e-14, "off the line in τ by {:e}", seen.1);
